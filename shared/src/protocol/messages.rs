@@ -1,0 +1,267 @@
+//! Request, response and error messages (serde + postcard).
+
+use serde::{Deserialize, Serialize};
+
+use crate::calibration::{AccelRange, Calibration, CalibrationError};
+use crate::orientation::Position;
+use crate::six_position::SixPositionError;
+
+use super::FrameError;
+
+/// What the host asks of the device.
+#[derive(Serialize, Deserialize, Debug, Clone, PartialEq)]
+pub enum Request {
+    /// Opens a session; answered with [`Response::Hello`]. Sent first.
+    Hello { protocol_version: u8 },
+    /// Sets range, sample rate and filter; answered with [`Response::Configured`] (the rate achieved).
+    Configure(SensorConfig),
+    /// Averages the still sensor for `seconds` (5-20); progress, then [`Response::Captured`].
+    Capture { seconds: u8 },
+    /// Stops the running capture or stream; the stopped operation ends with an error or its end message.
+    Cancel,
+    /// Forgets the captures kept for the six-position fit.
+    ClearPositions,
+    /// Fits the six-position closed form on the chip from the kept captures; it becomes active at once.
+    FitSixPosition,
+    /// Reads the active (RAM) or the stored (flash) calibration.
+    GetCalibration(CalibrationSlot),
+    /// Makes a calibration active after validating it; the stored one is untouched until saved.
+    SetCalibration(Calibration),
+    /// Writes the active calibration to flash.
+    SaveCalibration,
+    /// Erases the stored calibration and returns the active one to identity.
+    EraseCalibration,
+    /// Streams `count` samples (0: until cancelled) at `rate_hz`, raw or calibrated.
+    Stream { kind: StreamKind, rate_hz: u16, count: u32 },
+}
+
+/// What the device answers.
+#[derive(Serialize, Deserialize, Debug, Clone, PartialEq)]
+pub enum Response {
+    /// Answer to [`Request::Hello`].
+    Hello(DeviceInfo),
+    /// The configuration now in force.
+    Configured(SensorConfig),
+    /// A capture is running (sent at least once a second).
+    Progress(CaptureProgress),
+    /// A capture finished; `position` is the face it was detected at, if it was at one.
+    Captured { stats: CaptureStats, position: Option<Position> },
+    /// The on-chip six-position fit, now active.
+    Fitted(Calibration),
+    /// The requested calibration, `None` when there is none.
+    Calibration(Option<Calibration>),
+    /// One streamed sample.
+    Sample(Sample),
+    /// A stream ended after this many samples.
+    StreamEnded { samples: u32 },
+    /// The request was carried out and has nothing to report.
+    Done,
+    /// The request failed; nothing was changed unless the error says so.
+    Error(DeviceError),
+}
+
+/// Which copy of the calibration to read.
+#[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CalibrationSlot {
+    /// The calibration applied to samples now (RAM).
+    Active,
+    /// The calibration in flash, loaded at boot.
+    Stored,
+}
+
+/// Whether streamed samples are corrected.
+#[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StreamKind {
+    /// Sensor output converted to g and deg/s, uncorrected.
+    Raw,
+    /// Corrected with the active calibration: a = M (m - o), gyro bias removed.
+    Calibrated,
+}
+
+/// The MPU-6050 digital low-pass filter setting (register CONFIG, DLPF_CFG), by accelerometer bandwidth.
+#[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum LowPassFilter {
+    /// 260 Hz (filter off).
+    Hz260,
+    /// 184 Hz.
+    Hz184,
+    /// 94 Hz.
+    Hz94,
+    /// 44 Hz (the default).
+    #[default]
+    Hz44,
+    /// 21 Hz.
+    Hz21,
+    /// 10 Hz.
+    Hz10,
+    /// 5 Hz.
+    Hz5,
+}
+
+/// Sensor settings.
+#[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SensorConfig {
+    /// Accelerometer full-scale range.
+    pub range: AccelRange,
+    /// Sample rate in Hz (the device answers with the rate it achieves).
+    pub sample_rate_hz: u16,
+    /// Digital low-pass filter.
+    pub filter: LowPassFilter,
+}
+
+impl Default for SensorConfig {
+    fn default() -> Self {
+        SensorConfig { range: AccelRange::G2, sample_rate_hz: 100, filter: LowPassFilter::Hz44 }
+    }
+}
+
+/// The version of the firmware, from its Cargo package version.
+#[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FirmwareVersion {
+    pub major: u8,
+    pub minor: u8,
+    pub patch: u8,
+}
+
+/// Which chip answered and where.
+#[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SensorIdentity {
+    /// 7-bit I2C address, 0x68 or 0x69.
+    pub address: u8,
+    /// The WHO_AM_I register (0x75) value.
+    pub who_am_i: u8,
+    /// True for a genuine MPU-6050 (WHO_AM_I 0x68), false for a register-compatible clone.
+    pub genuine: bool,
+}
+
+/// Where the active calibration came from.
+#[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ActiveCalibration {
+    /// No calibration: samples pass through uncorrected.
+    None,
+    /// The calibration stored in flash.
+    Stored,
+    /// A calibration fitted or uploaded since boot and not saved.
+    Unsaved,
+}
+
+/// The device's answer to [`Request::Hello`].
+#[derive(Serialize, Deserialize, Debug, Clone, PartialEq)]
+pub struct DeviceInfo {
+    /// The device's protocol version.
+    pub protocol_version: u8,
+    /// The firmware version.
+    pub firmware: FirmwareVersion,
+    /// The sensor found at boot, or the error that prevented finding it.
+    pub sensor: Result<SensorIdentity, DeviceError>,
+    /// The sensor configuration in force.
+    pub config: SensorConfig,
+    /// Where the active calibration came from.
+    pub active: ActiveCalibration,
+    /// Whether flash holds a calibration.
+    pub stored: bool,
+    /// The positions whose captures are kept for the six-position fit.
+    pub positions: PositionSet,
+}
+
+/// A set of positions as a bit mask over [`Position::ALL`].
+#[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct PositionSet(pub u8);
+
+impl PositionSet {
+    /// Adds a position.
+    pub fn insert(&mut self, position: Position) {
+        self.0 |= 1 << position.index();
+    }
+
+    /// Whether the set holds a position.
+    pub fn contains(self, position: Position) -> bool {
+        self.0 & (1 << position.index()) != 0
+    }
+}
+
+/// How far a running capture has got.
+#[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq)]
+pub struct CaptureProgress {
+    /// Samples averaged so far.
+    pub samples: u32,
+    /// Samples the capture will average in all.
+    pub total_samples: u32,
+    /// Mean of the samples so far, in g, for a live display.
+    pub mean_g: [f32; 3],
+}
+
+/// The statistics of one capture of the still sensor.
+#[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq)]
+pub struct CaptureStats {
+    /// Number of samples averaged.
+    pub samples: u32,
+    /// Capture duration in seconds (samples / sample rate).
+    pub seconds: f32,
+    /// Mean accelerometer reading per axis, in g.
+    pub mean_g: [f32; 3],
+    /// Standard deviation of the accelerometer samples per axis, in g.
+    pub std_g: [f32; 3],
+    /// Mean gyro reading per axis, in deg/s.
+    pub gyro_mean_dps: [f32; 3],
+    /// Standard deviation of the gyro samples per axis, in deg/s.
+    pub gyro_std_dps: [f32; 3],
+    /// Mean die temperature in degC.
+    pub temp_c: f32,
+    /// Samples with an axis at the end of the range.
+    pub clipped: u32,
+    /// The range the capture was taken at.
+    pub range: AccelRange,
+}
+
+/// One streamed sample.
+#[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq)]
+pub struct Sample {
+    /// Sample number within the stream, from 0.
+    pub index: u32,
+    /// Specific force in g (corrected when the stream is calibrated).
+    pub accel_g: [f32; 3],
+    /// Angular rate in deg/s (bias removed when the stream is calibrated).
+    pub gyro_dps: [f32; 3],
+    /// Die temperature in degC.
+    pub temp_c: f32,
+}
+
+/// Why the device refused or failed a request. Typed, so the host can name cause and remedy.
+#[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq)]
+pub enum DeviceError {
+    /// No device acknowledges at 0x68 or 0x69.
+    SensorMissing,
+    /// A device answers but its WHO_AM_I is not an MPU-6050 or a known clone.
+    UnknownSensor { address: u8, who_am_i: u8 },
+    /// An I2C transaction failed.
+    Bus,
+    /// The sensor FIFO overflowed, so samples were lost.
+    FifoOverflow,
+    /// The board moved during the capture: the scatter exceeded the stillness limits.
+    Moved { accel_std_mg: f32, gyro_std_dps: f32 },
+    /// Samples reached the end of the range.
+    Clipped { samples: u32 },
+    /// The operation was cancelled by the host.
+    Cancelled,
+    /// A capture length outside 5-20 s.
+    InvalidDuration { seconds: u8 },
+    /// A sample rate the sensor cannot run at, or a stream rate above the sample rate.
+    InvalidRate { rate_hz: u16 },
+    /// The six-position fit cannot run.
+    SixPosition(SixPositionError),
+    /// A calibration was refused.
+    InvalidCalibration(CalibrationError),
+    /// The calibration belongs to another range than the one configured.
+    RangeMismatch { calibration: AccelRange, configured: AccelRange },
+    /// There is no calibration to save.
+    NoCalibration,
+    /// Reading or writing flash failed.
+    Storage,
+    /// Another long operation is running.
+    Busy,
+    /// A frame could not be read; it was not acted on.
+    Frame(FrameError),
+    /// The host speaks another protocol version.
+    UnsupportedVersion { device: u8, host: u8 },
+}
