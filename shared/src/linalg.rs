@@ -104,7 +104,11 @@ mod tests {
 
     #[test]
     fn inverse_times_matrix_is_identity_to_f64_precision() {
-        let m = [[1.02, 0.003, -0.01], [0.0, 0.97, 0.004], [0.02, -0.001, 1.05]];
+        let m = [
+            [1.02, 0.003, -0.01],
+            [0.0, 0.97, 0.004],
+            [0.02, -0.001, 1.05],
+        ];
         let inv = inverse(&m).unwrap();
         assert!(max_abs_diff(&mul_mat(&m, &inv), &identity()) < 1e-15);
     }
