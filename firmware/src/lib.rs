@@ -1,1 +1,4 @@
-#![no_std]
+//! accelcal's firmware library: everything the board does, target-independent and tested on the host.
+//!
+//! The board binary (`main.rs`) only sets up clocks, pins and USB and hands them to this library.
+#![cfg_attr(not(test), no_std)]

@@ -39,6 +39,20 @@ pub fn sub<T: Float>(a: Vec3<T>, b: Vec3<T>) -> Vec3<T> {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
+/// Component-wise a + b.
+pub fn add<T: Float>(a: Vec3<T>, b: Vec3<T>) -> Vec3<T> {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+
+/// Transpose.
+pub fn transpose<T: Float>(m: &Mat3<T>) -> Mat3<T> {
+    [
+        [m[0][0], m[1][0], m[2][0]],
+        [m[0][1], m[1][1], m[2][1]],
+        [m[0][2], m[1][2], m[2][2]],
+    ]
+}
+
 /// Vector times scalar.
 pub fn scale<T: Float>(a: Vec3<T>, s: T) -> Vec3<T> {
     [a[0] * s, a[1] * s, a[2] * s]

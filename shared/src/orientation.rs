@@ -75,10 +75,9 @@ impl Position {
 
     /// +1 when the positive axis points up, -1 when the negative one does.
     pub const fn sign(self) -> i8 {
-        if self.index() % 2 == 0 {
-            1
-        } else {
-            -1
+        match self {
+            Position::PosX | Position::PosY | Position::PosZ => 1,
+            Position::NegX | Position::NegY | Position::NegZ => -1,
         }
     }
 

@@ -79,17 +79,16 @@ impl<T: Float> PositionReadings<T> {
     /// Fits `m = X a + y` and returns the calibration M = X^-1, o = y, with `g` the magnitude of
     /// gravity in the readings' unit (1 for readings in g).
     pub fn fit(&self, g: T) -> Result<SixPositionFit<T>, SixPositionError> {
-        let mut x = [[T::zero(); 3]; 3];
+        // X column k = (m(+k) - m(-k)) / 2g; built as rows of X^T, one per axis.
+        let mut columns = [[T::zero(); 3]; 3];
         let mut sum = [T::zero(); 3];
-        let two_g = g + g;
-        for axis in 0..3 {
+        for (axis, column) in columns.iter_mut().enumerate() {
             let up = self.require(Position::from_axis(axis, true))?;
             let down = self.require(Position::from_axis(axis, false))?;
-            for row in 0..3 {
-                x[row][axis] = (up[row] - down[row]) / two_g;
-                sum[row] = sum[row] + up[row] + down[row];
-            }
+            *column = linalg::scale(linalg::sub(up, down), T::one() / (g + g));
+            sum = linalg::add(sum, linalg::add(up, down));
         }
+        let x = linalg::transpose(&columns);
         let six = T::from(6.0).ok_or(SixPositionError::Degenerate)?;
         let offset = linalg::scale(sum, T::one() / six);
         let matrix = linalg::inverse(&x).ok_or(SixPositionError::Degenerate)?;
@@ -141,8 +140,7 @@ mod tests {
         let mut set = PositionReadings::new();
         for position in Position::ALL {
             let a = linalg::scale(position.specific_force_g(), g);
-            let m = linalg::mul_vec(x, a);
-            let m = [m[0] + y[0], m[1] + y[1], m[2] + y[2]];
+            let m = linalg::add(linalg::mul_vec(x, a), y);
             set.insert(position, m.map(|v| v as f32)).unwrap();
         }
         set

@@ -245,8 +245,7 @@ mod tests {
             .iter()
             .enumerate()
             .map(|(i, &a)| {
-                let m = linalg::mul_vec(&X, a);
-                let reading = [m[0] + Y[0], m[1] + Y[1], m[2] + Y[2]];
+                let reading = linalg::add(linalg::mul_vec(&X, a), Y);
                 Row {
                     line: i + 2,
                     reading,
