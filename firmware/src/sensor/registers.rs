@@ -1,0 +1,62 @@
+//! MPU-6050 register addresses and bits used here.
+//!
+//! NOTE: from the MPU-6000/MPU-6050 Register Map and Descriptions, revision 4.2 (RM-MPU-6000A-00).
+//! The `mpu6050` crate covers power, ranges and the data registers; it has no FIFO, sample-rate
+//! divider or interrupt-status access, so those are written through its register access.
+
+/// The two addresses the chip answers at: AD0 low (0x68) or high (0x69).
+pub const ADDRESSES: [u8; 2] = [0x68, 0x69];
+
+/// SMPLRT_DIV (0x19): sample rate = gyro output rate / (1 + divider), section 4.2.
+pub const SMPLRT_DIV: u8 = 0x19;
+/// CONFIG (0x1A): DLPF_CFG in bits 2:0, section 4.3.
+pub const CONFIG: u8 = 0x1A;
+/// FIFO_EN (0x23): which measurements go into the FIFO, section 4.6.
+pub const FIFO_EN: u8 = 0x23;
+/// INT_ENABLE (0x38), section 4.15.
+pub const INT_ENABLE: u8 = 0x38;
+/// INT_STATUS (0x3A): cleared when read, section 4.16.
+pub const INT_STATUS: u8 = 0x3A;
+/// ACCEL_XOUT_H (0x3B): start of accel (6), temperature (2) and gyro (6) data, section 4.17-4.19.
+pub const ACCEL_XOUT_H: u8 = 0x3B;
+/// USER_CTRL (0x6A), section 4.29.
+pub const USER_CTRL: u8 = 0x6A;
+/// PWR_MGMT_1 (0x6B), section 4.30.
+pub const PWR_MGMT_1: u8 = 0x6B;
+/// FIFO_COUNT_H (0x72): byte count in the FIFO, high byte first, section 4.31.
+pub const FIFO_COUNT_H: u8 = 0x72;
+/// FIFO_R_W (0x74): reading pops bytes from the FIFO, section 4.32.
+pub const FIFO_R_W: u8 = 0x74;
+/// WHO_AM_I (0x75): 0x68 on a genuine MPU-6050 whatever the AD0 pin, section 4.33.
+pub const WHO_AM_I: u8 = 0x75;
+
+/// WHO_AM_I of a genuine MPU-6050.
+pub const WHO_AM_I_MPU6050: u8 = 0x68;
+/// WHO_AM_I values of register-compatible parts sold as MPU-6050 modules: MPU-6500 (0x70),
+/// MPU-9250 (0x71), MPU-9255 (0x73) and common clones (0x72, 0x98).
+pub const WHO_AM_I_CLONES: [u8; 5] = [0x70, 0x71, 0x72, 0x73, 0x98];
+
+/// FIFO_EN: temperature, the three gyro axes and the accelerometer (TEMP, XG, YG, ZG, ACCEL).
+pub const FIFO_EN_TEMP_GYRO_ACCEL: u8 = 0b1111_1000;
+/// INT_ENABLE / INT_STATUS: FIFO overflow bit.
+pub const FIFO_OFLOW: u8 = 1 << 4;
+/// USER_CTRL: FIFO enable bit.
+pub const USER_CTRL_FIFO_EN: u8 = 1 << 6;
+/// USER_CTRL: FIFO reset bit (self-clearing).
+pub const USER_CTRL_FIFO_RESET: u8 = 1 << 2;
+/// PWR_MGMT_1: awake, clock from the x gyro PLL (recommended over the internal oscillator, 4.30).
+pub const PWR_MGMT_1_AWAKE_PLL_X: u8 = 0x01;
+
+/// Bytes of one FIFO sample: accel x,y,z, temperature, gyro x,y,z, each big-endian i16, in register
+/// order (section 4.6: "data is written in order of register number").
+pub const FIFO_SAMPLE_LEN: usize = 14;
+/// FIFO size in bytes (Product Specification section 7.17).
+pub const FIFO_LEN: usize = 1024;
+/// Gyro output rate with the digital low-pass filter on, in Hz (section 4.2).
+pub const GYRO_OUTPUT_RATE_HZ: u32 = 1000;
+/// Gyro sensitivity at +-250 deg/s, LSB per deg/s (Product Specification section 6.1).
+pub const GYRO_LSB_PER_DPS: f32 = 131.0;
+/// Temperature: degC = raw / 340 + 36.53 (section 4.18).
+pub const TEMP_LSB_PER_C: f32 = 340.0;
+/// Temperature offset in degC.
+pub const TEMP_OFFSET_C: f32 = 36.53;
