@@ -3,4 +3,6 @@
 //! The board binary (`main.rs`) only sets up clocks, pins and USB and hands them to this library.
 #![cfg_attr(not(test), no_std)]
 
+pub mod capture;
 pub mod sensor;
+pub mod sim;

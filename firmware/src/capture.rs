@@ -1,0 +1,243 @@
+//! The capture engine: averages the still sensor over 5-20 s, exactly, from FIFO samples.
+//!
+//! Sums and sums of squares are kept in integers, so the statistics do not depend on the order or
+//! the number of samples; the result carries mean and scatter, and the capture is refused when the
+//! scatter shows motion or a sample hit the end of the range.
+
+use shared::protocol::{
+    CaptureProgress, CaptureStats, DeviceError, SensorConfig, MAX_CAPTURE_SECONDS,
+    MIN_CAPTURE_SECONDS,
+};
+
+use crate::sensor::registers::{GYRO_LSB_PER_DPS, TEMP_LSB_PER_C, TEMP_OFFSET_C};
+use crate::sensor::RawSample;
+
+/// Largest accelerometer standard deviation of a still board, in g, on any axis.
+///
+/// NOTE: the noise density of 400 ug/sqrt(Hz) (Product Specification 6.2) gives 2.8 mg rms at the
+/// default 100 Hz / 44 Hz filter and 9 mg with the filter off at 1 kHz; 15 mg keeps clear of both
+/// while a hand's tremor or a turn of a few degrees exceeds it.
+pub const MAX_STILL_ACCEL_STD_G: f32 = 0.015;
+/// Largest gyro standard deviation of a still board, in deg/s (noise is 0.05 deg/s rms, spec 6.1).
+pub const MAX_STILL_GYRO_STD_DPS: f32 = 0.5;
+
+/// Integer sums over the samples of a capture.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+struct Sums {
+    count: u32,
+    accel: [i64; 3],
+    accel_squares: [i64; 3],
+    gyro: [i64; 3],
+    gyro_squares: [i64; 3],
+    temp: i64,
+    clipped: u32,
+}
+
+impl Sums {
+    fn add(&mut self, sample: &RawSample) {
+        self.count += 1;
+        for axis in 0..3 {
+            let (a, g) = (i64::from(sample.accel[axis]), i64::from(sample.gyro[axis]));
+            self.accel[axis] += a;
+            self.accel_squares[axis] += a * a;
+            self.gyro[axis] += g;
+            self.gyro_squares[axis] += g * g;
+        }
+        self.temp += i64::from(sample.temp);
+        if sample.accel.iter().any(|&a| a == i16::MAX || a == i16::MIN) {
+            self.clipped += 1;
+        }
+    }
+
+    /// Exact mean of a sum, in LSB: integer quotient plus the remainder's fraction.
+    fn mean(&self, sum: i64) -> f32 {
+        let n = i64::from(self.count.max(1));
+        (sum.div_euclid(n)) as f32 + (sum.rem_euclid(n)) as f32 / n as f32
+    }
+
+    /// Sample standard deviation in LSB, from an exact integer numerator n*sum(x^2) - sum(x)^2.
+    fn std(&self, sum: i64, squares: i64) -> f32 {
+        let n = i128::from(self.count);
+        if n < 2 {
+            return 0.0;
+        }
+        let numerator = n * i128::from(squares) - i128::from(sum) * i128::from(sum);
+        libm::sqrtf(numerator as f32 / (n * (n - 1)) as f32)
+    }
+}
+
+/// A capture in progress.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Capture {
+    sums: Sums,
+    total_samples: u32,
+    config: SensorConfig,
+}
+
+impl Capture {
+    /// A capture of `seconds` (5-20) at the sensor's configured rate.
+    pub fn new(seconds: u8, config: SensorConfig) -> Result<Self, DeviceError> {
+        if !(MIN_CAPTURE_SECONDS..=MAX_CAPTURE_SECONDS).contains(&seconds) {
+            return Err(DeviceError::InvalidDuration { seconds });
+        }
+        let total_samples = u32::from(seconds) * u32::from(config.sample_rate_hz);
+        Ok(Capture {
+            sums: Sums::default(),
+            total_samples,
+            config,
+        })
+    }
+
+    /// Samples the capture averages in all: rate x seconds.
+    pub fn total_samples(&self) -> u32 {
+        self.total_samples
+    }
+
+    /// Samples taken so far.
+    pub fn samples(&self) -> u32 {
+        self.sums.count
+    }
+
+    /// Takes samples until the capture is complete; returns how many it took.
+    pub fn take(&mut self, samples: &[RawSample]) -> usize {
+        let room = (self.total_samples - self.sums.count) as usize;
+        let taken = samples.len().min(room);
+        samples[..taken].iter().for_each(|s| self.sums.add(s));
+        taken
+    }
+
+    /// Whether every sample has been taken.
+    pub fn is_complete(&self) -> bool {
+        self.sums.count >= self.total_samples
+    }
+
+    /// Progress for the host's display.
+    pub fn progress(&self) -> CaptureProgress {
+        let lsb = self.config.range.lsb_per_g();
+        CaptureProgress {
+            samples: self.sums.count,
+            total_samples: self.total_samples,
+            mean_g: [0, 1, 2].map(|axis| self.sums.mean(self.sums.accel[axis]) / lsb),
+        }
+    }
+
+    /// The statistics, or why the capture cannot be used (clipped, moved).
+    pub fn finish(&self) -> Result<CaptureStats, DeviceError> {
+        let stats = self.stats();
+        if stats.clipped > 0 {
+            return Err(DeviceError::Clipped {
+                samples: stats.clipped,
+            });
+        }
+        let accel_std = stats.std_g.iter().copied().fold(0.0, f32::max);
+        let gyro_std = stats.gyro_std_dps.iter().copied().fold(0.0, f32::max);
+        if accel_std > MAX_STILL_ACCEL_STD_G || gyro_std > MAX_STILL_GYRO_STD_DPS {
+            return Err(DeviceError::Moved {
+                accel_std_mg: accel_std * 1000.0,
+                gyro_std_dps: gyro_std,
+            });
+        }
+        Ok(stats)
+    }
+
+    /// The statistics of the samples taken, whatever they show.
+    pub fn stats(&self) -> CaptureStats {
+        let s = &self.sums;
+        let lsb = self.config.range.lsb_per_g();
+        CaptureStats {
+            samples: s.count,
+            seconds: s.count as f32 / f32::from(self.config.sample_rate_hz),
+            mean_g: [0, 1, 2].map(|k| s.mean(s.accel[k]) / lsb),
+            std_g: [0, 1, 2].map(|k| s.std(s.accel[k], s.accel_squares[k]) / lsb),
+            gyro_mean_dps: [0, 1, 2].map(|k| s.mean(s.gyro[k]) / GYRO_LSB_PER_DPS),
+            gyro_std_dps: [0, 1, 2].map(|k| s.std(s.gyro[k], s.gyro_squares[k]) / GYRO_LSB_PER_DPS),
+            temp_c: s.mean(s.temp) / TEMP_LSB_PER_C + TEMP_OFFSET_C,
+            clipped: s.clipped,
+            range: self.config.range,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample(accel: [i16; 3], gyro: [i16; 3]) -> RawSample {
+        RawSample {
+            accel,
+            temp: -3536,
+            gyro,
+        }
+    }
+
+    #[test]
+    fn refuses_durations_outside_5_to_20_seconds() {
+        for seconds in [0, 4, 21, 255] {
+            assert_eq!(
+                Capture::new(seconds, SensorConfig::default()),
+                Err(DeviceError::InvalidDuration { seconds })
+            );
+        }
+        assert_eq!(
+            Capture::new(5, SensorConfig::default())
+                .unwrap()
+                .total_samples(),
+            500
+        );
+        assert_eq!(
+            Capture::new(20, SensorConfig::default())
+                .unwrap()
+                .total_samples(),
+            2000
+        );
+    }
+
+    #[test]
+    fn statistics_are_exact_for_known_samples() {
+        let mut capture = Capture::new(5, SensorConfig::default()).unwrap();
+        // Alternating 16384 +- 100 on z: mean 1 g, std 100 LSB * sqrt(n / (n - 1)).
+        let samples: Vec<_> = (0..500)
+            .map(|i| {
+                sample(
+                    [0, 1, 16384 + if i % 2 == 0 { 100 } else { -100 }],
+                    [131, 0, -262],
+                )
+            })
+            .collect();
+        assert_eq!(capture.take(&samples), 500);
+        assert!(capture.is_complete());
+        let stats = capture.finish().unwrap();
+        assert_eq!(stats.samples, 500);
+        assert_eq!(stats.seconds, 5.0);
+        assert_eq!(stats.mean_g, [0.0, 1.0 / 16384.0, 1.0]);
+        let expected_std = 100.0 * (500.0f32 / 499.0).sqrt() / 16384.0;
+        assert!(
+            (stats.std_g[2] - expected_std).abs() < 1e-7,
+            "{}",
+            stats.std_g[2]
+        );
+        assert_eq!(stats.std_g[0], 0.0);
+        assert_eq!(stats.gyro_mean_dps, [1.0, 0.0, -2.0]);
+        assert!((stats.temp_c - 26.13).abs() < 0.01);
+    }
+
+    #[test]
+    fn takes_no_more_than_rate_times_seconds() {
+        let mut capture = Capture::new(5, SensorConfig::default()).unwrap();
+        let samples = vec![sample([0, 0, 16384], [0; 3]); 300];
+        assert_eq!(capture.take(&samples), 300);
+        assert_eq!(capture.take(&samples), 200);
+        assert_eq!(capture.take(&samples), 0);
+        assert_eq!(capture.samples(), 500);
+    }
+
+    #[test]
+    fn a_saturated_sample_refuses_the_capture_as_clipped() {
+        let mut capture = Capture::new(5, SensorConfig::default()).unwrap();
+        let mut samples = vec![sample([0, 0, 16384], [0; 3]); 500];
+        samples[17].accel[0] = i16::MIN;
+        samples[400].accel[1] = i16::MAX;
+        capture.take(&samples);
+        assert_eq!(capture.finish(), Err(DeviceError::Clipped { samples: 2 }));
+    }
+}
