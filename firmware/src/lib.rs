@@ -6,3 +6,4 @@
 pub mod capture;
 pub mod sensor;
 pub mod sim;
+pub mod storage;

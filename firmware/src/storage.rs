@@ -1,0 +1,115 @@
+//! The calibration in flash, power-fail-safely, through sequential-storage.
+//!
+//! sequential-storage appends each save as a new CRC-checked item and only erases a page once the
+//! live item has been copied out of it, so a power cut at any moment of a save leaves the previous
+//! item readable: the board boots with the old or the new calibration, never garbage and never none
+//! when one existed. An erase stores an empty record rather than removing the item, for the same
+//! reason. On top of the item CRC, each record carries a format version and is validated before use.
+
+use core::ops::Range;
+
+use embedded_storage_async::nor_flash::NorFlash;
+use sequential_storage::cache::{Cache, Uncached};
+use sequential_storage::map::{MapConfig, MapStorage};
+use shared::Calibration;
+
+/// The map key of the calibration record.
+const CALIBRATION_KEY: u8 = 1;
+/// Version of the record layout: bump it when `Calibration` changes shape.
+pub const RECORD_FORMAT_VERSION: u8 = 1;
+/// Largest record: format version and postcard `Option<Calibration>` (at most 73 bytes today).
+const RECORD_LEN: usize = 96;
+/// sequential-storage's scratch buffer: key plus record, rounded up to the flash word.
+const RECORD_BUFFER_LEN: usize = 128;
+
+/// Why the stored calibration could not be read or written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StorageError {
+    /// The flash range does not suit the flash (not page-aligned, fewer than two pages).
+    BadRange,
+    /// The flash reported an error.
+    Flash,
+    /// The record is unreadable, of another format, or holds an invalid calibration: refused.
+    Corrupt,
+    /// The storage is full and could not be compacted.
+    Full,
+}
+
+impl<E> From<sequential_storage::Error<E>> for StorageError {
+    fn from(error: sequential_storage::Error<E>) -> Self {
+        match error {
+            sequential_storage::Error::Storage { .. } => StorageError::Flash,
+            sequential_storage::Error::FullStorage => StorageError::Full,
+            _ => StorageError::Corrupt,
+        }
+    }
+}
+
+/// The calibration store on a NOR flash range.
+pub struct Storage<F: NorFlash> {
+    map: MapStorage<u8, F, Cache<Uncached, Uncached, Uncached, u8>>,
+    buffer: [u8; RECORD_BUFFER_LEN],
+}
+
+impl<F: NorFlash> Storage<F> {
+    /// A store on `range` (byte offsets into `flash`, whole erase pages, at least two).
+    pub fn new(flash: F, range: Range<u32>) -> Result<Self, StorageError> {
+        let config = MapConfig::try_new(range).map_err(|_| StorageError::BadRange)?;
+        Ok(Storage {
+            map: MapStorage::new(flash, config, Cache::new_uncached()),
+            buffer: [0; RECORD_BUFFER_LEN],
+        })
+    }
+
+    /// The stored calibration, `None` when there is none; a damaged or invalid record is refused.
+    pub async fn load(&mut self) -> Result<Option<Calibration>, StorageError> {
+        let record: Option<&[u8]> = self
+            .map
+            .fetch_item(&mut self.buffer, &CALIBRATION_KEY)
+            .await?;
+        let Some(record) = record else {
+            return Ok(None);
+        };
+        let (&version, body) = record.split_first().ok_or(StorageError::Corrupt)?;
+        if version != RECORD_FORMAT_VERSION {
+            return Err(StorageError::Corrupt);
+        }
+        let calibration: Option<Calibration> =
+            postcard::from_bytes(body).map_err(|_| StorageError::Corrupt)?;
+        match calibration {
+            Some(c) if c.validate().is_err() => Err(StorageError::Corrupt),
+            other => Ok(other),
+        }
+    }
+
+    /// Stores a calibration; the previous one stays readable until this one is complete.
+    pub async fn save(&mut self, calibration: &Calibration) -> Result<(), StorageError> {
+        self.write(Some(calibration)).await
+    }
+
+    /// Stores "no calibration".
+    pub async fn erase(&mut self) -> Result<(), StorageError> {
+        self.write(None).await
+    }
+
+    async fn write(&mut self, calibration: Option<&Calibration>) -> Result<(), StorageError> {
+        let mut record = [0u8; RECORD_LEN];
+        record[0] = RECORD_FORMAT_VERSION;
+        let body_len = postcard::to_slice(&calibration, &mut record[1..])
+            .map_err(|_| StorageError::Corrupt)?
+            .len();
+        let value: &[u8] = &record[..1 + body_len];
+        self.map
+            .store_item(&mut self.buffer, &CALIBRATION_KEY, &value)
+            .await?;
+        Ok(())
+    }
+
+    /// Gives the flash back (to simulate a reboot on the same flash in tests).
+    pub fn into_flash(self) -> F {
+        self.map.destroy().0
+    }
+}
+
+#[cfg(test)]
+mod tests;
