@@ -4,6 +4,7 @@
 #![cfg_attr(not(test), no_std)]
 
 pub mod capture;
+pub mod device;
 pub mod sensor;
 pub mod sim;
 pub mod storage;
