@@ -3,8 +3,10 @@
 //! The board binary (`main.rs`) only sets up clocks, pins and USB and hands them to this library.
 #![cfg_attr(not(test), no_std)]
 
+pub mod board;
 pub mod capture;
 pub mod device;
+pub mod link;
 pub mod sensor;
 pub mod sim;
 pub mod storage;

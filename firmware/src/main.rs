@@ -9,16 +9,25 @@ fn main() {}
 
 #[cfg(target_os = "none")]
 mod board {
-    use defmt::info;
+    use defmt::{info, warn};
+    use embassy_embedded_hal::adapter::BlockingAsync;
     use embassy_executor::Spawner;
     use embassy_futures::join::join;
+    use embassy_futures::select::{select, Either};
+    use embassy_stm32::flash::Flash;
     use embassy_stm32::gpio::{Level, Output, Speed};
+    use embassy_stm32::i2c::{self, I2c};
     use embassy_stm32::time::Hertz;
     use embassy_stm32::{bind_interrupts, peripherals, usb, Config};
-    use embassy_time::Timer;
+    use embassy_time::{Duration, Instant, Timer};
     use embassy_usb::class::cdc_acm::{CdcAcmClass, State};
     use embassy_usb::Builder;
-    use shared::protocol::{USB_MANUFACTURER, USB_PID, USB_PRODUCT, USB_VID};
+    use firmware::board::CALIBRATION_FLASH_RANGE;
+    use firmware::device::Device;
+    use firmware::link::Link;
+    use shared::protocol::{
+        Response, MAX_FRAME_LEN, USB_MANUFACTURER, USB_PID, USB_PRODUCT, USB_VID,
+    };
     use {defmt_rtt as _, panic_probe as _};
 
     bind_interrupts!(struct Irqs {
@@ -27,6 +36,10 @@ mod board {
 
     /// USB full-speed bulk packet size in bytes.
     const USB_PACKET_LEN: u16 = 64;
+    /// How often the device drains the sensor FIFO (1 kHz sampling fills 14 bytes/ms of 1024).
+    const POLL_PERIOD: Duration = Duration::from_millis(10);
+    /// How long the LED flashes fast after an error.
+    const ERROR_SHOWN_FOR: Duration = Duration::from_secs(3);
 
     /// 96 MHz system clock and the 48 MHz USB clock from the Black Pill's 25 MHz crystal.
     fn clocks() -> Config {
@@ -56,12 +69,41 @@ mod board {
         config
     }
 
+    /// The LED on PC13 (lit when low): slow heartbeat idle, steady while capturing or streaming,
+    /// fast flashing for a few seconds after an error.
+    fn led_level(busy: bool, last_error: Option<Instant>) -> Level {
+        let now = Instant::now();
+        let millis = now.as_millis();
+        let lit = match last_error {
+            Some(at) if now - at < ERROR_SHOWN_FOR => millis % 200 < 100,
+            _ if busy => true,
+            _ => millis % 1000 < 100,
+        };
+        if lit {
+            Level::Low
+        } else {
+            Level::High
+        }
+    }
+
     #[embassy_executor::main]
     async fn main(_spawner: Spawner) {
         let p = embassy_stm32::init(clocks());
         info!("accelcal firmware {}", env!("CARGO_PKG_VERSION"));
-        // The Black Pill's blue LED on PC13 lights when the pin is low.
         let mut led = Output::new(p.PC13, Level::High, Speed::Low);
+
+        let mut i2c_config = i2c::Config::default();
+        i2c_config.frequency = Hertz::khz(400);
+        let i2c = I2c::new_blocking(p.I2C1, p.PB6, p.PB7, i2c_config);
+        let flash = BlockingAsync::new(Flash::new_blocking(p.FLASH));
+        let Ok(mut device) = Device::boot(i2c, flash, CALIBRATION_FLASH_RANGE).await else {
+            // NOTE: only a flash range that does not fit the chip fails here: a build error.
+            defmt::panic!("calibration flash range does not fit the flash");
+        };
+        info!(
+            "calibration active: {}",
+            device.active_calibration().is_some()
+        );
 
         let mut ep_out_buffer = [0u8; 256];
         let mut usb_config = usb::Config::default();
@@ -75,7 +117,6 @@ mod board {
             &mut ep_out_buffer,
             usb_config,
         );
-
         let mut config = embassy_usb::Config::new(USB_VID, USB_PID);
         config.manufacturer = Some(USB_MANUFACTURER);
         config.product = Some(USB_PRODUCT);
@@ -95,25 +136,48 @@ mod board {
         let mut class = CdcAcmClass::new(&mut builder, &mut state, USB_PACKET_LEN);
         let mut usb = builder.build();
 
-        let serial = async {
+        let serve = async {
+            let mut link = Link::new();
+            let mut last_error = None;
             loop {
-                class.wait_connection().await;
-                info!("host connected");
                 let mut packet = [0u8; USB_PACKET_LEN as usize];
-                while let Ok(n) = class.read_packet(&mut packet).await {
-                    // NOTE: requests are answered once the firmware library's request handler lands
-                    // (firmware issue); until then the port enumerates and drains what it receives.
-                    info!("received {} bytes", n);
+                let connected = class.dtr();
+                match select(class.read_packet(&mut packet), Timer::after(POLL_PERIOD)).await {
+                    Either::First(Ok(n)) => link.receive(&packet[..n], &mut device).await,
+                    Either::First(Err(_)) => Timer::after(POLL_PERIOD).await, // not connected yet
+                    Either::Second(()) => device.poll(),
                 }
-                info!("host disconnected");
+                while let Some((request_id, response)) = device.next_response() {
+                    if let Response::Error(_) = response {
+                        // NOTE: core::fmt of the error (it holds floats) would cost 15 KiB of flash;
+                        // the host names the error, the log only marks that one happened.
+                        warn!("request {} answered with an error", request_id);
+                        last_error = Some(Instant::now());
+                    }
+                    if connected {
+                        let mut buffer = [0u8; MAX_FRAME_LEN];
+                        let frame = Link::encode(request_id, &response, &mut buffer);
+                        send(&mut class, frame).await;
+                    }
+                }
+                led.set_level(led_level(device.is_busy(), last_error));
             }
         };
-        let heartbeat = async {
-            loop {
-                led.toggle();
-                Timer::after_millis(500).await;
+        join(usb.run(), serve).await;
+    }
+
+    /// Writes one frame in USB packets, ending a transfer that fills whole packets with an empty one.
+    async fn send<'d>(
+        class: &mut CdcAcmClass<'d, usb::Driver<'d, peripherals::USB_OTG_FS>>,
+        frame: &[u8],
+    ) {
+        for chunk in frame.chunks(USB_PACKET_LEN as usize) {
+            if class.write_packet(chunk).await.is_err() {
+                return; // host gone: the response is dropped, the device carries on
             }
-        };
-        join(usb.run(), join(serial, heartbeat)).await;
+        }
+        if frame.len().is_multiple_of(USB_PACKET_LEN as usize) {
+            let _ = class.write_packet(&[]).await;
+        }
     }
 }
