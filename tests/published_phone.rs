@@ -7,38 +7,24 @@ use nalgebra::{Matrix3, Vector3};
 use shared::{Model, Position, PositionReadings};
 
 fn options() -> FitOptions {
-    FitOptions {
-        g: PHONE_G,
-        ..FitOptions::default()
-    }
+    FitOptions { g: PHONE_G, ..FitOptions::default() }
 }
 
 /// The published order of the six reference rows, by position.
-const PUBLISHED_ORDER: [Position; 6] = [
-    Position::NegX,
-    Position::PosX,
-    Position::NegY,
-    Position::PosY,
-    Position::NegZ,
-    Position::PosZ,
-];
+const PUBLISHED_ORDER: [Position; 6] =
+    [Position::NegX, Position::PosX, Position::NegY, Position::PosY, Position::NegZ, Position::PosZ];
 
 /// The formula written out independently in f64 with nalgebra: X column k = (m(+k) - m(-k)) / 2g,
 /// y = mean of the six, M = X^-1.
 fn closed_form_f64(rows: &[[f64; 3]]) -> (Matrix3<f64>, Vector3<f64>) {
-    let reading =
-        |p: Position| Vector3::from(rows[PUBLISHED_ORDER.iter().position(|q| *q == p).unwrap()]);
+    let reading = |p: Position| Vector3::from(rows[PUBLISHED_ORDER.iter().position(|q| *q == p).unwrap()]);
     let mut x = Matrix3::zeros();
     for axis in 0..3 {
         let up = reading(Position::from_axis(axis, true));
         let down = reading(Position::from_axis(axis, false));
         x.set_column(axis, &((up - down) / (2.0 * PHONE_G)));
     }
-    let y = rows[..6]
-        .iter()
-        .map(|r| Vector3::from(*r))
-        .sum::<Vector3<f64>>()
-        / 6.0;
+    let y = rows[..6].iter().map(|r| Vector3::from(*r)).sum::<Vector3<f64>>() / 6.0;
     (x.try_inverse().unwrap(), y)
 }
 
@@ -70,12 +56,7 @@ fn on_chip_f32_six_position_agrees_with_f64_on_the_phone_data_to_1e_5_relative()
             );
         }
         let relative = (chip.offset[i] as f64 - offset[i]).abs() / offset_scale;
-        assert!(
-            relative < 1e-5,
-            "o[{i}]: f32 {} vs f64 {} ({relative:.1e})",
-            chip.offset[i],
-            offset[i]
-        );
+        assert!(relative < 1e-5, "o[{i}]: f32 {} vs f64 {} ({relative:.1e})", chip.offset[i], offset[i]);
     }
 }
 
@@ -87,22 +68,13 @@ fn linear12_on_the_six_axis_aligned_rows_equals_the_six_position_closed_form() {
     let closed = fit::fit(&six_rows, ModelChoice::Only(Model::SixPosition), &options()).unwrap();
     for i in 0..3 {
         for j in 0..3 {
-            assert!(
-                (linear.matrix[i][j] - closed.matrix[i][j]).abs() < 1e-9,
-                "M{}{}",
-                i + 1,
-                j + 1
-            );
+            assert!((linear.matrix[i][j] - closed.matrix[i][j]).abs() < 1e-9, "M{}{}", i + 1, j + 1);
         }
         assert!((linear.offset[i] - closed.offset[i]).abs() < 1e-9, "o[{i}]");
     }
     // The same estimate has the same standard errors.
     for (a, b) in linear.parameters.iter().zip(&closed.parameters) {
-        assert!(
-            (a.std_error.unwrap() - b.std_error.unwrap()).abs() < 1e-9,
-            "{}",
-            a.name
-        );
+        assert!((a.std_error.unwrap() - b.std_error.unwrap()).abs() < 1e-9, "{}", a.name);
     }
 }
 
@@ -116,32 +88,19 @@ fn six_position_calibration_improves_every_published_figure_of_merit() {
     let (norm_before, norm_after) = evaluation.worst_norm_error();
     println!("phone data, six-position fit (m/s^2):");
     println!("  worst |a - ref| of the six reference rows: before {reference_before:.4}, after {reference_after:.4}");
-    println!(
-        "  worst ||a| - g| over all 13 rows:        before {norm_before:.4}, after {norm_after:.4}"
-    );
+    println!("  worst ||a| - g| over all 13 rows:        before {norm_before:.4}, after {norm_after:.4}");
     // The six reference rows are fitted by 12 parameters from 18 equations: what is left is the
     // placement error of the phone, a few tens of mg; before, the offsets alone are over 1 m/s^2.
     assert!(reference_before > 1.0, "before {reference_before}");
-    assert!(
-        reference_after < 0.1 * reference_before,
-        "after {reference_after}"
-    );
-    assert!(
-        norm_after < 0.5 * norm_before,
-        "before {norm_before}, after {norm_after}"
-    );
+    assert!(reference_after < 0.1 * reference_before, "after {reference_after}");
+    assert!(norm_after < 0.5 * norm_before, "before {norm_before}, after {norm_after}");
 }
 
 #[test]
 fn the_cli_fit_finds_the_six_faces_by_detection_without_references() {
     let dataset = Dataset::from_path(&data_path("huawei-phone-13.csv"), PHONE_G).unwrap();
     let detected = fit::fit(&dataset, ModelChoice::Auto, &options()).unwrap();
-    let referenced = fit::fit(
-        &phone_dataset(),
-        ModelChoice::Only(Model::SixPosition),
-        &options(),
-    )
-    .unwrap();
+    let referenced = fit::fit(&phone_dataset(), ModelChoice::Only(Model::SixPosition), &options()).unwrap();
     assert_eq!(detected.model, Model::SixPosition);
     assert_eq!(detected.matrix, referenced.matrix);
     assert_eq!(detected.offset, referenced.offset);
@@ -150,15 +109,9 @@ fn the_cli_fit_finds_the_six_faces_by_detection_without_references() {
 #[test]
 fn data_copies_match_the_shared_originals() {
     for name in ["huawei-phone-13.csv", "ivanov-lab-32.csv"] {
-        let original = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../../shared/data")
-            .join(name);
+        let original = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/data").join(name);
         match std::fs::read(&original) {
-            Ok(bytes) => assert_eq!(
-                std::fs::read(data_path(name)).unwrap(),
-                bytes,
-                "{name} differs from the original"
-            ),
+            Ok(bytes) => assert_eq!(std::fs::read(data_path(name)).unwrap(), bytes, "{name} differs from the original"),
             Err(_) => println!("{} not present; copy not checked", original.display()),
         }
     }

@@ -5,8 +5,7 @@
 //! scatter shows motion or a sample hit the end of the range.
 
 use shared::protocol::{
-    CaptureProgress, CaptureStats, DeviceError, SensorConfig, MAX_CAPTURE_SECONDS,
-    MIN_CAPTURE_SECONDS,
+    CaptureProgress, CaptureStats, DeviceError, SensorConfig, MAX_CAPTURE_SECONDS, MIN_CAPTURE_SECONDS,
 };
 
 use crate::sensor::registers::{GYRO_LSB_PER_DPS, TEMP_LSB_PER_C, TEMP_OFFSET_C};
@@ -81,11 +80,7 @@ impl Capture {
             return Err(DeviceError::InvalidDuration { seconds });
         }
         let total_samples = u32::from(seconds) * u32::from(config.sample_rate_hz);
-        Ok(Capture {
-            sums: Sums::default(),
-            total_samples,
-            config,
-        })
+        Ok(Capture { sums: Sums::default(), total_samples, config })
     }
 
     /// Samples the capture averages in all: rate x seconds.
@@ -125,17 +120,12 @@ impl Capture {
     pub fn finish(&self) -> Result<CaptureStats, DeviceError> {
         let stats = self.stats();
         if stats.clipped > 0 {
-            return Err(DeviceError::Clipped {
-                samples: stats.clipped,
-            });
+            return Err(DeviceError::Clipped { samples: stats.clipped });
         }
         let accel_std = stats.std_g.iter().copied().fold(0.0, f32::max);
         let gyro_std = stats.gyro_std_dps.iter().copied().fold(0.0, f32::max);
         if accel_std > MAX_STILL_ACCEL_STD_G || gyro_std > MAX_STILL_GYRO_STD_DPS {
-            return Err(DeviceError::Moved {
-                accel_std_mg: accel_std * 1000.0,
-                gyro_std_dps: gyro_std,
-            });
+            return Err(DeviceError::Moved { accel_std_mg: accel_std * 1000.0, gyro_std_dps: gyro_std });
         }
         Ok(stats)
     }
@@ -163,47 +153,24 @@ mod tests {
     use super::*;
 
     fn sample(accel: [i16; 3], gyro: [i16; 3]) -> RawSample {
-        RawSample {
-            accel,
-            temp: -3536,
-            gyro,
-        }
+        RawSample { accel, temp: -3536, gyro }
     }
 
     #[test]
     fn refuses_durations_outside_5_to_20_seconds() {
         for seconds in [0, 4, 21, 255] {
-            assert_eq!(
-                Capture::new(seconds, SensorConfig::default()),
-                Err(DeviceError::InvalidDuration { seconds })
-            );
+            assert_eq!(Capture::new(seconds, SensorConfig::default()), Err(DeviceError::InvalidDuration { seconds }));
         }
-        assert_eq!(
-            Capture::new(5, SensorConfig::default())
-                .unwrap()
-                .total_samples(),
-            500
-        );
-        assert_eq!(
-            Capture::new(20, SensorConfig::default())
-                .unwrap()
-                .total_samples(),
-            2000
-        );
+        assert_eq!(Capture::new(5, SensorConfig::default()).unwrap().total_samples(), 500);
+        assert_eq!(Capture::new(20, SensorConfig::default()).unwrap().total_samples(), 2000);
     }
 
     #[test]
     fn statistics_are_exact_for_known_samples() {
         let mut capture = Capture::new(5, SensorConfig::default()).unwrap();
         // Alternating 16384 +- 100 on z: mean 1 g, std 100 LSB * sqrt(n / (n - 1)).
-        let samples: Vec<_> = (0..500)
-            .map(|i| {
-                sample(
-                    [0, 1, 16384 + if i % 2 == 0 { 100 } else { -100 }],
-                    [131, 0, -262],
-                )
-            })
-            .collect();
+        let samples: Vec<_> =
+            (0..500).map(|i| sample([0, 1, 16384 + if i % 2 == 0 { 100 } else { -100 }], [131, 0, -262])).collect();
         assert_eq!(capture.take(&samples), 500);
         assert!(capture.is_complete());
         let stats = capture.finish().unwrap();
@@ -211,11 +178,7 @@ mod tests {
         assert_eq!(stats.seconds, 5.0);
         assert_eq!(stats.mean_g, [0.0, 1.0 / 16384.0, 1.0]);
         let expected_std = 100.0 * (500.0f32 / 499.0).sqrt() / 16384.0;
-        assert!(
-            (stats.std_g[2] - expected_std).abs() < 1e-7,
-            "{}",
-            stats.std_g[2]
-        );
+        assert!((stats.std_g[2] - expected_std).abs() < 1e-7, "{}", stats.std_g[2]);
         assert_eq!(stats.std_g[0], 0.0);
         assert_eq!(stats.gyro_mean_dps, [1.0, 0.0, -2.0]);
         assert!((stats.temp_c - 26.13).abs() < 0.01);

@@ -11,8 +11,8 @@ use embedded_storage_async::nor_flash::NorFlash;
 use heapless::Deque;
 use shared::orientation::DEFAULT_FACE_TOLERANCE_DEG;
 use shared::protocol::{
-    ActiveCalibration, CalibrationSlot, CaptureStats, DeviceError, DeviceInfo, FirmwareVersion,
-    FrameError, PositionSet, Request, Response, Sample, SensorConfig, StreamKind, PROTOCOL_VERSION,
+    ActiveCalibration, CalibrationSlot, CaptureStats, DeviceError, DeviceInfo, FirmwareVersion, FrameError,
+    PositionSet, Request, Response, Sample, SensorConfig, StreamKind, PROTOCOL_VERSION,
 };
 use shared::{Calibration, Model, Position, PositionReadings};
 
@@ -36,25 +36,8 @@ pub const FIRMWARE_VERSION: FirmwareVersion = FirmwareVersion {
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Job {
     Idle,
-    Capturing {
-        request_id: u16,
-        capture: Capture,
-        next_progress: u32,
-    },
-    Streaming {
-        request_id: u16,
-        kind: StreamKind,
-        decimation: u32,
-        remaining: Option<u32>,
-        sent: u32,
-        skip: u32,
-    },
-}
-
-/// The kept capture of one of the six positions.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct KeptCapture {
-    stats: CaptureStats,
+    Capturing { request_id: u16, capture: Capture, next_progress: u32 },
+    Streaming { request_id: u16, kind: StreamKind, decimation: u32, remaining: Option<u32>, sent: u32, skip: u32 },
 }
 
 /// The device state machine over an I2C bus `I` and a flash `F`.
@@ -66,7 +49,8 @@ pub struct Device<I, F: NorFlash> {
     stored: bool,
     active: Calibration,
     source: ActiveCalibration,
-    positions: [Option<KeptCapture>; 6],
+    /// The latest capture at each face, kept for the six-position fit (indexed by `Position`).
+    positions: [Option<CaptureStats>; 6],
     job: Job,
     outbox: Deque<(u16, Response), OUTBOX_LEN>,
 }
@@ -128,21 +112,35 @@ where
 
     /// Answers a frame that could not be read; its request id is unknown.
     pub fn reject_frame(&mut self, error: FrameError) {
-        self.send(
-            shared::protocol::frame::UNKNOWN_REQUEST_ID,
-            Response::Error(DeviceError::Frame(error)),
-        );
+        self.send(shared::protocol::frame::UNKNOWN_REQUEST_ID, Response::Error(DeviceError::Frame(error)));
     }
 
     /// Carries out one request; its final response, or the start of a long operation.
     pub async fn handle(&mut self, request_id: u16, request: Request) {
-        let response = match request {
+        // `Ok(None)`: a long operation started, and `poll` or `Cancel` sends its final response.
+        let answer = match request {
+            Request::Capture { .. } | Request::Stream { .. } if self.is_busy() => Err(DeviceError::Busy),
+            Request::Capture { seconds } => self.start_capture(request_id, seconds).map(|()| None),
+            Request::Stream { kind, rate_hz, count } => {
+                self.start_stream(request_id, kind, rate_hz, count).map(|()| None)
+            }
+            request => self.answer(request).await.map(Some),
+        };
+        match answer {
+            Ok(None) => {}
+            Ok(Some(response)) => self.send(request_id, response),
+            Err(error) => self.send(request_id, Response::Error(error)),
+        }
+    }
+
+    /// The final response to a request that completes at once.
+    async fn answer(&mut self, request: Request) -> Result<Response, DeviceError> {
+        match request {
             Request::Hello { protocol_version } => Ok(self.hello(protocol_version)),
             Request::Cancel => Ok(self.cancel()),
             Request::GetCalibration(slot) => self.get_calibration(slot).await,
             _ if self.is_busy() => Err(DeviceError::Busy),
             Request::Configure(config) => self.configure(config),
-            Request::Capture { seconds } => self.start_capture(request_id, seconds),
             Request::ClearPositions => {
                 self.positions = [None; 6];
                 Ok(Response::Done)
@@ -151,16 +149,7 @@ where
             Request::SetCalibration(calibration) => self.set_calibration(calibration),
             Request::SaveCalibration => self.save().await,
             Request::EraseCalibration => self.erase().await,
-            Request::Stream {
-                kind,
-                rate_hz,
-                count,
-            } => self.start_stream(request_id, kind, rate_hz, count),
-        };
-        match response {
-            Ok(Response::Progress(_)) => {} // a long operation started; its final response comes later
-            Ok(response) => self.send(request_id, response),
-            Err(error) => self.send(request_id, Response::Error(error)),
+            Request::Capture { .. } | Request::Stream { .. } => Err(DeviceError::Busy),
         }
     }
 
@@ -182,14 +171,10 @@ where
     /// The sensor, found again if it was missing (a loose wire put back).
     fn sensor(&mut self) -> Result<&mut Sensor, DeviceError> {
         if self.sensor.is_err() {
-            self.sensor = Sensor::probe(&mut self.bus)
-                .map_err(|e| e.to_device_error())
-                .and_then(|mut sensor| {
-                    sensor
-                        .configure(&mut self.bus, self.config)
-                        .map_err(|e| e.to_device_error())?;
-                    Ok(sensor)
-                });
+            self.sensor = Sensor::probe(&mut self.bus).map_err(|e| e.to_device_error()).and_then(|mut sensor| {
+                sensor.configure(&mut self.bus, self.config).map_err(|e| e.to_device_error())?;
+                Ok(sensor)
+            });
         }
         self.sensor.as_mut().map_err(|e| *e)
     }
@@ -218,17 +203,11 @@ where
 
     fn hello(&mut self, host_version: u8) -> Response {
         if host_version != PROTOCOL_VERSION {
-            return Response::Error(DeviceError::UnsupportedVersion {
-                device: PROTOCOL_VERSION,
-                host: host_version,
-            });
+            return Response::Error(DeviceError::UnsupportedVersion { device: PROTOCOL_VERSION, host: host_version });
         }
         let sensor = self.sensor().map(|s| s.identity());
         let mut positions = PositionSet::default();
-        for position in Position::ALL
-            .into_iter()
-            .filter(|p| self.positions[p.index()].is_some())
-        {
+        for position in Position::ALL.into_iter().filter(|p| self.positions[p.index()].is_some()) {
             positions.insert(position);
         }
         Response::Hello(DeviceInfo {
@@ -252,25 +231,16 @@ where
         Ok(Response::Configured(achieved))
     }
 
-    fn start_capture(&mut self, request_id: u16, seconds: u8) -> Result<Response, DeviceError> {
+    fn start_capture(&mut self, request_id: u16, seconds: u8) -> Result<(), DeviceError> {
         let capture = Capture::new(seconds, self.config)?;
         self.with_sensor(|sensor, bus| sensor.start_fifo(bus))?;
         let next_progress = u32::from(self.config.sample_rate_hz);
-        self.job = Job::Capturing {
-            request_id,
-            capture,
-            next_progress,
-        };
-        Ok(Response::Progress(capture.progress()))
+        self.job = Job::Capturing { request_id, capture, next_progress };
+        Ok(())
     }
 
     fn poll_capture(&mut self) {
-        let Job::Capturing {
-            request_id,
-            mut capture,
-            mut next_progress,
-        } = self.job
-        else {
+        let Job::Capturing { request_id, mut capture, mut next_progress } = self.job else {
             return;
         };
         let mut batch = [RawSample::default(); READ_BATCH];
@@ -294,20 +264,14 @@ where
                 return self.end_job(request_id, response);
             }
         }
-        self.job = Job::Capturing {
-            request_id,
-            capture,
-            next_progress,
-        };
+        self.job = Job::Capturing { request_id, capture, next_progress };
     }
 
     /// Keeps a finished capture for the six-position fit when it was taken at a face.
     fn keep(&mut self, stats: CaptureStats) -> Response {
-        let position = Position::detect(stats.mean_g, DEFAULT_FACE_TOLERANCE_DEG)
-            .ok()
-            .map(|(p, _)| p);
+        let position = Position::detect(stats.mean_g, DEFAULT_FACE_TOLERANCE_DEG).ok().map(|(p, _)| p);
         if let Some(p) = position {
-            self.positions[p.index()] = Some(KeptCapture { stats });
+            self.positions[p.index()] = Some(stats);
         }
         Response::Captured { stats, position }
     }
@@ -328,12 +292,10 @@ where
     fn cancel(&mut self) -> Response {
         match self.job {
             Job::Idle => {}
-            Job::Capturing { request_id, .. } => {
-                self.end_job(request_id, Response::Error(DeviceError::Cancelled))
+            Job::Capturing { request_id, .. } => self.end_job(request_id, Response::Error(DeviceError::Cancelled)),
+            Job::Streaming { request_id, sent, .. } => {
+                self.end_job(request_id, Response::StreamEnded { samples: sent })
             }
-            Job::Streaming {
-                request_id, sent, ..
-            } => self.end_job(request_id, Response::StreamEnded { samples: sent }),
         }
         Response::Done
     }
@@ -342,15 +304,11 @@ where
         let mut readings = PositionReadings::<f32>::new();
         let (mut gyro_bias, mut temp_c) = ([0.0f32; 3], 0.0f32);
         for position in Position::ALL {
-            let kept = self.positions[position.index()].ok_or(DeviceError::SixPosition(
-                shared::SixPositionError::Missing(position),
-            ))?;
-            readings.replace(position, kept.stats.mean_g);
-            gyro_bias = shared::linalg::add(
-                gyro_bias,
-                shared::linalg::scale(kept.stats.gyro_mean_dps, 1.0 / 6.0),
-            );
-            temp_c += kept.stats.temp_c / 6.0;
+            let kept = self.positions[position.index()]
+                .ok_or(DeviceError::SixPosition(shared::SixPositionError::Missing(position)))?;
+            readings.replace(position, kept.mean_g);
+            gyro_bias = shared::linalg::add(gyro_bias, shared::linalg::scale(kept.gyro_mean_dps, 1.0 / 6.0));
+            temp_c += kept.temp_c / 6.0;
         }
         let fit = readings.fit(1.0).map_err(DeviceError::SixPosition)?;
         let mut calibration = Calibration {
@@ -363,23 +321,16 @@ where
             residual_mg: 0.0,
         };
         calibration.residual_mg = six_position_residual_mg(&calibration, &readings);
-        calibration
-            .validate()
-            .map_err(DeviceError::InvalidCalibration)?;
+        calibration.validate().map_err(DeviceError::InvalidCalibration)?;
         self.active = calibration;
         self.source = ActiveCalibration::Unsaved;
         Ok(Response::Fitted(calibration))
     }
 
     fn set_calibration(&mut self, calibration: Calibration) -> Result<Response, DeviceError> {
-        calibration
-            .validate()
-            .map_err(DeviceError::InvalidCalibration)?;
+        calibration.validate().map_err(DeviceError::InvalidCalibration)?;
         if calibration.range != self.config.range {
-            return Err(DeviceError::RangeMismatch {
-                calibration: calibration.range,
-                configured: self.config.range,
-            });
+            return Err(DeviceError::RangeMismatch { calibration: calibration.range, configured: self.config.range });
         }
         self.active = calibration;
         self.source = ActiveCalibration::Unsaved;
@@ -390,46 +341,29 @@ where
         match slot {
             CalibrationSlot::Active => Ok(Response::Calibration(self.active_calibration())),
             CalibrationSlot::Stored if self.is_busy() => Err(DeviceError::Busy),
-            CalibrationSlot::Stored => self
-                .storage
-                .load()
-                .await
-                .map(Response::Calibration)
-                .map_err(|_| DeviceError::Storage),
+            CalibrationSlot::Stored => {
+                self.storage.load().await.map(Response::Calibration).map_err(|_| DeviceError::Storage)
+            }
         }
     }
 
     async fn save(&mut self) -> Result<Response, DeviceError> {
-        let calibration = self
-            .active_calibration()
-            .ok_or(DeviceError::NoCalibration)?;
-        self.storage
-            .save(&calibration)
-            .await
-            .map_err(|_| DeviceError::Storage)?;
+        let calibration = self.active_calibration().ok_or(DeviceError::NoCalibration)?;
+        self.storage.save(&calibration).await.map_err(|_| DeviceError::Storage)?;
         self.stored = true;
         self.source = ActiveCalibration::Stored;
         Ok(Response::Done)
     }
 
     async fn erase(&mut self) -> Result<Response, DeviceError> {
-        self.storage
-            .erase()
-            .await
-            .map_err(|_| DeviceError::Storage)?;
+        self.storage.erase().await.map_err(|_| DeviceError::Storage)?;
         self.stored = false;
         self.active = Calibration::identity(self.config.range);
         self.source = ActiveCalibration::None;
         Ok(Response::Done)
     }
 
-    fn start_stream(
-        &mut self,
-        request_id: u16,
-        kind: StreamKind,
-        rate_hz: u16,
-        count: u32,
-    ) -> Result<Response, DeviceError> {
+    fn start_stream(&mut self, request_id: u16, kind: StreamKind, rate_hz: u16, count: u32) -> Result<(), DeviceError> {
         let sample_rate = self.config.sample_rate_hz;
         if rate_hz == 0 || rate_hz > sample_rate || !sample_rate.is_multiple_of(rate_hz) {
             return Err(DeviceError::InvalidRate { rate_hz });
@@ -438,39 +372,17 @@ where
             && self.source != ActiveCalibration::None
             && self.active.range != self.config.range
         {
-            return Err(DeviceError::RangeMismatch {
-                calibration: self.active.range,
-                configured: self.config.range,
-            });
+            return Err(DeviceError::RangeMismatch { calibration: self.active.range, configured: self.config.range });
         }
         self.with_sensor(|sensor, bus| sensor.start_fifo(bus))?;
         let decimation = u32::from(sample_rate / rate_hz);
         let remaining = (count > 0).then_some(count);
-        self.job = Job::Streaming {
-            request_id,
-            kind,
-            decimation,
-            remaining,
-            sent: 0,
-            skip: 0,
-        };
-        Ok(Response::Progress(shared::protocol::CaptureProgress {
-            samples: 0,
-            total_samples: count,
-            mean_g: [0.0; 3],
-        }))
+        self.job = Job::Streaming { request_id, kind, decimation, remaining, sent: 0, skip: 0 };
+        Ok(())
     }
 
     fn poll_stream(&mut self) {
-        let Job::Streaming {
-            request_id,
-            kind,
-            decimation,
-            mut remaining,
-            mut sent,
-            mut skip,
-        } = self.job
-        else {
+        let Job::Streaming { request_id, kind, decimation, mut remaining, mut sent, mut skip } = self.job else {
             return;
         };
         let room = OUTBOX_LEN - self.outbox.len();
@@ -487,13 +399,8 @@ where
                 continue;
             }
             skip = decimation - 1;
-            let calibration = (kind == StreamKind::Calibrated)
-                .then(|| self.active_calibration())
-                .flatten();
-            self.send(
-                request_id,
-                Response::Sample(sample_message(raw, sent, self.config, calibration.as_ref())),
-            );
+            let calibration = (kind == StreamKind::Calibrated).then(|| self.active_calibration()).flatten();
+            self.send(request_id, Response::Sample(sample_message(raw, sent, self.config, calibration.as_ref())));
             sent += 1;
             if let Some(left) = remaining.as_mut() {
                 *left -= 1;
@@ -502,40 +409,21 @@ where
                 }
             }
         }
-        self.job = Job::Streaming {
-            request_id,
-            kind,
-            decimation,
-            remaining,
-            sent,
-            skip,
-        };
+        self.job = Job::Streaming { request_id, kind, decimation, remaining, sent, skip };
     }
 }
 
 /// The one place a sensor reading becomes a wire message: counts to g, deg/s and degC, corrected
 /// with the calibration when one is given.
-pub fn sample_message(
-    raw: &RawSample,
-    index: u32,
-    config: SensorConfig,
-    calibration: Option<&Calibration>,
-) -> Sample {
+pub fn sample_message(raw: &RawSample, index: u32, config: SensorConfig, calibration: Option<&Calibration>) -> Sample {
     let lsb = config.range.lsb_per_g();
     let accel_g = raw.accel.map(|a| f32::from(a) / lsb);
-    let gyro_dps = raw
-        .gyro
-        .map(|g| f32::from(g) / crate::sensor::registers::GYRO_LSB_PER_DPS);
+    let gyro_dps = raw.gyro.map(|g| f32::from(g) / crate::sensor::registers::GYRO_LSB_PER_DPS);
     let (accel_g, gyro_dps) = match calibration {
         Some(c) => (c.apply(accel_g), c.apply_gyro(gyro_dps)),
         None => (accel_g, gyro_dps),
     };
-    Sample {
-        index,
-        accel_g,
-        gyro_dps,
-        temp_c: raw.temp_c(),
-    }
+    Sample { index, accel_g, gyro_dps, temp_c: raw.temp_c() }
 }
 
 /// RMS over the six faces of |M (m - o) - face| in mg: what the placement and noise leave.
@@ -543,8 +431,7 @@ fn six_position_residual_mg(calibration: &Calibration, readings: &PositionReadin
     let mut sum = 0.0;
     for position in Position::ALL {
         if let Some(reading) = readings.get(position) {
-            let error =
-                shared::linalg::sub(calibration.apply(reading), position.specific_force_g());
+            let error = shared::linalg::sub(calibration.apply(reading), position.specific_force_g());
             sum += shared::linalg::dot(error, error);
         }
     }

@@ -41,11 +41,7 @@ impl Link {
     }
 
     /// Encodes a response into `buffer`; the frame, delimiter included.
-    pub fn encode<'b>(
-        request_id: u16,
-        response: &Response,
-        buffer: &'b mut [u8; MAX_FRAME_LEN],
-    ) -> &'b [u8] {
+    pub fn encode<'b>(request_id: u16, response: &Response, buffer: &'b mut [u8; MAX_FRAME_LEN]) -> &'b [u8] {
         match protocol::encode(request_id, response, buffer) {
             Ok(len) => &buffer[..len],
             // NOTE: every response fits a frame (shared's size tests); should one ever not, the
@@ -81,22 +77,10 @@ mod tests {
 
     #[test]
     fn requests_split_across_reads_are_answered_and_garbage_is_answered_with_an_error() {
-        let mut device = block_on(Device::boot(
-            SimMpu6050::new(1),
-            RamFlash::<2048, 4>::new(),
-            0..8192,
-        ))
-        .unwrap();
+        let mut device = block_on(Device::boot(SimMpu6050::new(1), RamFlash::<2048, 4>::new(), 0..8192)).unwrap();
         let mut link = Link::new();
         let mut frame = [0u8; MAX_FRAME_LEN];
-        let len = encode(
-            42,
-            &Request::Hello {
-                protocol_version: PROTOCOL_VERSION,
-            },
-            &mut frame,
-        )
-        .unwrap();
+        let len = encode(42, &Request::Hello { protocol_version: PROTOCOL_VERSION }, &mut frame).unwrap();
         let mut stream = vec![0x13, 0x37, 0x00]; // line noise, then a delimiter
         stream.extend_from_slice(&frame[..len]);
         for chunk in stream.chunks(5) {
@@ -104,10 +88,7 @@ mod tests {
         }
         let answers = responses(&mut device);
         assert_eq!(answers.len(), 2, "{answers:?}");
-        assert_eq!(
-            answers[0],
-            (0, Response::Error(DeviceError::Frame(FrameError::Cobs)))
-        );
+        assert_eq!(answers[0], (0, Response::Error(DeviceError::Frame(FrameError::Cobs))));
         assert!(matches!(answers[1], (42, Response::Hello(_))));
     }
 }

@@ -25,9 +25,7 @@ mod board {
     use firmware::board::CALIBRATION_FLASH_RANGE;
     use firmware::device::Device;
     use firmware::link::Link;
-    use shared::protocol::{
-        Response, MAX_FRAME_LEN, USB_MANUFACTURER, USB_PID, USB_PRODUCT, USB_VID,
-    };
+    use shared::protocol::{Response, MAX_FRAME_LEN, USB_MANUFACTURER, USB_PID, USB_PRODUCT, USB_VID};
     use {defmt_rtt as _, panic_probe as _};
 
     bind_interrupts!(struct Irqs {
@@ -43,15 +41,10 @@ mod board {
 
     /// 96 MHz system clock and the 48 MHz USB clock from the Black Pill's 25 MHz crystal.
     fn clocks() -> Config {
-        use embassy_stm32::rcc::{
-            AHBPrescaler, APBPrescaler, Hse, HseMode, Pll, PllMul, PllPDiv, PllPreDiv,
-        };
+        use embassy_stm32::rcc::{AHBPrescaler, APBPrescaler, Hse, HseMode, Pll, PllMul, PllPDiv, PllPreDiv};
         use embassy_stm32::rcc::{PllQDiv, PllSource, Sysclk};
         let mut config = Config::default();
-        config.rcc.hse = Some(Hse {
-            freq: Hertz(25_000_000),
-            mode: HseMode::Oscillator,
-        });
+        config.rcc.hse = Some(Hse { freq: Hertz(25_000_000), mode: HseMode::Oscillator });
         config.rcc.pll_src = PllSource::HSE;
         // NOTE: 25 MHz / 25 * 192 = 192 MHz VCO; / 2 = 96 MHz system clock (the F411 tops out at
         // 100 MHz); / 4 = 48 MHz, which USB OTG FS requires exactly (RM0383 section 6.2).
@@ -100,23 +93,13 @@ mod board {
             // NOTE: only a flash range that does not fit the chip fails here: a build error.
             defmt::panic!("calibration flash range does not fit the flash");
         };
-        info!(
-            "calibration active: {}",
-            device.active_calibration().is_some()
-        );
+        info!("calibration active: {}", device.active_calibration().is_some());
 
         let mut ep_out_buffer = [0u8; 256];
         let mut usb_config = usb::Config::default();
         // NOTE: the Black Pill does not route VBUS to PA9, so VBUS sensing must stay off.
         usb_config.vbus_detection = false;
-        let driver = usb::Driver::new_fs(
-            p.USB_OTG_FS,
-            Irqs,
-            p.PA12,
-            p.PA11,
-            &mut ep_out_buffer,
-            usb_config,
-        );
+        let driver = usb::Driver::new_fs(p.USB_OTG_FS, Irqs, p.PA12, p.PA11, &mut ep_out_buffer, usb_config);
         let mut config = embassy_usb::Config::new(USB_VID, USB_PID);
         config.manufacturer = Some(USB_MANUFACTURER);
         config.product = Some(USB_PRODUCT);
@@ -125,14 +108,8 @@ mod board {
         let mut bos_descriptor = [0; 256];
         let mut control_buf = [0; 64];
         let mut state = State::new();
-        let mut builder = Builder::new(
-            driver,
-            config,
-            &mut config_descriptor,
-            &mut bos_descriptor,
-            &mut [],
-            &mut control_buf,
-        );
+        let mut builder =
+            Builder::new(driver, config, &mut config_descriptor, &mut bos_descriptor, &mut [], &mut control_buf);
         let mut class = CdcAcmClass::new(&mut builder, &mut state, USB_PACKET_LEN);
         let mut usb = builder.build();
 
@@ -167,10 +144,7 @@ mod board {
     }
 
     /// Writes one frame in USB packets, ending a transfer that fills whole packets with an empty one.
-    async fn send<'d>(
-        class: &mut CdcAcmClass<'d, usb::Driver<'d, peripherals::USB_OTG_FS>>,
-        frame: &[u8],
-    ) {
+    async fn send<'d>(class: &mut CdcAcmClass<'d, usb::Driver<'d, peripherals::USB_OTG_FS>>, frame: &[u8]) {
         for chunk in frame.chunks(USB_PACKET_LEN as usize) {
             if class.write_packet(chunk).await.is_err() {
                 return; // host gone: the response is dropped, the device carries on

@@ -55,18 +55,12 @@ impl<F: NorFlash> Storage<F> {
     /// A store on `range` (byte offsets into `flash`, whole erase pages, at least two).
     pub fn new(flash: F, range: Range<u32>) -> Result<Self, StorageError> {
         let config = MapConfig::try_new(range).map_err(|_| StorageError::BadRange)?;
-        Ok(Storage {
-            map: MapStorage::new(flash, config, Cache::new_uncached()),
-            buffer: [0; RECORD_BUFFER_LEN],
-        })
+        Ok(Storage { map: MapStorage::new(flash, config, Cache::new_uncached()), buffer: [0; RECORD_BUFFER_LEN] })
     }
 
     /// The stored calibration, `None` when there is none; a damaged or invalid record is refused.
     pub async fn load(&mut self) -> Result<Option<Calibration>, StorageError> {
-        let record: Option<&[u8]> = self
-            .map
-            .fetch_item(&mut self.buffer, &CALIBRATION_KEY)
-            .await?;
+        let record: Option<&[u8]> = self.map.fetch_item(&mut self.buffer, &CALIBRATION_KEY).await?;
         let Some(record) = record else {
             return Ok(None);
         };
@@ -74,8 +68,7 @@ impl<F: NorFlash> Storage<F> {
         if version != RECORD_FORMAT_VERSION {
             return Err(StorageError::Corrupt);
         }
-        let calibration: Option<Calibration> =
-            postcard::from_bytes(body).map_err(|_| StorageError::Corrupt)?;
+        let calibration: Option<Calibration> = postcard::from_bytes(body).map_err(|_| StorageError::Corrupt)?;
         match calibration {
             Some(c) if c.validate().is_err() => Err(StorageError::Corrupt),
             other => Ok(other),
@@ -95,13 +88,9 @@ impl<F: NorFlash> Storage<F> {
     async fn write(&mut self, calibration: Option<&Calibration>) -> Result<(), StorageError> {
         let mut record = [0u8; RECORD_LEN];
         record[0] = RECORD_FORMAT_VERSION;
-        let body_len = postcard::to_slice(&calibration, &mut record[1..])
-            .map_err(|_| StorageError::Corrupt)?
-            .len();
+        let body_len = postcard::to_slice(&calibration, &mut record[1..]).map_err(|_| StorageError::Corrupt)?.len();
         let value: &[u8] = &record[..1 + body_len];
-        self.map
-            .store_item(&mut self.buffer, &CALIBRATION_KEY, &value)
-            .await?;
+        self.map.store_item(&mut self.buffer, &CALIBRATION_KEY, &value).await?;
         Ok(())
     }
 

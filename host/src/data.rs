@@ -11,11 +11,7 @@ use std::path::Path;
 use shared::orientation::from_inclination_toolface;
 
 /// Accepted names of the three reading columns, in order of preference.
-const READING_COLUMNS: [[&str; 3]; 3] = [
-    ["x", "y", "z"],
-    ["mx", "my", "mz"],
-    ["raw_x", "raw_y", "raw_z"],
-];
+const READING_COLUMNS: [[&str; 3]; 3] = [["x", "y", "z"], ["mx", "my", "mz"], ["raw_x", "raw_y", "raw_z"]];
 /// Names of the known-specific-force columns.
 const REFERENCE_COLUMNS: [&str; 3] = ["ref_x", "ref_y", "ref_z"];
 /// Names of the inclination and toolface columns of the published lab data, in degrees.
@@ -47,20 +43,13 @@ pub struct Dataset {
 #[derive(Debug, thiserror::Error)]
 pub enum DataError {
     #[error("cannot read {path}: {source}")]
-    Io {
-        path: String,
-        source: std::io::Error,
-    },
+    Io { path: String, source: std::io::Error },
     #[error("line 1: no reading columns: expected x,y,z (or mx,my,mz, or raw_x,raw_y,raw_z); the header has {found}")]
     MissingColumns { found: String },
     #[error("line 1: the header has {found} but not all of {expected}; give all of them or none")]
     PartialColumns { found: String, expected: String },
     #[error("line {line}, column {column}: {value:?} is not a number")]
-    NotANumber {
-        line: usize,
-        column: String,
-        value: String,
-    },
+    NotANumber { line: usize, column: String, value: String },
     #[error("line {line}, column {column}: the reading is empty")]
     EmptyReading { line: usize, column: String },
     #[error("line {line}: {reason}")]
@@ -80,48 +69,32 @@ enum ReferenceColumns {
 impl Dataset {
     /// Reads a data file; `g` is |gravity| in output units, used for references given as angles.
     pub fn from_path(path: &Path, g: f64) -> Result<Self, DataError> {
-        let file = std::fs::File::open(path).map_err(|source| DataError::Io {
-            path: path.display().to_string(),
-            source,
-        })?;
+        let file =
+            std::fs::File::open(path).map_err(|source| DataError::Io { path: path.display().to_string(), source })?;
         Self::from_reader(file, g)
     }
 
     /// Reads CSV text from any reader; `g` as in [`Dataset::from_path`].
     pub fn from_reader(reader: impl Read, g: f64) -> Result<Self, DataError> {
-        let mut csv = csv::ReaderBuilder::new()
-            .trim(csv::Trim::All)
-            .from_reader(reader);
-        let header: Vec<String> = csv
-            .headers()
-            .map_err(|e| csv_error(e, 1))?
-            .iter()
-            .map(str::to_owned)
-            .collect();
+        let mut csv = csv::ReaderBuilder::new().trim(csv::Trim::All).from_reader(reader);
+        let header: Vec<String> = csv.headers().map_err(|e| csv_error(e, 1))?.iter().map(str::to_owned).collect();
         let layout = Layout::from_header(&header)?;
         let mut rows = Vec::new();
         for record in csv.records() {
             let record = record.map_err(|e| csv_error(e, rows.len() + 2))?;
-            let line = record
-                .position()
-                .map_or(rows.len() + 2, |p| p.line() as usize);
+            let line = record.position().map_or(rows.len() + 2, |p| p.line() as usize);
             rows.push(layout.row(&header, &record, line, g)?);
         }
         if rows.is_empty() {
             return Err(DataError::NoRows);
         }
         let extra_columns = layout.extra.iter().map(|&i| header[i].clone()).collect();
-        Ok(Dataset {
-            rows,
-            extra_columns,
-        })
+        Ok(Dataset { rows, extra_columns })
     }
 
     /// The rows whose orientation is known.
     pub fn references(&self) -> impl Iterator<Item = (&Row, [f64; 3])> {
-        self.rows
-            .iter()
-            .filter_map(|row| row.reference.map(|r| (row, r)))
+        self.rows.iter().filter_map(|row| row.reference.map(|r| (row, r)))
     }
 
     /// The value of a carried-along column in a row, if the column exists and the cell is a number.
@@ -145,16 +118,9 @@ impl Layout {
             .iter()
             .find_map(|names| all_columns(header, names))
             .map(|c| [c[0], c[1], c[2]])
-            .ok_or_else(|| DataError::MissingColumns {
-                found: header.join(","),
-            })?;
-        let reference = match (
-            all_of(header, &REFERENCE_COLUMNS)?,
-            all_of(header, &ANGLE_COLUMNS)?,
-        ) {
-            (Some(columns), _) => {
-                ReferenceColumns::SpecificForce([columns[0], columns[1], columns[2]])
-            }
+            .ok_or_else(|| DataError::MissingColumns { found: header.join(",") })?;
+        let reference = match (all_of(header, &REFERENCE_COLUMNS)?, all_of(header, &ANGLE_COLUMNS)?) {
+            (Some(columns), _) => ReferenceColumns::SpecificForce([columns[0], columns[1], columns[2]]),
             (None, Some(columns)) => ReferenceColumns::Angles([columns[0], columns[1]]),
             (None, None) => ReferenceColumns::None,
         };
@@ -166,62 +132,28 @@ impl Layout {
             .filter_map(|name| find(name))
             .collect();
         let extra = (0..header.len()).filter(|i| !used.contains(i)).collect();
-        Ok(Layout {
-            reading,
-            reference,
-            extra,
-        })
+        Ok(Layout { reading, reference, extra })
     }
 
-    fn row(
-        &self,
-        header: &[String],
-        record: &csv::StringRecord,
-        line: usize,
-        g: f64,
-    ) -> Result<Row, DataError> {
-        let cell = |i: usize| Cell {
-            line,
-            column: &header[i],
-            text: record.get(i).unwrap_or(""),
-        };
+    fn row(&self, header: &[String], record: &csv::StringRecord, line: usize, g: f64) -> Result<Row, DataError> {
+        let cell = |i: usize| Cell { line, column: &header[i], text: record.get(i).unwrap_or("") };
         let mut reading = [0.0; 3];
         for (value, &i) in reading.iter_mut().zip(&self.reading) {
-            *value = cell(i).number()?.ok_or_else(|| DataError::EmptyReading {
-                line,
-                column: header[i].clone(),
-            })?;
+            *value = cell(i).number()?.ok_or_else(|| DataError::EmptyReading { line, column: header[i].clone() })?;
         }
         let reference = match self.reference {
             ReferenceColumns::None => None,
-            ReferenceColumns::SpecificForce(columns) => all_or_none(
-                line,
-                columns
-                    .map(|i| cell(i).number())
-                    .into_iter()
-                    .collect::<Result<_, _>>()?,
-            )?
-            .map(|v| [v[0], v[1], v[2]]),
-            ReferenceColumns::Angles(columns) => all_or_none(
-                line,
-                columns
-                    .map(|i| cell(i).number())
-                    .into_iter()
-                    .collect::<Result<_, _>>()?,
-            )?
-            .map(|v| from_inclination_toolface(v[0], v[1]).map(|unit| unit * g)),
+            ReferenceColumns::SpecificForce(columns) => {
+                all_or_none(line, columns.map(|i| cell(i).number()).into_iter().collect::<Result<_, _>>()?)?
+                    .map(|v| [v[0], v[1], v[2]])
+            }
+            ReferenceColumns::Angles(columns) => {
+                all_or_none(line, columns.map(|i| cell(i).number()).into_iter().collect::<Result<_, _>>()?)?
+                    .map(|v| from_inclination_toolface(v[0], v[1]).map(|unit| unit * g))
+            }
         };
-        let extra = self
-            .extra
-            .iter()
-            .map(|&i| cell(i).text.to_owned())
-            .collect();
-        Ok(Row {
-            line,
-            reading,
-            reference,
-            extra,
-        })
+        let extra = self.extra.iter().map(|&i| cell(i).text.to_owned()).collect();
+        Ok(Row { line, reading, reference, extra })
     }
 }
 
@@ -251,26 +183,16 @@ impl Cell<'_> {
 
 /// The indices of all of `names`, or `None` when the header has none of them; an error when only some.
 fn all_of(header: &[String], names: &[&str]) -> Result<Option<Vec<usize>>, DataError> {
-    let found: Vec<&str> = names
-        .iter()
-        .copied()
-        .filter(|n| header.iter().any(|h| h == n))
-        .collect();
+    let found: Vec<&str> = names.iter().copied().filter(|n| header.iter().any(|h| h == n)).collect();
     match found.len() {
         0 => Ok(None),
         n if n == names.len() => Ok(all_columns(header, names)),
-        _ => Err(DataError::PartialColumns {
-            found: found.join(","),
-            expected: names.join(","),
-        }),
+        _ => Err(DataError::PartialColumns { found: found.join(","), expected: names.join(",") }),
     }
 }
 
 fn all_columns(header: &[String], names: &[&str]) -> Option<Vec<usize>> {
-    names
-        .iter()
-        .map(|name| header.iter().position(|h| h == name))
-        .collect()
+    names.iter().map(|name| header.iter().position(|h| h == name)).collect()
 }
 
 /// All cells of a group filled (`Some`), or all empty (`None`); partly filled is an error.
@@ -286,13 +208,9 @@ fn all_or_none(line: usize, cells: Vec<Option<f64>>) -> Result<Option<Vec<f64>>,
 }
 
 fn csv_error(error: csv::Error, fallback_line: usize) -> DataError {
-    let line = error
-        .position()
-        .map_or(fallback_line, |p| p.line() as usize);
+    let line = error.position().map_or(fallback_line, |p| p.line() as usize);
     let reason = match error.kind() {
-        csv::ErrorKind::UnequalLengths {
-            expected_len, len, ..
-        } => {
+        csv::ErrorKind::UnequalLengths { expected_len, len, .. } => {
             format!("{len} cells where the header has {expected_len}")
         }
         csv::ErrorKind::Utf8 { .. } => "not valid UTF-8 text".to_owned(),
@@ -311,7 +229,8 @@ mod tests {
 
     #[test]
     fn reads_readings_references_and_carried_columns() {
-        let data = read("x,y,z,ref_x,ref_y,ref_z,count,temp_c\n0.1,0.2,9.7,0,0,9.81,1000,25.5\n5,5,5,,,,500,26\n").unwrap();
+        let data =
+            read("x,y,z,ref_x,ref_y,ref_z,count,temp_c\n0.1,0.2,9.7,0,0,9.81,1000,25.5\n5,5,5,,,,500,26\n").unwrap();
         assert_eq!(data.rows.len(), 2);
         assert_eq!(data.rows[0].reading, [0.1, 0.2, 9.7]);
         assert_eq!(data.rows[0].reference, Some([0.0, 0.0, 9.81]));
@@ -325,31 +244,19 @@ mod tests {
     fn published_angle_columns_become_references_in_output_units() {
         let data = read("incl_deg,toolface_deg,raw_x,raw_y,raw_z\n0,90,1,2,3\n").unwrap();
         let reference = data.rows[0].reference.unwrap();
-        assert!(
-            (reference[0] - 9.81).abs() < 1e-12
-                && reference[1].abs() < 1e-12
-                && reference[2].abs() < 1e-12
-        );
+        assert!((reference[0] - 9.81).abs() < 1e-12 && reference[1].abs() < 1e-12 && reference[2].abs() < 1e-12);
     }
 
     #[test]
     fn a_header_without_reading_columns_is_refused_naming_what_it_has() {
         let error = read("a,b,c\n1,2,3\n").unwrap_err().to_string();
-        assert!(
-            error.contains("line 1") && error.contains("x,y,z") && error.contains("a,b,c"),
-            "{error}"
-        );
+        assert!(error.contains("line 1") && error.contains("x,y,z") && error.contains("a,b,c"), "{error}");
     }
 
     #[test]
     fn partial_reference_columns_are_refused() {
-        let error = read("x,y,z,ref_x,ref_y\n1,2,3,4,5\n")
-            .unwrap_err()
-            .to_string();
-        assert!(
-            error.contains("ref_x,ref_y") && error.contains("ref_x,ref_y,ref_z"),
-            "{error}"
-        );
+        let error = read("x,y,z,ref_x,ref_y\n1,2,3,4,5\n").unwrap_err().to_string();
+        assert!(error.contains("ref_x,ref_y") && error.contains("ref_x,ref_y,ref_z"), "{error}");
     }
 
     #[test]
@@ -362,21 +269,10 @@ mod tests {
 
     #[test]
     fn ragged_rows_empty_readings_and_partial_references_are_refused_with_the_line() {
-        assert_eq!(
-            read("x,y,z\n1,2,3\n1,2\n").unwrap_err().to_string(),
-            "line 3: 2 cells where the header has 3"
-        );
-        assert_eq!(
-            read("x,y,z\n1,,3\n").unwrap_err().to_string(),
-            "line 2, column y: the reading is empty"
-        );
-        let error = read("x,y,z,ref_x,ref_y,ref_z\n1,2,3,0,,1\n")
-            .unwrap_err()
-            .to_string();
-        assert!(
-            error.starts_with("line 2: the known orientation is only partly given"),
-            "{error}"
-        );
+        assert_eq!(read("x,y,z\n1,2,3\n1,2\n").unwrap_err().to_string(), "line 3: 2 cells where the header has 3");
+        assert_eq!(read("x,y,z\n1,,3\n").unwrap_err().to_string(), "line 2, column y: the reading is empty");
+        let error = read("x,y,z,ref_x,ref_y,ref_z\n1,2,3,0,,1\n").unwrap_err().to_string();
+        assert!(error.starts_with("line 2: the known orientation is only partly given"), "{error}");
     }
 
     #[test]

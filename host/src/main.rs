@@ -50,31 +50,15 @@ fn main() -> ExitCode {
 
 fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
-        Command::Fit {
-            file,
-            model,
-            g,
-            face_tolerance_deg,
-            json,
-        } => {
-            anyhow::ensure!(
-                g.is_finite() && g > 0.0,
-                "--g must be a positive number, got {g}"
-            );
-            let dataset =
-                Dataset::from_path(&file, g).with_context(|| file.display().to_string())?;
-            let options = FitOptions {
-                g,
-                face_tolerance_deg,
-            };
+        Command::Fit { file, model, g, face_tolerance_deg, json } => {
+            anyhow::ensure!(g.is_finite() && g > 0.0, "--g must be a positive number, got {g}");
+            let dataset = Dataset::from_path(&file, g).with_context(|| file.display().to_string())?;
+            let options = FitOptions { g, face_tolerance_deg };
             let fit = fit::fit(&dataset, model, &options)
                 .with_context(|| format!("{}: cannot fit {model}", file.display()))?;
             let evaluation = fit::evaluate(&dataset, &fit.matrix, &fit.offset, g);
             if json {
-                println!(
-                    "{}",
-                    serde_json::to_string_pretty(&FitJson::new(&fit, &dataset, &evaluation, g))?
-                );
+                println!("{}", serde_json::to_string_pretty(&FitJson::new(&fit, &dataset, &evaluation, g))?);
             } else {
                 print!("{}", report::human(&fit, &dataset, &evaluation, g));
             }

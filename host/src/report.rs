@@ -40,17 +40,9 @@ impl<'a> FitJson<'a> {
             offset: fit.offset,
             cost: fit.cost,
             iterations: fit.iterations,
-            std_errors: fit
-                .parameters
-                .iter()
-                .map(|p| (p.name.as_str(), p.std_error))
-                .collect(),
+            std_errors: fit.parameters.iter().map(|p| (p.name.as_str(), p.std_error)).collect(),
             g,
-            lines_used: fit
-                .rows_used
-                .iter()
-                .map(|&i| dataset.rows[i].line)
-                .collect(),
+            lines_used: fit.rows_used.iter().map(|&i| dataset.rows[i].line).collect(),
             evaluation,
         }
     }
@@ -60,33 +52,14 @@ impl<'a> FitJson<'a> {
 pub fn human(fit: &Fit, dataset: &Dataset, evaluation: &Evaluation, g: f64) -> String {
     let mut out = String::new();
     let used = fit.rows_used.len();
-    let _ = writeln!(
-        out,
-        "model {} ({used} of {} rows used), |g| = {g}",
-        fit.model.name(),
-        dataset.rows.len()
-    );
-    let _ = writeln!(
-        out,
-        "a = M (m - o); cost {:.3e}, {} iterations",
-        fit.cost, fit.iterations
-    );
+    let _ = writeln!(out, "model {} ({used} of {} rows used), |g| = {g}", fit.model.name(), dataset.rows.len());
+    let _ = writeln!(out, "a = M (m - o); cost {:.3e}, {} iterations", fit.cost, fit.iterations);
     for parameter in &fit.parameters {
-        let error = parameter
-            .std_error
-            .map_or("(no redundancy)".to_owned(), |e| format!("+- {e:.2e}"));
-        let _ = writeln!(
-            out,
-            "  {:<4} {:>16} {error}",
-            parameter.name,
-            number(parameter.value)
-        );
+        let error = parameter.std_error.map_or("(no redundancy)".to_owned(), |e| format!("+- {e:.2e}"));
+        let _ = writeln!(out, "  {:<4} {:>16} {error}", parameter.name, number(parameter.value));
     }
     let mg = |value: f64| value / g * 1000.0;
-    let _ = writeln!(
-        out,
-        "line   ||a|-g| mg before  after   |a-ref| mg before  after"
-    );
+    let _ = writeln!(out, "line   ||a|-g| mg before  after   |a-ref| mg before  after");
     for row in &evaluation.rows {
         let reference = match (row.reference_error_before, row.reference_error_after) {
             (Some(before), Some(after)) => format!("{:>17.2} {:>6.2}", mg(before), mg(after)),
@@ -101,19 +74,9 @@ pub fn human(fit: &Fit, dataset: &Dataset, evaluation: &Evaluation, g: f64) -> S
         );
     }
     let (before, after) = evaluation.worst_norm_error();
-    let _ = writeln!(
-        out,
-        "worst ||a|-g|: {:.2} mg before, {:.2} mg after",
-        mg(before),
-        mg(after)
-    );
+    let _ = writeln!(out, "worst ||a|-g|: {:.2} mg before, {:.2} mg after", mg(before), mg(after));
     if let Some((before, after)) = evaluation.worst_reference_error() {
-        let _ = writeln!(
-            out,
-            "worst |a-ref|: {:.2} mg before, {:.2} mg after",
-            mg(before),
-            mg(after)
-        );
+        let _ = writeln!(out, "worst |a-ref|: {:.2} mg before, {:.2} mg after", mg(before), mg(after));
     }
     out
 }

@@ -3,17 +3,11 @@
 use std::process::{Command, Output};
 
 fn accelcal(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_accelcal"))
-        .args(args)
-        .output()
-        .expect("accelcal runs")
+    Command::new(env!("CARGO_BIN_EXE_accelcal")).args(args).output().expect("accelcal runs")
 }
 
 fn phone_data() -> String {
-    format!(
-        "{}/../tests/data/huawei-phone-13.csv",
-        env!("CARGO_MANIFEST_DIR")
-    )
+    format!("{}/../tests/data/huawei-phone-13.csv", env!("CARGO_MANIFEST_DIR"))
 }
 
 fn write_temp(name: &str, text: &str) -> std::path::PathBuf {
@@ -24,22 +18,9 @@ fn write_temp(name: &str, text: &str) -> std::path::PathBuf {
 
 #[test]
 fn fit_json_has_the_fields_of_the_design_interface() {
-    let output = accelcal(&[
-        "fit",
-        &phone_data(),
-        "--model",
-        "six-position",
-        "--g",
-        "9.81",
-        "--json",
-    ]);
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    let json: serde_json::Value =
-        serde_json::from_slice(&output.stdout).expect("stdout is one JSON object");
+    let output = accelcal(&["fit", &phone_data(), "--model", "six-position", "--g", "9.81", "--json"]);
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&output.stdout).expect("stdout is one JSON object");
     assert_eq!(json["model"], "six-position");
     let matrix = json["matrix"].as_array().unwrap();
     assert_eq!(matrix.len(), 3);
@@ -58,10 +39,7 @@ fn fit_prints_a_table_with_errors_before_and_after() {
     let output = accelcal(&["fit", &phone_data(), "--g", "9.81"]);
     assert!(output.status.success());
     let text = String::from_utf8(output.stdout).unwrap();
-    assert!(
-        text.starts_with("model six-position (6 of 13 rows used)"),
-        "{text}"
-    );
+    assert!(text.starts_with("model six-position (6 of 13 rows used)"), "{text}");
     assert!(text.contains("worst ||a|-g|:"), "{text}");
 }
 
@@ -72,10 +50,7 @@ fn a_bad_file_fails_with_one_line_naming_the_line_and_cause() {
     assert!(!output.status.success());
     let stderr = String::from_utf8(output.stderr).unwrap();
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
-    assert!(
-        stderr.contains("line 3, column y: \"oops\" is not a number"),
-        "{stderr}"
-    );
+    assert!(stderr.contains("line 3, column y: \"oops\" is not a number"), "{stderr}");
 }
 
 #[test]
@@ -83,18 +58,17 @@ fn a_file_without_references_is_refused_for_linear12_with_what_to_add() {
     let output = accelcal(&["fit", &phone_data(), "--model", "linear12", "--g", "9.81"]);
     assert!(!output.status.success());
     let stderr = String::from_utf8(output.stderr).unwrap();
-    assert!(stderr.contains("linear12 needs at least 4 rows with a known orientation (ref_x,ref_y,ref_z); the file has 0"), "{stderr}");
+    assert!(
+        stderr.contains("linear12 needs at least 4 rows with a known orientation (ref_x,ref_y,ref_z); the file has 0"),
+        "{stderr}"
+    );
 }
 
 #[test]
 fn a_missing_file_and_an_unknown_model_are_named() {
     let output = accelcal(&["fit", "/nonexistent/data.csv"]);
-    assert!(String::from_utf8(output.stderr)
-        .unwrap()
-        .contains("cannot read /nonexistent/data.csv"));
+    assert!(String::from_utf8(output.stderr).unwrap().contains("cannot read /nonexistent/data.csv"));
     let output = accelcal(&["fit", &phone_data(), "--model", "quadratic"]);
     assert!(!output.status.success());
-    assert!(String::from_utf8(output.stderr)
-        .unwrap()
-        .contains("unknown model \"quadratic\""));
+    assert!(String::from_utf8(output.stderr).unwrap().contains("unknown model \"quadratic\""));
 }

@@ -169,12 +169,7 @@ impl Calibration {
 
     fn check_finite(&self) -> Result<(), CalibrationError> {
         let scalars = [self.temp_c, self.residual_mg];
-        let all = self
-            .matrix
-            .iter()
-            .flatten()
-            .chain(&self.offset_g)
-            .chain(&self.gyro_bias_dps);
+        let all = self.matrix.iter().flatten().chain(&self.offset_g).chain(&self.gyro_bias_dps);
         if all.chain(&scalars).all(|v| v.is_finite()) {
             Ok(())
         } else {
@@ -216,11 +211,7 @@ mod tests {
 
     fn plausible() -> Calibration {
         Calibration {
-            matrix: [
-                [1.01, 0.002, -0.007],
-                [0.0, 0.997, 0.0005],
-                [0.0, 0.0, 1.017],
-            ],
+            matrix: [[1.01, 0.002, -0.007], [0.0, 0.997, 0.0005], [0.0, 0.0, 1.017]],
             offset_g: [0.0276, -0.0057, -0.0783],
             gyro_bias_dps: [-1.5, 0.8, 0.2],
             ..Calibration::identity(AccelRange::G2)
@@ -257,52 +248,27 @@ mod tests {
     fn singular_matrix_is_refused() {
         let mut cal = plausible();
         cal.matrix = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 0.0]];
-        assert!(matches!(
-            cal.validate(),
-            Err(CalibrationError::Singular { .. })
-        ));
+        assert!(matches!(cal.validate(), Err(CalibrationError::Singular { .. })));
     }
 
     #[test]
     fn absurd_scale_cross_axis_and_offset_are_refused_with_the_axis() {
         let mut cal = plausible();
         cal.matrix[1][1] = 3.0;
-        assert_eq!(
-            cal.validate(),
-            Err(CalibrationError::ScaleOutOfRange {
-                axis: 1,
-                value: 3.0
-            })
-        );
+        assert_eq!(cal.validate(), Err(CalibrationError::ScaleOutOfRange { axis: 1, value: 3.0 }));
         let mut cal = plausible();
         cal.matrix[0][2] = 0.4;
-        assert_eq!(
-            cal.validate(),
-            Err(CalibrationError::CrossAxisOutOfRange {
-                row: 0,
-                col: 2,
-                value: 0.4
-            })
-        );
+        assert_eq!(cal.validate(), Err(CalibrationError::CrossAxisOutOfRange { row: 0, col: 2, value: 0.4 }));
         let mut cal = plausible();
         cal.offset_g[2] = -0.9;
-        assert_eq!(
-            cal.validate(),
-            Err(CalibrationError::OffsetOutOfRange {
-                axis: 2,
-                value_g: -0.9
-            })
-        );
+        assert_eq!(cal.validate(), Err(CalibrationError::OffsetOutOfRange { axis: 2, value_g: -0.9 }));
     }
 
     #[test]
     fn range_sensitivities_follow_the_datasheet() {
         for (range, lsb) in [(AccelRange::G2, 16384.0), (AccelRange::G16, 2048.0)] {
             assert_eq!(range.lsb_per_g(), lsb);
-            assert_eq!(
-                AccelRange::from_full_scale_g(range.full_scale_g()),
-                Some(range)
-            );
+            assert_eq!(AccelRange::from_full_scale_g(range.full_scale_g()), Some(range));
         }
         assert_eq!(AccelRange::from_full_scale_g(3), None);
     }

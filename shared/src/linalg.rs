@@ -22,11 +22,7 @@ pub fn dot<T: Float>(a: Vec3<T>, b: Vec3<T>) -> T {
 
 /// Cross product a x b.
 pub fn cross<T: Float>(a: Vec3<T>, b: Vec3<T>) -> Vec3<T> {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
 }
 
 /// Euclidean norm.
@@ -46,11 +42,7 @@ pub fn add<T: Float>(a: Vec3<T>, b: Vec3<T>) -> Vec3<T> {
 
 /// Transpose.
 pub fn transpose<T: Float>(m: &Mat3<T>) -> Mat3<T> {
-    [
-        [m[0][0], m[1][0], m[2][0]],
-        [m[0][1], m[1][1], m[2][1]],
-        [m[0][2], m[1][2], m[2][2]],
-    ]
+    [[m[0][0], m[1][0], m[2][0]], [m[0][1], m[1][1], m[2][1]], [m[0][2], m[1][2], m[2][2]]]
 }
 
 /// Vector times scalar.
@@ -118,11 +110,7 @@ mod tests {
 
     #[test]
     fn inverse_times_matrix_is_identity_to_f64_precision() {
-        let m = [
-            [1.02, 0.003, -0.01],
-            [0.0, 0.97, 0.004],
-            [0.02, -0.001, 1.05],
-        ];
+        let m = [[1.02, 0.003, -0.01], [0.0, 0.97, 0.004], [0.02, -0.001, 1.05]];
         let inv = inverse(&m).unwrap();
         assert!(max_abs_diff(&mul_mat(&m, &inv), &identity()) < 1e-15);
     }

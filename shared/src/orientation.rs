@@ -42,14 +42,8 @@ pub enum PositionError {
 
 impl Position {
     /// All six positions, in the order `+X, -X, +Y, -Y, +Z, -Z`.
-    pub const ALL: [Position; 6] = [
-        Position::PosX,
-        Position::NegX,
-        Position::PosY,
-        Position::NegY,
-        Position::PosZ,
-        Position::NegZ,
-    ];
+    pub const ALL: [Position; 6] =
+        [Position::PosX, Position::NegX, Position::PosY, Position::NegY, Position::PosZ, Position::NegZ];
 
     /// The name printed on the board's axes: `+X` ... `-Z`.
     pub const fn name(self) -> &'static str {
@@ -94,10 +88,7 @@ impl Position {
     }
 
     /// The position of a reading (any unit) within `tolerance_deg` of a face, with its tilt from it.
-    pub fn detect(
-        reading: Vec3<f32>,
-        tolerance_deg: f32,
-    ) -> Result<(Position, f32), PositionError> {
+    pub fn detect(reading: Vec3<f32>, tolerance_deg: f32) -> Result<(Position, f32), PositionError> {
         let magnitude = linalg::norm(reading);
         if !magnitude.is_finite() || magnitude == 0.0 {
             return Err(PositionError::NoDirection);
@@ -165,8 +156,7 @@ mod tests {
 
     /// A unit vector tilted `tilt_deg` from `position` toward the next axis.
     fn tilted(position: Position, tilt_deg: f32) -> Vec3<f32> {
-        let mut v: Vec3<f32> =
-            linalg::scale(position.specific_force_g(), tilt_deg.to_radians().cos());
+        let mut v: Vec3<f32> = linalg::scale(position.specific_force_g(), tilt_deg.to_radians().cos());
         v[(position.axis() + 1) % 3] += tilt_deg.to_radians().sin();
         v
     }
@@ -177,10 +167,7 @@ mod tests {
             for tilt in [0.0, 3.0, 9.9] {
                 let (found, tilt_deg) = Position::detect(tilted(position, tilt), 10.0).unwrap();
                 assert_eq!(found, position);
-                assert!(
-                    (tilt_deg - tilt).abs() < 1e-3,
-                    "{position:?} tilt {tilt} read {tilt_deg}"
-                );
+                assert!((tilt_deg - tilt).abs() < 1e-3, "{position:?} tilt {tilt} read {tilt_deg}");
             }
         }
     }
@@ -203,14 +190,8 @@ mod tests {
 
     #[test]
     fn zero_and_nan_readings_have_no_direction() {
-        assert_eq!(
-            Position::detect([0.0; 3], 10.0),
-            Err(PositionError::NoDirection)
-        );
-        assert_eq!(
-            Position::detect([f32::NAN, 1.0, 0.0], 10.0),
-            Err(PositionError::NoDirection)
-        );
+        assert_eq!(Position::detect([0.0; 3], 10.0), Err(PositionError::NoDirection));
+        assert_eq!(Position::detect([f32::NAN, 1.0, 0.0], 10.0), Err(PositionError::NoDirection));
     }
 
     #[test]
@@ -221,20 +202,10 @@ mod tests {
 
     #[test]
     fn toolface_and_inclination_invert_the_published_definition() {
-        for (incl, tf) in [
-            (0.0, 0.0),
-            (50.0, 30.0),
-            (50.0, 330.0),
-            (-20.0, 180.0),
-            (10.0, 270.0),
-        ] {
+        for (incl, tf) in [(0.0, 0.0), (50.0, 30.0), (50.0, 330.0), (-20.0, 180.0), (10.0, 270.0)] {
             let a: Vec3<f64> = from_inclination_toolface(incl, tf);
             assert!((inclination_deg(a) - incl).abs() < 1e-12);
-            assert!(
-                (toolface_deg(a) - tf).abs() < 1e-12,
-                "tf {tf} read {}",
-                toolface_deg(a)
-            );
+            assert!((toolface_deg(a) - tf).abs() < 1e-12, "tf {tf} read {}", toolface_deg(a));
         }
     }
 

@@ -29,9 +29,7 @@ pub struct PositionReadings<T> {
 
 impl<T: Float> Default for PositionReadings<T> {
     fn default() -> Self {
-        PositionReadings {
-            readings: [None; 6],
-        }
+        PositionReadings { readings: [None; 6] }
     }
 }
 
@@ -92,24 +90,14 @@ impl<T: Float> PositionReadings<T> {
         let six = T::from(6.0).ok_or(SixPositionError::Degenerate)?;
         let offset = linalg::scale(sum, T::one() / six);
         let matrix = linalg::inverse(&x).ok_or(SixPositionError::Degenerate)?;
-        if matrix
-            .iter()
-            .flatten()
-            .chain(&offset)
-            .any(|v| !v.is_finite())
-        {
+        if matrix.iter().flatten().chain(&offset).any(|v| !v.is_finite()) {
             return Err(SixPositionError::Degenerate);
         }
-        Ok(SixPositionFit {
-            matrix,
-            offset,
-            sensor_matrix: x,
-        })
+        Ok(SixPositionFit { matrix, offset, sensor_matrix: x })
     }
 
     fn require(&self, position: Position) -> Result<Vec3<T>, SixPositionError> {
-        self.get(position)
-            .ok_or(SixPositionError::Missing(position))
+        self.get(position).ok_or(SixPositionError::Missing(position))
     }
 }
 
@@ -129,11 +117,7 @@ mod tests {
     use super::*;
 
     /// A sensor with scale, cross-axis and offset errors: m = X a + y.
-    const X: Mat3<f64> = [
-        [1.021, 0.013, -0.004],
-        [-0.007, 0.985, 0.009],
-        [0.002, -0.011, 1.034],
-    ];
+    const X: Mat3<f64> = [[1.021, 0.013, -0.004], [-0.007, 0.985, 0.009], [0.002, -0.011, 1.034]];
     const Y: Vec3<f64> = [0.0276, -0.0057, -0.0783];
 
     fn readings_of(x: &Mat3<f64>, y: Vec3<f64>, g: f64) -> PositionReadings<f32> {
@@ -152,26 +136,18 @@ mod tests {
         let truth = linalg::inverse(&X).unwrap();
         for (row, truth_row) in fit.matrix.iter().zip(&truth) {
             for (&got, &want) in row.iter().zip(truth_row) {
-                assert!(
-                    (got as f64 - want).abs() < 4.0 * f32::EPSILON as f64,
-                    "{got} vs {want}"
-                );
+                assert!((got as f64 - want).abs() < 4.0 * f32::EPSILON as f64, "{got} vs {want}");
             }
         }
         for (&got, &want) in fit.offset.iter().zip(&Y) {
-            assert!(
-                (got as f64 - want).abs() < 4.0 * f32::EPSILON as f64,
-                "{got} vs {want}"
-            );
+            assert!((got as f64 - want).abs() < 4.0 * f32::EPSILON as f64, "{got} vs {want}");
         }
     }
 
     #[test]
     fn scales_with_g_so_readings_in_any_unit_give_the_same_matrix() {
         let in_g = readings_of(&X, Y, 1.0).fit(1.0f32).unwrap();
-        let in_si = readings_of(&X, linalg::scale(Y, 9.81), 9.81)
-            .fit(9.81f32)
-            .unwrap();
+        let in_si = readings_of(&X, linalg::scale(Y, 9.81), 9.81).fit(9.81f32).unwrap();
         assert!(linalg::max_abs_diff(&in_g.matrix, &in_si.matrix) < 1e-5);
         assert!((in_si.offset[2] / 9.81 - in_g.offset[2]).abs() < 1e-6);
     }
@@ -192,10 +168,7 @@ mod tests {
     #[test]
     fn names_a_duplicated_position() {
         let mut set = readings_of(&X, Y, 1.0);
-        assert_eq!(
-            set.insert(Position::NegY, [0.0, -1.0, 0.0]),
-            Err(SixPositionError::Duplicate(Position::NegY))
-        );
+        assert_eq!(set.insert(Position::NegY, [0.0, -1.0, 0.0]), Err(SixPositionError::Duplicate(Position::NegY)));
     }
 
     #[test]

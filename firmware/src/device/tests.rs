@@ -3,8 +3,7 @@
 use embassy_futures::block_on;
 use shared::linalg;
 use shared::protocol::{
-    ActiveCalibration, CalibrationSlot, DeviceError, Request, Response, StreamKind,
-    PROTOCOL_VERSION,
+    ActiveCalibration, CalibrationSlot, DeviceError, Request, Response, StreamKind, PROTOCOL_VERSION,
 };
 use shared::{AccelRange, Calibration, CalibrationError, Model, Position, SixPositionError};
 
@@ -63,31 +62,16 @@ fn capture_at(device: &mut SimDevice, up: [f32; 3]) -> Response {
 #[test]
 fn hello_names_the_sensor_and_refuses_another_protocol_version() {
     let mut device = boot(SimMpu6050::new(1), Flash::new());
-    let Response::Hello(info) = ask(
-        &mut device,
-        1,
-        Request::Hello {
-            protocol_version: PROTOCOL_VERSION,
-        },
-    ) else {
+    let Response::Hello(info) = ask(&mut device, 1, Request::Hello { protocol_version: PROTOCOL_VERSION }) else {
         panic!("no hello")
     };
     assert_eq!(info.sensor.unwrap().address, 0x68);
     assert_eq!(info.active, ActiveCalibration::None);
     assert!(!info.stored);
-    let answer = ask(
-        &mut device,
-        2,
-        Request::Hello {
-            protocol_version: PROTOCOL_VERSION + 1,
-        },
-    );
+    let answer = ask(&mut device, 2, Request::Hello { protocol_version: PROTOCOL_VERSION + 1 });
     assert_eq!(
         answer,
-        Response::Error(DeviceError::UnsupportedVersion {
-            device: PROTOCOL_VERSION,
-            host: PROTOCOL_VERSION + 1
-        })
+        Response::Error(DeviceError::UnsupportedVersion { device: PROTOCOL_VERSION, host: PROTOCOL_VERSION + 1 })
     );
 }
 
@@ -97,20 +81,10 @@ fn a_capture_reports_progress_every_second_then_one_final_result_with_its_positi
     device.bus_mut().place([0.0, -1.0, 0.0]);
     let (last, progress) = run(&mut device, 9, Request::Capture { seconds: 10 });
     // One progress message per second of data (at 1 s ... 9 s), then the result at 10 s.
-    let seconds: Vec<u32> = progress
-        .iter()
-        .map(|p| {
-            if let Response::Progress(p) = p {
-                p.samples / 100
-            } else {
-                0
-            }
-        })
-        .collect();
+    let seconds: Vec<u32> =
+        progress.iter().map(|p| if let Response::Progress(p) = p { p.samples / 100 } else { 0 }).collect();
     assert_eq!(seconds, (1..=9).collect::<Vec<_>>());
-    let Response::Captured { stats, position } = last else {
-        panic!("{last:?}")
-    };
+    let Response::Captured { stats, position } = last else { panic!("{last:?}") };
     assert_eq!(position, Some(Position::NegY));
     assert_eq!(stats.samples, 1000);
 }
@@ -121,25 +95,14 @@ fn the_on_chip_six_position_fit_recovers_the_true_error_model() {
     let truth = device.bus_mut().physics.truth;
     for position in Position::ALL {
         let answer = capture_at(&mut device, position.specific_force_g());
-        assert!(
-            matches!(answer, Response::Captured { position: Some(p), .. } if p == position),
-            "{answer:?}"
-        );
+        assert!(matches!(answer, Response::Captured { position: Some(p), .. } if p == position), "{answer:?}");
     }
-    let Response::Fitted(calibration) = ask(&mut device, 8, Request::FitSixPosition) else {
-        panic!("no fit")
-    };
+    let Response::Fitted(calibration) = ask(&mut device, 8, Request::FitSixPosition) else { panic!("no fit") };
     for axis in 0..3 {
         let offset_error_mg = (calibration.offset_g[axis] - truth.offset_g[axis]).abs() * 1000.0;
-        assert!(
-            offset_error_mg < 0.5,
-            "offset {axis} off by {offset_error_mg} mg"
-        );
+        assert!(offset_error_mg < 0.5, "offset {axis} off by {offset_error_mg} mg");
         let bias_error = (calibration.gyro_bias_dps[axis] - truth.gyro_bias_dps[axis]).abs();
-        assert!(
-            bias_error < 0.01,
-            "gyro bias {axis} off by {bias_error} deg/s"
-        );
+        assert!(bias_error < 0.01, "gyro bias {axis} off by {bias_error} deg/s");
     }
     let matrix_error = linalg::max_abs_diff(&calibration.matrix, &truth.matrix);
     assert!(matrix_error < 1e-3, "M off by {matrix_error}");
@@ -153,20 +116,12 @@ fn the_on_chip_six_position_fit_recovers_the_true_error_model() {
 #[test]
 fn the_fit_names_the_missing_position() {
     let mut device = boot(SimMpu6050::new(4), Flash::new());
-    for position in [
-        Position::PosX,
-        Position::NegX,
-        Position::PosY,
-        Position::NegY,
-        Position::PosZ,
-    ] {
+    for position in [Position::PosX, Position::NegX, Position::PosY, Position::NegY, Position::PosZ] {
         capture_at(&mut device, position.specific_force_g());
     }
     assert_eq!(
         ask(&mut device, 3, Request::FitSixPosition),
-        Response::Error(DeviceError::SixPosition(SixPositionError::Missing(
-            Position::NegZ
-        )))
+        Response::Error(DeviceError::SixPosition(SixPositionError::Missing(Position::NegZ)))
     );
 }
 
@@ -175,44 +130,20 @@ fn a_second_long_operation_is_refused_and_cancel_ends_the_first() {
     let mut device = boot(SimMpu6050::new(5), Flash::new());
     block_on(device.handle(1, Request::Capture { seconds: 10 }));
     assert!(drain(&mut device).is_empty());
-    assert_eq!(
-        ask(&mut device, 2, Request::Capture { seconds: 10 }),
-        Response::Error(DeviceError::Busy)
-    );
-    assert_eq!(
-        ask(&mut device, 3, Request::SaveCalibration),
-        Response::Error(DeviceError::Busy)
-    );
+    assert_eq!(ask(&mut device, 2, Request::Capture { seconds: 10 }), Response::Error(DeviceError::Busy));
+    assert_eq!(ask(&mut device, 3, Request::SaveCalibration), Response::Error(DeviceError::Busy));
     block_on(device.handle(4, Request::Cancel));
-    assert_eq!(
-        drain(&mut device),
-        [
-            (1, Response::Error(DeviceError::Cancelled)),
-            (4, Response::Done)
-        ]
-    );
+    assert_eq!(drain(&mut device), [(1, Response::Error(DeviceError::Cancelled)), (4, Response::Done)]);
     assert!(!device.is_busy());
 }
 
 #[test]
 fn a_moved_board_is_reported_and_nothing_is_kept() {
     let mut device = boot(SimMpu6050::new(6), Flash::new());
-    device.bus_mut().set_motion(Motion::Rotating {
-        axis: [0.0, 1.0, 0.0],
-        rate_dps: 2.0,
-    });
+    device.bus_mut().set_motion(Motion::Rotating { axis: [0.0, 1.0, 0.0], rate_dps: 2.0 });
     let (last, _) = run(&mut device, 1, Request::Capture { seconds: 5 });
-    assert!(
-        matches!(last, Response::Error(DeviceError::Moved { .. })),
-        "{last:?}"
-    );
-    let Response::Hello(info) = ask(
-        &mut device,
-        2,
-        Request::Hello {
-            protocol_version: PROTOCOL_VERSION,
-        },
-    ) else {
+    assert!(matches!(last, Response::Error(DeviceError::Moved { .. })), "{last:?}");
+    let Response::Hello(info) = ask(&mut device, 2, Request::Hello { protocol_version: PROTOCOL_VERSION }) else {
         panic!()
     };
     assert_eq!(info.positions.0, 0);
@@ -221,34 +152,18 @@ fn a_moved_board_is_reported_and_nothing_is_kept() {
 #[test]
 fn a_saved_calibration_is_active_again_after_a_reboot() {
     let mut device = boot(SimMpu6050::new(7), Flash::new());
-    let calibration = Calibration {
-        offset_g: [0.02, -0.01, 0.05],
-        model: Model::Ortho9,
-        ..Calibration::identity(AccelRange::G2)
-    };
-    assert_eq!(
-        ask(&mut device, 1, Request::SetCalibration(calibration)),
-        Response::Done
-    );
-    assert_eq!(
-        ask(&mut device, 2, Request::SaveCalibration),
-        Response::Done
-    );
+    let calibration =
+        Calibration { offset_g: [0.02, -0.01, 0.05], model: Model::Ortho9, ..Calibration::identity(AccelRange::G2) };
+    assert_eq!(ask(&mut device, 1, Request::SetCalibration(calibration)), Response::Done);
+    assert_eq!(ask(&mut device, 2, Request::SaveCalibration), Response::Done);
     let (sim, flash) = device.into_parts();
     let mut device = boot(sim, flash);
     assert_eq!(device.active_calibration(), Some(calibration));
     assert_eq!(
-        ask(
-            &mut device,
-            3,
-            Request::GetCalibration(CalibrationSlot::Stored)
-        ),
+        ask(&mut device, 3, Request::GetCalibration(CalibrationSlot::Stored)),
         Response::Calibration(Some(calibration))
     );
-    assert_eq!(
-        ask(&mut device, 4, Request::EraseCalibration),
-        Response::Done
-    );
+    assert_eq!(ask(&mut device, 4, Request::EraseCalibration), Response::Done);
     let (sim, flash) = device.into_parts();
     assert_eq!(boot(sim, flash).active_calibration(), None);
 }
@@ -265,16 +180,10 @@ fn an_absurd_upload_is_refused_with_the_reason_and_changes_nothing() {
     let other_range = Calibration::identity(AccelRange::G8);
     assert_eq!(
         ask(&mut device, 2, Request::SetCalibration(other_range)),
-        Response::Error(DeviceError::RangeMismatch {
-            calibration: AccelRange::G8,
-            configured: AccelRange::G2
-        })
+        Response::Error(DeviceError::RangeMismatch { calibration: AccelRange::G8, configured: AccelRange::G2 })
     );
     assert_eq!(device.active_calibration(), None);
-    assert_eq!(
-        ask(&mut device, 3, Request::SaveCalibration),
-        Response::Error(DeviceError::NoCalibration)
-    );
+    assert_eq!(ask(&mut device, 3, Request::SaveCalibration), Response::Error(DeviceError::NoCalibration));
 }
 
 #[test]
@@ -291,27 +200,10 @@ fn streamed_samples_are_corrected_on_the_chip() {
     };
     ask(&mut device, 1, Request::SetCalibration(calibration));
     let mean_z = |device: &mut SimDevice, kind| {
-        let (last, samples) = run(
-            device,
-            2,
-            Request::Stream {
-                kind,
-                rate_hz: 50,
-                count: 200,
-            },
-        );
+        let (last, samples) = run(device, 2, Request::Stream { kind, rate_hz: 50, count: 200 });
         assert_eq!(last, Response::StreamEnded { samples: 200 });
         assert_eq!(samples.len(), 200);
-        let z: f32 = samples
-            .iter()
-            .map(|s| {
-                if let Response::Sample(s) = s {
-                    s.accel_g[2]
-                } else {
-                    0.0
-                }
-            })
-            .sum();
+        let z: f32 = samples.iter().map(|s| if let Response::Sample(s) = s { s.accel_g[2] } else { 0.0 }).sum();
         z / 200.0
     };
     let raw = mean_z(&mut device, StreamKind::Raw);
@@ -326,20 +218,11 @@ fn a_missing_sensor_is_named_and_found_again_when_it_comes_back() {
     let mut sim = SimMpu6050::new(10);
     sim.set_connected(false);
     let mut device = boot(sim, Flash::new());
-    let Response::Hello(info) = ask(
-        &mut device,
-        1,
-        Request::Hello {
-            protocol_version: PROTOCOL_VERSION,
-        },
-    ) else {
+    let Response::Hello(info) = ask(&mut device, 1, Request::Hello { protocol_version: PROTOCOL_VERSION }) else {
         panic!()
     };
     assert_eq!(info.sensor, Err(DeviceError::SensorMissing));
-    assert_eq!(
-        ask(&mut device, 2, Request::Capture { seconds: 5 }),
-        Response::Error(DeviceError::SensorMissing)
-    );
+    assert_eq!(ask(&mut device, 2, Request::Capture { seconds: 5 }), Response::Error(DeviceError::SensorMissing));
     device.bus_mut().set_connected(true);
     let (last, _) = run(&mut device, 3, Request::Capture { seconds: 5 });
     assert!(matches!(last, Response::Captured { .. }), "{last:?}");

@@ -20,12 +20,7 @@ impl<I: Write> Write for Borrowed<'_, I> {
 impl<I: WriteRead> WriteRead for Borrowed<'_, I> {
     type Error = I::Error;
 
-    fn write_read(
-        &mut self,
-        address: u8,
-        bytes: &[u8],
-        buffer: &mut [u8],
-    ) -> Result<(), Self::Error> {
+    fn write_read(&mut self, address: u8, bytes: &[u8], buffer: &mut [u8]) -> Result<(), Self::Error> {
         self.0.write_read(address, bytes, buffer)
     }
 }

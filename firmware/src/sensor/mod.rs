@@ -35,10 +35,7 @@ impl<E> From<Mpu6050Error<E>> for Error<E> {
         match error {
             Mpu6050Error::I2c(e) => Error::I2c(e),
             // NOTE: only the crate's `init` checks the chip id, and this driver does not call it.
-            Mpu6050Error::InvalidChipId(who_am_i) => Error::UnknownChip {
-                address: 0,
-                who_am_i,
-            },
+            Mpu6050Error::InvalidChipId(who_am_i) => Error::UnknownChip { address: 0, who_am_i },
         }
     }
 }
@@ -49,9 +46,7 @@ impl<E> Error<E> {
         match *self {
             Error::I2c(_) => DeviceError::Bus,
             Error::Missing => DeviceError::SensorMissing,
-            Error::UnknownChip { address, who_am_i } => {
-                DeviceError::UnknownSensor { address, who_am_i }
-            }
+            Error::UnknownChip { address, who_am_i } => DeviceError::UnknownSensor { address, who_am_i },
             Error::InvalidRate { rate_hz } => DeviceError::InvalidRate { rate_hz },
             Error::FifoOverflow => DeviceError::FifoOverflow,
         }
@@ -73,11 +68,7 @@ impl RawSample {
     /// Parses the 14 bytes of a FIFO sample or of the data registers (big-endian, register order).
     pub fn from_be_bytes(bytes: &[u8; reg::FIFO_SAMPLE_LEN]) -> Self {
         let word = |i: usize| i16::from_be_bytes([bytes[2 * i], bytes[2 * i + 1]]);
-        RawSample {
-            accel: [word(0), word(1), word(2)],
-            temp: word(3),
-            gyro: [word(4), word(5), word(6)],
-        }
+        RawSample { accel: [word(0), word(1), word(2)], temp: word(3), gyro: [word(4), word(5), word(6)] }
     }
 
     /// Temperature in degC.
@@ -103,24 +94,15 @@ impl Sensor {
         I: Write<Error = E> + WriteRead<Error = E>,
     {
         for address in reg::ADDRESSES {
-            let Ok(who_am_i) =
-                Mpu6050::new_with_addr(Borrowed(bus), address).read_byte(reg::WHO_AM_I)
-            else {
+            let Ok(who_am_i) = Mpu6050::new_with_addr(Borrowed(bus), address).read_byte(reg::WHO_AM_I) else {
                 continue;
             };
             let genuine = who_am_i == reg::WHO_AM_I_MPU6050;
             if !genuine && !reg::WHO_AM_I_CLONES.contains(&who_am_i) {
                 return Err(Error::UnknownChip { address, who_am_i });
             }
-            let identity = SensorIdentity {
-                address,
-                who_am_i,
-                genuine,
-            };
-            return Ok(Sensor {
-                identity,
-                config: SensorConfig::default(),
-            });
+            let identity = SensorIdentity { address, who_am_i, genuine };
+            return Ok(Sensor { identity, config: SensorConfig::default() });
         }
         Err(Error::Missing)
     }
@@ -143,11 +125,7 @@ impl Sensor {
     }
 
     /// Wakes the chip and applies range, filter and sample rate; returns the configuration achieved.
-    pub fn configure<I, E>(
-        &mut self,
-        bus: &mut I,
-        config: SensorConfig,
-    ) -> Result<SensorConfig, Error<E>>
+    pub fn configure<I, E>(&mut self, bus: &mut I, config: SensorConfig) -> Result<SensorConfig, Error<E>>
     where
         I: Write<Error = E> + WriteRead<Error = E>,
     {
@@ -160,10 +138,7 @@ impl Sensor {
         chip.write_byte(reg::SMPLRT_DIV, divider)?;
         chip.write_byte(reg::INT_ENABLE, reg::FIFO_OFLOW)?;
         let achieved = (reg::GYRO_OUTPUT_RATE_HZ / (1 + u32::from(divider))) as u16;
-        self.config = SensorConfig {
-            sample_rate_hz: achieved,
-            ..config
-        };
+        self.config = SensorConfig { sample_rate_hz: achieved, ..config };
         Ok(self.config)
     }
 
@@ -209,10 +184,7 @@ impl Sensor {
         for chunk in out[..wanted].chunks_mut(SAMPLES_PER_READ) {
             let len = chunk.len() * reg::FIFO_SAMPLE_LEN;
             chip.read_bytes(reg::FIFO_R_W, &mut bytes[..len])?;
-            for (sample, raw) in chunk
-                .iter_mut()
-                .zip(bytes.chunks_exact(reg::FIFO_SAMPLE_LEN))
-            {
+            for (sample, raw) in chunk.iter_mut().zip(bytes.chunks_exact(reg::FIFO_SAMPLE_LEN)) {
                 let mut one = [0u8; reg::FIFO_SAMPLE_LEN];
                 one.copy_from_slice(raw);
                 *sample = RawSample::from_be_bytes(&one);

@@ -30,10 +30,7 @@ fn probed(address: u8) -> Sensor {
 fn probe_finds_a_genuine_mpu6050_at_0x68() {
     let mut bus = Mock::new(&[who_am_i(0x68, 0x68)]);
     let identity = Sensor::probe(&mut bus).unwrap().identity();
-    assert_eq!(
-        (identity.address, identity.who_am_i, identity.genuine),
-        (0x68, 0x68, true)
-    );
+    assert_eq!((identity.address, identity.who_am_i, identity.genuine), (0x68, 0x68, true));
     bus.done();
 }
 
@@ -54,10 +51,7 @@ fn probe_accepts_a_register_compatible_clone_and_says_so() {
 
 #[test]
 fn probe_reports_a_missing_sensor_when_nothing_answers() {
-    let mut bus = Mock::new(&[
-        who_am_i(0x68, 0).with_error(NACK),
-        who_am_i(0x69, 0).with_error(NACK),
-    ]);
+    let mut bus = Mock::new(&[who_am_i(0x68, 0).with_error(NACK), who_am_i(0x69, 0).with_error(NACK)]);
     assert_eq!(Sensor::probe(&mut bus), Err(Error::Missing));
     bus.done();
 }
@@ -65,13 +59,7 @@ fn probe_reports_a_missing_sensor_when_nothing_answers() {
 #[test]
 fn probe_names_an_unknown_chip_and_its_id() {
     let mut bus = Mock::new(&[who_am_i(0x68, 0x19)]);
-    assert_eq!(
-        Sensor::probe(&mut bus),
-        Err(Error::UnknownChip {
-            address: 0x68,
-            who_am_i: 0x19
-        })
-    );
+    assert_eq!(Sensor::probe(&mut bus), Err(Error::UnknownChip { address: 0x68, who_am_i: 0x19 }));
     bus.done();
 }
 
@@ -79,20 +67,16 @@ fn probe_names_an_unknown_chip_and_its_id() {
 fn configure_wakes_the_chip_and_sets_range_filter_and_rate() {
     let mut sensor = probed(0x69);
     let mut bus = Mock::new(&[
-        T::write(0x69, vec![0x6B, 0x01]), // PWR_MGMT_1: awake, PLL on x gyro
+        T::write(0x69, vec![0x6B, 0x01]),            // PWR_MGMT_1: awake, PLL on x gyro
         T::write_read(0x69, vec![0x1C], vec![0x00]), // ACCEL_CONFIG read ...
-        T::write(0x69, vec![0x1C, 0x10]), // ... AFS_SEL = 2 (+-8 g)
+        T::write(0x69, vec![0x1C, 0x10]),            // ... AFS_SEL = 2 (+-8 g)
         T::write_read(0x69, vec![0x1B], vec![0x00]), // GYRO_CONFIG read ...
-        T::write(0x69, vec![0x1B, 0x00]), // ... FS_SEL = 0 (+-250 deg/s)
-        T::write(0x69, vec![0x1A, 0x04]), // CONFIG: DLPF_CFG = 4 (21 Hz)
-        T::write(0x69, vec![0x19, 0x04]), // SMPLRT_DIV: 1 kHz / (1 + 4) = 200 Hz
-        T::write(0x69, vec![0x38, 0x10]), // INT_ENABLE: FIFO_OFLOW_EN
+        T::write(0x69, vec![0x1B, 0x00]),            // ... FS_SEL = 0 (+-250 deg/s)
+        T::write(0x69, vec![0x1A, 0x04]),            // CONFIG: DLPF_CFG = 4 (21 Hz)
+        T::write(0x69, vec![0x19, 0x04]),            // SMPLRT_DIV: 1 kHz / (1 + 4) = 200 Hz
+        T::write(0x69, vec![0x38, 0x10]),            // INT_ENABLE: FIFO_OFLOW_EN
     ]);
-    let wanted = SensorConfig {
-        range: AccelRange::G8,
-        sample_rate_hz: 200,
-        filter: LowPassFilter::Hz21,
-    };
+    let wanted = SensorConfig { range: AccelRange::G8, sample_rate_hz: 200, filter: LowPassFilter::Hz21 };
     assert_eq!(sensor.configure(&mut bus, wanted), Ok(wanted));
     bus.done();
 }
@@ -102,14 +86,8 @@ fn configure_refuses_a_rate_the_1khz_clock_cannot_divide_to_without_touching_the
     let mut sensor = probed(0x68);
     let mut bus = Mock::new(&[]);
     for rate_hz in [0, 3, 300, 1001] {
-        let config = SensorConfig {
-            sample_rate_hz: rate_hz,
-            ..SensorConfig::default()
-        };
-        assert_eq!(
-            sensor.configure(&mut bus, config),
-            Err(Error::InvalidRate { rate_hz })
-        );
+        let config = SensorConfig { sample_rate_hz: rate_hz, ..SensorConfig::default() };
+        assert_eq!(sensor.configure(&mut bus, config), Err(Error::InvalidRate { rate_hz }));
     }
     bus.done();
 }
@@ -131,12 +109,8 @@ fn start_fifo_resets_it_clears_the_overflow_flag_and_enables_temp_gyro_and_accel
 #[test]
 fn read_fifo_pops_only_whole_samples_in_register_order() {
     let mut sensor = probed(0x68);
-    let first = [
-        0x40, 0x00, 0xC0, 0x00, 0x00, 0x01, 0xF2, 0x30, 0x00, 0x83, 0xFF, 0x7D, 0x00, 0x00,
-    ];
-    let second = [
-        0x7F, 0xFF, 0x80, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x05,
-    ];
+    let first = [0x40, 0x00, 0xC0, 0x00, 0x00, 0x01, 0xF2, 0x30, 0x00, 0x83, 0xFF, 0x7D, 0x00, 0x00];
+    let second = [0x7F, 0xFF, 0x80, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x05];
     let both: Vec<u8> = first.iter().chain(&second).copied().collect();
     let mut bus = Mock::new(&[
         T::write_read(0x68, vec![0x3A], vec![0x01]), // INT_STATUS: data ready, no overflow
@@ -145,27 +119,9 @@ fn read_fifo_pops_only_whole_samples_in_register_order() {
     ]);
     let mut out = [RawSample::default(); 4];
     assert_eq!(sensor.read_fifo(&mut bus, &mut out), Ok(2));
-    assert_eq!(
-        out[0],
-        RawSample {
-            accel: [16384, -16384, 1],
-            temp: -3536,
-            gyro: [131, -131, 0]
-        }
-    );
-    assert_eq!(
-        out[1],
-        RawSample {
-            accel: [32767, -32768, 0],
-            temp: 0,
-            gyro: [0, 0, 5]
-        }
-    );
-    assert!(
-        (out[0].temp_c() - 26.13).abs() < 0.01,
-        "{}",
-        out[0].temp_c()
-    );
+    assert_eq!(out[0], RawSample { accel: [16384, -16384, 1], temp: -3536, gyro: [131, -131, 0] });
+    assert_eq!(out[1], RawSample { accel: [32767, -32768, 0], temp: 0, gyro: [0, 0, 5] });
+    assert!((out[0].temp_c() - 26.13).abs() < 0.01, "{}", out[0].temp_c());
     bus.done();
 }
 
@@ -174,10 +130,7 @@ fn read_fifo_reports_an_overflow_before_reading_misaligned_bytes() {
     let mut sensor = probed(0x68);
     let mut bus = Mock::new(&[T::write_read(0x68, vec![0x3A], vec![0x11])]);
     let mut out = [RawSample::default(); 4];
-    assert_eq!(
-        sensor.read_fifo(&mut bus, &mut out),
-        Err(Error::FifoOverflow)
-    );
+    assert_eq!(sensor.read_fifo(&mut bus, &mut out), Err(Error::FifoOverflow));
     bus.done();
 }
 

@@ -5,9 +5,7 @@
 //! words of a write land, half of an erased page is left as it was) and fails everything after it
 //! until power returns, as a board that lost power and rebooted would see.
 
-use embedded_storage_async::nor_flash::{
-    ErrorType, NorFlash, NorFlashError, NorFlashErrorKind, ReadNorFlash,
-};
+use embedded_storage_async::nor_flash::{ErrorType, NorFlash, NorFlashError, NorFlashErrorKind, ReadNorFlash};
 
 /// Flash errors of the simulation.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -38,12 +36,7 @@ pub struct RamFlash<const PAGE: usize, const PAGES: usize> {
 
 impl<const PAGE: usize, const PAGES: usize> Default for RamFlash<PAGE, PAGES> {
     fn default() -> Self {
-        RamFlash {
-            pages: [[0xFF; PAGE]; PAGES],
-            operations: 0,
-            cut_at: None,
-            powered: true,
-        }
+        RamFlash { pages: [[0xFF; PAGE]; PAGES], operations: 0, cut_at: None, powered: true }
     }
 }
 
@@ -100,10 +93,7 @@ impl<const PAGE: usize, const PAGES: usize> RamFlash<PAGE, PAGES> {
 
     fn check(&self, offset: u32, len: usize, align: usize) -> Result<usize, FlashFault> {
         let offset = offset as usize;
-        if !offset.is_multiple_of(align)
-            || !len.is_multiple_of(align)
-            || offset + len > PAGE * PAGES
-        {
+        if !offset.is_multiple_of(align) || !len.is_multiple_of(align) || offset + len > PAGE * PAGES {
             return Err(FlashFault::OutOfBounds);
         }
         Ok(offset)
@@ -152,11 +142,7 @@ impl<const PAGE: usize, const PAGES: usize> NorFlash for RamFlash<PAGE, PAGES> {
         let start = self.check(offset, bytes.len(), Self::WRITE_SIZE)?;
         let whole = self.begin_operation()?;
         let words = bytes.len() / Self::WRITE_SIZE;
-        let landed = if whole {
-            bytes.len()
-        } else {
-            words / 2 * Self::WRITE_SIZE
-        };
+        let landed = if whole { bytes.len() } else { words / 2 * Self::WRITE_SIZE };
         for (i, &byte) in bytes[..landed].iter().enumerate() {
             // NOR flash programming only clears bits.
             self.pages[(start + i) / PAGE][(start + i) % PAGE] &= byte;

@@ -87,11 +87,7 @@ impl SimMpu6050 {
     /// Rests the board with the body-frame direction `up` (any length) pointing up.
     pub fn place(&mut self, up: Vec3<f32>) {
         let length = linalg::norm(up);
-        self.physics.up = if length > 0.0 {
-            linalg::scale(up, 1.0 / length)
-        } else {
-            [0.0, 0.0, 1.0]
-        };
+        self.physics.up = if length > 0.0 { linalg::scale(up, 1.0 / length) } else { [0.0, 0.0, 1.0] };
         self.physics.motion = Motion::Still;
         self.pose_since_us = self.now_us;
     }
@@ -156,8 +152,7 @@ impl SimMpu6050 {
         let rate = self.sample_rate_hz();
         let sample = self.physics.sample(seconds, rate);
         let accel_lsb = f32::from(16384u16 >> ((self.register(ACCEL_CONFIG) >> 3) & 0x03));
-        let gyro_lsb =
-            reg::GYRO_LSB_PER_DPS / f32::from(1u8 << ((self.register(GYRO_CONFIG) >> 3) & 0x03));
+        let gyro_lsb = reg::GYRO_LSB_PER_DPS / f32::from(1u8 << ((self.register(GYRO_CONFIG) >> 3) & 0x03));
         let words = [
             quantise(sample.accel_g[0] * accel_lsb),
             quantise(sample.accel_g[1] * accel_lsb),
@@ -224,9 +219,7 @@ impl SimMpu6050 {
             reg::FIFO_COUNT_H => (self.fifo.len() >> 8) as u8,
             0x73 => self.fifo.len() as u8,
             reg::FIFO_R_W => self.fifo.pop_front().unwrap_or(0),
-            a if (reg::ACCEL_XOUT_H..reg::ACCEL_XOUT_H + reg::FIFO_SAMPLE_LEN as u8)
-                .contains(&a) =>
-            {
+            a if (reg::ACCEL_XOUT_H..reg::ACCEL_XOUT_H + reg::FIFO_SAMPLE_LEN as u8).contains(&a) => {
                 self.latest[usize::from(a - reg::ACCEL_XOUT_H)]
             }
             a => self.register(a),
@@ -273,11 +266,7 @@ impl WriteRead for SimMpu6050 {
         for (offset, byte) in buffer.iter_mut().enumerate() {
             // NOTE: burst reads auto-increment the register address, except on FIFO_R_W, which
             // pops the FIFO at every byte (register map 4.32).
-            let address = if start == reg::FIFO_R_W {
-                start
-            } else {
-                start.wrapping_add(offset as u8)
-            };
+            let address = if start == reg::FIFO_R_W { start } else { start.wrapping_add(offset as u8) };
             *byte = self.read_register(address);
         }
         Ok(())

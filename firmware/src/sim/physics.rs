@@ -39,20 +39,13 @@ impl TrueErrors {
 
     /// A perfect sensor.
     pub fn ideal() -> Self {
-        TrueErrors {
-            matrix: linalg::identity(),
-            offset_g: [0.0; 3],
-            gyro_bias_dps: [0.0; 3],
-        }
+        TrueErrors { matrix: linalg::identity(), offset_g: [0.0; 3], gyro_bias_dps: [0.0; 3] }
     }
 
     /// What the uncalibrated sensor reads for a true specific force: m = M^-1 a + o.
     pub fn reading_g(&self, specific_force_g: Vec3<f32>) -> Vec3<f32> {
         let sensor_matrix = linalg::inverse(&self.matrix).unwrap_or(linalg::identity());
-        linalg::add(
-            linalg::mul_vec(&sensor_matrix, specific_force_g),
-            self.offset_g,
-        )
+        linalg::add(linalg::mul_vec(&sensor_matrix, specific_force_g), self.offset_g)
     }
 }
 
@@ -115,10 +108,7 @@ impl Physics {
         let band = libm::sqrtf(rate_hz / 2.0);
         let accel_noise = self.noise(ACCEL_NOISE_DENSITY_G * band);
         let gyro_noise = self.noise(GYRO_NOISE_DENSITY_DPS * band);
-        let gyro = linalg::add(
-            linalg::add(rotation_dps, self.truth.gyro_bias_dps),
-            gyro_noise,
-        );
+        let gyro = linalg::add(linalg::add(rotation_dps, self.truth.gyro_bias_dps), gyro_noise);
         PhysicalSample {
             accel_g: linalg::add(self.truth.reading_g(force), accel_noise),
             gyro_dps: gyro,
@@ -135,12 +125,8 @@ impl Physics {
                 let angle = -(rate_dps * seconds).to_radians();
                 (rotate(self.up, axis, angle), linalg::scale(axis, rate_dps))
             }
-            Motion::Vibrating {
-                amplitude_g,
-                frequency_hz,
-            } => {
-                let shake =
-                    amplitude_g * libm::sinf(2.0 * core::f32::consts::PI * frequency_hz * seconds);
+            Motion::Vibrating { amplitude_g, frequency_hz } => {
+                let shake = amplitude_g * libm::sinf(2.0 * core::f32::consts::PI * frequency_hz * seconds);
                 (linalg::add(self.up, [shake, 0.0, 0.0]), [0.0; 3])
             }
         }
@@ -150,9 +136,7 @@ impl Physics {
         if !self.noisy {
             return [0.0; 3];
         }
-        let mut draw = || {
-            sigma * <StandardNormal as Distribution<f32>>::sample(&StandardNormal, &mut self.rng)
-        };
+        let mut draw = || sigma * <StandardNormal as Distribution<f32>>::sample(&StandardNormal, &mut self.rng);
         [draw(), draw(), draw()]
     }
 }
@@ -161,11 +145,5 @@ impl Physics {
 fn rotate(v: Vec3<f32>, axis: Vec3<f32>, angle: f32) -> Vec3<f32> {
     let (sin, cos) = (libm::sinf(angle), libm::cosf(angle));
     let along = linalg::scale(axis, linalg::dot(axis, v) * (1.0 - cos));
-    linalg::add(
-        linalg::add(
-            linalg::scale(v, cos),
-            linalg::scale(linalg::cross(axis, v), sin),
-        ),
-        along,
-    )
+    linalg::add(linalg::add(linalg::scale(v, cos), linalg::scale(linalg::cross(axis, v), sin)), along)
 }

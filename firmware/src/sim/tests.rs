@@ -18,11 +18,7 @@ fn configured(sim: &mut SimMpu6050, config: SensorConfig) -> Sensor {
 }
 
 /// Runs one capture as the device does: drain the FIFO every 50 ms until rate x seconds samples.
-fn capture(
-    sim: &mut SimMpu6050,
-    config: SensorConfig,
-    seconds: u8,
-) -> Result<CaptureStats, DeviceError> {
+fn capture(sim: &mut SimMpu6050, config: SensorConfig, seconds: u8) -> Result<CaptureStats, DeviceError> {
     let mut sensor = configured(sim, config);
     let mut capture = Capture::new(seconds, sensor.config())?;
     sensor.start_fifo(sim).unwrap();
@@ -30,9 +26,7 @@ fn capture(
     while !capture.is_complete() {
         sim.advance_us(POLL_US);
         loop {
-            let n = sensor
-                .read_fifo(sim, &mut buffer)
-                .map_err(|e| e.to_device_error())?;
+            let n = sensor.read_fifo(sim, &mut buffer).map_err(|e| e.to_device_error())?;
             capture.take(&buffer[..n]);
             if n < buffer.len() {
                 break;
@@ -46,10 +40,7 @@ fn capture(
 fn who_am_i_and_address_follow_the_configuration() {
     let mut sim = SimMpu6050::new(1).with_address(0x69).with_who_am_i(0x72);
     let identity = Sensor::probe(&mut sim).unwrap().identity();
-    assert_eq!(
-        (identity.address, identity.who_am_i, identity.genuine),
-        (0x69, 0x72, false)
-    );
+    assert_eq!((identity.address, identity.who_am_i, identity.genuine), (0x69, 0x72, false));
     sim.set_connected(false);
     assert_eq!(Sensor::probe(&mut sim), Err(Error::Missing));
 }
@@ -58,10 +49,7 @@ fn who_am_i_and_address_follow_the_configuration() {
 fn sample_count_equals_rate_times_seconds_exactly() {
     for (rate_hz, seconds) in [(100, 10), (200, 5), (50, 20), (1000, 5)] {
         let mut sim = SimMpu6050::new(u64::from(rate_hz));
-        let config = SensorConfig {
-            sample_rate_hz: rate_hz,
-            ..SensorConfig::default()
-        };
+        let config = SensorConfig { sample_rate_hz: rate_hz, ..SensorConfig::default() };
         let stats = capture(&mut sim, config, seconds).unwrap();
         assert_eq!(stats.samples, u32::from(rate_hz) * u32::from(seconds));
         assert_eq!(stats.seconds, f32::from(seconds));
@@ -72,35 +60,18 @@ fn sample_count_equals_rate_times_seconds_exactly() {
 fn the_mean_lies_within_4_sigma_of_the_true_reading() {
     // NOTE: white noise of density n averaged over T seconds has sigma n / sqrt(2 T): 89 ug at 10 s.
     let sigma = ACCEL_NOISE_DENSITY_G / (2.0f32 * 10.0).sqrt();
-    let ups: [Vec3<f32>; 5] = [
-        [0.0, 0.0, 1.0],
-        [-1.0, 0.0, 0.0],
-        [0.0, 1.0, 0.0],
-        [0.3, -0.5, 0.8],
-        [0.0, 0.0, -1.0],
-    ];
+    let ups: [Vec3<f32>; 5] = [[0.0, 0.0, 1.0], [-1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.3, -0.5, 0.8], [0.0, 0.0, -1.0]];
     for (seed, up) in ups.into_iter().enumerate() {
         let mut sim = SimMpu6050::new(seed as u64 + 10);
         sim.place(up);
-        let truth = sim
-            .physics
-            .truth
-            .reading_g(linalg::scale(up, 1.0 / linalg::norm(up)));
+        let truth = sim.physics.truth.reading_g(linalg::scale(up, 1.0 / linalg::norm(up)));
         let stats = capture(&mut sim, SensorConfig::default(), 10).unwrap();
         for (axis, (mean, true_mean)) in stats.mean_g.iter().zip(truth).enumerate() {
             let error = (mean - true_mean).abs();
-            assert!(
-                error < 4.0 * sigma,
-                "up {up:?} axis {axis}: error {error:e} g, 4 sigma {:e}",
-                4.0 * sigma
-            );
+            assert!(error < 4.0 * sigma, "up {up:?} axis {axis}: error {error:e} g, 4 sigma {:e}", 4.0 * sigma);
         }
         // The capture measures the per-sample noise too: 400 ug * sqrt(50 Hz) = 2.83 mg.
-        assert!(
-            (stats.std_g[0] - 2.83e-3).abs() < 0.2e-3,
-            "std {}",
-            stats.std_g[0]
-        );
+        assert!((stats.std_g[0] - 2.83e-3).abs() < 0.2e-3, "std {}", stats.std_g[0]);
         assert!((stats.gyro_mean_dps[0] - sim.physics.truth.gyro_bias_dps[0]).abs() < 0.01);
     }
 }
@@ -114,32 +85,20 @@ fn still_captures_are_almost_never_called_moved() {
             false_alarms += 1;
         }
     }
-    assert!(
-        false_alarms <= 2,
-        "{false_alarms} of 200 still captures were called moved"
-    );
+    assert!(false_alarms <= 2, "{false_alarms} of 200 still captures were called moved");
 }
 
 #[test]
 fn a_board_turned_or_shaken_during_the_capture_is_called_moved() {
     let motions = [
-        Motion::Rotating {
-            axis: [1.0, 0.0, 0.0],
-            rate_dps: 1.0,
-        }, // 10 degrees over the capture
-        Motion::Vibrating {
-            amplitude_g: 0.05,
-            frequency_hz: 8.0,
-        }, // a hand's tremor
+        Motion::Rotating { axis: [1.0, 0.0, 0.0], rate_dps: 1.0 }, // 10 degrees over the capture
+        Motion::Vibrating { amplitude_g: 0.05, frequency_hz: 8.0 }, // a hand's tremor
     ];
     for motion in motions {
         let mut sim = SimMpu6050::new(5);
         sim.set_motion(motion);
         let result = capture(&mut sim, SensorConfig::default(), 10);
-        assert!(
-            matches!(result, Err(DeviceError::Moved { .. })),
-            "{motion:?}: {result:?}"
-        );
+        assert!(matches!(result, Err(DeviceError::Moved { .. })), "{motion:?}: {result:?}");
     }
 }
 
@@ -147,15 +106,9 @@ fn a_board_turned_or_shaken_during_the_capture_is_called_moved() {
 fn saturation_refuses_the_capture_as_clipped() {
     let mut sim = SimMpu6050::new(6);
     sim.place([1.0, 0.0, 0.0]);
-    sim.set_motion(Motion::Vibrating {
-        amplitude_g: 1.5,
-        frequency_hz: 2.0,
-    }); // x reaches 2.5 g at +-2 g
+    sim.set_motion(Motion::Vibrating { amplitude_g: 1.5, frequency_hz: 2.0 }); // x reaches 2.5 g at +-2 g
     let result = capture(&mut sim, SensorConfig::default(), 5);
-    assert!(
-        matches!(result, Err(DeviceError::Clipped { samples }) if samples > 50),
-        "{result:?}"
-    );
+    assert!(matches!(result, Err(DeviceError::Clipped { samples }) if samples > 50), "{result:?}");
 }
 
 #[test]
@@ -167,10 +120,7 @@ fn a_stalled_reader_sees_a_fifo_overflow() {
     let mut buffer = [RawSample::default(); 128];
     assert_eq!(sensor.read_fifo(&mut sim, &mut buffer), Ok(70));
     sim.advance_us(800_000); // 80 samples: 1120 bytes, more than the FIFO holds
-    assert_eq!(
-        sensor.read_fifo(&mut sim, &mut buffer),
-        Err(Error::FifoOverflow)
-    );
+    assert_eq!(sensor.read_fifo(&mut sim, &mut buffer), Err(Error::FifoOverflow));
     // Restarting the FIFO clears the condition.
     sensor.start_fifo(&mut sim).unwrap();
     sim.advance_us(100_000);

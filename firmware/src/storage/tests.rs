@@ -13,11 +13,7 @@ const RANGE: core::ops::Range<u32> = 0..(4 * 2048);
 fn calibration(n: u32) -> Calibration {
     let tweak = n as f32 * 1e-4;
     Calibration {
-        matrix: [
-            [1.0 + tweak, 0.001, 0.0],
-            [0.0, 0.99 - tweak, 0.002],
-            [0.0, 0.0, 1.01],
-        ],
+        matrix: [[1.0 + tweak, 0.001, 0.0], [0.0, 0.99 - tweak, 0.002], [0.0, 0.0, 1.01]],
         offset_g: [0.02 + tweak, -0.01, 0.07],
         gyro_bias_dps: [0.5, -0.25, tweak],
         model: Model::SixPosition,
@@ -58,11 +54,7 @@ fn a_cut_after_every_flash_operation_of_every_save_boots_to_the_old_or_the_new_c
     // Enough saves to fill the pages several times, so cuts land in compaction and page erases too.
     for n in 1..=60u32 {
         let before = storage.into_flash();
-        let old = if n == 1 {
-            None
-        } else {
-            Some(calibration(n - 1))
-        };
+        let old = if n == 1 { None } else { Some(calibration(n - 1)) };
         // Count the operations of this save on a copy, then cut at each one of them in turn.
         let mut probe = Storage::new(before.clone(), RANGE).unwrap();
         block_on(probe.save(&calibration(n))).unwrap();
@@ -71,19 +63,13 @@ fn a_cut_after_every_flash_operation_of_every_save_boots_to_the_old_or_the_new_c
             let mut flash = before.clone();
             flash.cut_power_at(cut);
             let mut storage = Storage::new(flash, RANGE).unwrap();
-            assert!(
-                block_on(storage.save(&calibration(n))).is_err(),
-                "save {n} survived a cut at {cut}"
-            );
+            assert!(block_on(storage.save(&calibration(n))).is_err(), "save {n} survived a cut at {cut}");
             let mut flash = storage.into_flash();
             assert!(flash.was_cut());
             flash.restore_power();
             let (_, loaded) = boot(flash);
             let loaded = loaded.unwrap_or_else(|e| panic!("save {n}, cut at {cut}: {e:?}"));
-            assert!(
-                loaded == old || loaded == Some(calibration(n)),
-                "save {n}, cut at {cut}: booted to {loaded:?}"
-            );
+            assert!(loaded == old || loaded == Some(calibration(n)), "save {n}, cut at {cut}: booted to {loaded:?}");
             cuts_tested += 1;
         }
         let mut storage_next = Storage::new(before, RANGE).unwrap();
@@ -99,12 +85,7 @@ fn a_corrupted_record_is_refused_not_applied() {
     let (mut storage, _) = boot(Flash::new());
     block_on(storage.save(&calibration(3))).unwrap();
     let clean = storage.into_flash();
-    let written: Vec<usize> = clean
-        .bytes()
-        .enumerate()
-        .filter(|(_, b)| *b != 0xFF)
-        .map(|(i, _)| i)
-        .collect();
+    let written: Vec<usize> = clean.bytes().enumerate().filter(|(_, b)| *b != 0xFF).map(|(i, _)| i).collect();
     let (mut refused, mut intact) = (0, 0);
     for &offset in &written {
         for bit in [0, 5] {
@@ -112,27 +93,16 @@ fn a_corrupted_record_is_refused_not_applied() {
             flash.flip_bit(offset, bit);
             match boot(flash).1 {
                 Ok(Some(found)) => {
-                    assert_eq!(
-                        found,
-                        calibration(3),
-                        "flip of bit {bit} at {offset} returned an altered calibration"
-                    );
+                    assert_eq!(found, calibration(3), "flip of bit {bit} at {offset} returned an altered calibration");
                     intact += 1;
                 }
                 Ok(None) | Err(_) => refused += 1,
             }
         }
     }
-    println!(
-        "{} written bytes: {refused} flips refused, {intact} left the record intact",
-        written.len()
-    );
+    println!("{} written bytes: {refused} flips refused, {intact} left the record intact", written.len());
     // The record's own bytes (the bulk of what is written) are CRC-protected: most flips are refused.
-    assert!(
-        refused > written.len(),
-        "only {refused} of {} flips refused",
-        2 * written.len()
-    );
+    assert!(refused > written.len(), "only {refused} of {} flips refused", 2 * written.len());
 }
 
 #[test]

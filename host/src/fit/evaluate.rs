@@ -63,9 +63,6 @@ impl Evaluation {
     }
 
     fn worst(&self, pick: impl Fn(&RowEvaluation) -> Option<(f64, f64)>) -> (f64, f64) {
-        self.rows
-            .iter()
-            .filter_map(pick)
-            .fold((0.0, 0.0), |(b, a), (rb, ra)| (b.max(rb), a.max(ra)))
+        self.rows.iter().filter_map(pick).fold((0.0, 0.0), |(b, a), (rb, ra)| (b.max(rb), a.max(ra)))
     }
 }

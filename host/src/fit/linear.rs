@@ -28,21 +28,11 @@ pub(super) fn linear12(dataset: &Dataset, options: &FitOptions) -> Result<Fit, F
         .rows
         .iter()
         .enumerate()
-        .filter_map(|(row, r)| {
-            r.reference.map(|reference| Pair {
-                row,
-                reading: r.reading,
-                reference,
-            })
-        })
+        .filter_map(|(row, r)| r.reference.map(|reference| Pair { row, reading: r.reading, reference }))
         .collect();
     if pairs.len() < MIN_REFERENCES {
         let model = Model::Linear12.name();
-        return Err(FitError::TooFewReferences {
-            model,
-            needed: MIN_REFERENCES,
-            found: pairs.len(),
-        });
+        return Err(FitError::TooFewReferences { model, needed: MIN_REFERENCES, found: pairs.len() });
     }
     let solution = LinearSolution::solve(&pairs, Model::Linear12)?;
     let matrix = linalg::inverse(&solution.sensor_matrix).ok_or(FitError::Degenerate)?;
@@ -60,11 +50,7 @@ pub(super) fn six_position(dataset: &Dataset, options: &FitOptions) -> Result<Fi
         };
         if let Some(first) = first_row_at[position.index()] {
             let first_line = dataset.rows[first].line;
-            return Err(FitError::DuplicatePosition {
-                position,
-                first_line,
-                second_line: row.line,
-            });
+            return Err(FitError::DuplicatePosition { position, first_line, second_line: row.line });
         }
         first_row_at[position.index()] = Some(index);
     }
@@ -73,29 +59,18 @@ pub(super) fn six_position(dataset: &Dataset, options: &FitOptions) -> Result<Fi
     for (position, row) in Position::ALL.into_iter().zip(first_row_at) {
         if let Some(row) = row {
             readings.replace(position, dataset.rows[row].reading);
-            pairs.push(Pair {
-                row,
-                reading: dataset.rows[row].reading,
-                reference: face_force(position, options.g),
-            });
+            pairs.push(Pair { row, reading: dataset.rows[row].reading, reference: face_force(position, options.g) });
         }
     }
     let closed_form = readings.fit(options.g).map_err(|error| match error {
-        SixPositionError::Missing(position) => FitError::MissingPosition {
-            position,
-            tolerance_deg: options.face_tolerance_deg,
-        },
+        SixPositionError::Missing(position) => {
+            FitError::MissingPosition { position, tolerance_deg: options.face_tolerance_deg }
+        }
         SixPositionError::Duplicate(_) | SixPositionError::Degenerate => FitError::Degenerate,
     })?;
     pairs.sort_by_key(|p| p.row);
     let solution = LinearSolution::solve(&pairs, Model::SixPosition)?;
-    Ok(solution.into_fit(
-        Model::SixPosition,
-        closed_form.matrix,
-        closed_form.offset,
-        &pairs,
-        options.g,
-    ))
+    Ok(solution.into_fit(Model::SixPosition, closed_form.matrix, closed_form.offset, &pairs, options.g))
 }
 
 /// The face a row was taken at: from its known orientation when it has one, else from its reading.
@@ -104,9 +79,7 @@ fn face_of(row: &Row, tolerance_deg: f64) -> Option<Position> {
         Some(reference) => (reference, REFERENCE_FACE_TOLERANCE_DEG),
         None => (row.reading, tolerance_deg as f32),
     };
-    Position::detect(vector.map(|v| v as f32), tolerance)
-        .ok()
-        .map(|(position, _)| position)
+    Position::detect(vector.map(|v| v as f32), tolerance).ok().map(|(position, _)| position)
 }
 
 fn face_force(position: Position, g: f64) -> Vec3<f64> {
@@ -131,19 +104,12 @@ impl LinearSolution {
         let n = pairs.len();
         let design = DMatrix::from_fn(n, 4, |i, j| if j < 3 { pairs[i].reference[j] } else { 1.0 });
         let readings = DMatrix::from_fn(n, 3, |i, j| pairs[i].reading[j]);
-        let solution = design
-            .clone()
-            .svd(true, true)
-            .solve(&readings, 1e-12)
-            .map_err(|_| FitError::Degenerate)?;
-        let normal: Matrix4<f64> = (design.transpose() * &design)
-            .fixed_view::<4, 4>(0, 0)
-            .into_owned();
+        let solution = design.clone().svd(true, true).solve(&readings, 1e-12).map_err(|_| FitError::Degenerate)?;
+        let normal: Matrix4<f64> = (design.transpose() * &design).fixed_view::<4, 4>(0, 0).into_owned();
         let covariance_shape = normal.try_inverse().ok_or(FitError::Degenerate)?;
         let residuals = readings - &design * &solution;
-        let residual_variance = (n > MIN_REFERENCES).then(|| {
-            [0, 1, 2].map(|j| residuals.column(j).norm_squared() / (n - MIN_REFERENCES) as f64)
-        });
+        let residual_variance = (n > MIN_REFERENCES)
+            .then(|| [0, 1, 2].map(|j| residuals.column(j).norm_squared() / (n - MIN_REFERENCES) as f64));
         Ok(LinearSolution {
             sensor_matrix: [0, 1, 2].map(|row| [0, 1, 2].map(|col| solution[(col, row)])),
             offset: [0, 1, 2].map(|row| solution[(3, row)]),
@@ -161,24 +127,14 @@ impl LinearSolution {
             [0, 1, 2].map(|b| {
                 let column: Vector3<f64> = m.column(b).into_owned();
                 let spread = (column.transpose() * shape * column)[0];
-                (0..3)
-                    .map(|c| m[(a, c)].powi(2) * variance[c] * spread)
-                    .sum::<f64>()
-                    .sqrt()
+                (0..3).map(|c| m[(a, c)].powi(2) * variance[c] * spread).sum::<f64>().sqrt()
             })
         });
         let offset_errors = variance.map(|v| (v * self.covariance_shape[(3, 3)]).sqrt());
         Some((matrix_errors, offset_errors))
     }
 
-    fn into_fit(
-        self,
-        model: Model,
-        matrix: Mat3<f64>,
-        offset: Vec3<f64>,
-        pairs: &[Pair],
-        g: f64,
-    ) -> Fit {
+    fn into_fit(self, model: Model, matrix: Mat3<f64>, offset: Vec3<f64>, pairs: &[Pair], g: f64) -> Fit {
         let cost = pairs
             .iter()
             .map(|p| {
@@ -188,25 +144,14 @@ impl LinearSolution {
             })
             .sum();
         let parameters = full_parameters(&matrix, &offset, self.std_errors(&matrix));
-        Fit {
-            model,
-            matrix,
-            offset,
-            cost,
-            iterations: 0,
-            parameters,
-            rows_used: pairs.iter().map(|p| p.row).collect(),
-        }
+        Fit { model, matrix, offset, cost, iterations: 0, parameters, rows_used: pairs.iter().map(|p| p.row).collect() }
     }
 }
 
 /// Refuses references that lie in one plane, naming the axis along which a position is missing.
 fn check_spread(pairs: &[Pair], model: Model) -> Result<(), FitError> {
     let n = pairs.len() as f64;
-    let mean = pairs
-        .iter()
-        .fold(Vector3::zeros(), |sum, p| sum + Vector3::from(p.reference))
-        / n;
+    let mean = pairs.iter().fold(Vector3::zeros(), |sum, p| sum + Vector3::from(p.reference)) / n;
     let scatter = pairs.iter().fold(Matrix3::zeros(), |sum, p| {
         let d = Vector3::from(p.reference) - mean;
         sum + d * d.transpose()
@@ -221,10 +166,7 @@ fn check_spread(pairs: &[Pair], model: Model) -> Result<(), FitError> {
     }
     let normal = eigen.eigenvectors.column(smallest);
     let axis = normal.iamax();
-    Err(FitError::ReferencesInOnePlane {
-        model: model.name(),
-        axis: ['x', 'y', 'z'][axis],
-    })
+    Err(FitError::ReferencesInOnePlane { model: model.name(), axis: ['x', 'y', 'z'][axis] })
 }
 
 #[cfg(test)]
@@ -233,11 +175,7 @@ mod tests {
     use crate::fit::{fit, ModelChoice};
     use shared::orientation::from_inclination_toolface;
 
-    const X: Mat3<f64> = [
-        [1.021, 0.013, -0.004],
-        [-0.007, 0.985, 0.009],
-        [0.002, -0.011, 1.034],
-    ];
+    const X: Mat3<f64> = [[1.021, 0.013, -0.004], [-0.007, 0.985, 0.009], [0.002, -0.011, 1.034]];
     const Y: Vec3<f64> = [0.0276, -0.0057, -0.0783];
 
     fn dataset(references: &[Vec3<f64>]) -> Dataset {
@@ -246,46 +184,24 @@ mod tests {
             .enumerate()
             .map(|(i, &a)| {
                 let reading = linalg::add(linalg::mul_vec(&X, a), Y);
-                Row {
-                    line: i + 2,
-                    reading,
-                    reference: Some(a),
-                    extra: Vec::new(),
-                }
+                Row { line: i + 2, reading, reference: Some(a), extra: Vec::new() }
             })
             .collect();
-        Dataset {
-            rows,
-            extra_columns: Vec::new(),
-        }
+        Dataset { rows, extra_columns: Vec::new() }
     }
 
     fn options() -> FitOptions {
-        FitOptions {
-            g: 1.0,
-            ..FitOptions::default()
-        }
+        FitOptions { g: 1.0, ..FitOptions::default() }
     }
 
     #[test]
     fn linear12_recovers_a_known_model_from_tilted_noise_free_positions() {
-        let references: Vec<_> = [
-            (0.0, 0.0),
-            (30.0, 45.0),
-            (-40.0, 120.0),
-            (60.0, 200.0),
-            (-10.0, 300.0),
-            (80.0, 10.0),
-        ]
-        .iter()
-        .map(|&(incl, tf)| from_inclination_toolface(incl, tf))
-        .collect();
-        let fit = fit(
-            &dataset(&references),
-            ModelChoice::Only(Model::Linear12),
-            &options(),
-        )
-        .unwrap();
+        let references: Vec<_> =
+            [(0.0, 0.0), (30.0, 45.0), (-40.0, 120.0), (60.0, 200.0), (-10.0, 300.0), (80.0, 10.0)]
+                .iter()
+                .map(|&(incl, tf)| from_inclination_toolface(incl, tf))
+                .collect();
+        let fit = fit(&dataset(&references), ModelChoice::Only(Model::Linear12), &options()).unwrap();
         let truth = linalg::inverse(&X).unwrap();
         assert!(linalg::max_abs_diff(&fit.matrix, &truth) < 1e-12);
         assert!(linalg::norm(linalg::sub(fit.offset, Y)) < 1e-12);
@@ -298,75 +214,27 @@ mod tests {
     fn linear12_refuses_fewer_than_four_references() {
         let data = dataset(&[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]);
         let error = fit(&data, ModelChoice::Only(Model::Linear12), &options()).unwrap_err();
-        assert_eq!(
-            error,
-            FitError::TooFewReferences {
-                model: "linear12",
-                needed: 4,
-                found: 3
-            }
-        );
+        assert_eq!(error, FitError::TooFewReferences { model: "linear12", needed: 4, found: 3 });
     }
 
     #[test]
     fn references_in_one_plane_are_refused_naming_the_missing_axis() {
         // Every reference horizontal (z never up or down): the z column of X is not determined.
-        let references: Vec<_> = [0.0, 60.0, 150.0, 200.0, 290.0]
-            .iter()
-            .map(|&tf| from_inclination_toolface(0.0, tf))
-            .collect();
-        let error = fit(
-            &dataset(&references),
-            ModelChoice::Only(Model::Linear12),
-            &options(),
-        )
-        .unwrap_err();
-        assert_eq!(
-            error,
-            FitError::ReferencesInOnePlane {
-                model: "linear12",
-                axis: 'z'
-            }
-        );
-        assert!(error
-            .to_string()
-            .contains("add a position with the z axis pointing up or down"));
+        let references: Vec<_> =
+            [0.0, 60.0, 150.0, 200.0, 290.0].iter().map(|&tf| from_inclination_toolface(0.0, tf)).collect();
+        let error = fit(&dataset(&references), ModelChoice::Only(Model::Linear12), &options()).unwrap_err();
+        assert_eq!(error, FitError::ReferencesInOnePlane { model: "linear12", axis: 'z' });
+        assert!(error.to_string().contains("add a position with the z axis pointing up or down"));
     }
 
     #[test]
     fn six_position_names_the_missing_face_and_a_repeated_one() {
         let faces: Vec<_> = Position::ALL.iter().map(|p| p.specific_force_g()).collect();
-        let error = fit(
-            &dataset(&faces[..5]),
-            ModelChoice::Only(Model::SixPosition),
-            &options(),
-        )
-        .unwrap_err();
-        assert!(
-            matches!(
-                error,
-                FitError::MissingPosition {
-                    position: Position::NegZ,
-                    ..
-                }
-            ),
-            "{error}"
-        );
+        let error = fit(&dataset(&faces[..5]), ModelChoice::Only(Model::SixPosition), &options()).unwrap_err();
+        assert!(matches!(error, FitError::MissingPosition { position: Position::NegZ, .. }), "{error}");
         let mut repeated = faces.clone();
         repeated.insert(3, faces[0]);
-        let error = fit(
-            &dataset(&repeated),
-            ModelChoice::Only(Model::SixPosition),
-            &options(),
-        )
-        .unwrap_err();
-        assert_eq!(
-            error,
-            FitError::DuplicatePosition {
-                position: Position::PosX,
-                first_line: 2,
-                second_line: 5
-            }
-        );
+        let error = fit(&dataset(&repeated), ModelChoice::Only(Model::SixPosition), &options()).unwrap_err();
+        assert_eq!(error, FitError::DuplicatePosition { position: Position::PosX, first_line: 2, second_line: 5 });
     }
 }

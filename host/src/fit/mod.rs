@@ -34,12 +34,7 @@ impl FromStr for ModelChoice {
             .iter()
             .find(|m| m.name() == name)
             .map(|&m| ModelChoice::Only(m))
-            .ok_or_else(|| {
-                format!(
-                    "unknown model {name:?}; choose one of auto, {}",
-                    model_names()
-                )
-            })
+            .ok_or_else(|| format!("unknown model {name:?}; choose one of auto, {}", model_names()))
     }
 }
 
@@ -47,11 +42,7 @@ impl FromStr for ModelChoice {
 pub const IMPLEMENTED: [Model; 2] = [Model::Linear12, Model::SixPosition];
 
 fn model_names() -> String {
-    IMPLEMENTED
-        .iter()
-        .map(|m| m.name())
-        .collect::<Vec<_>>()
-        .join(", ")
+    IMPLEMENTED.iter().map(|m| m.name()).collect::<Vec<_>>().join(", ")
 }
 
 /// Settings of a fit.
@@ -65,10 +56,7 @@ pub struct FitOptions {
 
 impl Default for FitOptions {
     fn default() -> Self {
-        FitOptions {
-            g: 1.0,
-            face_tolerance_deg: f64::from(shared::orientation::DEFAULT_FACE_TOLERANCE_DEG),
-        }
+        FitOptions { g: 1.0, face_tolerance_deg: f64::from(shared::orientation::DEFAULT_FACE_TOLERANCE_DEG) }
     }
 }
 
@@ -106,11 +94,7 @@ pub struct Fit {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum FitError {
     #[error("{model} needs at least {needed} rows with a known orientation (ref_x,ref_y,ref_z); the file has {found}")]
-    TooFewReferences {
-        model: &'static str,
-        needed: usize,
-        found: usize,
-    },
+    TooFewReferences { model: &'static str, needed: usize, found: usize },
     #[error(
         "the known orientations do not determine {model}: they lie in one plane; \
          add a position with the {axis} axis pointing up or down"
@@ -121,21 +105,11 @@ pub enum FitError {
          add one, or choose a model that takes arbitrary positions",
         position.name()
     )]
-    MissingPosition {
-        position: Position,
-        tolerance_deg: f64,
-    },
+    MissingPosition { position: Position, tolerance_deg: f64 },
     #[error("lines {first_line} and {second_line} are both {} up; keep one of them", position.name())]
-    DuplicatePosition {
-        position: Position,
-        first_line: usize,
-        second_line: usize,
-    },
+    DuplicatePosition { position: Position, first_line: usize, second_line: usize },
     #[error("{model} is not available in this version; choose one of {available}")]
-    NotAvailable {
-        model: &'static str,
-        available: String,
-    },
+    NotAvailable { model: &'static str, available: String },
     #[error("the six positions do not determine the sensor: opposite faces read alike (is the file's unit right?)")]
     Degenerate,
 }
@@ -145,10 +119,7 @@ pub fn fit(dataset: &Dataset, choice: ModelChoice, options: &FitOptions) -> Resu
     match choice {
         ModelChoice::Only(Model::SixPosition) => linear::six_position(dataset, options),
         ModelChoice::Only(Model::Linear12) => linear::linear12(dataset, options),
-        ModelChoice::Only(other) => Err(FitError::NotAvailable {
-            model: other.name(),
-            available: model_names(),
-        }),
+        ModelChoice::Only(other) => Err(FitError::NotAvailable { model: other.name(), available: model_names() }),
         ModelChoice::Auto => auto(dataset, options),
     }
 }
@@ -175,29 +146,17 @@ impl fmt::Display for ModelChoice {
 }
 
 /// Parameter list of a full 12-parameter calibration, with optional standard errors.
-fn full_parameters(
-    matrix: &Mat3<f64>,
-    offset: &Vec3<f64>,
-    errors: Option<(Mat3<f64>, Vec3<f64>)>,
-) -> Vec<Parameter> {
+fn full_parameters(matrix: &Mat3<f64>, offset: &Vec3<f64>, errors: Option<(Mat3<f64>, Vec3<f64>)>) -> Vec<Parameter> {
     let mut parameters = Vec::with_capacity(12);
     for (i, row) in matrix.iter().enumerate() {
         for (j, &value) in row.iter().enumerate() {
             let std_error = errors.map(|(m, _)| m[i][j]);
-            parameters.push(Parameter {
-                name: format!("M{}{}", i + 1, j + 1),
-                value,
-                std_error,
-            });
+            parameters.push(Parameter { name: format!("M{}{}", i + 1, j + 1), value, std_error });
         }
     }
     for (k, (&value, axis)) in offset.iter().zip(["x", "y", "z"]).enumerate() {
         let std_error = errors.map(|(_, o)| o[k]);
-        parameters.push(Parameter {
-            name: format!("o_{axis}"),
-            value,
-            std_error,
-        });
+        parameters.push(Parameter { name: format!("o_{axis}"), value, std_error });
     }
     parameters
 }

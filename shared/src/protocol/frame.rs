@@ -37,23 +37,18 @@ pub enum FrameError {
 }
 
 /// Encodes one message into `out`, delimiter included; returns the frame length.
-pub fn encode<T: Serialize>(
-    request_id: u16,
-    message: &T,
-    out: &mut [u8; MAX_FRAME_LEN],
-) -> Result<usize, FrameError> {
+pub fn encode<T: Serialize>(request_id: u16, message: &T, out: &mut [u8; MAX_FRAME_LEN]) -> Result<usize, FrameError> {
     let mut raw = [0u8; RAW_LEN];
     raw[0] = PROTOCOL_VERSION;
     raw[1..HEADER_LEN].copy_from_slice(&request_id.to_le_bytes());
-    let payload_len =
-        postcard::to_slice(message, &mut raw[HEADER_LEN..HEADER_LEN + MAX_PAYLOAD_LEN])
-            .map_err(|_| FrameError::Oversized)?
-            .len();
+    let payload_len = postcard::to_slice(message, &mut raw[HEADER_LEN..HEADER_LEN + MAX_PAYLOAD_LEN])
+        .map_err(|_| FrameError::Oversized)?
+        .len();
     let crc_at = HEADER_LEN + payload_len;
     let crc = CRC.checksum(&raw[..crc_at]);
     raw[crc_at..crc_at + CRC_LEN].copy_from_slice(&crc.to_le_bytes());
-    let encoded = cobs::try_encode(&raw[..crc_at + CRC_LEN], &mut out[..MAX_FRAME_LEN - 1])
-        .map_err(|_| FrameError::Oversized)?;
+    let encoded =
+        cobs::try_encode(&raw[..crc_at + CRC_LEN], &mut out[..MAX_FRAME_LEN - 1]).map_err(|_| FrameError::Oversized)?;
     out[encoded] = 0;
     Ok(encoded + 1)
 }
@@ -98,11 +93,7 @@ pub struct FrameAccumulator {
 
 impl Default for FrameAccumulator {
     fn default() -> Self {
-        FrameAccumulator {
-            buffer: [0; MAX_FRAME_LEN],
-            len: 0,
-            overflowed: false,
-        }
+        FrameAccumulator { buffer: [0; MAX_FRAME_LEN], len: 0, overflowed: false }
     }
 }
 

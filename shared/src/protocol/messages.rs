@@ -32,11 +32,7 @@ pub enum Request {
     /// Erases the stored calibration and returns the active one to identity.
     EraseCalibration,
     /// Streams `count` samples (0: until cancelled) at `rate_hz`, raw or calibrated.
-    Stream {
-        kind: StreamKind,
-        rate_hz: u16,
-        count: u32,
-    },
+    Stream { kind: StreamKind, rate_hz: u16, count: u32 },
 }
 
 /// What the device answers.
@@ -49,10 +45,7 @@ pub enum Response {
     /// A capture is running (sent at least once a second).
     Progress(CaptureProgress),
     /// A capture finished; `position` is the face it was detected at, if it was at one.
-    Captured {
-        stats: CaptureStats,
-        position: Option<Position>,
-    },
+    Captured { stats: CaptureStats, position: Option<Position> },
     /// The on-chip six-position fit, now active.
     Fitted(Calibration),
     /// The requested calibration, `None` when there is none.
@@ -118,11 +111,7 @@ pub struct SensorConfig {
 
 impl Default for SensorConfig {
     fn default() -> Self {
-        SensorConfig {
-            range: AccelRange::G2,
-            sample_rate_hz: 100,
-            filter: LowPassFilter::Hz44,
-        }
+        SensorConfig { range: AccelRange::G2, sample_rate_hz: 100, filter: LowPassFilter::Hz44 }
     }
 }
 
@@ -250,10 +239,7 @@ pub enum DeviceError {
     /// The sensor FIFO overflowed, so samples were lost.
     FifoOverflow,
     /// The board moved during the capture: the scatter exceeded the stillness limits.
-    Moved {
-        accel_std_mg: f32,
-        gyro_std_dps: f32,
-    },
+    Moved { accel_std_mg: f32, gyro_std_dps: f32 },
     /// Samples reached the end of the range.
     Clipped { samples: u32 },
     /// The operation was cancelled by the host.
@@ -267,10 +253,7 @@ pub enum DeviceError {
     /// A calibration was refused.
     InvalidCalibration(CalibrationError),
     /// The calibration belongs to another range than the one configured.
-    RangeMismatch {
-        calibration: AccelRange,
-        configured: AccelRange,
-    },
+    RangeMismatch { calibration: AccelRange, configured: AccelRange },
     /// There is no calibration to save.
     NoCalibration,
     /// Reading or writing flash failed.

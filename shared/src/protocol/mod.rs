@@ -16,8 +16,7 @@ pub const PROTOCOL_VERSION: u8 = 1;
 pub const MAX_PAYLOAD_LEN: usize = 200;
 
 /// Largest encoded frame, delimiter included: COBS of version + request id + payload + CRC, plus 0x00.
-pub const MAX_FRAME_LEN: usize =
-    cobs::max_encoding_length(frame::HEADER_LEN + MAX_PAYLOAD_LEN + frame::CRC_LEN) + 1;
+pub const MAX_FRAME_LEN: usize = cobs::max_encoding_length(frame::HEADER_LEN + MAX_PAYLOAD_LEN + frame::CRC_LEN) + 1;
 
 /// USB vendor id of the board's CDC-ACM serial port (pid.codes open-source vendor id).
 pub const USB_VID: u16 = 0x1209;

@@ -11,11 +11,7 @@ use crate::six_position::SixPositionError;
 /// Large values take the most postcard bytes (varints), so sizes here are the worst case.
 fn calibration() -> Calibration {
     Calibration {
-        matrix: [
-            [1.0006, 3.58e-4, -7.29e-3],
-            [0.0, 1.003, 4.62e-4],
-            [0.0, 0.0, 0.9834],
-        ],
+        matrix: [[1.0006, 3.58e-4, -7.29e-3], [0.0, 1.003, 4.62e-4], [0.0, 0.0, 0.9834]],
         offset_g: [0.0276, -0.0057, -0.0783],
         gyro_bias_dps: [-1.25, 0.5, 3.0],
         model: Model::ReferenceNorm12,
@@ -41,9 +37,7 @@ fn stats() -> CaptureStats {
 
 fn every_request() -> Vec<Request> {
     let all = vec![
-        Request::Hello {
-            protocol_version: PROTOCOL_VERSION,
-        },
+        Request::Hello { protocol_version: PROTOCOL_VERSION },
         Request::Configure(SensorConfig {
             range: AccelRange::G8,
             sample_rate_hz: u16::MAX,
@@ -57,11 +51,7 @@ fn every_request() -> Vec<Request> {
         Request::SetCalibration(calibration()),
         Request::SaveCalibration,
         Request::EraseCalibration,
-        Request::Stream {
-            kind: StreamKind::Calibrated,
-            rate_hz: u16::MAX,
-            count: u32::MAX,
-        },
+        Request::Stream { kind: StreamKind::Calibrated, rate_hz: u16::MAX, count: u32::MAX },
     ];
     // NOTE: the match fails to compile when a variant is added without being listed above.
     for request in &all {
@@ -85,54 +75,30 @@ fn every_request() -> Vec<Request> {
 fn every_error() -> Vec<DeviceError> {
     vec![
         DeviceError::SensorMissing,
-        DeviceError::UnknownSensor {
-            address: 0x69,
-            who_am_i: 0xff,
-        },
+        DeviceError::UnknownSensor { address: 0x69, who_am_i: 0xff },
         DeviceError::Bus,
         DeviceError::FifoOverflow,
-        DeviceError::Moved {
-            accel_std_mg: 12.5,
-            gyro_std_dps: 3.0,
-        },
+        DeviceError::Moved { accel_std_mg: 12.5, gyro_std_dps: 3.0 },
         DeviceError::Clipped { samples: u32::MAX },
         DeviceError::Cancelled,
         DeviceError::InvalidDuration { seconds: 255 },
         DeviceError::InvalidRate { rate_hz: u16::MAX },
         DeviceError::SixPosition(SixPositionError::Missing(Position::NegZ)),
-        DeviceError::InvalidCalibration(CalibrationError::CrossAxisOutOfRange {
-            row: 2,
-            col: 1,
-            value: 0.5,
-        }),
-        DeviceError::RangeMismatch {
-            calibration: AccelRange::G2,
-            configured: AccelRange::G16,
-        },
+        DeviceError::InvalidCalibration(CalibrationError::CrossAxisOutOfRange { row: 2, col: 1, value: 0.5 }),
+        DeviceError::RangeMismatch { calibration: AccelRange::G2, configured: AccelRange::G16 },
         DeviceError::NoCalibration,
         DeviceError::Storage,
         DeviceError::Busy,
         DeviceError::Frame(FrameError::Version { got: 200 }),
-        DeviceError::UnsupportedVersion {
-            device: PROTOCOL_VERSION,
-            host: 255,
-        },
+        DeviceError::UnsupportedVersion { device: PROTOCOL_VERSION, host: 255 },
     ]
 }
 
 fn every_response() -> Vec<Response> {
     let info = DeviceInfo {
         protocol_version: PROTOCOL_VERSION,
-        firmware: FirmwareVersion {
-            major: 255,
-            minor: 255,
-            patch: 255,
-        },
-        sensor: Ok(SensorIdentity {
-            address: 0x69,
-            who_am_i: 0x72,
-            genuine: false,
-        }),
+        firmware: FirmwareVersion { major: 255, minor: 255, patch: 255 },
+        sensor: Ok(SensorIdentity { address: 0x69, who_am_i: 0x72, genuine: false }),
         config: SensorConfig::default(),
         active: ActiveCalibration::Unsaved,
         stored: true,
@@ -140,32 +106,14 @@ fn every_response() -> Vec<Response> {
     };
     let mut all = vec![
         Response::Hello(info.clone()),
-        Response::Hello(DeviceInfo {
-            sensor: Err(DeviceError::UnknownSensor {
-                address: 0x68,
-                who_am_i: 0,
-            }),
-            ..info
-        }),
+        Response::Hello(DeviceInfo { sensor: Err(DeviceError::UnknownSensor { address: 0x68, who_am_i: 0 }), ..info }),
         Response::Configured(SensorConfig::default()),
-        Response::Progress(CaptureProgress {
-            samples: u32::MAX,
-            total_samples: u32::MAX,
-            mean_g: [1.0; 3],
-        }),
-        Response::Captured {
-            stats: stats(),
-            position: Some(Position::NegY),
-        },
+        Response::Progress(CaptureProgress { samples: u32::MAX, total_samples: u32::MAX, mean_g: [1.0; 3] }),
+        Response::Captured { stats: stats(), position: Some(Position::NegY) },
         Response::Fitted(calibration()),
         Response::Calibration(Some(calibration())),
         Response::Calibration(None),
-        Response::Sample(Sample {
-            index: u32::MAX,
-            accel_g: [1.0; 3],
-            gyro_dps: [250.0; 3],
-            temp_c: 85.0,
-        }),
+        Response::Sample(Sample { index: u32::MAX, accel_g: [1.0; 3], gyro_dps: [250.0; 3], temp_c: 85.0 }),
         Response::StreamEnded { samples: u32::MAX },
         Response::Done,
     ];
@@ -194,10 +142,7 @@ where
     let mut frame = [0u8; MAX_FRAME_LEN];
     let len = encode(request_id, message, &mut frame).expect("message fits a frame");
     assert_eq!(frame[len - 1], 0, "frame ends with its delimiter");
-    assert!(
-        !frame[..len - 1].contains(&0),
-        "no delimiter inside a frame"
-    );
+    assert!(!frame[..len - 1].contains(&0), "no delimiter inside a frame");
     let (id, decoded) = decode(&mut frame[..len - 1]).expect("own frame decodes");
     (id, decoded, len)
 }
@@ -220,20 +165,14 @@ fn every_response_round_trips_and_fits_the_frame_buffer() {
         largest = largest.max(len);
     }
     // The payload limit leaves room to grow; the largest message is well inside it.
-    assert!(
-        largest < MAX_FRAME_LEN / 2,
-        "largest response frame is {largest} bytes"
-    );
+    assert!(largest < MAX_FRAME_LEN / 2, "largest response frame is {largest} bytes");
 }
 
 #[test]
 fn a_message_larger_than_the_payload_limit_is_refused_not_truncated() {
     let big = [7u32; MAX_PAYLOAD_LEN];
     let mut frame = [0u8; MAX_FRAME_LEN];
-    assert_eq!(
-        encode(1, &big.as_slice(), &mut frame),
-        Err(FrameError::Oversized)
-    );
+    assert_eq!(encode(1, &big.as_slice(), &mut frame), Err(FrameError::Oversized));
 }
 
 #[test]
@@ -244,10 +183,7 @@ fn every_single_bit_flip_in_a_frame_is_detected() {
         let mut frame = clean;
         frame[bit / 8] ^= 1 << (bit % 8);
         let result = decode::<Request>(&mut frame[..len]);
-        assert!(
-            result.is_err(),
-            "flip of bit {bit} went undetected: {result:?}"
-        );
+        assert!(result.is_err(), "flip of bit {bit} went undetected: {result:?}");
     }
 }
 
@@ -261,12 +197,7 @@ fn another_protocol_version_is_named() {
     let crc = crc::Crc::<u32>::new(&crc::CRC_32_ISO_HDLC).checksum(&raw[..raw_len - 4]);
     raw[raw_len - 4..raw_len].copy_from_slice(&crc.to_le_bytes());
     let len = cobs::encode(&raw[..raw_len], &mut frame);
-    assert_eq!(
-        decode::<Request>(&mut frame[..len]),
-        Err(FrameError::Version {
-            got: PROTOCOL_VERSION + 1
-        })
-    );
+    assert_eq!(decode::<Request>(&mut frame[..len]), Err(FrameError::Version { got: PROTOCOL_VERSION + 1 }));
 }
 
 #[test]
@@ -275,10 +206,7 @@ fn truncated_frames_are_refused() {
     let len = encode(7, &Request::Capture { seconds: 10 }, &mut frame).unwrap() - 1;
     for cut in 0..len {
         let mut copy = frame;
-        assert!(
-            decode::<Request>(&mut copy[..cut]).is_err(),
-            "frame cut to {cut} bytes decoded"
-        );
+        assert!(decode::<Request>(&mut copy[..cut]).is_err(), "frame cut to {cut} bytes decoded");
     }
 }
 
@@ -303,11 +231,7 @@ fn accumulator_splits_a_stream_into_frames_and_skips_garbage_and_overlong_ones()
         }
     }
     assert_eq!(oversized, 1);
-    let expected: Vec<_> = every_request()
-        .into_iter()
-        .enumerate()
-        .map(|(i, r)| (i as u16, r))
-        .collect();
+    let expected: Vec<_> = every_request().into_iter().enumerate().map(|(i, r)| (i as u16, r)).collect();
     assert_eq!(decoded, expected);
 }
 
