@@ -149,6 +149,7 @@ where
             Request::SetCalibration(calibration) => self.set_calibration(calibration),
             Request::SaveCalibration => self.save().await,
             Request::EraseCalibration => self.erase().await,
+            // NOTE: `handle` starts these itself; listed so that a new request cannot be forgotten.
             Request::Capture { .. } | Request::Stream { .. } => Err(DeviceError::Busy),
         }
     }
