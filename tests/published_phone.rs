@@ -82,8 +82,8 @@ fn linear12_on_the_six_axis_aligned_rows_equals_the_six_position_closed_form() {
 fn six_position_calibration_improves_every_published_figure_of_merit() {
     let dataset = phone_dataset();
     let fit = fit::fit(&dataset, ModelChoice::Only(Model::SixPosition), &options()).unwrap();
-    assert_eq!(fit.rows_used, [0, 1, 2, 3, 4, 5]);
-    let evaluation = fit::evaluate(&dataset, &fit.matrix, &fit.offset, PHONE_G);
+    assert_eq!(fit.lines_used, [2, 3, 4, 5, 6, 7]);
+    let evaluation = fit::evaluate(&dataset, &fit.matrix, &fit.offset, PHONE_G, &fit.lines_used);
     let (reference_before, reference_after) = evaluation.worst_reference_error().unwrap();
     let (norm_before, norm_after) = evaluation.worst_norm_error();
     println!("phone data, six-position fit (m/s^2):");
@@ -97,9 +97,9 @@ fn six_position_calibration_improves_every_published_figure_of_merit() {
 }
 
 #[test]
-fn the_cli_fit_finds_the_six_faces_by_detection_without_references() {
+fn six_position_finds_the_six_faces_by_detection_without_references() {
     let dataset = Dataset::from_path(&data_path("huawei-phone-13.csv"), PHONE_G).unwrap();
-    let detected = fit::fit(&dataset, ModelChoice::Auto, &options()).unwrap();
+    let detected = fit::fit(&dataset, ModelChoice::Only(Model::SixPosition), &options()).unwrap();
     let referenced = fit::fit(&phone_dataset(), ModelChoice::Only(Model::SixPosition), &options()).unwrap();
     assert_eq!(detected.model, Model::SixPosition);
     assert_eq!(detected.matrix, referenced.matrix);

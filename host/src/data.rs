@@ -39,6 +39,38 @@ pub struct Dataset {
     pub extra_columns: Vec<String>,
 }
 
+/// A list of 1-based data-row numbers, written like `1-20` or `1,10,12-14`.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct RowList(pub Vec<usize>);
+
+impl std::str::FromStr for RowList {
+    type Err = String;
+
+    fn from_str(text: &str) -> Result<Self, String> {
+        parse_row_list(text).map(RowList)
+    }
+}
+
+/// Parses a list of 1-based row numbers such as `1-20` or `1,10,12-14`.
+pub fn parse_row_list(text: &str) -> Result<Vec<usize>, String> {
+    let mut rows = Vec::new();
+    for part in text.split(',').map(str::trim) {
+        let number = |s: &str| s.trim().parse::<usize>().ok().filter(|&n| n > 0);
+        let bad = || format!("{part:?} is not a row number or a range like 1-20 (rows count from 1)");
+        match part.split_once('-') {
+            Some((first, last)) => {
+                let (first, last) = (number(first).ok_or_else(bad)?, number(last).ok_or_else(bad)?);
+                if first > last {
+                    return Err(bad());
+                }
+                rows.extend(first..=last);
+            }
+            None => rows.push(number(part).ok_or_else(bad)?),
+        }
+    }
+    Ok(rows)
+}
+
 /// Why a data file was refused; every variant names the line.
 #[derive(Debug, thiserror::Error)]
 pub enum DataError {
@@ -273,6 +305,14 @@ mod tests {
         assert_eq!(read("x,y,z\n1,,3\n").unwrap_err().to_string(), "line 2, column y: the reading is empty");
         let error = read("x,y,z,ref_x,ref_y,ref_z\n1,2,3,0,,1\n").unwrap_err().to_string();
         assert!(error.starts_with("line 2: the known orientation is only partly given"), "{error}");
+    }
+
+    #[test]
+    fn row_lists_take_numbers_and_ranges() {
+        assert_eq!(parse_row_list("1-3,10"), Ok(vec![1, 2, 3, 10]));
+        assert!(parse_row_list("0").is_err());
+        assert!(parse_row_list("5-2").unwrap_err().contains("\"5-2\""));
+        assert!(parse_row_list("x").is_err());
     }
 
     #[test]

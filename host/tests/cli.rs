@@ -35,12 +35,15 @@ fn fit_json_has_the_fields_of_the_design_interface() {
 }
 
 #[test]
-fn fit_prints_a_table_with_errors_before_and_after() {
+fn fit_auto_prints_the_richest_fit_with_errors_before_and_after_and_the_comparison() {
     let output = accelcal(&["fit", &phone_data(), "--g", "9.81"]);
     assert!(output.status.success());
     let text = String::from_utf8(output.stdout).unwrap();
-    assert!(text.starts_with("model six-position (6 of 13 rows used)"), "{text}");
+    // auto: the richest model 13 orientation-free rows support, then every model for comparison.
+    assert!(text.starts_with("model ortho9 (13 of 13 rows used)"), "{text}");
     assert!(text.contains("worst ||a|-g|:"), "{text}");
+    assert!(text.contains("model comparison"), "{text}");
+    assert!(text.contains("linear12          not supported: linear12 needs at least 4 rows"), "{text}");
 }
 
 #[test]

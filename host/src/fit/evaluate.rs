@@ -1,16 +1,22 @@
-//! Errors of a data set before and after a calibration: | |a| - g | on every row, |a - ref| where the
-//! orientation is known.
+//! Errors of a data set before and after a calibration: | |a| - g | on every row; |a - ref| and the
+//! inclination and toolface errors (data/README.md) where the orientation is known.
 
 use serde::Serialize;
 use shared::linalg::{self, Mat3, Vec3};
+use shared::orientation::{inclination_deg, toolface_deg};
 
 use crate::data::Dataset;
 
-/// The errors of one row, in output units.
+/// Inclination beyond which toolface is undefined (the x-y projection vanishes), in degrees.
+const TOOLFACE_UNDEFINED_ABOVE_DEG: f64 = 89.0;
+
+/// The errors of one row, in output units and degrees.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct RowEvaluation {
     /// Line in the data file.
     pub line: usize,
+    /// Whether the fit used this row (a training row) or not (a test row).
+    pub training: bool,
     /// | |m| - g | of the uncorrected reading.
     pub norm_error_before: f64,
     /// | |a| - g | of the corrected reading.
@@ -19,6 +25,11 @@ pub struct RowEvaluation {
     pub reference_error_before: Option<f64>,
     /// |a - ref| of the corrected reading, where the orientation is known.
     pub reference_error_after: Option<f64>,
+    /// Inclination of the corrected reading minus the known inclination, in degrees.
+    pub inclination_error_deg: Option<f64>,
+    /// Toolface of the corrected reading minus the known toolface, in degrees, wrapped to +-180;
+    /// `None` where toolface is undefined (inclination near +-90 degrees).
+    pub toolface_error_deg: Option<f64>,
 }
 
 /// The errors of every row.
@@ -28,24 +39,49 @@ pub struct Evaluation {
     pub rows: Vec<RowEvaluation>,
 }
 
-/// Errors of every row, before (a = m) and after (a = M (m - o)) the calibration.
-pub fn evaluate(dataset: &Dataset, matrix: &Mat3<f64>, offset: &Vec3<f64>, g: f64) -> Evaluation {
+/// Errors of every row, before (a = m) and after (a = M (m - o)) the calibration; rows on
+/// `training_lines` are marked as training rows.
+pub fn evaluate(
+    dataset: &Dataset,
+    matrix: &Mat3<f64>,
+    offset: &Vec3<f64>,
+    g: f64,
+    training_lines: &[usize],
+) -> Evaluation {
     let rows = dataset
         .rows
         .iter()
         .map(|row| {
             let corrected = linalg::mul_vec(matrix, linalg::sub(row.reading, *offset));
             let distance = |a: Vec3<f64>| row.reference.map(|r| linalg::norm(linalg::sub(a, r)));
+            let inclination_error_deg = row.reference.map(|r| inclination_deg(corrected) - inclination_deg(r));
+            let toolface_error_deg = row
+                .reference
+                .filter(|r| inclination_deg(*r).abs() < TOOLFACE_UNDEFINED_ABOVE_DEG)
+                .map(|r| wrap_deg(toolface_deg(corrected) - toolface_deg(r)));
             RowEvaluation {
                 line: row.line,
+                training: training_lines.contains(&row.line),
                 norm_error_before: (linalg::norm(row.reading) - g).abs(),
                 norm_error_after: (linalg::norm(corrected) - g).abs(),
                 reference_error_before: distance(row.reading),
                 reference_error_after: distance(corrected),
+                inclination_error_deg,
+                toolface_error_deg,
             }
         })
         .collect();
     Evaluation { rows }
+}
+
+/// An angle difference wrapped to (-180, 180].
+fn wrap_deg(angle: f64) -> f64 {
+    let wrapped = angle.rem_euclid(360.0);
+    if wrapped > 180.0 {
+        wrapped - 360.0
+    } else {
+        wrapped
+    }
 }
 
 impl Evaluation {
@@ -62,7 +98,26 @@ impl Evaluation {
             .then(|| self.worst(|r| r.reference_error_before.zip(r.reference_error_after)))
     }
 
+    /// RMS of | |a| - g | after calibration over the training or the test rows; `None` without any.
+    pub fn rms_norm_error(&self, training: bool) -> Option<f64> {
+        let errors: Vec<f64> =
+            self.rows.iter().filter(|r| r.training == training).map(|r| r.norm_error_after).collect();
+        (!errors.is_empty()).then(|| (errors.iter().map(|e| e * e).sum::<f64>() / errors.len() as f64).sqrt())
+    }
+
     fn worst(&self, pick: impl Fn(&RowEvaluation) -> Option<(f64, f64)>) -> (f64, f64) {
         self.rows.iter().filter_map(pick).fold((0.0, 0.0), |(b, a), (rb, ra)| (b.max(rb), a.max(ra)))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn toolface_differences_wrap_across_north() {
+        assert_eq!(wrap_deg(359.0 - 1.0), -2.0);
+        assert_eq!(wrap_deg(1.0 - 359.0), 2.0);
+        assert_eq!(wrap_deg(-90.0), -90.0);
     }
 }

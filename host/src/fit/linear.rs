@@ -18,6 +18,7 @@ const REFERENCE_FACE_TOLERANCE_DEG: f32 = 0.5;
 #[derive(Debug, Clone, Copy)]
 struct Pair {
     row: usize,
+    line: usize,
     reading: Vec3<f64>,
     reference: Vec3<f64>,
 }
@@ -28,7 +29,7 @@ pub(super) fn linear12(dataset: &Dataset, options: &FitOptions) -> Result<Fit, F
         .rows
         .iter()
         .enumerate()
-        .filter_map(|(row, r)| r.reference.map(|reference| Pair { row, reading: r.reading, reference }))
+        .filter_map(|(row, r)| r.reference.map(|reference| Pair { row, line: r.line, reading: r.reading, reference }))
         .collect();
     if pairs.len() < MIN_REFERENCES {
         let model = Model::Linear12.name();
@@ -59,7 +60,13 @@ pub(super) fn six_position(dataset: &Dataset, options: &FitOptions) -> Result<Fi
     for (position, row) in Position::ALL.into_iter().zip(first_row_at) {
         if let Some(row) = row {
             readings.replace(position, dataset.rows[row].reading);
-            pairs.push(Pair { row, reading: dataset.rows[row].reading, reference: face_force(position, options.g) });
+            let line = dataset.rows[row].line;
+            pairs.push(Pair {
+                row,
+                line,
+                reading: dataset.rows[row].reading,
+                reference: face_force(position, options.g),
+            });
         }
     }
     let closed_form = readings.fit(options.g).map_err(|error| match error {
@@ -144,7 +151,17 @@ impl LinearSolution {
             })
             .sum();
         let parameters = full_parameters(&matrix, &offset, self.std_errors(&matrix));
-        Fit { model, matrix, offset, cost, iterations: 0, parameters, rows_used: pairs.iter().map(|p| p.row).collect() }
+        Fit {
+            model,
+            matrix,
+            offset,
+            cost,
+            iterations: 0,
+            parameters,
+            lines_used: pairs.iter().map(|p| p.line).collect(),
+            noise_test: None,
+            warnings: Vec::new(),
+        }
     }
 }
 

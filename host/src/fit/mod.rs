@@ -2,6 +2,10 @@
 
 mod evaluate;
 mod linear;
+mod models;
+mod nonlinear;
+mod shape;
+mod statistics;
 
 use std::fmt;
 use std::str::FromStr;
@@ -13,6 +17,7 @@ use shared::{Model, Position};
 use crate::data::Dataset;
 
 pub use evaluate::{evaluate, Evaluation, RowEvaluation};
+pub use statistics::{misalignment_deg, NoiseTest};
 
 /// The model asked for on the command line.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -30,7 +35,7 @@ impl FromStr for ModelChoice {
         if name == "auto" {
             return Ok(ModelChoice::Auto);
         }
-        IMPLEMENTED
+        RICHEST_FIRST
             .iter()
             .find(|m| m.name() == name)
             .map(|&m| ModelChoice::Only(m))
@@ -38,32 +43,82 @@ impl FromStr for ModelChoice {
     }
 }
 
-/// The models this host can fit, richest first.
-pub const IMPLEMENTED: [Model; 2] = [Model::Linear12, Model::SixPosition];
+impl fmt::Display for ModelChoice {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ModelChoice::Auto => f.write_str("auto"),
+            ModelChoice::Only(model) => f.write_str(model.name()),
+        }
+    }
+}
+
+/// Every model, richest first: the order in which `auto` tries them.
+///
+/// NOTE: `reference-norm12` uses every row (known orientations and |a| = g), `linear12` only the
+/// rows of known orientation; `ortho9` needs no orientation; the six-position closed form uses only
+/// six readings, so it comes after the fits over all positions.
+pub const RICHEST_FIRST: [Model; 5] =
+    [Model::ReferenceNorm12, Model::Linear12, Model::Ortho9, Model::Diag6, Model::SixPosition];
 
 fn model_names() -> String {
-    IMPLEMENTED.iter().map(|m| m.name()).collect::<Vec<_>>().join(", ")
+    RICHEST_FIRST.iter().map(|m| m.name()).collect::<Vec<_>>().join(", ")
 }
 
 /// Settings of a fit.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct FitOptions {
     /// |gravity| in output units (1 for g, 9.80665 for m/s^2).
     pub g: f64,
     /// Largest tilt in degrees for a reading to count as one of the six faces.
     pub face_tolerance_deg: f64,
+    /// Data rows (1-based, in file order) to fit; `None`: all. The others are held out for testing.
+    pub training_rows: Option<Vec<usize>>,
+    /// Data rows (1-based) whose known orientation the fit uses; `None`: every row that has one.
+    /// The other rows count as |a| = g only.
+    pub reference_rows: Option<Vec<usize>>,
 }
 
 impl Default for FitOptions {
     fn default() -> Self {
-        FitOptions { g: 1.0, face_tolerance_deg: f64::from(shared::orientation::DEFAULT_FACE_TOLERANCE_DEG) }
+        FitOptions {
+            g: 1.0,
+            face_tolerance_deg: f64::from(shared::orientation::DEFAULT_FACE_TOLERANCE_DEG),
+            training_rows: None,
+            reference_rows: None,
+        }
+    }
+}
+
+impl FitOptions {
+    /// The rows the fit sees: the training rows, with references only where they are to be used.
+    fn training_set(&self, dataset: &Dataset) -> Result<Dataset, FitError> {
+        let count = dataset.rows.len();
+        for &row in self.training_rows.iter().chain(&self.reference_rows).flatten() {
+            if row == 0 || row > count {
+                return Err(FitError::NoSuchRow { row, rows: count });
+            }
+        }
+        let rows = dataset
+            .rows
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| self.training_rows.as_ref().is_none_or(|rows| rows.contains(&(i + 1))))
+            .map(|(i, row)| {
+                let mut row = row.clone();
+                if self.reference_rows.as_ref().is_some_and(|rows| !rows.contains(&(i + 1))) {
+                    row.reference = None;
+                }
+                row
+            })
+            .collect();
+        Ok(Dataset { rows, extra_columns: dataset.extra_columns.clone() })
     }
 }
 
 /// One fitted parameter with its standard error (none when the fit has no redundancy to estimate it).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Parameter {
-    /// Name: `M11` ... `M33` for the matrix, `o_x` ... `o_z` for the offset.
+    /// Name: `M11` ... `M33` for a full matrix, `a_yz` ... `s_z` for T K, `o_x` ... `o_z` the offset.
     pub name: String,
     /// Value (M dimensionless, o in the file's unit).
     pub value: f64,
@@ -82,12 +137,16 @@ pub struct Fit {
     pub offset: Vec3<f64>,
     /// The model's dimensionless cost at the solution (residuals divided by g, squared, summed).
     pub cost: f64,
-    /// Solver iterations (0 for closed-form and linear fits).
+    /// Solver iterations: residual evaluations of Levenberg-Marquardt (0 for closed-form fits).
     pub iterations: usize,
     /// Every parameter with its standard error.
     pub parameters: Vec<Parameter>,
-    /// Indices into the data set's rows of the rows the fit used.
-    pub rows_used: Vec<usize>,
+    /// Data-file lines the fit used.
+    pub lines_used: Vec<usize>,
+    /// The residuals tested against the noise the captures measured, where the data carries it.
+    pub noise_test: Option<NoiseTest>,
+    /// Things the user should know: a poor condition number, a model that does not fit the noise.
+    pub warnings: Vec<String>,
 }
 
 /// Why a fit could not run; each says what to add or change.
@@ -95,11 +154,21 @@ pub struct Fit {
 pub enum FitError {
     #[error("{model} needs at least {needed} rows with a known orientation (ref_x,ref_y,ref_z); the file has {found}")]
     TooFewReferences { model: &'static str, needed: usize, found: usize },
+    #[error("{model} needs at least {needed} positions; the data has {found}: add {} more", needed - found)]
+    TooFewPositions { model: &'static str, needed: usize, found: usize },
     #[error(
         "the known orientations do not determine {model}: they lie in one plane; \
          add a position with the {axis} axis pointing up or down"
     )]
     ReferencesInOnePlane { model: &'static str, axis: char },
+    #[error(
+        "{model} cannot be determined: no position has the {axis} axis pointing {} (within 73 degrees); \
+         add one with {}{axis} up",
+        if *up { "up" } else { "down" }, if *up { "+" } else { "-" }
+    )]
+    NoSpread { model: &'static str, axis: char, up: bool },
+    #[error("{model} cannot be determined from these positions: {parameter} is not observable; add positions spread over the sphere")]
+    Unobservable { model: &'static str, parameter: String },
     #[error(
         "six-position needs a reading with {} up (within {tolerance_deg} degrees); \
          add one, or choose a model that takes arbitrary positions",
@@ -108,40 +177,45 @@ pub enum FitError {
     MissingPosition { position: Position, tolerance_deg: f64 },
     #[error("lines {first_line} and {second_line} are both {} up; keep one of them", position.name())]
     DuplicatePosition { position: Position, first_line: usize, second_line: usize },
-    #[error("{model} is not available in this version; choose one of {available}")]
-    NotAvailable { model: &'static str, available: String },
-    #[error("the six positions do not determine the sensor: opposite faces read alike (is the file's unit right?)")]
+    #[error("row {row} does not exist: the file has {rows} data rows")]
+    NoSuchRow { row: usize, rows: usize },
+    #[error("the solver did not converge ({reason}); check the file's unit and --g")]
+    NotConverged { reason: String },
+    #[error("the positions do not determine the sensor: opposite faces read alike (is the file's unit right?)")]
     Degenerate,
 }
 
-/// Fits a model to a data set.
+/// Fits a model (or, for `auto`, the richest the data supports) to the training rows of a data set.
 pub fn fit(dataset: &Dataset, choice: ModelChoice, options: &FitOptions) -> Result<Fit, FitError> {
+    let training = options.training_set(dataset)?;
     match choice {
-        ModelChoice::Only(Model::SixPosition) => linear::six_position(dataset, options),
-        ModelChoice::Only(Model::Linear12) => linear::linear12(dataset, options),
-        ModelChoice::Only(other) => Err(FitError::NotAvailable { model: other.name(), available: model_names() }),
-        ModelChoice::Auto => auto(dataset, options),
+        ModelChoice::Only(model) => fit_model(&training, model, options),
+        ModelChoice::Auto => {
+            let mut last_error = FitError::Degenerate;
+            for model in RICHEST_FIRST {
+                match fit_model(&training, model, options) {
+                    Ok(fit) => return Ok(fit),
+                    Err(error) => last_error = error,
+                }
+            }
+            Err(last_error)
+        }
     }
 }
 
-/// The richest implemented model that fits; the error of the simplest when none does.
-fn auto(dataset: &Dataset, options: &FitOptions) -> Result<Fit, FitError> {
-    let mut last_error = None;
-    for model in IMPLEMENTED {
-        match fit(dataset, ModelChoice::Only(model), options) {
-            Ok(fit) => return Ok(fit),
-            Err(error) => last_error = Some(error),
-        }
+/// Every model on the same rows, richest first, for comparison.
+pub fn fit_all(dataset: &Dataset, options: &FitOptions) -> Vec<(Model, Result<Fit, FitError>)> {
+    match options.training_set(dataset) {
+        Ok(training) => RICHEST_FIRST.iter().map(|&m| (m, fit_model(&training, m, options))).collect(),
+        Err(error) => RICHEST_FIRST.iter().map(|&m| (m, Err(error.clone()))).collect(),
     }
-    Err(last_error.unwrap_or(FitError::Degenerate))
 }
 
-impl fmt::Display for ModelChoice {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            ModelChoice::Auto => f.write_str("auto"),
-            ModelChoice::Only(model) => f.write_str(model.name()),
-        }
+fn fit_model(training: &Dataset, model: Model, options: &FitOptions) -> Result<Fit, FitError> {
+    match model {
+        Model::SixPosition => linear::six_position(training, options),
+        Model::Linear12 => linear::linear12(training, options),
+        Model::ReferenceNorm12 | Model::Ortho9 | Model::Diag6 => models::least_squares(training, model, options),
     }
 }
 

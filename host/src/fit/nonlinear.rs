@@ -1,0 +1,272 @@
+//! The nonlinear models (`reference-norm12`, `ortho9`, `diag6`), solved with the levenberg-marquardt
+//! crate on a problem normalised from the data, so that any unit works without tuning.
+//!
+//! Normalisation: an axis-aligned ellipsoid fitted to the readings gives a centre c and radii r; the
+//! solver sees m' = (m - c) / r and specific force in g, where the answer is near M' = I, o' = 0 and
+//! every parameter is of order one. The result is mapped back: M = g M' diag(1/r), o = c + r o'.
+
+use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt};
+use nalgebra::{DMatrix, DVector, Dyn, Matrix3, Owned, Vector3, Vector6};
+
+use super::shape::Shape;
+use super::FitError;
+
+/// One averaged reading as the solver sees it.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Observation {
+    /// Normalised reading m' = (m - c) / r.
+    pub reading: Vector3<f64>,
+    /// Known specific force in g, for a reference row; `None` for a row where only |a| = g is known.
+    pub reference: Option<Vector3<f64>>,
+}
+
+/// The centre and per-axis radius of the readings: the map to the solver's units.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Normalization {
+    pub center: [f64; 3],
+    pub radii: [f64; 3],
+}
+
+impl Normalization {
+    /// From an axis-aligned ellipsoid fit (x^2, y^2, z^2, x, y, z) = 1 by least squares; from the mean
+    /// and spread when the readings do not determine an ellipsoid.
+    pub(super) fn from_readings(readings: &[[f64; 3]]) -> Self {
+        Self::ellipsoid(readings).unwrap_or_else(|| Self::spread(readings))
+    }
+
+    fn ellipsoid(readings: &[[f64; 3]]) -> Option<Self> {
+        if readings.len() < 6 {
+            return None;
+        }
+        // NOTE: scale first, so that raw counts of 1e6 do not make x^2 terms of 1e12.
+        let Normalization { center, radii } = Self::spread(readings);
+        let scaled: Vec<Vector3<f64>> =
+            readings.iter().map(|m| Vector3::from_fn(|k, _| (m[k] - center[k]) / radii[k])).collect();
+        let design = DMatrix::from_fn(scaled.len(), 6, |i, j| {
+            let v = scaled[i];
+            if j < 3 {
+                v[j] * v[j]
+            } else {
+                v[j - 3]
+            }
+        });
+        let ones = DVector::from_element(scaled.len(), 1.0);
+        let beta: Vector6<f64> = design.svd(true, true).solve(&ones, 1e-12).ok()?.fixed_rows::<6>(0).into_owned();
+        let (quadratic, linear) = (beta.fixed_rows::<3>(0), beta.fixed_rows::<3>(3));
+        if quadratic.iter().any(|&a| a <= 0.0 || !a.is_finite()) {
+            return None;
+        }
+        let shift = Vector3::from_fn(|k, _| -linear[k] / (2.0 * quadratic[k]));
+        let level = 1.0 + (0..3).map(|k| quadratic[k] * shift[k] * shift[k]).sum::<f64>();
+        if level <= 0.0 {
+            return None;
+        }
+        let new_radii = [0, 1, 2].map(|k| (level / quadratic[k]).sqrt() * radii[k]);
+        let new_center = [0, 1, 2].map(|k| center[k] + shift[k] * radii[k]);
+        new_radii
+            .iter()
+            .chain(&new_center)
+            .all(|v| v.is_finite())
+            .then_some(Normalization { center: new_center, radii: new_radii })
+    }
+
+    fn spread(readings: &[[f64; 3]]) -> Self {
+        let n = readings.len().max(1) as f64;
+        let center = [0, 1, 2].map(|k| readings.iter().map(|m| m[k]).sum::<f64>() / n);
+        let rms =
+            (readings.iter().map(|m| (0..3).map(|k| (m[k] - center[k]).powi(2)).sum::<f64>()).sum::<f64>() / n).sqrt();
+        let radius = if rms > 0.0 && rms.is_finite() { rms } else { 1.0 };
+        Normalization { center, radii: [radius; 3] }
+    }
+
+    /// m' = (m - c) / r.
+    pub(super) fn apply(&self, reading: [f64; 3]) -> Vector3<f64> {
+        Vector3::from_fn(|k, _| (reading[k] - self.center[k]) / self.radii[k])
+    }
+}
+
+/// The least-squares problem handed to the solver. Parameters: the shape's matrix parameters, then o'.
+#[derive(Debug, Clone)]
+pub(super) struct Problem<'a> {
+    shape: Shape,
+    observations: &'a [Observation],
+    params: DVector<f64>,
+}
+
+impl<'a> Problem<'a> {
+    pub(super) fn new(shape: Shape, observations: &'a [Observation], params: DVector<f64>) -> Self {
+        Problem { shape, observations, params }
+    }
+
+    fn split(&self) -> (Matrix3<f64>, Vector3<f64>) {
+        let n = self.shape.len();
+        let matrix = self.shape.matrix(&self.params.as_slice()[..n]);
+        (matrix, Vector3::new(self.params[n], self.params[n + 1], self.params[n + 2]))
+    }
+
+    /// Number of residuals: three per reference row, one per norm row.
+    pub(super) fn residual_count(&self) -> usize {
+        self.observations.iter().map(|o| if o.reference.is_some() { 3 } else { 1 }).sum()
+    }
+
+    /// The current parameters.
+    pub(super) fn values(&self) -> &DVector<f64> {
+        &self.params
+    }
+}
+
+impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
+    type ResidualStorage = Owned<f64, Dyn>;
+    type JacobianStorage = Owned<f64, Dyn, Dyn>;
+    type ParameterStorage = Owned<f64, Dyn>;
+
+    fn set_params(&mut self, x: &DVector<f64>) {
+        self.params.copy_from(x);
+    }
+
+    fn params(&self) -> DVector<f64> {
+        self.params.clone()
+    }
+
+    fn residuals(&self) -> Option<DVector<f64>> {
+        let (matrix, offset) = self.split();
+        let mut residuals = Vec::with_capacity(self.residual_count());
+        for observation in self.observations {
+            let a = matrix * (observation.reading - offset);
+            match observation.reference {
+                Some(reference) => residuals.extend((a - reference).iter()),
+                None => residuals.push(a.norm() - 1.0),
+            }
+        }
+        Some(DVector::from_vec(residuals))
+    }
+
+    fn jacobian(&self) -> Option<DMatrix<f64>> {
+        let (matrix, offset) = self.split();
+        let n = self.shape.len();
+        let p = &self.params.as_slice()[..n];
+        let derivatives: Vec<Matrix3<f64>> = (0..n).map(|k| self.shape.derivative(p, k)).collect();
+        let mut jacobian = DMatrix::zeros(self.residual_count(), n + 3);
+        let mut row = 0;
+        for observation in self.observations {
+            let centered = observation.reading - offset;
+            let a = matrix * centered;
+            match observation.reference {
+                Some(_) => {
+                    for (k, d) in derivatives.iter().enumerate() {
+                        jacobian.view_mut((row, k), (3, 1)).copy_from(&(d * centered));
+                    }
+                    jacobian.view_mut((row, n), (3, 3)).copy_from(&(-matrix));
+                    row += 3;
+                }
+                None => {
+                    let direction = a / a.norm();
+                    for (k, d) in derivatives.iter().enumerate() {
+                        jacobian[(row, k)] = direction.dot(&(d * centered));
+                    }
+                    let offset_row = -(direction.transpose() * matrix);
+                    jacobian.view_mut((row, n), (1, 3)).copy_from(&offset_row);
+                    row += 1;
+                }
+            }
+        }
+        Some(jacobian)
+    }
+}
+
+/// A converged solution with what its statistics need.
+#[derive(Debug, Clone)]
+pub(super) struct Solution {
+    /// Parameters in the solver's units.
+    pub params: DVector<f64>,
+    /// Sum of squared residuals (dimensionless).
+    pub cost: f64,
+    /// Residual evaluations the solver made.
+    pub evaluations: usize,
+    /// Residuals at the solution.
+    pub residuals: DVector<f64>,
+    /// Jacobian at the solution.
+    pub jacobian: DMatrix<f64>,
+}
+
+/// Minimises the problem from `start`; refuses a run that did not converge.
+pub(super) fn solve(shape: Shape, observations: &[Observation], start: DVector<f64>) -> Result<Solution, FitError> {
+    let problem = Problem::new(shape, observations, start);
+    let (problem, report) = LevenbergMarquardt::new().minimize(problem);
+    if !report.termination.was_successful() {
+        return Err(FitError::NotConverged { reason: format!("{:?}", report.termination) });
+    }
+    let residuals = problem.residuals().ok_or(FitError::Degenerate)?;
+    let jacobian = problem.jacobian().ok_or(FitError::Degenerate)?;
+    if !residuals.iter().chain(jacobian.iter()).all(|v| v.is_finite()) {
+        return Err(FitError::Degenerate);
+    }
+    Ok(Solution {
+        params: problem.values().clone(),
+        cost: residuals.norm_squared(),
+        evaluations: report.number_of_evaluations,
+        residuals,
+        jacobian,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_jacobian_matches_finite_differences_for_norm_and_reference_rows() {
+        let observations = [
+            Observation { reading: Vector3::new(0.9, 0.2, 0.1), reference: None },
+            Observation { reading: Vector3::new(-0.1, 1.05, -0.2), reference: Some(Vector3::new(0.0, 1.0, 0.0)) },
+            Observation { reading: Vector3::new(0.3, -0.4, -0.8), reference: None },
+        ];
+        for shape in [Shape::Diagonal, Shape::TriangularTimesDiagonal, Shape::Full] {
+            let mut params = shape.identity();
+            for (k, value) in params.iter_mut().enumerate() {
+                *value += 0.01 * (k as f64 + 1.0).sin();
+            }
+            params.extend([0.02, -0.03, 0.05]);
+            let problem = Problem::new(shape, &observations, DVector::from_vec(params.clone()));
+            let analytic = problem.jacobian().unwrap();
+            for k in 0..params.len() {
+                let step = 1e-7;
+                let shifted = |delta: f64| {
+                    let mut p = params.clone();
+                    p[k] += delta;
+                    Problem::new(shape, &observations, DVector::from_vec(p)).residuals().unwrap()
+                };
+                let numeric = (shifted(step) - shifted(-step)) / (2.0 * step);
+                assert!((numeric - analytic.column(k)).amax() < 1e-7, "{shape:?} parameter {k}");
+            }
+        }
+    }
+
+    #[test]
+    fn the_ellipsoid_start_finds_centre_and_radii_of_raw_counts() {
+        // Twelve directions on a sensor of 1e6 counts per g with offsets of tens of thousands.
+        let center = [-43681.0, -29517.0, 20533.0];
+        let radii = [0.99e6, 1.006e6, 0.9996e6];
+        let directions = [
+            [1.0, 0.0, 0.0],
+            [-1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, -1.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [0.0, 0.0, -1.0],
+            [0.6, 0.8, 0.0],
+            [0.0, -0.6, 0.8],
+            [-0.8, 0.0, -0.6],
+            [0.48, 0.6, 0.64],
+            [-0.6, -0.48, 0.64],
+            [0.6, -0.64, -0.48],
+        ];
+        let readings: Vec<[f64; 3]> =
+            directions.iter().map(|d: &[f64; 3]| [0, 1, 2].map(|k| center[k] + radii[k] * d[k])).collect();
+        let found = Normalization::from_readings(&readings);
+        for k in 0..3 {
+            assert!((found.center[k] - center[k]).abs() < 1e-3, "centre {k}: {}", found.center[k]);
+            assert!((found.radii[k] / radii[k] - 1.0).abs() < 1e-9, "radius {k}: {}", found.radii[k]);
+        }
+    }
+}

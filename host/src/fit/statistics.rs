@@ -1,0 +1,102 @@
+//! Statistics of a fit: the residuals against the noise the captures measured, and the placement
+//! misalignment the 9- versus 12-parameter difference reveals.
+
+use nalgebra::{Matrix3, Vector3};
+use serde::Serialize;
+use shared::linalg::Mat3;
+use statrs::distribution::{ChiSquared, ContinuousCDF};
+
+use super::nonlinear::{Normalization, Observation, Solution};
+use super::shape::Shape;
+use crate::data::Dataset;
+
+/// Below this probability the residuals are judged larger than the noise explains.
+const NOISE_TEST_LEVEL: f64 = 1e-3;
+
+/// The residuals of a fit tested against the noise of the averaged readings.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct NoiseTest {
+    /// Sum of squared residuals, each divided by the standard deviation the captures predict.
+    pub chi_square: f64,
+    /// Residuals minus parameters.
+    pub degrees_of_freedom: usize,
+    /// Probability of a chi-square at least this large if the residuals were noise alone.
+    pub p_value: f64,
+    /// Whether the residuals are consistent with the noise (p >= 0.001).
+    pub passed: bool,
+}
+
+/// The chi-square test of the residuals when every row carries `count` and `std_x,std_y,std_z`
+/// (standard deviation of the samples, in the file's unit); `None` otherwise.
+pub(super) fn noise_test(
+    training: &Dataset,
+    shape: Shape,
+    solution: &Solution,
+    observations: &[Observation],
+    normalization: &Normalization,
+) -> Option<NoiseTest> {
+    let n = shape.len();
+    let matrix = shape.matrix(&solution.params.as_slice()[..n]);
+    let offset = Vector3::new(solution.params[n], solution.params[n + 1], solution.params[n + 2]);
+    let mut chi_square = 0.0;
+    let mut index = 0;
+    for (row, observation) in training.rows.iter().zip(observations) {
+        let count = training.extra_value(row, "count")?;
+        let sigma_mean = Vector3::from_fn(|k, _| {
+            let std = training.extra_value(row, ["std_x", "std_y", "std_z"][k]).unwrap_or(f64::NAN);
+            std / count.sqrt() / normalization.radii[k]
+        });
+        if !sigma_mean.iter().all(|s| s.is_finite() && *s > 0.0) || count < 1.0 {
+            return None;
+        }
+        let covariance = matrix * Matrix3::from_diagonal(&sigma_mean.component_mul(&sigma_mean)) * matrix.transpose();
+        match observation.reference {
+            Some(_) => {
+                for k in 0..3 {
+                    chi_square += solution.residuals[index + k].powi(2) / covariance[(k, k)];
+                }
+                index += 3;
+            }
+            None => {
+                let a = matrix * (observation.reading - offset);
+                let direction = a / a.norm();
+                chi_square += solution.residuals[index].powi(2) / (direction.transpose() * covariance * direction)[0];
+                index += 1;
+            }
+        }
+    }
+    let degrees_of_freedom = solution.residuals.len().checked_sub(solution.params.len()).filter(|&d| d > 0)?;
+    let p_value = ChiSquared::new(degrees_of_freedom as f64).ok()?.sf(chi_square);
+    Some(NoiseTest { chi_square, degrees_of_freedom, p_value, passed: p_value >= NOISE_TEST_LEVEL })
+}
+
+/// The rotation, in degrees, between a 12-parameter fit (which knows the orientations) and a
+/// 9-parameter fit (which cannot see a rotation): M12 M9^-1 is close to the rotation by which the
+/// positions were misplaced; its nearest rotation's angle estimates that misalignment.
+pub fn misalignment_deg(full: &Mat3<f64>, triangular: &Mat3<f64>) -> Option<f64> {
+    let full = Matrix3::from_fn(|i, j| full[i][j]);
+    let triangular = Matrix3::from_fn(|i, j| triangular[i][j]);
+    let relative = full * triangular.try_inverse()?;
+    let svd = relative.svd(true, true);
+    let rotation = svd.u? * svd.v_t?;
+    let cosine = ((rotation.trace() - 1.0) / 2.0).clamp(-1.0, 1.0);
+    Some(cosine.acos().to_degrees())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::{Rotation3, Unit};
+
+    #[test]
+    fn misalignment_recovers_a_known_rotation() {
+        let triangular =
+            Matrix3::new(1.0006, 3.58e-4 * 1.003, -7.29e-3 * 0.9834, 0.0, 1.003, 4.62e-4 * 0.9834, 0.0, 0.0, 0.9834);
+        let axis = Unit::new_normalize(Vector3::new(0.3, -0.5, 0.8));
+        let rotation = Rotation3::from_axis_angle(&axis, 1.5f64.to_radians());
+        let full = rotation.matrix() * triangular;
+        let to_array = |m: Matrix3<f64>| [0, 1, 2].map(|i| [0, 1, 2].map(|j| m[(i, j)]));
+        let angle = misalignment_deg(&to_array(full), &to_array(triangular)).unwrap();
+        assert!((angle - 1.5).abs() < 1e-9, "{angle}");
+    }
+}
