@@ -116,3 +116,18 @@ fn data_copies_match_the_shared_originals() {
         }
     }
 }
+
+#[test]
+fn every_model_the_thirteen_rows_support_improves_the_norm_error() {
+    let dataset = phone_dataset();
+    println!("| model | rows used | worst ||a|-g| before (m/s^2) | after | rms after |");
+    println!("|---|---|---|---|---|");
+    for (model, result) in fit::fit_all(&dataset, &options()) {
+        let fit = result.unwrap_or_else(|e| panic!("{} should fit the phone data: {e}", model.name()));
+        let evaluation = fit::evaluate(&dataset, &fit.matrix, &fit.offset, PHONE_G, &fit.lines_used);
+        let (before, after) = evaluation.worst_norm_error();
+        let rms = evaluation.rows.iter().map(|r| r.norm_error_after.powi(2)).sum::<f64>() / 13.0;
+        println!("| {} | {} | {before:.4} | {after:.4} | {:.4} |", model.name(), fit.lines_used.len(), rms.sqrt());
+        assert!(after < 0.5 * before, "{}: {before} -> {after}", model.name());
+    }
+}

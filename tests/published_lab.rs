@@ -1,0 +1,138 @@
+//! The lab fixture data of Ivanov et al.: `reference-norm12` on the first 20 rows (row 1 as +y and
+//! row 10 as +z references, the other 18 as |a| = g), tested on the last 12.
+
+use accelcal::data::Dataset;
+use accelcal::fit::{self, Fit, FitOptions, ModelChoice};
+use accelcal_tests::data_path;
+use nalgebra::{Matrix3, Vector3};
+use shared::Model;
+
+/// The publication's gravity, m/s^2.
+const LAB_G: f64 = 9.8061;
+
+fn lab() -> (Dataset, FitOptions) {
+    let dataset = Dataset::from_path(&data_path("ivanov-lab-32.csv"), LAB_G).expect("lab data reads");
+    let options = FitOptions {
+        g: LAB_G,
+        training_rows: Some((1..=20).collect()),
+        reference_rows: Some(vec![1, 10]),
+        ..FitOptions::default()
+    };
+    (dataset, options)
+}
+
+/// The publication's objective (5), written out independently: |a - ref|^2 / g^2 on rows 1 and 10,
+/// (|a| - g)^2 / g^2 on rows 2-9 and 11-20.
+fn objective(dataset: &Dataset, matrix: &Matrix3<f64>, offset: &Vector3<f64>) -> f64 {
+    dataset.rows[..20]
+        .iter()
+        .enumerate()
+        .map(|(i, row)| {
+            let a = matrix * (Vector3::from(row.reading) - offset);
+            if i == 0 || i == 9 {
+                (a - Vector3::from(row.reference.unwrap())).norm_squared() / (LAB_G * LAB_G)
+            } else {
+                (a.norm() - LAB_G).powi(2) / (LAB_G * LAB_G)
+            }
+        })
+        .sum()
+}
+
+fn parts(fit: &Fit) -> (Matrix3<f64>, Vector3<f64>) {
+    (Matrix3::from_fn(|i, j| fit.matrix[i][j]), Vector3::from(fit.offset))
+}
+
+#[test]
+fn reference_norm12_reaches_the_minimum_of_the_published_objective() {
+    let (dataset, options) = lab();
+    let fit = fit::fit(&dataset, ModelChoice::Only(Model::ReferenceNorm12), &options).unwrap();
+    let (matrix, offset) = parts(&fit);
+    let at_fit = objective(&dataset, &matrix, &offset);
+    assert!((at_fit - fit.cost).abs() < 1e-12 * at_fit.max(1e-30) + 1e-18, "reported {} vs {at_fit}", fit.cost);
+
+    // Independent check: no step of an independent Gauss-Newton on the written-out objective, with
+    // a finite-difference Jacobian in scaled parameters, lowers the cost by more than rounding.
+    let scale = [matrix.amax(), matrix.amax(), matrix.amax(), 1e4];
+    let mut params: Vec<f64> = matrix.iter().copied().chain(offset.iter().copied()).collect();
+    let unpack = |p: &[f64]| (Matrix3::from_column_slice(&p[..9]), Vector3::new(p[9], p[10], p[11]));
+    let residuals = |p: &[f64]| -> Vec<f64> {
+        let (m, o) = unpack(p);
+        dataset.rows[..20]
+            .iter()
+            .enumerate()
+            .flat_map(|(i, row)| {
+                let a = m * (Vector3::from(row.reading) - o);
+                if i == 0 || i == 9 {
+                    ((a - Vector3::from(row.reference.unwrap())) / LAB_G).iter().copied().collect::<Vec<_>>()
+                } else {
+                    vec![(a.norm() - LAB_G) / LAB_G]
+                }
+            })
+            .collect()
+    };
+    let mut lowest = at_fit;
+    for _ in 0..5 {
+        let r0 = nalgebra::DVector::from_vec(residuals(&params));
+        let mut jacobian = nalgebra::DMatrix::zeros(r0.len(), 12);
+        for k in 0..12 {
+            let step = 1e-7 * if k < 9 { scale[0] } else { scale[3] };
+            let mut shifted = params.clone();
+            shifted[k] += step;
+            let r1 = nalgebra::DVector::from_vec(residuals(&shifted));
+            jacobian.set_column(k, &((r1 - &r0) / step));
+        }
+        let step = jacobian.svd(true, true).solve(&(-r0), 1e-14).unwrap();
+        let candidate: Vec<f64> = params.iter().zip(step.iter()).map(|(p, s)| p + s).collect();
+        let cost = residuals(&candidate).iter().map(|r| r * r).sum::<f64>();
+        if cost < lowest {
+            lowest = cost;
+            params = candidate;
+        }
+    }
+    println!("reference-norm12 on rows 1-20: cost {at_fit:.6e}, independent Gauss-Newton reached {lowest:.6e}");
+    assert!(lowest > at_fit * (1.0 - 1e-6), "an independent solver went lower: {lowest:e} < {at_fit:e}");
+}
+
+#[test]
+fn reference_norm12_finds_the_same_minimum_from_every_starting_point() {
+    // The library starts from the data's ellipsoid; start it elsewhere by fitting the same objective
+    // on copies of the data moved by known offsets and scaled by known factors: the minimum must
+    // move with them exactly, and its cost must not change.
+    let (dataset, options) = lab();
+    let reference = fit::fit(&dataset, ModelChoice::Only(Model::ReferenceNorm12), &options).unwrap();
+    for (shift, factor) in [([5e4, -3e4, 2e4], 1.0), ([0.0, 0.0, 0.0], 3.0), ([-1e5, 1e5, 0.0], 0.25)] {
+        let mut moved = dataset.clone();
+        for row in &mut moved.rows {
+            row.reading = [0, 1, 2].map(|k| row.reading[k] * factor + shift[k]);
+        }
+        let fit = fit::fit(&moved, ModelChoice::Only(Model::ReferenceNorm12), &options).unwrap();
+        let relative = (fit.cost - reference.cost).abs() / reference.cost;
+        assert!(relative < 1e-7, "shift {shift:?} factor {factor}: cost {} vs {}", fit.cost, reference.cost);
+        // The same point, to a count in 1e6 per g (the offset's own standard error is far larger:
+        // this is convergence, not precision).
+        for k in 0..3 {
+            let expected = reference.offset[k] * factor + shift[k];
+            assert!((fit.offset[k] - expected).abs() < factor.max(1.0), "offset {k}: {} vs {expected}", fit.offset[k]);
+        }
+    }
+}
+
+#[test]
+fn test_rows_have_toolface_and_inclination_errors_within_2_degrees() {
+    let (dataset, options) = lab();
+    let fit = fit::fit(&dataset, ModelChoice::Only(Model::ReferenceNorm12), &options).unwrap();
+    let evaluation = fit::evaluate(&dataset, &fit.matrix, &fit.offset, LAB_G, &fit.lines_used);
+    println!("| row | set | inclination error deg | toolface error deg |");
+    println!("|---|---|---|---|");
+    let cell = |v: Option<f64>| v.map_or("-".to_owned(), |v| format!("{v:+.2}"));
+    for (i, row) in evaluation.rows.iter().enumerate() {
+        let set = if row.training { "train" } else { "test" };
+        println!("| {} | {set} | {} | {} |", i + 1, cell(row.inclination_error_deg), cell(row.toolface_error_deg));
+    }
+    let test_rows: Vec<_> = evaluation.rows.iter().filter(|r| !r.training).collect();
+    assert_eq!(test_rows.len(), 12);
+    for row in test_rows {
+        let worst = row.inclination_error_deg.unwrap().abs().max(row.toolface_error_deg.unwrap_or(0.0).abs());
+        assert!(worst <= 2.0, "line {}: {worst} degrees", row.line);
+    }
+}
