@@ -110,9 +110,9 @@ fn reference_norm12_finds_the_same_minimum_from_every_starting_point() {
         assert!(relative < 1e-7, "shift {shift:?} factor {factor}: cost {} vs {}", fit.cost, reference.cost);
         // The same point, to a count in 1e6 per g (the offset's own standard error is far larger:
         // this is convergence, not precision).
-        for k in 0..3 {
-            let expected = reference.offset[k] * factor + shift[k];
-            assert!((fit.offset[k] - expected).abs() < factor.max(1.0), "offset {k}: {} vs {expected}", fit.offset[k]);
+        for (k, (found, shift)) in fit.offset.iter().zip(shift).enumerate() {
+            let expected = reference.offset[k] * factor + shift;
+            assert!((found - expected).abs() < factor.max(1.0), "offset {k}: {found} vs {expected}");
         }
     }
 }

@@ -5,3 +5,4 @@
 pub mod data;
 pub mod fit;
 pub mod report;
+pub mod synthetic;

@@ -14,7 +14,9 @@ use levenberg_marquardt::LeastSquaresProblem;
 /// (cos 73 degrees).
 const AXIS_SPREAD: f64 = 0.3;
 /// Below this ratio of smallest to largest singular value the parameters are not observable.
-const UNOBSERVABLE_RATIO: f64 = 1e-8;
+/// NOTE: the ratio comes from eigenvalues of J^T J, whose rounding floor is 1e-16 relative: 1e-7 in
+/// singular values stays clear of it.
+const UNOBSERVABLE_RATIO: f64 = 1e-7;
 /// Below this ratio the condition number is worth a warning.
 const POORLY_CONDITIONED_RATIO: f64 = 1e-3;
 
@@ -123,14 +125,15 @@ fn check_conditioning(
     warnings: &mut Vec<String>,
 ) -> Result<(), FitError> {
     let jacobian = Problem::new(shape, observations, start.clone()).jacobian().ok_or(FitError::Degenerate)?;
+    // NOTE: the singular values of the column-scaled Jacobian are the square roots of the
+    // eigenvalues of its small normal matrix, which is much cheaper to decompose than J itself.
     let scaled = column_scaled(&jacobian);
-    let svd = scaled.svd(false, true);
-    let (largest, smallest) = (svd.singular_values.max(), svd.singular_values.min());
+    let eigen = (scaled.transpose() * &scaled).symmetric_eigen();
+    let (largest, smallest) = (eigen.eigenvalues.max().max(0.0).sqrt(), eigen.eigenvalues.min().max(0.0).sqrt());
     let ratio = if largest > 0.0 { smallest / largest } else { 0.0 };
     let weakest = || {
-        let v_t = svd.v_t.as_ref().expect("requested");
-        let (index, _) = svd.singular_values.argmin();
-        parameter_name(shape, v_t.row(index).transpose().iamax())
+        let (index, _) = eigen.eigenvalues.argmin();
+        parameter_name(shape, eigen.eigenvectors.column(index).iamax())
     };
     if ratio < UNOBSERVABLE_RATIO {
         return Err(FitError::Unobservable { model: model.name(), parameter: weakest() });

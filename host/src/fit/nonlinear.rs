@@ -6,7 +6,7 @@
 //! every parameter is of order one. The result is mapped back: M = g M' diag(1/r), o = c + r o'.
 
 use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt};
-use nalgebra::{DMatrix, DVector, Dyn, Matrix3, Owned, Vector3, Vector6};
+use nalgebra::{DMatrix, DVector, Dyn, Matrix3, Matrix6, Owned, Vector3, Vector6};
 
 use super::shape::Shape;
 use super::FitError;
@@ -42,16 +42,15 @@ impl Normalization {
         let Normalization { center, radii } = Self::spread(readings);
         let scaled: Vec<Vector3<f64>> =
             readings.iter().map(|m| Vector3::from_fn(|k, _| (m[k] - center[k]) / radii[k])).collect();
-        let design = DMatrix::from_fn(scaled.len(), 6, |i, j| {
-            let v = scaled[i];
-            if j < 3 {
-                v[j] * v[j]
-            } else {
-                v[j - 3]
-            }
-        });
-        let ones = DVector::from_element(scaled.len(), 1.0);
-        let beta: Vector6<f64> = design.svd(true, true).solve(&ones, 1e-12).ok()?.fixed_rows::<6>(0).into_owned();
+        // Normal equations: with the readings scaled to order one, the 6 x 6 system is well conditioned
+        // whenever the readings determine an ellipsoid at all, and Cholesky says when they do not.
+        let (mut normal, mut right) = (Matrix6::zeros(), Vector6::zeros());
+        for v in &scaled {
+            let row = Vector6::new(v[0] * v[0], v[1] * v[1], v[2] * v[2], v[0], v[1], v[2]);
+            normal += row * row.transpose();
+            right += row;
+        }
+        let beta = normal.cholesky()?.solve(&right);
         let (quadratic, linear) = (beta.fixed_rows::<3>(0), beta.fixed_rows::<3>(3));
         if quadratic.iter().any(|&a| a <= 0.0 || !a.is_finite()) {
             return None;
@@ -192,7 +191,10 @@ pub(super) struct Solution {
 /// Minimises the problem from `start`; refuses a run that did not converge.
 pub(super) fn solve(shape: Shape, observations: &[Observation], start: DVector<f64>) -> Result<Solution, FitError> {
     let problem = Problem::new(shape, observations, start);
-    let (problem, report) = LevenbergMarquardt::new().minimize(problem);
+    // NOTE: relative tolerances of 1e-12 on cost, step and gradient: the minimum to twelve digits,
+    // the same tolerances the scipy comparison gives least_squares.
+    let (problem, report) =
+        LevenbergMarquardt::new().with_ftol(1e-12).with_xtol(1e-12).with_gtol(1e-12).minimize(problem);
     if !report.termination.was_successful() {
         return Err(FitError::NotConverged { reason: format!("{:?}", report.termination) });
     }
