@@ -76,7 +76,7 @@ fn ortho9_errors_match_the_cramer_rao_bound_over_200_problems() {
     let sensor = m_true.try_inverse().unwrap();
     let offset = Vector3::new(truth[6], truth[7], truth[8]);
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(2024);
-    let mut normalized = vec![Vec::with_capacity(PROBLEMS); 9];
+    let mut normalized: Vec<Vec<f64>> = (0..9).map(|_| Vec::with_capacity(PROBLEMS)).collect();
     for _ in 0..PROBLEMS {
         let readings: Vec<Vector3<f64>> = (0..POSITIONS)
             .map(|_| {
