@@ -180,11 +180,15 @@ where
         self.sensor.as_mut().map_err(|e| *e)
     }
 
-    /// Records a bus failure: the next use of the sensor probes for it again.
+    /// Records a bus failure and looks for the sensor again at once: a sensor that no longer answers
+    /// is reported as missing, a passing fault as the bus error it was.
     fn sensor_failed(&mut self, error: sensor::Error<E>) -> DeviceError {
         let error = error.to_device_error();
         if error == DeviceError::Bus {
             self.sensor = Err(DeviceError::Bus);
+            if let Err(missing) = self.sensor() {
+                return missing;
+            }
         }
         error
     }

@@ -3,11 +3,14 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+use accelcal::commands::{self, CalibrateArgs};
+use accelcal::connect::Target;
 use accelcal::data::{Dataset, RowList};
 use accelcal::fit::{self, FitOptions, ModelChoice};
 use accelcal::report::{self, Comparison, FitJson};
 use anyhow::Context;
-use clap::{Parser, Subcommand};
+use clap::{Args, Parser, Subcommand};
+use shared::protocol::{Request, DEFAULT_CAPTURE_SECONDS};
 
 /// Calibrates the accelerometer of an MPU-6050.
 #[derive(Parser)]
@@ -15,6 +18,30 @@ use clap::{Parser, Subcommand};
 struct Cli {
     #[command(subcommand)]
     command: Command,
+}
+
+/// Which device to talk to.
+#[derive(Args, Clone)]
+struct Device {
+    /// Serial port of the board (see `accelcal ports`), or of `accelcal sim --pty`.
+    #[arg(long, conflicts_with = "sim")]
+    port: Option<String>,
+    /// A simulated board in this process (its flash lasts as long as the command).
+    #[arg(long)]
+    sim: bool,
+    /// With --sim: seed of the simulated sensor's noise and of the hand's placement.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+}
+
+impl Device {
+    fn target(&self) -> anyhow::Result<Target> {
+        match (&self.port, self.sim) {
+            (Some(path), _) => Ok(Target::Port(path.clone())),
+            (None, true) => Ok(Target::Simulated { seed: self.seed }),
+            (None, false) => anyhow::bail!("which device? give --port PATH (see `accelcal ports`) or --sim"),
+        }
+    }
 }
 
 #[derive(Subcommand)]
@@ -42,6 +69,115 @@ enum Command {
         /// Print one JSON object instead of the table.
         #[arg(long)]
         json: bool,
+    },
+    /// Lists serial ports, marking accelcal boards.
+    Ports,
+    /// Firmware, sensor, range, and the active and stored calibration.
+    Info {
+        #[command(flatten)]
+        device: Device,
+        /// Print one JSON object.
+        #[arg(long)]
+        json: bool,
+    },
+    /// The guided calibration: positions, captures, fit, upload, save, verification.
+    Calibrate {
+        #[command(flatten)]
+        device: Device,
+        /// Only the six faces, fitted on the chip.
+        #[arg(long)]
+        quick: bool,
+        /// Seconds to average each position (5-20).
+        #[arg(long, default_value_t = DEFAULT_CAPTURE_SECONDS)]
+        seconds: u8,
+        /// Fresh orientations to verify at.
+        #[arg(long, default_value_t = 6)]
+        verify: usize,
+        /// Upload and save without asking.
+        #[arg(long)]
+        yes: bool,
+        /// Print one JSON object (non-interactive with --sim).
+        #[arg(long)]
+        json: bool,
+        /// Keep the session as PATH.json and PATH.csv.
+        #[arg(long)]
+        session: Option<PathBuf>,
+        /// With --sim: how many degrees off the tool places the board, as a hand would.
+        #[arg(long, default_value_t = 3.0)]
+        sim_placement_deg: f64,
+    },
+    /// Captures one position into a session file.
+    Capture {
+        #[command(flatten)]
+        device: Device,
+        /// Session path without extension (PATH.json and PATH.csv are written).
+        #[arg(long)]
+        session: PathBuf,
+        /// A name for the position.
+        #[arg(long, default_value = "position")]
+        name: String,
+        /// Seconds to average (5-20).
+        #[arg(long, default_value_t = DEFAULT_CAPTURE_SECONDS)]
+        seconds: u8,
+    },
+    /// Uploads a calibration (from `download` or `fit --json` on data in g) and makes it active.
+    Upload {
+        #[command(flatten)]
+        device: Device,
+        /// The calibration JSON file.
+        file: PathBuf,
+        /// Also store it in flash.
+        #[arg(long)]
+        save: bool,
+    },
+    /// Stores the active calibration in flash.
+    Save {
+        #[command(flatten)]
+        device: Device,
+    },
+    /// Prints the active (or stored) calibration as JSON.
+    Download {
+        #[command(flatten)]
+        device: Device,
+        /// The one in flash rather than the active one.
+        #[arg(long)]
+        stored: bool,
+    },
+    /// Erases the stored calibration; samples pass through uncorrected.
+    Erase {
+        #[command(flatten)]
+        device: Device,
+    },
+    /// Checks the active calibration at fresh orientations.
+    Verify {
+        #[command(flatten)]
+        device: Device,
+        /// Orientations to check.
+        #[arg(long, default_value_t = 4)]
+        positions: usize,
+    },
+    /// Streams samples as CSV on stdout.
+    Stream {
+        #[command(flatten)]
+        device: Device,
+        /// Corrected on the chip (default: raw).
+        #[arg(long)]
+        calibrated: bool,
+        /// Samples to stream.
+        #[arg(long, default_value_t = 100)]
+        count: u32,
+        /// Samples per second (must divide the 100 Hz sample rate).
+        #[arg(long, default_value_t = 10)]
+        rate: u16,
+    },
+    /// Runs a simulated board on a pseudo-terminal; prints its path, then serves until killed.
+    Sim {
+        /// Serve on a pseudo-terminal (the only transport offered).
+        #[arg(long, required = true)]
+        pty: bool,
+        /// Seed of the simulated sensor's noise.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
     },
 }
 
@@ -75,7 +211,36 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                     print!("{}", comparison.human());
                 }
             }
-            Ok(())
         }
+        Command::Ports => commands::ports()?,
+        Command::Info { device, json } => commands::info(&device.target()?, json)?,
+        Command::Calibrate { device, quick, seconds, verify, yes, json, session, sim_placement_deg } => {
+            let args = CalibrateArgs {
+                quick,
+                seconds,
+                verify_positions: verify,
+                yes,
+                json,
+                session,
+                placement_deg: sim_placement_deg,
+                seed: device.seed,
+            };
+            commands::calibrate(&device.target()?, &args)?
+        }
+        Command::Capture { device, session, name, seconds } => {
+            commands::capture(&device.target()?, &session, &name, seconds)?
+        }
+        Command::Upload { device, file, save } => commands::upload(&device.target()?, &file, save)?,
+        Command::Save { device } => commands::simple(&device.target()?, Request::SaveCalibration, "saved")?,
+        Command::Download { device, stored } => commands::download(&device.target()?, stored)?,
+        Command::Erase { device } => {
+            commands::simple(&device.target()?, Request::EraseCalibration, "stored calibration erased")?
+        }
+        Command::Verify { device, positions } => commands::verify(&device.target()?, positions, 3.0, device.seed)?,
+        Command::Stream { device, calibrated, count, rate } => {
+            commands::stream(&device.target()?, calibrated, count, rate)?
+        }
+        Command::Sim { pty: _, seed } => commands::sim_pty(seed)?,
     }
+    Ok(())
 }

@@ -75,3 +75,113 @@ fn a_missing_file_and_an_unknown_model_are_named() {
     assert!(!output.status.success());
     assert!(String::from_utf8(output.stderr).unwrap().contains("unknown model \"quadratic\""));
 }
+
+#[test]
+fn calibrate_sim_json_has_calibration_truth_and_verification() {
+    let output = accelcal(&["calibrate", "--sim", "--json", "--seed", "3"]);
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&output.stdout).expect("one JSON object");
+    assert_eq!(json["calibration"]["model"], "ortho9");
+    // The fitted correction is the simulated sensor's true one, to within its noise.
+    for i in 0..3 {
+        let fitted = json["calibration"]["offset"][i].as_f64().unwrap();
+        let truth = json["truth"]["offset"][i].as_f64().unwrap();
+        assert!((fitted - truth).abs() < 0.5e-3, "offset {i}: {fitted} vs {truth}");
+        for j in 0..3 {
+            let fitted = json["calibration"]["matrix"][i][j].as_f64().unwrap();
+            let truth = json["truth"]["matrix"][i][j].as_f64().unwrap();
+            assert!((fitted - truth).abs() < 1e-3, "M{i}{j}: {fitted} vs {truth}");
+        }
+    }
+    let verification = &json["verification"];
+    assert_eq!(verification["positions"], 6);
+    assert!(verification["before_rms_mg"].as_f64().unwrap() > 10.0, "{verification}");
+    assert!(verification["after_rms_mg"].as_f64().unwrap() < 1.0, "{verification}");
+    assert!(verification["after_max_mg"].as_f64().unwrap() < 1.0, "{verification}");
+}
+
+#[test]
+fn no_device_on_the_port_is_one_line_naming_the_port_and_the_fix() {
+    let output = accelcal(&["info", "--port", "/dev/accelcal-no-such-port"]);
+    assert!(!output.status.success());
+    let stderr = String::from_utf8(output.stderr).unwrap();
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(stderr.starts_with("accelcal: cannot open /dev/accelcal-no-such-port: "), "{stderr}");
+    assert!(stderr.contains("check the cable and the path (`accelcal ports` lists the ports)"), "{stderr}");
+}
+
+#[test]
+fn a_silent_port_is_an_error_within_a_few_seconds_not_a_hang() {
+    let (_master, slave) = serialport::TTYPort::pair().unwrap();
+    let path = serialport::SerialPort::name(&slave).unwrap();
+    let started = std::time::Instant::now();
+    let output = accelcal(&["info", "--port", &path]);
+    let elapsed = started.elapsed();
+    assert!(!output.status.success());
+    let stderr = String::from_utf8(output.stderr).unwrap();
+    assert!(stderr.starts_with("accelcal: no answer from the device within 2 s"), "{stderr}");
+    // NOTE: a bound on a hang, not a timing measurement: 2 s of silence plus process start-up.
+    assert!(elapsed < std::time::Duration::from_secs(10), "took {elapsed:?}");
+}
+
+#[test]
+fn a_device_of_another_protocol_version_is_named_with_what_to_update() {
+    use std::io::{Read, Write};
+    let (mut master, slave) = serialport::TTYPort::pair().unwrap();
+    let path = serialport::SerialPort::name(&slave).unwrap();
+    // A device answering every frame with a well-formed frame of protocol version 2.
+    let fake = std::thread::spawn(move || {
+        let mut buffer = [0u8; 256];
+        serialport::SerialPort::set_timeout(&mut master, std::time::Duration::from_secs(5)).unwrap();
+        let mut delimiters = 0;
+        while let Ok(n) = master.read(&mut buffer) {
+            delimiters += buffer[..n].iter().filter(|b| **b == 0).count();
+            if delimiters >= 2 {
+                break; // the opening delimiter and the end of the hello frame
+            }
+        }
+        let mut raw = vec![shared::protocol::PROTOCOL_VERSION + 1, 1, 0, 9];
+        let crc = crc::Crc::<u32>::new(&crc::CRC_32_ISO_HDLC).checksum(&raw);
+        raw.extend_from_slice(&crc.to_le_bytes());
+        let mut frame = vec![0u8; 64];
+        let len = cobs::encode(&raw, &mut frame);
+        frame.truncate(len);
+        frame.push(0);
+        let _ = master.write_all(&frame);
+        std::thread::sleep(std::time::Duration::from_millis(500));
+    });
+    let output = accelcal(&["info", "--port", &path]);
+    fake.join().unwrap();
+    let stderr = String::from_utf8(output.stderr).unwrap();
+    assert_eq!(
+        stderr.trim_end(),
+        format!(
+            "accelcal: the device speaks protocol version {}, this accelcal speaks {}: update accelcal",
+            shared::protocol::PROTOCOL_VERSION + 1,
+            shared::protocol::PROTOCOL_VERSION
+        )
+    );
+}
+
+#[test]
+fn sim_pty_prints_its_path_and_speaks_the_board_protocol() {
+    use std::io::BufRead;
+    let mut sim = Command::new(env!("CARGO_BIN_EXE_accelcal"))
+        .args(["sim", "--pty", "--seed", "4"])
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first_line = String::new();
+    std::io::BufReader::new(sim.stdout.take().unwrap()).read_line(&mut first_line).unwrap();
+    let path = first_line.trim().to_owned();
+    assert!(path.starts_with("/dev/pts/"), "{path}");
+    let output = accelcal(&["info", "--port", &path, "--json"]);
+    let _ = sim.kill();
+    let _ = sim.wait();
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    assert_eq!(json["sensor"]["address"], 0x68);
+    assert_eq!(json["protocol_version"], shared::protocol::PROTOCOL_VERSION);
+    assert_eq!(json["active"], serde_json::Value::Null);
+}

@@ -275,3 +275,8 @@ impl WriteRead for SimMpu6050 {
 
 #[cfg(test)]
 mod tests;
+
+/// The simulated board's flash: four 4 KiB pages (small pages exercise page changes quickly).
+pub type SimFlash = flash::RamFlash<4096, 4>;
+/// The byte range of [`SimFlash`] holding the calibration: all of it.
+pub const SIM_FLASH_RANGE: core::ops::Range<u32> = 0..4 * 4096;

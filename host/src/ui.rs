@@ -1,0 +1,88 @@
+//! Feedback for a person at a terminal (progress bars, live line, questions) or none at all.
+
+use std::io::{BufRead, IsTerminal, Write};
+
+use indicatif::{ProgressBar, ProgressStyle};
+
+use crate::calibrate::Feedback;
+
+/// Progress bars and questions on stderr / stdin.
+pub struct Terminal {
+    /// Answer yes to every question without asking.
+    pub assume_yes: bool,
+    bar: Option<ProgressBar>,
+    live: ProgressBar,
+}
+
+impl Terminal {
+    /// Feedback on the terminal; `assume_yes` for `--yes`.
+    pub fn new(assume_yes: bool) -> Self {
+        let live = ProgressBar::new_spinner();
+        live.set_style(
+            ProgressStyle::with_template("{spinner} {msg}").unwrap_or_else(|_| ProgressStyle::default_spinner()),
+        );
+        Terminal { assume_yes, bar: None, live }
+    }
+}
+
+impl Feedback for Terminal {
+    fn say(&mut self, line: &str) {
+        self.live.suspend(|| eprintln!("{line}"));
+    }
+
+    fn live(&mut self, line: &str) {
+        self.live.set_message(line.to_owned());
+        self.live.tick();
+    }
+
+    fn progress(&mut self, samples: u32, total: u32) {
+        let bar = self.bar.get_or_insert_with(|| {
+            let bar = ProgressBar::new(u64::from(total));
+            bar.set_style(
+                ProgressStyle::with_template("averaging [{bar:40}] {pos}/{len} samples")
+                    .unwrap_or_else(|_| ProgressStyle::default_bar()),
+            );
+            bar
+        });
+        bar.set_position(u64::from(samples));
+    }
+
+    fn progress_done(&mut self) {
+        if let Some(bar) = self.bar.take() {
+            bar.finish_and_clear();
+        }
+    }
+
+    fn confirm(&mut self, question: &str) -> bool {
+        if self.assume_yes {
+            return true;
+        }
+        if !std::io::stdin().is_terminal() {
+            self.say(&format!("{question} no (not a terminal; pass --yes to accept)"));
+            return false;
+        }
+        self.live.suspend(|| {
+            eprint!("{question} [y/N] ");
+            let _ = std::io::stderr().flush();
+            let mut answer = String::new();
+            let _ = std::io::stdin().lock().read_line(&mut answer);
+            matches!(answer.trim(), "y" | "Y" | "yes")
+        })
+    }
+}
+
+/// No output: for `--json` and tests. Questions are answered with `yes`.
+pub struct Silent {
+    /// The answer to every question.
+    pub yes: bool,
+}
+
+impl Feedback for Silent {
+    fn say(&mut self, _: &str) {}
+    fn live(&mut self, _: &str) {}
+    fn progress(&mut self, _: u32, _: u32) {}
+    fn progress_done(&mut self) {}
+    fn confirm(&mut self, _: &str) -> bool {
+        self.yes
+    }
+}
