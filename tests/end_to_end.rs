@@ -174,3 +174,65 @@ fn a_missing_sensor_is_named_with_the_pins_to_check() {
         "the MPU-6050 does not answer at 0x68 or 0x69: check VCC, GND, SCL (PB6) and SDA (PB7) and the pull-ups"
     );
 }
+
+#[test]
+fn a_port_that_vanishes_mid_capture_is_an_error_within_2_s_and_the_session_file_is_intact() {
+    use accelcal::session::{CaptureRecord, Session};
+    let (host, device) = pipe();
+    let board = SimBoard::spawn(device, SimFlash::new(), 71);
+    let (mut client, _) = Client::connect(host).unwrap();
+    let Response::Captured { stats, .. } = client.run(Request::Capture { seconds: 5 }, |_| {}).unwrap() else {
+        panic!("no capture")
+    };
+    let session =
+        Session { captures: vec![CaptureRecord { target: "+Z".into(), position: None, at_seconds: 0.0, stats }] };
+    let stem = std::env::temp_dir().join(format!("accelcal-vanish-{}", std::process::id()));
+    session.save(&stem).unwrap();
+    let before = std::fs::read(stem.with_extension("json")).unwrap();
+
+    let controls = board.controls();
+    let started = std::time::Instant::now();
+    let mut progress = 0;
+    let error = client
+        .run(Request::Capture { seconds: 20 }, |_| {
+            progress += 1;
+            if progress == 3 {
+                let _ = controls.send(SimCommand::Stop); // the cable is pulled
+            }
+        })
+        .unwrap_err();
+    assert!(matches!(error, Error::Disconnected { .. } | Error::StoppedAnswering), "{error}");
+    // NOTE: a bound on a hang, not a timing measurement: the client gives up after SILENCE_LIMIT
+    // (2 s) of silence at most; a dropped link is noticed at once. Generous for a loaded machine.
+    let bound = accelcal::client::SILENCE_LIMIT + Duration::from_secs(3);
+    assert!(started.elapsed() < bound, "{:?}", started.elapsed());
+    assert_eq!(std::fs::read(stem.with_extension("json")).unwrap(), before, "the session file changed");
+    assert_eq!(Session::load(&stem.with_extension("json")).unwrap(), session);
+}
+
+#[test]
+fn a_device_restarting_mid_capture_is_noticed_and_named() {
+    let (host, device) = pipe();
+    let board = SimBoard::spawn(device, SimFlash::new(), 72);
+    let (mut client, _) = Client::connect(host).unwrap();
+    let controls = board.controls();
+    let mut progress = 0;
+    let error = client
+        .run(Request::Capture { seconds: 20 }, |_| {
+            progress += 1;
+            if progress == 2 {
+                let _ = controls.send(SimCommand::Restart);
+            }
+        })
+        .unwrap_err();
+    assert_eq!(
+        error.to_string(),
+        "the device stopped answering in the middle of the operation: it restarted or lost power; \
+         check the cable and the power, then run the command again"
+    );
+    // The rebooted board answers again.
+    assert!(matches!(
+        client.call(Request::Hello { protocol_version: shared::protocol::PROTOCOL_VERSION }),
+        Ok(Response::Hello(_))
+    ));
+}

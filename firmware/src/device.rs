@@ -464,3 +464,6 @@ const fn parse_u8(text: &str) -> u8 {
 
 #[cfg(test)]
 mod tests;
+
+#[cfg(test)]
+mod fault_tests;

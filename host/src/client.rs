@@ -46,11 +46,20 @@ impl<P: Port> Client<P> {
     pub fn run(&mut self, request: Request, mut on_update: impl FnMut(&Response)) -> Result<Response, Error> {
         let id = self.send(&request)?;
         let mut last_heard = Instant::now();
+        let mut updates = 0usize;
         loop {
-            match self.receive(&mut last_heard)? {
+            let message = match self.receive(&mut last_heard) {
+                // Silence after progress: the device was there and no longer is.
+                Err(Error::Silent { .. }) if updates > 0 => return Err(Error::StoppedAnswering),
+                other => other?,
+            };
+            match message {
                 (answer_id, _) if answer_id != id && answer_id != protocol::frame::UNKNOWN_REQUEST_ID => {}
                 (_, Response::Error(error)) => return Err(error.into()),
-                (_, update @ (Response::Progress(_) | Response::Sample(_))) => on_update(&update),
+                (_, update @ (Response::Progress(_) | Response::Sample(_))) => {
+                    updates += 1;
+                    on_update(&update)
+                }
                 (_, last) => return Ok(last),
             }
         }

@@ -15,6 +15,8 @@ pub enum Error {
     Open { port: String, reason: String },
     #[error("no answer from the device within {seconds} s: is it an accelcal board running the firmware? (reflash it, or unplug and replug it)")]
     Silent { seconds: f64 },
+    #[error("the device stopped answering in the middle of the operation: it restarted or lost power; check the cable and the power, then run the command again")]
+    StoppedAnswering,
     #[error("the device went away ({reason}): it was unplugged or restarted; reconnect and run the command again")]
     Disconnected { reason: String },
     #[error("the device speaks protocol version {device}, this accelcal speaks {host}: update {}", if device < host { "the firmware (cargo run --release in firmware/)" } else { "accelcal" })]

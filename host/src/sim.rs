@@ -32,6 +32,8 @@ pub enum SimCommand {
     Move(Motion),
     /// Disconnect or reconnect the sensor.
     Connect(bool),
+    /// Reboot the board (a reset or brown-out): RAM state is lost, the flash and the port stay.
+    Restart,
     /// Stop serving and hand the flash back.
     Stop,
 }
@@ -99,6 +101,14 @@ fn serve<P: Port>(
             Ok(SimCommand::Place(up)) => device.bus_mut().place(up),
             Ok(SimCommand::Move(motion)) => device.bus_mut().set_motion(motion),
             Ok(SimCommand::Connect(connected)) => device.bus_mut().set_connected(connected),
+            Ok(SimCommand::Restart) => {
+                let (sensor, flash) = device.into_parts();
+                match block_on(Device::boot(sensor, flash, SIM_FLASH_RANGE)) {
+                    Ok(rebooted) => device = rebooted,
+                    Err(_) => return SimFlash::default(),
+                }
+                link = Link::new();
+            }
             Ok(SimCommand::Stop) | Err(TryRecvError::Disconnected) => break,
             Err(TryRecvError::Empty) => {}
         }

@@ -50,6 +50,7 @@ pub struct SimMpu6050 {
     next_sample_us: u64,
     pose_since_us: u64,
     failures_left: u32,
+    failures_after: u32,
 }
 
 impl SimMpu6050 {
@@ -69,6 +70,7 @@ impl SimMpu6050 {
             next_sample_us: 0,
             pose_since_us: 0,
             failures_left: 0,
+            failures_after: 0,
         }
     }
 
@@ -105,6 +107,12 @@ impl SimMpu6050 {
 
     /// Makes the next `count` transactions fail.
     pub fn fail_next_transactions(&mut self, count: u32) {
+        self.fail_transactions_after(0, count);
+    }
+
+    /// Lets `skip` transactions pass, then makes `count` fail.
+    pub fn fail_transactions_after(&mut self, skip: u32, count: u32) {
+        self.failures_after = skip;
         self.failures_left = count;
     }
 
@@ -231,7 +239,9 @@ impl SimMpu6050 {
         if !self.connected || address != self.address {
             return Err(BusFault::NoAcknowledge);
         }
-        if self.failures_left > 0 {
+        if self.failures_after > 0 {
+            self.failures_after -= 1;
+        } else if self.failures_left > 0 {
             self.failures_left -= 1;
             return Err(BusFault::Injected);
         }
