@@ -11,5 +11,8 @@ fn main() {
     }
     let out = PathBuf::from(env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
     fs::copy("../memory.x", out.join("memory.x")).expect("memory.x is at the workspace root");
-    println!("cargo:rustc-link-search={}", out.display());
+    // NOTE: link arguments for this package's binary only: a plain link-search would also reach every
+    // crate that depends on the firmware library (tests/qemu links for another memory map).
+    println!("cargo:rustc-link-arg-bins=-L{}", out.display());
+    println!("cargo:rustc-link-arg-bins=-Tdefmt.x");
 }

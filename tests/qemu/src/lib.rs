@@ -1,0 +1,112 @@
+//! The computations run both on an emulated Cortex-M4F (src/main.rs, under QEMU) and on the host
+//! (tests/on_target.rs), so their results can be compared bit for bit.
+#![cfg_attr(not(test), no_std)]
+
+use embassy_futures::block_on;
+use firmware::device::Device;
+use firmware::sim::{SimFlash, SimMpu6050, SIM_FLASH_RANGE};
+use shared::protocol::{Request, Response, StreamKind};
+use shared::{Position, PositionReadings};
+
+/// The published phone readings in m/s^2 (Georgieva and Hofreither), the six faces in their order.
+const PHONE: [(Position, [f32; 3]); 6] = [
+    (Position::NegX, [-9.54983, 0.37829, -0.999283]),
+    (Position::PosX, [10.145, 0.314528, -1.37789]),
+    (Position::NegY, [0.413309, -9.47641, -1.62076]),
+    (Position::PosY, [0.368766, 10.1442, -0.910232]),
+    (Position::NegZ, [0.510292, 0.338026, -10.7851]),
+    (Position::PosZ, [0.231834, 0.482186, 8.60553]),
+];
+
+/// One named result: f32 values as their bit patterns.
+pub struct Result<'a> {
+    /// What was computed.
+    pub name: &'a str,
+    /// The values.
+    pub values: &'a [f32],
+}
+
+/// Runs every computation and hands each result to `report`; `false` when one could not run.
+pub fn run(report: &mut impl FnMut(Result<'_>)) -> bool {
+    phone_six_position(report) && device_calibration(report)
+}
+
+/// shared's six-position closed form on the published phone readings, in f32.
+fn phone_six_position(report: &mut impl FnMut(Result<'_>)) -> bool {
+    let mut readings = PositionReadings::<f32>::new();
+    for (position, reading) in PHONE {
+        if readings.insert(position, reading).is_err() {
+            return false;
+        }
+    }
+    let Ok(fit) = readings.fit(9.81) else { return false };
+    let m = fit.matrix;
+    report(Result {
+        name: "phone-six-position-matrix",
+        values: &[m[0][0], m[0][1], m[0][2], m[1][0], m[1][1], m[1][2], m[2][0], m[2][1], m[2][2]],
+    });
+    report(Result { name: "phone-six-position-offset", values: &fit.offset });
+    true
+}
+
+/// The firmware library on the simulated MPU-6050: six 5 s captures at the faces, the on-chip fit,
+/// and samples corrected on the chip.
+fn device_calibration(report: &mut impl FnMut(Result<'_>)) -> bool {
+    let Ok(mut device) = block_on(Device::boot(SimMpu6050::new(2024), SimFlash::new(), SIM_FLASH_RANGE)) else {
+        return false;
+    };
+    let mut means = [0.0f32; 18];
+    for (i, position) in Position::ALL.iter().enumerate() {
+        device.bus_mut().place(position.specific_force_g());
+        let Some(Response::Captured { stats, .. }) = run_to_end(&mut device, Request::Capture { seconds: 5 }, |_| {})
+        else {
+            return false;
+        };
+        means[3 * i..3 * i + 3].copy_from_slice(&stats.mean_g);
+    }
+    report(Result { name: "device-capture-means", values: &means });
+    let Some(Response::Fitted(calibration)) = run_to_end(&mut device, Request::FitSixPosition, |_| {}) else {
+        return false;
+    };
+    let m = calibration.matrix;
+    report(Result {
+        name: "device-fit-matrix",
+        values: &[m[0][0], m[0][1], m[0][2], m[1][0], m[1][1], m[1][2], m[2][0], m[2][1], m[2][2]],
+    });
+    report(Result { name: "device-fit-offset", values: &calibration.offset_g });
+    device.bus_mut().place([0.3, -0.4, 0.866]);
+    let mut corrected = [0.0f32; 30];
+    let mut count = 0;
+    let stream = Request::Stream { kind: StreamKind::Calibrated, rate_hz: 50, count: 10 };
+    let ended = run_to_end(&mut device, stream, |response| {
+        if let (Response::Sample(sample), true) = (response, count < 10) {
+            corrected[3 * count..3 * count + 3].copy_from_slice(&sample.accel_g);
+            count += 1;
+        }
+    });
+    if !matches!(ended, Some(Response::StreamEnded { samples: 10 })) {
+        return false;
+    }
+    report(Result { name: "device-corrected-samples", values: &corrected });
+    true
+}
+
+/// Handles a request and polls the device (10 ms of simulated time a step) until its final response.
+fn run_to_end(
+    device: &mut Device<SimMpu6050, SimFlash>,
+    request: Request,
+    mut on_update: impl FnMut(&Response),
+) -> Option<Response> {
+    block_on(device.handle(1, request));
+    for _ in 0..100_000 {
+        while let Some((_, response)) = device.next_response() {
+            match response {
+                Response::Progress(_) | Response::Sample(_) => on_update(&response),
+                last => return Some(last),
+            }
+        }
+        device.bus_mut().advance_us(10_000);
+        device.poll();
+    }
+    None
+}

@@ -1,0 +1,38 @@
+//! On an emulated Cortex-M4F (QEMU netduinoplus2, an STM32F405): runs the computations of the library and prints each
+//! result over semihosting as `name hex hex ...` (f32 bit patterns), then `done`.
+#![cfg_attr(target_os = "none", no_std, no_main)]
+
+#[cfg(not(target_os = "none"))]
+fn main() {}
+
+#[cfg(target_os = "none")]
+mod target {
+    use cortex_m_rt::entry;
+    use cortex_m_semihosting::{debug, hprint, hprintln};
+
+    #[entry]
+    fn main() -> ! {
+        let ok = qemu_tests::run(&mut |result| {
+            hprint!("{}", result.name);
+            for value in result.values {
+                hprint!(" {:08x}", value.to_bits());
+            }
+            hprintln!("");
+        });
+        hprintln!("{}", if ok { "done" } else { "failed" });
+        debug::exit(if ok { debug::EXIT_SUCCESS } else { debug::EXIT_FAILURE });
+        // NOTE: semihosting exit ends QEMU; should it not, sleep rather than spin.
+        loop {
+            cortex_m::asm::wfi();
+        }
+    }
+
+    #[panic_handler]
+    fn panic(info: &core::panic::PanicInfo) -> ! {
+        hprintln!("panic: {}", info);
+        debug::exit(debug::EXIT_FAILURE);
+        loop {
+            cortex_m::asm::wfi();
+        }
+    }
+}

@@ -1,0 +1,98 @@
+//! The computations of `qemu_tests::run` on an emulated Cortex-M4F (QEMU netduinoplus2, whose
+//! STM32F405 has the F411's flash and RAM addresses, so the board's own memory.x serves) against the
+//! same code on the host.
+//!
+//! Needs the on-target binary (`cargo build -p qemu-tests --release --target thumbv7em-none-eabihf`)
+//! and `qemu-system-arm` (Debian package); `.ci/run` provides both. Without them the test says so and
+//! passes, except under CI, where their absence is a failure.
+
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+fn elf() -> PathBuf {
+    let target = std::env::var_os("CARGO_TARGET_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../target"));
+    target.join("thumbv7em-none-eabihf/release/qemu-tests")
+}
+
+/// Runs the binary under QEMU; its `name hex...` lines as f32 values, by name.
+fn on_target() -> Option<BTreeMap<String, Vec<u32>>> {
+    let elf = elf();
+    let missing = if !elf.exists() {
+        Some(format!("{} is not built", elf.display()))
+    } else if Command::new("qemu-system-arm").arg("--version").output().is_err() {
+        Some("qemu-system-arm is not installed (apt-get install qemu-system-arm)".to_owned())
+    } else {
+        None
+    };
+    if let Some(reason) = missing {
+        assert!(std::env::var_os("CI").is_none(), "on-target test cannot run under CI: {reason}");
+        println!("skipped: {reason}");
+        return None;
+    }
+    let mut qemu = Command::new("qemu-system-arm")
+        .args(["-machine", "netduinoplus2", "-nographic", "-semihosting-config", "enable=on,target=native", "-kernel"])
+        .arg(&elf)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("qemu starts");
+    let started = Instant::now();
+    // NOTE: a bound on a hang, not a timing measurement; the run takes well under a second.
+    while qemu.try_wait().expect("qemu runs").is_none() {
+        if started.elapsed() > Duration::from_secs(120) {
+            let _ = qemu.kill();
+            panic!("the emulated board did not finish within 120 s");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let output = qemu.wait_with_output().expect("qemu output");
+    let text = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        output.status.success() && text.lines().any(|l| l == "done"),
+        "on target:\n{text}\n{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    Some(
+        text.lines()
+            .filter(|l| *l != "done")
+            .map(|line| {
+                let mut words = line.split_whitespace();
+                let name = words.next().unwrap_or_default().to_owned();
+                (name, words.map(|w| u32::from_str_radix(w, 16).expect("hex")).collect())
+            })
+            .collect(),
+    )
+}
+
+#[test]
+fn shared_math_and_the_firmware_library_give_the_host_s_results_on_a_cortex_m4f() {
+    let Some(target) = on_target() else { return };
+    let mut host = BTreeMap::new();
+    assert!(qemu_tests::run(&mut |r| {
+        host.insert(r.name.to_owned(), r.values.iter().map(|v| v.to_bits()).collect::<Vec<_>>());
+    }));
+    assert_eq!(target.keys().collect::<Vec<_>>(), host.keys().collect::<Vec<_>>());
+    let (mut identical, mut total) = (0, 0);
+    for (name, on_host) in &host {
+        let on_chip = &target[name];
+        assert_eq!(on_chip.len(), on_host.len(), "{name}");
+        for (k, (&a, &b)) in on_chip.iter().zip(on_host).enumerate() {
+            total += 1;
+            if a == b {
+                identical += 1;
+                continue;
+            }
+            let (a, b) = (f32::from_bits(a), f32::from_bits(b));
+            // NOTE: + - * / and sqrt are correctly rounded on both; only transcendental functions
+            // (the noise generator's exp/ln, from libm on the chip and the C library on the host)
+            // may differ in the last bit, and the six-position path has none.
+            assert!(!name.starts_with("phone"), "{name}[{k}]: chip {a:e} vs host {b:e}: the same code path differs");
+            assert!((a - b).abs() <= 1e-6 * b.abs().max(1.0), "{name}[{k}]: chip {a:e} vs host {b:e}");
+        }
+    }
+    println!("{identical} of {total} values bit-identical on the emulated Cortex-M4F and the host");
+}
