@@ -185,3 +185,19 @@ fn sim_pty_prints_its_path_and_speaks_the_board_protocol() {
     assert_eq!(json["protocol_version"], shared::protocol::PROTOCOL_VERSION);
     assert_eq!(json["active"], serde_json::Value::Null);
 }
+
+#[test]
+fn an_absurd_upload_is_refused_with_the_reason_before_it_reaches_the_board() {
+    let path =
+        write_temp("absurd.json", r#"{"model": "ortho9", "matrix": [[1,0,0],[0,1,0],[0,0,1]], "offset": [3.0, 0, 0]}"#);
+    let output = accelcal(&["upload", "--sim", path.to_str().unwrap(), "--save"]);
+    assert!(!output.status.success());
+    let stderr = String::from_utf8(output.stderr).unwrap();
+    assert_eq!(stderr.trim_end(), "accelcal: refused before upload: the x offset 3.000 g is larger than 0.5 g");
+    let fit_in_si = write_temp(
+        "si.json",
+        r#"{"model": "ortho9", "g": 9.81, "matrix": [[1,0,0],[0,1,0],[0,0,1]], "offset": [0, 0, 0]}"#,
+    );
+    let output = accelcal(&["upload", "--sim", fit_in_si.to_str().unwrap()]);
+    assert!(String::from_utf8(output.stderr).unwrap().contains("this fit is not in g: fit data in g with --g 1"));
+}

@@ -217,3 +217,30 @@ proptest! {
         still_responsive(&mut device);
     }
 }
+
+#[test]
+fn non_finite_singular_and_absurd_uploads_are_refused_with_the_reason_and_the_stored_one_is_untouched() {
+    use shared::CalibrationError;
+    let mut device = boot(67);
+    let good = Calibration { offset_g: [0.02, -0.01, 0.07], ..Calibration::identity(AccelRange::G2) };
+    assert_eq!(feed(&mut device, &frame(&Request::SetCalibration(good))), [(5, Response::Done)]);
+    assert_eq!(feed(&mut device, &frame(&Request::SaveCalibration)), [(5, Response::Done)]);
+    let mut non_finite = good;
+    non_finite.gyro_bias_dps[2] = f32::INFINITY;
+    let mut singular = good;
+    singular.matrix = [[1.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]];
+    let mut absurd = good;
+    absurd.offset_g[1] = 0.9;
+    let cases = [
+        (non_finite, CalibrationError::NonFinite),
+        (singular, CalibrationError::Singular { determinant: 0.0 }),
+        (absurd, CalibrationError::OffsetOutOfRange { axis: 1, value_g: 0.9 }),
+    ];
+    for (upload, reason) in cases {
+        let answers = feed(&mut device, &frame(&Request::SetCalibration(upload)));
+        assert_eq!(answers, [(5, Response::Error(DeviceError::InvalidCalibration(reason)))]);
+        assert_eq!(device.active_calibration(), Some(good));
+        let stored = feed(&mut device, &frame(&Request::GetCalibration(shared::protocol::CalibrationSlot::Stored)));
+        assert_eq!(stored, [(5, Response::Calibration(Some(good)))]);
+    }
+}
