@@ -21,21 +21,26 @@ fn lab() -> (Dataset, FitOptions) {
     (dataset, options)
 }
 
-/// The publication's objective (5), written out independently: |a - ref|^2 / g^2 on rows 1 and 10,
-/// (|a| - g)^2 / g^2 on rows 2-9 and 11-20.
-fn objective(dataset: &Dataset, matrix: &Matrix3<f64>, offset: &Vector3<f64>) -> f64 {
+/// The residuals of the publication's objective (5), written out independently: (a - ref) / g on
+/// rows 1 and 10, (|a| - g) / g on rows 2-9 and 11-20.
+fn residuals(dataset: &Dataset, matrix: &Matrix3<f64>, offset: &Vector3<f64>) -> Vec<f64> {
     dataset.rows[..20]
         .iter()
         .enumerate()
-        .map(|(i, row)| {
+        .flat_map(|(i, row)| {
             let a = matrix * (Vector3::from(row.reading) - offset);
             if i == 0 || i == 9 {
-                (a - Vector3::from(row.reference.unwrap())).norm_squared() / (LAB_G * LAB_G)
+                ((a - Vector3::from(row.reference.unwrap())) / LAB_G).iter().copied().collect::<Vec<_>>()
             } else {
-                (a.norm() - LAB_G).powi(2) / (LAB_G * LAB_G)
+                vec![(a.norm() - LAB_G) / LAB_G]
             }
         })
-        .sum()
+        .collect()
+}
+
+/// The objective: the sum of the squared residuals.
+fn objective(dataset: &Dataset, matrix: &Matrix3<f64>, offset: &Vector3<f64>) -> f64 {
+    residuals(dataset, matrix, offset).iter().map(|r| r * r).sum()
 }
 
 fn parts(fit: &Fit) -> (Matrix3<f64>, Vector3<f64>) {
@@ -55,35 +60,24 @@ fn reference_norm12_reaches_the_minimum_of_the_published_objective() {
     let scale = [matrix.amax(), matrix.amax(), matrix.amax(), 1e4];
     let mut params: Vec<f64> = matrix.iter().copied().chain(offset.iter().copied()).collect();
     let unpack = |p: &[f64]| (Matrix3::from_column_slice(&p[..9]), Vector3::new(p[9], p[10], p[11]));
-    let residuals = |p: &[f64]| -> Vec<f64> {
+    let residuals_at = |p: &[f64]| {
         let (m, o) = unpack(p);
-        dataset.rows[..20]
-            .iter()
-            .enumerate()
-            .flat_map(|(i, row)| {
-                let a = m * (Vector3::from(row.reading) - o);
-                if i == 0 || i == 9 {
-                    ((a - Vector3::from(row.reference.unwrap())) / LAB_G).iter().copied().collect::<Vec<_>>()
-                } else {
-                    vec![(a.norm() - LAB_G) / LAB_G]
-                }
-            })
-            .collect()
+        residuals(&dataset, &m, &o)
     };
     let mut lowest = at_fit;
     for _ in 0..5 {
-        let r0 = nalgebra::DVector::from_vec(residuals(&params));
+        let r0 = nalgebra::DVector::from_vec(residuals_at(&params));
         let mut jacobian = nalgebra::DMatrix::zeros(r0.len(), 12);
         for k in 0..12 {
             let step = 1e-7 * if k < 9 { scale[0] } else { scale[3] };
             let mut shifted = params.clone();
             shifted[k] += step;
-            let r1 = nalgebra::DVector::from_vec(residuals(&shifted));
+            let r1 = nalgebra::DVector::from_vec(residuals_at(&shifted));
             jacobian.set_column(k, &((r1 - &r0) / step));
         }
         let step = jacobian.svd(true, true).solve(&(-r0), 1e-14).unwrap();
         let candidate: Vec<f64> = params.iter().zip(step.iter()).map(|(p, s)| p + s).collect();
-        let cost = residuals(&candidate).iter().map(|r| r * r).sum::<f64>();
+        let cost = residuals_at(&candidate).iter().map(|r| r * r).sum::<f64>();
         if cost < lowest {
             lowest = cost;
             params = candidate;

@@ -71,6 +71,12 @@ impl Feedback for Terminal {
     }
 }
 
+impl Drop for Terminal {
+    fn drop(&mut self) {
+        self.live.finish_and_clear();
+    }
+}
+
 /// No output: for `--json` and tests. Questions are answered with `yes`.
 pub struct Silent {
     /// The answer to every question.
