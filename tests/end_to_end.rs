@@ -236,3 +236,22 @@ fn a_device_restarting_mid_capture_is_noticed_and_named() {
         Ok(Response::Hello(_))
     ));
 }
+
+#[test]
+fn verification_waits_for_a_new_orientation_instead_of_counting_one_twice() {
+    let (host, device) = pipe();
+    let board = SimBoard::spawn(device, SimFlash::new(), 81);
+    let (mut client, _) = Client::connect(host).unwrap();
+    let calibration = shared::Calibration::identity(shared::AccelRange::G2);
+    client.call(Request::SetCalibration(calibration)).unwrap();
+    let mut recorder = Recorder::default();
+    let error =
+        calibrate::verify(&mut client, &mut Stubborn(board.controls()), 2, Some(Duration::from_secs(2)), &mut recorder)
+            .unwrap_err()
+            .to_string();
+    assert!(recorder.live.iter().any(|l| l == "this orientation was already verified: turn the board to a new one"));
+    assert_eq!(
+        error,
+        "the board never came to rest at a new orientation; turn it and hold it still, then run the command again"
+    );
+}

@@ -22,6 +22,8 @@ const LIVE_RATE_HZ: u16 = 20;
 const LIVE_SAMPLES: u32 = 10;
 /// Captures of a position tried before giving up on a board that keeps moving.
 const CAPTURE_ATTEMPTS: usize = 5;
+/// Smallest angle, in degrees, between two verification orientations.
+pub const FRESH_DEG: f64 = 20.0;
 /// Length of each verification capture, in seconds.
 pub const VERIFY_SECONDS: u8 = 5;
 
@@ -319,9 +321,10 @@ pub fn verify<P: Port>(
         other => return Err(Error::Protocol(format!("{other:?}"))),
     };
     let (mut before, mut after, mut on_chip) = (Vec::new(), Vec::new(), 0.0f64);
+    let mut used = Vec::with_capacity(positions);
     for index in 0..positions {
         hand.fresh(index, feedback)?;
-        wait_for_still(client, wait_limit, feedback)?;
+        used.push(wait_for_fresh(client, &used, wait_limit, feedback)?);
         let (stats, _) = capture(client, VERIFY_SECONDS, feedback)?;
         let raw = stats.mean_g;
         let corrected = calibration.apply(raw);
@@ -346,22 +349,34 @@ pub fn verify<P: Port>(
     })
 }
 
-fn wait_for_still<P: Port>(
+/// Waits until the board rests at an orientation at least [`FRESH_DEG`] from every one in `used`;
+/// returns it.
+fn wait_for_fresh<P: Port>(
     client: &mut Client<P>,
+    used: &[[f64; 3]],
     limit: Option<Duration>,
     feedback: &mut dyn Feedback,
-) -> Result<(), Error> {
+) -> Result<[f64; 3], Error> {
     let started = Instant::now();
     let mut still_windows = 0;
-    while still_windows < 2 {
+    loop {
         if limit.is_some_and(|l| started.elapsed() > l) {
-            return Err(Error::Refused("the board never came to rest; hold it still and run the command again".into()));
+            return Err(Error::Refused(
+                "the board never came to rest at a new orientation; turn it and hold it still, then run the command again".into(),
+            ));
         }
-        let (_, still) = live_window(client)?;
-        feedback.live(if still { "still" } else { "moving: hold the board still" });
-        still_windows = if still { still_windows + 1 } else { 0 };
+        let (mean, still) = live_window(client)?;
+        let fresh = used.iter().all(|u| angle_between_deg(mean, *u) >= FRESH_DEG);
+        feedback.live(match (still, fresh) {
+            (_, false) => "this orientation was already verified: turn the board to a new one",
+            (false, true) => "moving: hold the board still",
+            (true, true) => "still",
+        });
+        still_windows = if still && fresh { still_windows + 1 } else { 0 };
+        if still_windows >= 2 {
+            return Ok(mean);
+        }
     }
-    Ok(())
 }
 
 /// Mean of 20 samples corrected by the chip itself.

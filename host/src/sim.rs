@@ -139,6 +139,7 @@ pub struct SimHand {
     controls: Sender<SimCommand>,
     rng: rand_xoshiro::Xoshiro256PlusPlus,
     placement_deg: f64,
+    verified: Vec<[f64; 3]>,
 }
 
 impl SimHand {
@@ -146,7 +147,12 @@ impl SimHand {
     /// angle), repeatable by `seed`.
     pub fn new(controls: Sender<SimCommand>, placement_deg: f64, seed: u64) -> Self {
         use rand_xoshiro::rand_core::SeedableRng;
-        SimHand { controls, rng: rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(seed), placement_deg }
+        SimHand {
+            controls,
+            rng: rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(seed),
+            placement_deg,
+            verified: Vec::new(),
+        }
     }
 
     fn gaussian(&mut self) -> f64 {
@@ -182,7 +188,17 @@ impl crate::calibrate::Hand for SimHand {
     }
 
     fn fresh(&mut self, _: usize, _: &mut dyn crate::calibrate::Feedback) -> Result<(), crate::error::Error> {
-        let up = self.random_unit();
+        // A new random orientation, well clear of those verified before (a person turns the board
+        // somewhere new; the procedure insists on it).
+        let clear = crate::calibrate::FRESH_DEG + 10.0;
+        let mut up = self.random_unit();
+        for _ in 0..1000 {
+            if self.verified.iter().all(|v| shared::orientation::angle_between_deg(up, *v) >= clear) {
+                break;
+            }
+            up = self.random_unit();
+        }
+        self.verified.push(up);
         self.place(up)
     }
 }
