@@ -185,7 +185,7 @@ fn a_port_that_vanishes_mid_capture_is_an_error_within_2_s_and_the_session_file_
         panic!("no capture")
     };
     let session =
-        Session { captures: vec![CaptureRecord { target: "+Z".into(), position: None, at_seconds: 0.0, stats }] };
+        Session { captures: vec![CaptureRecord { target: "+Z".into(), position: None, unix_time_s: 0.0, stats }] };
     let stem = std::env::temp_dir().join(format!("accelcal-vanish-{}", std::process::id()));
     session.save(&stem).unwrap();
     let before = std::fs::read(stem.with_extension("json")).unwrap();

@@ -153,7 +153,6 @@ pub fn collect<P: Port>(
     feedback: &mut dyn Feedback,
 ) -> Result<Session, Error> {
     client.call(Request::ClearPositions)?;
-    let started = Instant::now();
     let mut remaining: Vec<Target> = targets.to_vec();
     let mut done: Vec<Target> = Vec::new();
     let mut session = Session::default();
@@ -166,7 +165,7 @@ pub fn collect<P: Port>(
         session.captures.push(CaptureRecord {
             target: target.name.clone(),
             position: position.map(|p| p.name().to_owned()),
-            at_seconds: started.elapsed().as_secs_f64(),
+            unix_time_s: crate::session::unix_time_s(),
             stats,
         });
         done.push(target);

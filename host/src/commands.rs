@@ -312,11 +312,10 @@ pub fn capture(target: &Target, session_stem: &std::path::Path, name: &str, seco
     let Response::Captured { stats, position } = response? else {
         return Err(Error::Protocol("a capture ended without its result".into()));
     };
-    let at_seconds = session.captures.last().map_or(0.0, |c| c.at_seconds);
     session.captures.push(CaptureRecord {
         target: name.to_owned(),
         position: position.map(|p| p.name().to_owned()),
-        at_seconds,
+        unix_time_s: crate::session::unix_time_s(),
         stats,
     });
     session.save(session_stem)?;

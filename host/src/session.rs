@@ -17,8 +17,8 @@ pub struct CaptureRecord {
     pub target: String,
     /// The face the device detected, if the board was at one.
     pub position: Option<String>,
-    /// Seconds since the session started.
-    pub at_seconds: f64,
+    /// When the capture ended: seconds since the Unix epoch (UTC).
+    pub unix_time_s: f64,
     /// The device's statistics of the capture.
     pub stats: CaptureStats,
 }
@@ -79,6 +79,11 @@ impl Session {
     }
 }
 
+/// Now, in seconds since the Unix epoch, for capture records.
+pub fn unix_time_s() -> f64 {
+    std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0.0, |d| d.as_secs_f64())
+}
+
 /// Writes a file so that a crash leaves either the old file or the new one, never half of one:
 /// a temporary file beside it, flushed to disk, then renamed over it.
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), Error> {
@@ -117,11 +122,11 @@ mod tests {
     fn a_saved_session_reads_back_and_its_csv_reads_as_data() {
         let session = Session {
             captures: vec![
-                CaptureRecord { target: "+Z".into(), position: Some("+Z".into()), at_seconds: 1.5, stats: stats(1.0) },
+                CaptureRecord { target: "+Z".into(), position: Some("+Z".into()), unix_time_s: 1.5, stats: stats(1.0) },
                 CaptureRecord {
                     target: "-Z".into(),
                     position: Some("-Z".into()),
-                    at_seconds: 20.0,
+                    unix_time_s: 20.0,
                     stats: stats(-1.0),
                 },
             ],
