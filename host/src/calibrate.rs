@@ -183,31 +183,50 @@ fn wait_for_target<P: Port>(
     limit: Option<Duration>,
     feedback: &mut dyn Feedback,
 ) -> Result<(usize, [f64; 3]), Error> {
-    let started = Instant::now();
-    let mut still_windows = 0;
-    loop {
-        if limit.is_some_and(|l| started.elapsed() > l) {
-            let wanted: Vec<&str> = remaining.iter().map(|t| t.name.as_str()).collect();
-            return Err(Error::Refused(format!(
-                "the board never came to rest at any of {}; place it and run the command again",
-                wanted.join(", ")
-            )));
-        }
-        let (mean, still) = live_window(client)?;
+    if remaining.is_empty() {
+        return Err(Error::Refused("no position left to capture".into()));
+    }
+    let gave_up = || {
+        let wanted: Vec<&str> = remaining.iter().map(|t| t.name.as_str()).collect();
+        format!("the board never came to rest at any of {}; place it and run the command again", wanted.join(", "))
+    };
+    wait_for_rest(client, limit, feedback, gave_up, |mean, still| {
         let tilt = |t: &Target| angle_between_deg(mean, t.up);
         let Some((index, nearest)) = remaining.iter().enumerate().min_by(|a, b| tilt(a.1).total_cmp(&tilt(b.1))) else {
-            return Err(Error::Refused("no position left to capture".into()));
+            return ("no position left to capture".into(), None);
         };
         if let Some(repeat) = done.iter().find(|t| tilt(t) < t.tolerance_deg.min(tilt(nearest))) {
-            still_windows = 0;
-            feedback.live(&format!("{} is already captured: turn the board to {}", repeat.name, nearest.name));
-            continue;
+            return (format!("{} is already captured: turn the board to {}", repeat.name, nearest.name), None);
         }
         let motion = if still { "still" } else { "moving" };
-        feedback.live(&format!("{:.1} degrees from {} ({motion})", tilt(nearest), nearest.name));
-        still_windows = if still && tilt(nearest) <= nearest.tolerance_deg { still_windows + 1 } else { 0 };
-        if still_windows >= 2 {
-            return Ok((index, mean));
+        let line = format!("{:.1} degrees from {} ({motion})", tilt(nearest), nearest.name);
+        (line, (still && tilt(nearest) <= nearest.tolerance_deg).then_some((index, mean)))
+    })
+}
+
+/// Streams live windows, showing what `judge` says of each, until two windows in a row are accepted
+/// (`judge` returns a value only for a window that is still and where it should be); gives up after
+/// `limit` with the line `gave_up` makes.
+fn wait_for_rest<P: Port, R>(
+    client: &mut Client<P>,
+    limit: Option<Duration>,
+    feedback: &mut dyn Feedback,
+    gave_up: impl Fn() -> String,
+    mut judge: impl FnMut([f64; 3], bool) -> (String, Option<R>),
+) -> Result<R, Error> {
+    let started = Instant::now();
+    let mut accepted_in_a_row = 0;
+    loop {
+        if limit.is_some_and(|l| started.elapsed() > l) {
+            return Err(Error::Refused(gave_up()));
+        }
+        let (mean, still) = live_window(client)?;
+        let (line, verdict) = judge(mean, still);
+        feedback.live(&line);
+        match verdict {
+            Some(value) if accepted_in_a_row >= 1 => return Ok(value),
+            Some(_) => accepted_in_a_row += 1,
+            None => accepted_in_a_row = 0,
         }
     }
 }
@@ -356,26 +375,19 @@ fn wait_for_fresh<P: Port>(
     limit: Option<Duration>,
     feedback: &mut dyn Feedback,
 ) -> Result<[f64; 3], Error> {
-    let started = Instant::now();
-    let mut still_windows = 0;
-    loop {
-        if limit.is_some_and(|l| started.elapsed() > l) {
-            return Err(Error::Refused(
-                "the board never came to rest at a new orientation; turn it and hold it still, then run the command again".into(),
-            ));
-        }
-        let (mean, still) = live_window(client)?;
+    let gave_up = || {
+        "the board never came to rest at a new orientation; turn it and hold it still, then run the command again"
+            .to_owned()
+    };
+    wait_for_rest(client, limit, feedback, gave_up, |mean, still| {
         let fresh = used.iter().all(|u| angle_between_deg(mean, *u) >= FRESH_DEG);
-        feedback.live(match (still, fresh) {
+        let line = match (still, fresh) {
             (_, false) => "this orientation was already verified: turn the board to a new one",
             (false, true) => "moving: hold the board still",
             (true, true) => "still",
-        });
-        still_windows = if still && fresh { still_windows + 1 } else { 0 };
-        if still_windows >= 2 {
-            return Ok(mean);
-        }
-    }
+        };
+        (line.to_owned(), (still && fresh).then_some(mean))
+    })
 }
 
 /// Mean of 20 samples corrected by the chip itself.

@@ -155,16 +155,6 @@ impl SimHand {
         }
     }
 
-    fn gaussian(&mut self) -> f64 {
-        use rand_distr::{Distribution, StandardNormal};
-        <StandardNormal as Distribution<f64>>::sample(&StandardNormal, &mut self.rng)
-    }
-
-    fn random_unit(&mut self) -> [f64; 3] {
-        let v = [self.gaussian(), self.gaussian(), self.gaussian()];
-        shared::linalg::scale(v, 1.0 / shared::linalg::norm(v))
-    }
-
     fn place(&mut self, up: [f64; 3]) -> Result<(), crate::error::Error> {
         self.controls
             .send(SimCommand::Place(up.map(|v| v as f32)))
@@ -180,9 +170,9 @@ impl crate::calibrate::Hand for SimHand {
     ) -> Result<(), crate::error::Error> {
         use shared::linalg::{add, cross, norm, scale};
         // Tilt `up` by a normally distributed angle about a random axis perpendicular to it.
-        let axis = cross(target.up, self.random_unit());
+        let axis = cross(target.up, crate::synthetic::random_unit(&mut self.rng));
         let axis = scale(axis, 1.0 / norm(axis));
-        let angle = (self.placement_deg * self.gaussian()).to_radians();
+        let angle = (self.placement_deg * crate::synthetic::gaussian(&mut self.rng)).to_radians();
         let tilted = add(scale(target.up, angle.cos()), scale(cross(axis, target.up), angle.sin()));
         self.place(tilted)
     }
@@ -191,12 +181,12 @@ impl crate::calibrate::Hand for SimHand {
         // A new random orientation, well clear of those verified before (a person turns the board
         // somewhere new; the procedure insists on it).
         let clear = crate::calibrate::FRESH_DEG + 10.0;
-        let mut up = self.random_unit();
+        let mut up = crate::synthetic::random_unit(&mut self.rng);
         for _ in 0..1000 {
             if self.verified.iter().all(|v| shared::orientation::angle_between_deg(up, *v) >= clear) {
                 break;
             }
-            up = self.random_unit();
+            up = crate::synthetic::random_unit(&mut self.rng);
         }
         self.verified.push(up);
         self.place(up)

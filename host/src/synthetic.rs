@@ -15,20 +15,27 @@ use crate::data::{Dataset, Row};
 pub fn random_positions(seed: u64, positions: usize, noise_g: f64, with_references: bool) -> Dataset {
     let truth = firmware::sim::physics::TrueErrors::published_mpu6050();
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
-    let mut gaussian = move || <StandardNormal as Distribution<f64>>::sample(&StandardNormal, &mut rng);
     let rows = (0..positions)
         .map(|i| {
             let up: Vec3<f64> = match Position::ALL.get(i) {
                 Some(face) => face.specific_force_g(),
-                None => {
-                    let v = [gaussian(), gaussian(), gaussian()];
-                    linalg::scale(v, 1.0 / linalg::norm(v))
-                }
+                None => random_unit(&mut rng),
             };
             let clean = truth.reading_g(up.map(|v| v as f32)).map(f64::from);
-            let reading = [0, 1, 2].map(|k| clean[k] + noise_g * gaussian());
+            let reading = [0, 1, 2].map(|k| clean[k] + noise_g * gaussian(&mut rng));
             Row { line: i + 2, reading, reference: with_references.then_some(up), extra: Vec::new() }
         })
         .collect();
     Dataset { rows, extra_columns: Vec::new() }
+}
+
+/// A standard normal draw.
+pub fn gaussian(rng: &mut Xoshiro256PlusPlus) -> f64 {
+    <StandardNormal as Distribution<f64>>::sample(&StandardNormal, rng)
+}
+
+/// A direction drawn uniformly over the sphere (a normalised Gaussian vector).
+pub fn random_unit(rng: &mut Xoshiro256PlusPlus) -> Vec3<f64> {
+    let v = [gaussian(rng), gaussian(rng), gaussian(rng)];
+    linalg::scale(v, 1.0 / linalg::norm(v))
 }
