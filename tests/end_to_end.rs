@@ -4,16 +4,15 @@
 use std::sync::mpsc::Sender;
 use std::time::Duration;
 
-use accelcal::calibrate::{self, CalibrateOptions, Feedback, Hand, Target};
-use accelcal::client::Client;
-use accelcal::error::Error;
-use accelcal::port::{open_serial, pipe, Port};
-use accelcal::sim::{SimBoard, SimCommand, SimHand};
-use accelcal::ui::Silent;
+use accelcal::calibration;
+use accelcal::link::{open_serial, pipe, Client, LinkError, Port};
+use accelcal::procedure::{self, CalibrateOptions, Feedback, Hand, Orientation, ProcedureError, Silent, SimulatedHand};
+use accelcal::sim::{SimBoard, SimCommand};
 use firmware::sim::physics::Motion;
 use firmware::sim::SimFlash;
 use serialport::TTYPort;
 use shared::protocol::{ActiveCalibration, CalibrationSlot, DeviceError, Request, Response};
+use shared::Position;
 
 const PLACEMENT_DEG: f64 = 3.0;
 const WAIT: Option<Duration> = Some(Duration::from_secs(30));
@@ -44,15 +43,16 @@ fn options() -> CalibrateOptions {
 fn default_calibration_over_a_pty_survives_a_restart_and_verifies_below_1_mg() {
     let pty = pty_board(SimFlash::new(), 11);
     let mut client = connect_serial(&pty.path);
-    let mut hand = SimHand::new(pty.board.controls(), PLACEMENT_DEG, 11);
+    let mut hand = SimulatedHand::new(pty.board.controls(), PLACEMENT_DEG, 11);
     let mut feedback = Silent { yes: true };
-    let targets = [calibrate::faces(), calibrate::corners()].concat();
-    let session = calibrate::collect(&mut client, &mut hand, &targets, &options(), &mut feedback).unwrap();
+    let targets = procedure::targets(false);
+    let session = procedure::collect(&mut client, &mut hand, &targets, &options(), &mut feedback).unwrap();
     assert_eq!(session.captures.len(), 14);
-    let fit = calibrate::host_fit(&session).unwrap();
+    let fit = procedure::host_fit(&session).unwrap();
     assert_eq!(fit.model, shared::Model::Ortho9);
-    let calibration = calibrate::calibration_from_fit(&fit, &session, shared::AccelRange::G2).unwrap();
-    calibrate::upload_and_save(&mut client, &calibration).unwrap();
+    let calibration = calibration::from_fit(&fit, &session, shared::AccelRange::G2).unwrap();
+    client.set_calibration(calibration).unwrap();
+    client.save_calibration().unwrap();
     drop(client);
 
     // Restart the board on the same flash, behind a new pseudo-terminal.
@@ -61,13 +61,10 @@ fn default_calibration_over_a_pty_survives_a_restart_and_verifies_below_1_mg() {
     let port = open_serial(&pty.path).unwrap();
     let (mut client, info) = Client::connect(Box::new(port) as Box<dyn Port>).unwrap();
     assert_eq!(info.active, ActiveCalibration::Stored);
-    assert_eq!(
-        client.call(Request::GetCalibration(CalibrationSlot::Active)).unwrap(),
-        Response::Calibration(Some(calibration))
-    );
+    assert_eq!(client.calibration(CalibrationSlot::Active).unwrap(), Some(calibration));
 
-    let mut hand = SimHand::new(pty.board.controls(), PLACEMENT_DEG, 13);
-    let verification = calibrate::verify(&mut client, &mut hand, 12, WAIT, &mut feedback).unwrap();
+    let mut hand = SimulatedHand::new(pty.board.controls(), PLACEMENT_DEG, 13);
+    let verification = procedure::verify(&mut client, &mut hand, 12, WAIT, &mut feedback).unwrap();
     println!("default set over a pty: {verification:?}");
     assert!(verification.before_rms_mg >= 10.0, "{verification:?}");
     assert!(verification.after_rms_mg <= 1.0, "{verification:?}");
@@ -84,13 +81,14 @@ fn quick_six_position_on_the_chip_improves_the_error_too() {
         let (host, device) = pipe();
         let board = SimBoard::spawn(device, SimFlash::new(), seed);
         let (mut client, _) = Client::connect(host).unwrap();
-        let mut hand = SimHand::new(board.controls(), PLACEMENT_DEG, seed);
+        let mut hand = SimulatedHand::new(board.controls(), PLACEMENT_DEG, seed);
         let mut feedback = Silent { yes: true };
         let options = CalibrateOptions { quick: true, ..options() };
-        calibrate::collect(&mut client, &mut hand, &calibrate::faces(), &options, &mut feedback).unwrap();
-        let chip = calibrate::chip_fit(&mut client).unwrap();
-        calibrate::upload_and_save(&mut client, &chip).unwrap();
-        let verification = calibrate::verify(&mut client, &mut hand, 12, WAIT, &mut feedback).unwrap();
+        procedure::collect(&mut client, &mut hand, &procedure::faces(), &options, &mut feedback).unwrap();
+        let chip = client.fit_six_position().unwrap();
+        client.set_calibration(chip).unwrap();
+        client.save_calibration().unwrap();
+        let verification = procedure::verify(&mut client, &mut hand, 12, WAIT, &mut feedback).unwrap();
         println!(
             "quick, seed {seed}: {:.1} mg rms before, {:.1} mg after",
             verification.before_rms_mg, verification.after_rms_mg
@@ -124,11 +122,11 @@ impl Feedback for Recorder {
 struct Stubborn(Sender<SimCommand>);
 
 impl Hand for Stubborn {
-    fn present(&mut self, _: &Target, _: &mut dyn Feedback) -> Result<(), Error> {
+    fn present(&mut self, _: &Orientation, _: &mut dyn Feedback) -> Result<(), ProcedureError> {
         let _ = self.0.send(SimCommand::Place([1.0, 0.0, 0.0]));
         Ok(())
     }
-    fn fresh(&mut self, _: usize, _: &mut dyn Feedback) -> Result<(), Error> {
+    fn fresh(&mut self, _: usize, _: &mut dyn Feedback) -> Result<(), ProcedureError> {
         Ok(())
     }
 }
@@ -138,11 +136,10 @@ fn a_repeated_position_is_refused_by_name_and_the_wait_ends_with_what_is_missing
     let (host, device) = pipe();
     let board = SimBoard::spawn(device, SimFlash::new(), 31);
     let (mut client, _) = Client::connect(host).unwrap();
-    let faces = calibrate::faces();
-    let targets = [faces[0].clone(), faces[1].clone()]; // +X, -X
+    let targets = [Orientation::face(Position::PosX), Orientation::face(Position::NegX)];
     let mut recorder = Recorder::default();
     let options = CalibrateOptions { wait_limit: Some(Duration::from_secs(2)), ..options() };
-    let error = calibrate::collect(&mut client, &mut Stubborn(board.controls()), &targets, &options, &mut recorder)
+    let error = procedure::collect(&mut client, &mut Stubborn(board.controls()), &targets, &options, &mut recorder)
         .unwrap_err()
         .to_string();
     assert!(recorder.live.iter().any(|l| l == "+X is already captured: turn the board to -X"), "{:?}", recorder.live);
@@ -156,7 +153,7 @@ fn a_board_moved_during_the_capture_is_named_with_what_to_do() {
     let (mut client, _) = Client::connect(host).unwrap();
     board.controls().send(SimCommand::Move(Motion::Rotating { axis: [1.0, 0.0, 0.0], rate_dps: 3.0 })).unwrap();
     let error = client.run(Request::Capture { seconds: 5 }, |_| {}).unwrap_err();
-    assert!(matches!(error, Error::Device(DeviceError::Moved { .. })));
+    assert!(matches!(error, LinkError::Device(DeviceError::Moved { .. })));
     let line = error.to_string();
     assert!(line.starts_with("the board moved during the capture (scatter "), "{line}");
     assert!(line.ends_with("rest it against something firm and keep still"), "{line}");
@@ -184,8 +181,9 @@ fn a_port_that_vanishes_mid_capture_is_an_error_within_2_s_and_the_session_file_
     let Response::Captured { stats, .. } = client.run(Request::Capture { seconds: 5 }, |_| {}).unwrap() else {
         panic!("no capture")
     };
-    let session =
-        Session { captures: vec![CaptureRecord { target: "+Z".into(), position: None, unix_time_s: 0.0, stats }] };
+    let target = Orientation::named("+Z");
+    let record = CaptureRecord { name: "+Z".into(), target, face: None, unix_time_s: 0.0, stats };
+    let session = Session { captures: vec![record] };
     let stem = std::env::temp_dir().join(format!("accelcal-vanish-{}", std::process::id()));
     session.save(&stem).unwrap();
     let before = std::fs::read(stem.with_extension("json")).unwrap();
@@ -201,10 +199,10 @@ fn a_port_that_vanishes_mid_capture_is_an_error_within_2_s_and_the_session_file_
             }
         })
         .unwrap_err();
-    assert!(matches!(error, Error::Disconnected { .. } | Error::StoppedAnswering), "{error}");
+    assert!(matches!(error, LinkError::Disconnected { .. } | LinkError::StoppedAnswering), "{error}");
     // NOTE: a bound on a hang, not a timing measurement: the client gives up after SILENCE_LIMIT
     // (2 s) of silence at most; a dropped link is noticed at once. Generous for a loaded machine.
-    let bound = accelcal::client::SILENCE_LIMIT + Duration::from_secs(3);
+    let bound = accelcal::link::SILENCE_LIMIT + Duration::from_secs(3);
     assert!(started.elapsed() < bound, "{:?}", started.elapsed());
     assert_eq!(std::fs::read(stem.with_extension("json")).unwrap(), before, "the session file changed");
     assert_eq!(Session::load(&stem.with_extension("json")).unwrap(), session);
@@ -246,7 +244,7 @@ fn verification_waits_for_a_new_orientation_instead_of_counting_one_twice() {
     client.call(Request::SetCalibration(calibration)).unwrap();
     let mut recorder = Recorder::default();
     let error =
-        calibrate::verify(&mut client, &mut Stubborn(board.controls()), 2, Some(Duration::from_secs(2)), &mut recorder)
+        procedure::verify(&mut client, &mut Stubborn(board.controls()), 2, Some(Duration::from_secs(2)), &mut recorder)
             .unwrap_err()
             .to_string();
     assert!(recorder.live.iter().any(|l| l == "this orientation was already verified: turn the board to a new one"));

@@ -86,12 +86,8 @@ fn ortho9_errors_match_the_cramer_rao_bound_over_200_problems() {
                 sensor * random_unit(&mut rng) + offset + noise
             })
             .collect();
-        let rows = readings
-            .iter()
-            .enumerate()
-            .map(|(i, m)| Row { line: i + 2, reading: [m[0], m[1], m[2]], reference: None, extra: Vec::new() })
-            .collect();
-        let dataset = Dataset { rows, extra_columns: Vec::new() };
+        let rows = readings.iter().enumerate().map(|(i, m)| Row::new(i + 2, [m[0], m[1], m[2]], None)).collect();
+        let dataset = Dataset { rows };
         let Ok(fit) = fit::fit(&dataset, ModelChoice::Only(Model::Ortho9), &FitOptions::default()) else {
             continue; // a draw without a position near some face is refused, as it should be
         };

@@ -1,7 +1,7 @@
 //! Every model at 6, 24 and 100 positions (criterion): `cargo bench -p accelcal --bench fits`.
 
 use accelcal::fit::{self, FitOptions, ModelChoice, RICHEST_FIRST};
-use accelcal::synthetic::random_positions;
+use accelcal::sim::synthetic::random_positions;
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use shared::Model;
 

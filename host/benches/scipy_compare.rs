@@ -7,7 +7,7 @@ use std::process::{Command, Stdio};
 use std::time::Instant;
 
 use accelcal::fit::{self, FitOptions, ModelChoice};
-use accelcal::synthetic::random_positions;
+use accelcal::sim::synthetic::random_positions;
 use shared::Model;
 
 const PROBLEMS: u64 = 200;

@@ -1,18 +1,28 @@
-//! accelcal's host library: transports and the protocol client, the simulated board, sessions, the
-//! guided calibration, data files, least-squares fits and their reports.
+//! accelcal's host library, one module per concept:
 //!
-//! The `accelcal` binary only parses arguments and wires these pieces together.
+//! - [`link`]: the byte transports, the protocol client with one method per request, board discovery;
+//! - [`sim`]: the host side of the simulation (the simulated board served over a port);
+//! - [`procedure`]: the guided procedure (wanted orientations, the person's and the simulated hand,
+//!   collecting captures, verification);
+//! - [`orientation`]: the one type for a wanted orientation; [`limits`]: the host's thresholds;
+//! - [`session`]: the captures of a calibration, kept as files;
+//! - [`data`]: calibration data files;
+//! - [`fit`]: least-squares fits;
+//! - [`calibration`]: the device's calibration record on the host (its JSON form, from a fit);
+//! - [`report`]: what a fit or a calibration reports, computed once, rendered as text or JSON;
+//! - [`cli`]: the command line; the `accelcal` binary only calls [`cli::main`].
 
-pub mod calibrate;
-pub mod client;
-pub mod commands;
-pub mod connect;
+pub mod calibration;
+pub mod cli;
 pub mod data;
 pub mod error;
 pub mod fit;
-pub mod port;
+pub mod limits;
+pub mod link;
+pub mod orientation;
+pub mod procedure;
 pub mod report;
 pub mod session;
 pub mod sim;
-pub mod synthetic;
-pub mod ui;
+
+pub use error::Error;

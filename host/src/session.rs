@@ -1,26 +1,61 @@
-//! A calibration session: every capture with its statistics, position, temperature and time, kept as
-//! JSON and as the calibration data CSV of DESIGN.md. Files are written atomically.
+//! A calibration session: every capture with its statistics, wanted orientation, detected face,
+//! temperature and time, kept as JSON and as the calibration data CSV of DESIGN.md. Files are written
+//! atomically.
 
-use std::fmt::Write as _;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 use shared::protocol::CaptureStats;
+use shared::Position;
 
 use crate::data::{Dataset, Row};
-use crate::error::Error;
+use crate::orientation::Orientation;
+
+/// Why a session file could not be written or read.
+#[derive(Debug, thiserror::Error)]
+pub enum SessionError {
+    #[error("cannot write {path}: {source}; check that the directory exists and is writable")]
+    Write { path: PathBuf, source: std::io::Error },
+    #[error("cannot read {path}: {source}; give the path of a session written by calibrate or capture")]
+    Read { path: PathBuf, source: std::io::Error },
+    #[error("{path} is not a session file ({reason}); give the .json file written by calibrate or capture")]
+    NotASession { path: PathBuf, reason: String },
+}
 
 /// One capture of a session.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CaptureRecord {
-    /// What the user was asked for ("+X", "corner +X+Y+Z", "verification 2", ...).
-    pub target: String,
+    /// What the capture was called ("+X", "+X+Y+Z", or the name given to `accelcal capture`).
+    pub name: String,
+    /// The orientation the user was asked for, when there was one.
+    pub target: Option<Orientation>,
     /// The face the device detected, if the board was at one.
-    pub position: Option<String>,
+    pub face: Option<Position>,
     /// When the capture ended: seconds since the Unix epoch (UTC).
     pub unix_time_s: f64,
     /// The device's statistics of the capture.
     pub stats: CaptureStats,
+}
+
+impl CaptureRecord {
+    /// A capture that ended now.
+    pub fn now(name: &str, target: Option<Orientation>, face: Option<Position>, stats: CaptureStats) -> Self {
+        CaptureRecord { name: name.to_owned(), target, face, unix_time_s: unix_time_s(), stats }
+    }
+
+    /// The capture as a data row in g.
+    fn row(&self, line: usize) -> Row {
+        let s = &self.stats;
+        Row {
+            line,
+            reading: s.mean_g.map(f64::from),
+            reference: None,
+            count: Some(s.samples),
+            std: Some(s.std_g.map(f64::from)),
+            temp_c: Some(f64::from(s.temp_c)),
+            gyro_mean_dps: Some(s.gyro_mean_dps.map(f64::from)),
+        }
+    }
 }
 
 /// Every capture of a calibration, in order.
@@ -31,51 +66,39 @@ pub struct Session {
 }
 
 impl Session {
-    /// The captures as a data set in g, with `count`, `std_*`, `temp_c` and the gyro columns.
+    /// The captures as a data set in g, with their capture statistics.
     pub fn dataset(&self) -> Dataset {
-        let extra_columns = ["count", "std_x", "std_y", "std_z", "temp_c", "gyro_x_dps", "gyro_y_dps", "gyro_z_dps"];
-        let rows = self
-            .captures
-            .iter()
-            .enumerate()
-            .map(|(i, c)| {
-                let s = &c.stats;
-                let extra = [s.samples as f64]
-                    .into_iter()
-                    .chain(s.std_g.map(f64::from))
-                    .chain([f64::from(s.temp_c)])
-                    .chain(s.gyro_mean_dps.map(f64::from))
-                    .map(|v| v.to_string())
-                    .collect();
-                Row { line: i + 2, reading: s.mean_g.map(f64::from), reference: None, extra }
-            })
-            .collect();
-        Dataset { rows, extra_columns: extra_columns.map(String::from).to_vec() }
+        Dataset { rows: self.captures.iter().enumerate().map(|(i, c)| c.row(i + 2)).collect() }
     }
 
     /// The session as the calibration data CSV (readable by `accelcal fit`).
     pub fn csv(&self) -> String {
-        let dataset = self.dataset();
-        let mut out = format!("x,y,z,{},target\n", dataset.extra_columns.join(","));
-        for (row, capture) in dataset.rows.iter().zip(&self.captures) {
-            let [x, y, z] = row.reading;
-            let _ = writeln!(out, "{x},{y},{z},{},{}", row.extra.join(","), capture.target.replace(',', " "));
-        }
-        out
+        let names: Vec<&str> = self.captures.iter().map(|c| c.name.as_str()).collect();
+        self.dataset().to_csv("target", &names)
     }
 
     /// Writes `PATH.json` and `PATH.csv` for a path without extension.
-    pub fn save(&self, stem: &Path) -> Result<(), Error> {
-        let json = serde_json::to_string_pretty(self).map_err(|e| Error::Refused(e.to_string()))?;
+    pub fn save(&self, stem: &Path) -> Result<(), SessionError> {
+        // NOTE: serialising plain numbers, strings and options cannot fail.
+        let json = serde_json::to_string_pretty(self).unwrap_or_default();
         write_atomically(&stem.with_extension("json"), json.as_bytes())?;
         write_atomically(&stem.with_extension("csv"), self.csv().as_bytes())
     }
 
     /// Reads a session written by [`Session::save`] (the JSON file).
-    pub fn load(path: &Path) -> Result<Self, Error> {
-        let text = std::fs::read_to_string(path).map_err(|e| Error::io(format!("reading {}", path.display()), e))?;
-        serde_json::from_str(&text)
-            .map_err(|e| Error::Refused(format!("{} is not a session file: {e}", path.display())))
+    pub fn load(path: &Path) -> Result<Self, SessionError> {
+        let text = std::fs::read_to_string(path).map_err(|source| SessionError::Read { path: path.into(), source })?;
+        serde_json::from_str(&text).map_err(|e| SessionError::NotASession { path: path.into(), reason: e.to_string() })
+    }
+
+    /// The session at `PATH.json` when it exists, else an empty one.
+    pub fn load_or_new(stem: &Path) -> Result<Self, SessionError> {
+        let path = stem.with_extension("json");
+        if path.exists() {
+            Session::load(&path)
+        } else {
+            Ok(Session::default())
+        }
     }
 }
 
@@ -86,17 +109,14 @@ pub fn unix_time_s() -> f64 {
 
 /// Writes a file so that a crash leaves either the old file or the new one, never half of one:
 /// a temporary file beside it, flushed to disk, then renamed over it.
-pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), Error> {
+pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), SessionError> {
     use std::io::Write;
-    let temporary = path.with_extension(format!(
-        "{}.tmp{}",
-        path.extension().and_then(|e| e.to_str()).unwrap_or(""),
-        std::process::id()
-    ));
-    let context = || format!("writing {}", path.display());
-    let mut file = std::fs::File::create(&temporary).map_err(|e| Error::io(context(), e))?;
-    file.write_all(bytes).and_then(|()| file.sync_all()).map_err(|e| Error::io(context(), e))?;
-    std::fs::rename(&temporary, path).map_err(|e| Error::io(context(), e))
+    let extension = path.extension().and_then(|e| e.to_str()).unwrap_or("");
+    let temporary = path.with_extension(format!("{extension}.tmp{}", std::process::id()));
+    let failed = |source| SessionError::Write { path: path.into(), source };
+    let mut file = std::fs::File::create(&temporary).map_err(failed)?;
+    file.write_all(bytes).and_then(|()| file.sync_all()).map_err(failed)?;
+    std::fs::rename(&temporary, path).map_err(failed)
 }
 
 #[cfg(test)]
@@ -118,26 +138,23 @@ mod tests {
         }
     }
 
+    fn record(face: Position, z: f32, unix_time_s: f64) -> CaptureRecord {
+        let target = Some(Orientation::face(face));
+        CaptureRecord { name: face.name().into(), target, face: Some(face), unix_time_s, stats: stats(z) }
+    }
+
     #[test]
     fn a_saved_session_reads_back_and_its_csv_reads_as_data() {
-        let session = Session {
-            captures: vec![
-                CaptureRecord { target: "+Z".into(), position: Some("+Z".into()), unix_time_s: 1.5, stats: stats(1.0) },
-                CaptureRecord {
-                    target: "-Z".into(),
-                    position: Some("-Z".into()),
-                    unix_time_s: 20.0,
-                    stats: stats(-1.0),
-                },
-            ],
-        };
+        let session = Session { captures: vec![record(Position::PosZ, 1.0, 1.5), record(Position::NegZ, -1.0, 20.0)] };
         let stem = std::env::temp_dir().join(format!("accelcal-session-{}", std::process::id()));
         session.save(&stem).unwrap();
         assert_eq!(Session::load(&stem.with_extension("json")).unwrap(), session);
         let data = Dataset::from_path(&stem.with_extension("csv"), 1.0).unwrap();
         assert_eq!(data.rows.len(), 2);
         assert_eq!(data.rows[1].reading, [0.01f32 as f64, -0.02f32 as f64, -1.0]);
-        assert_eq!(data.extra_value(&data.rows[0], "count"), Some(1000.0));
-        assert_eq!(data.extra_value(&data.rows[0], "std_y"), Some(0.003f32 as f64));
+        assert_eq!(data.rows[0].count, Some(1000));
+        assert_eq!(data.rows[0].std, Some([0.003f32 as f64; 3]));
+        assert_eq!(data.rows[0].gyro_mean_dps, Some([0.5, -0.25, 0.125]));
+        assert_eq!(data, session.dataset());
     }
 }

@@ -7,12 +7,11 @@ use shared::{Model, Position, PositionReadings, SixPositionError};
 
 use super::{full_parameters, Fit, FitError, FitOptions};
 use crate::data::{Dataset, Row};
+use crate::limits::REFERENCE_FACE_TOLERANCE_DEG;
 
 /// Known-orientation rows needed to determine 12 parameters (each row gives three equations, but the
 /// four columns of [a 1] must be independent).
 const MIN_REFERENCES: usize = 4;
-/// Tilt in degrees within which a given reference counts as exactly one of the six faces.
-const REFERENCE_FACE_TOLERANCE_DEG: f32 = 0.5;
 
 /// A reading paired with its known specific force.
 #[derive(Debug, Clone, Copy)]
@@ -83,7 +82,7 @@ pub(super) fn six_position(dataset: &Dataset, options: &FitOptions) -> Result<Fi
 /// The face a row was taken at: from its known orientation when it has one, else from its reading.
 fn face_of(row: &Row, tolerance_deg: f64) -> Option<Position> {
     let (vector, tolerance) = match row.reference {
-        Some(reference) => (reference, REFERENCE_FACE_TOLERANCE_DEG),
+        Some(reference) => (reference, REFERENCE_FACE_TOLERANCE_DEG as f32),
         None => (row.reading, tolerance_deg as f32),
     };
     Position::detect(vector.map(|v| v as f32), tolerance).ok().map(|(position, _)| position)
@@ -201,10 +200,10 @@ mod tests {
             .enumerate()
             .map(|(i, &a)| {
                 let reading = linalg::add(linalg::mul_vec(&X, a), Y);
-                Row { line: i + 2, reading, reference: Some(a), extra: Vec::new() }
+                Row::new(i + 2, reading, Some(a))
             })
             .collect();
-        Dataset { rows, extra_columns: Vec::new() }
+        Dataset { rows }
     }
 
     fn options() -> FitOptions {

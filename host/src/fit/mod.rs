@@ -82,7 +82,7 @@ impl Default for FitOptions {
     fn default() -> Self {
         FitOptions {
             g: 1.0,
-            face_tolerance_deg: f64::from(shared::orientation::DEFAULT_FACE_TOLERANCE_DEG),
+            face_tolerance_deg: crate::limits::FACE_TOLERANCE_DEG,
             training_rows: None,
             reference_rows: None,
         }
@@ -111,7 +111,7 @@ impl FitOptions {
                 row
             })
             .collect();
-        Ok(Dataset { rows, extra_columns: dataset.extra_columns.clone() })
+        Ok(Dataset { rows })
     }
 }
 
@@ -162,9 +162,9 @@ pub enum FitError {
     )]
     ReferencesInOnePlane { model: &'static str, axis: char },
     #[error(
-        "{model} cannot be determined: no position has the {axis} axis pointing {} (within 73 degrees); \
+        "{model} cannot be determined: no position has the {axis} axis pointing {} (within {} degrees); \
          add one with {}{axis} up",
-        if *up { "up" } else { "down" }, if *up { "+" } else { "-" }
+        if *up { "up" } else { "down" }, crate::limits::axis_spread_deg(), if *up { "+" } else { "-" }
     )]
     NoSpread { model: &'static str, axis: char, up: bool },
     #[error("{model} cannot be determined from these positions: {parameter} is not observable; add positions spread over the sphere")]

@@ -8,11 +8,9 @@ use super::nonlinear::{solve, Normalization, Observation, Problem, Solution};
 use super::shape::Shape;
 use super::{statistics, Fit, FitError, FitOptions, Parameter};
 use crate::data::Dataset;
+use crate::limits::{AXIS_SPREAD, INDEPENDENT_REFERENCES_DEG};
 use levenberg_marquardt::LeastSquaresProblem;
 
-/// Smallest component, relative to |m|, for a reading to count as pointing an axis up or down
-/// (cos 73 degrees).
-const AXIS_SPREAD: f64 = 0.3;
 /// Below this ratio of smallest to largest singular value the parameters are not observable.
 /// NOTE: the ratio comes from eigenvalues of J^T J, whose rounding floor is 1e-16 relative: 1e-7 in
 /// singular values stays clear of it.
@@ -80,7 +78,8 @@ fn check_positions(training: &Dataset, model: Model, shape: Shape) -> Result<(),
     let name = model.name();
     let references: Vec<[f64; 3]> = training.rows.iter().filter_map(|r| r.reference).collect();
     if model == Model::ReferenceNorm12 {
-        let independent = references.iter().any(|a| references.iter().any(|b| angle_between(a, b) > 10.0));
+        let independent =
+            references.iter().any(|a| references.iter().any(|b| angle_between(a, b) > INDEPENDENT_REFERENCES_DEG));
         if !independent {
             let found = references.len();
             return Err(FitError::TooFewReferences { model: name, needed: 2, found: found.min(1) });

@@ -8,7 +8,7 @@ use statrs::distribution::{ChiSquared, ContinuousCDF};
 
 use super::nonlinear::{Normalization, Observation, Solution};
 use super::shape::Shape;
-use crate::data::Dataset;
+use crate::data::{Dataset, Row};
 
 /// Below this probability the residuals are judged larger than the noise explains.
 const NOISE_TEST_LEVEL: f64 = 1e-3;
@@ -41,33 +41,42 @@ pub(super) fn noise_test(
     let mut chi_square = 0.0;
     let mut index = 0;
     for (row, observation) in training.rows.iter().zip(observations) {
-        let count = training.extra_value(row, "count")?;
-        let sigma_mean = Vector3::from_fn(|k, _| {
-            let std = training.extra_value(row, ["std_x", "std_y", "std_z"][k]).unwrap_or(f64::NAN);
-            std / count.sqrt() / normalization.radii[k]
-        });
-        if !sigma_mean.iter().all(|s| s.is_finite() && *s > 0.0) || count < 1.0 {
-            return None;
-        }
-        let covariance = matrix * Matrix3::from_diagonal(&sigma_mean.component_mul(&sigma_mean)) * matrix.transpose();
-        match observation.reference {
-            Some(_) => {
-                for k in 0..3 {
-                    chi_square += solution.residuals[index + k].powi(2) / covariance[(k, k)];
-                }
-                index += 3;
-            }
-            None => {
-                let a = matrix * (observation.reading - offset);
-                let direction = a / a.norm();
-                chi_square += solution.residuals[index].powi(2) / (direction.transpose() * covariance * direction)[0];
-                index += 1;
-            }
-        }
+        let sigma = normalised_sigma_of_mean(row, normalization)?;
+        let covariance = matrix * Matrix3::from_diagonal(&sigma.component_mul(&sigma)) * matrix.transpose();
+        let residuals = &solution.residuals.as_slice()[index..];
+        let (term, used) = chi_square_term(observation, residuals, &matrix, &offset, &covariance);
+        chi_square += term;
+        index += used;
     }
     let degrees_of_freedom = solution.residuals.len().checked_sub(solution.params.len()).filter(|&d| d > 0)?;
     let p_value = ChiSquared::new(degrees_of_freedom as f64).ok()?.sf(chi_square);
     Some(NoiseTest { chi_square, degrees_of_freedom, p_value, passed: p_value >= NOISE_TEST_LEVEL })
+}
+
+/// The standard deviation of a row's mean, per axis, in the solver's units: std / sqrt(count) / r.
+fn normalised_sigma_of_mean(row: &Row, normalization: &Normalization) -> Option<Vector3<f64>> {
+    let (count, std) = (f64::from(row.count?), row.std?);
+    let sigma = Vector3::from_fn(|k, _| std[k] / count.sqrt() / normalization.radii[k]);
+    (count >= 1.0 && sigma.iter().all(|s| s.is_finite() && *s > 0.0)).then_some(sigma)
+}
+
+/// One row's share of chi-square and the number of residuals it has: three for a reference row,
+/// one (along the corrected reading) for a norm row.
+fn chi_square_term(
+    observation: &Observation,
+    residuals: &[f64],
+    matrix: &Matrix3<f64>,
+    offset: &Vector3<f64>,
+    covariance: &Matrix3<f64>,
+) -> (f64, usize) {
+    match observation.reference {
+        Some(_) => ((0..3).map(|k| residuals[k].powi(2) / covariance[(k, k)]).sum(), 3),
+        None => {
+            let a = matrix * (observation.reading - offset);
+            let direction = a / a.norm();
+            (residuals[0].powi(2) / (direction.transpose() * covariance * direction)[0], 1)
+        }
+    }
 }
 
 /// The rotation, in degrees, between a 12-parameter fit (which knows the orientations) and a

@@ -1,10 +1,10 @@
-//! Feedback for a person at a terminal (progress bars, live line, questions) or none at all.
+//! Feedback for a person at a terminal: progress bars, a live line, and questions.
 
 use std::io::{BufRead, IsTerminal, Write};
 
 use indicatif::{ProgressBar, ProgressStyle};
 
-use crate::calibrate::Feedback;
+use crate::procedure::{Feedback, Silent};
 
 /// Progress bars and questions on stderr / stdin.
 pub struct Terminal {
@@ -22,6 +22,16 @@ impl Terminal {
             ProgressStyle::with_template("{spinner} {msg}").unwrap_or_else(|_| ProgressStyle::default_spinner()),
         );
         Terminal { assume_yes, bar: None, live }
+    }
+
+    fn ask(&mut self, question: &str) -> bool {
+        self.live.suspend(|| {
+            eprint!("{question} [y/N] ");
+            let _ = std::io::stderr().flush();
+            let mut answer = String::new();
+            let _ = std::io::stdin().lock().read_line(&mut answer);
+            matches!(answer.trim(), "y" | "Y" | "yes")
+        })
     }
 }
 
@@ -61,13 +71,7 @@ impl Feedback for Terminal {
             self.say(&format!("{question} no (not a terminal; pass --yes to accept)"));
             return false;
         }
-        self.live.suspend(|| {
-            eprint!("{question} [y/N] ");
-            let _ = std::io::stderr().flush();
-            let mut answer = String::new();
-            let _ = std::io::stdin().lock().read_line(&mut answer);
-            matches!(answer.trim(), "y" | "Y" | "yes")
-        })
+        self.ask(question)
     }
 }
 
@@ -77,18 +81,11 @@ impl Drop for Terminal {
     }
 }
 
-/// No output: for `--json` and tests. Questions are answered with `yes`.
-pub struct Silent {
-    /// The answer to every question.
-    pub yes: bool,
-}
-
-impl Feedback for Silent {
-    fn say(&mut self, _: &str) {}
-    fn live(&mut self, _: &str) {}
-    fn progress(&mut self, _: u32, _: u32) {}
-    fn progress_done(&mut self) {}
-    fn confirm(&mut self, _: &str) -> bool {
-        self.yes
+/// Feedback for a command: none with `--json`, else the terminal.
+pub(super) fn feedback(json: bool, yes: bool) -> Box<dyn Feedback> {
+    if json {
+        Box::new(Silent { yes })
+    } else {
+        Box::new(Terminal::new(yes))
     }
 }

@@ -1,12 +1,12 @@
 //! Synthetic calibration problems from the simulated sensor's true error model: for benchmarks and
 //! for checks that need many problems with a known answer.
 
-use rand_distr::{Distribution, StandardNormal};
 use rand_xoshiro::rand_core::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
-use shared::linalg::{self, Vec3};
+use shared::linalg::Vec3;
 use shared::Position;
 
+use super::random::{gaussian, random_unit};
 use crate::data::{Dataset, Row};
 
 /// `positions` averaged readings in g of a sensor with the published MPU-6050 errors, at random
@@ -23,19 +23,8 @@ pub fn random_positions(seed: u64, positions: usize, noise_g: f64, with_referenc
             };
             let clean = truth.reading_g(up.map(|v| v as f32)).map(f64::from);
             let reading = [0, 1, 2].map(|k| clean[k] + noise_g * gaussian(&mut rng));
-            Row { line: i + 2, reading, reference: with_references.then_some(up), extra: Vec::new() }
+            Row::new(i + 2, reading, with_references.then_some(up))
         })
         .collect();
-    Dataset { rows, extra_columns: Vec::new() }
-}
-
-/// A standard normal draw.
-pub fn gaussian(rng: &mut Xoshiro256PlusPlus) -> f64 {
-    <StandardNormal as Distribution<f64>>::sample(&StandardNormal, rng)
-}
-
-/// A direction drawn uniformly over the sphere (a normalised Gaussian vector).
-pub fn random_unit(rng: &mut Xoshiro256PlusPlus) -> Vec3<f64> {
-    let v = [gaussian(rng), gaussian(rng), gaussian(rng)];
-    linalg::scale(v, 1.0 / linalg::norm(v))
+    Dataset { rows }
 }

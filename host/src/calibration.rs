@@ -1,0 +1,173 @@
+//! The device's calibration record on the host, in one place: its JSON form (which `download`,
+//! `fit --json` and `calibrate --json` write and `upload` reads), the record made from a host fit,
+//! and its one-line description. No other host code reads or writes `shared::Calibration` fields.
+
+use serde::{Deserialize, Serialize};
+use shared::linalg;
+use shared::{AccelRange, Calibration, CalibrationError, Model};
+
+use crate::fit::{self, Fit};
+use crate::link::calibration_reason;
+use crate::session::Session;
+
+/// A calibration as JSON, under the convention a = matrix (m - offset).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CalibrationJson {
+    /// The model that made it (`six-position`, `ortho9`, ...).
+    pub model: String,
+    /// M, 3 rows, dimensionless.
+    pub matrix: [[f64; 3]; 3],
+    /// o, in g for a device calibration, in the data file's unit for a fit.
+    pub offset: [f64; 3],
+    /// |gravity| in the unit of `offset`; absent means g (a device calibration).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub g: Option<f64>,
+    /// Gyro bias in deg/s; absent for a fit of accelerometer data alone.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gyro_bias_dps: Option<[f64; 3]>,
+    /// The accelerometer range it belongs to, full scale in g.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub range_g: Option<u8>,
+    /// Mean sensor temperature during the captures, in degC.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub temp_c: Option<f64>,
+    /// RMS fit residual, in mg.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub residual_mg: Option<f64>,
+}
+
+/// Why a calibration was refused before it reached the device.
+#[derive(Debug, thiserror::Error)]
+pub enum CalibrationRecordError {
+    #[error("not a JSON calibration: {reason}; give the output of download, fit --json or calibrate --json")]
+    NotJson { reason: String },
+    #[error("no calibration in the file ({reason}); give the output of download, fit --json or calibrate --json")]
+    NotACalibration { reason: String },
+    #[error("this fit is not in g: fit data in g with --g 1 before uploading")]
+    NotInG { g: f64 },
+    #[error("refused before upload: {}", calibration_reason(.0))]
+    Implausible(CalibrationError),
+    #[error("the {model} fit is implausible: {}; capture the positions again, holding the board still", calibration_reason(.reason))]
+    ImplausibleFit { model: &'static str, reason: CalibrationError },
+}
+
+impl CalibrationJson {
+    /// The JSON form of a device calibration (in g). NOTE: every f32 is exactly an f64, so the
+    /// calibration read back is bit for bit the one written.
+    pub fn from_device(calibration: &Calibration) -> Self {
+        CalibrationJson {
+            model: calibration.model.name().to_owned(),
+            matrix: calibration.matrix.map(|row| row.map(f64::from)),
+            offset: calibration.offset_g.map(f64::from),
+            g: None,
+            gyro_bias_dps: Some(calibration.gyro_bias_dps.map(f64::from)),
+            range_g: Some(calibration.range.full_scale_g()),
+            temp_c: Some(f64::from(calibration.temp_c)),
+            residual_mg: Some(f64::from(calibration.residual_mg)),
+        }
+    }
+
+    /// The JSON form of a fit, in the data file's unit with |gravity| `g`.
+    pub fn from_fit(fit: &Fit, g: f64) -> Self {
+        CalibrationJson {
+            model: fit.model.name().to_owned(),
+            matrix: fit.matrix,
+            offset: fit.offset,
+            g: Some(g),
+            gyro_bias_dps: None,
+            range_g: None,
+            temp_c: None,
+            residual_mg: None,
+        }
+    }
+
+    /// Reads what `download`, `fit --json` (on data in g) or `calibrate --json` wrote.
+    pub fn from_text(text: &str) -> Result<Self, CalibrationRecordError> {
+        let value: serde_json::Value =
+            serde_json::from_str(text).map_err(|e| CalibrationRecordError::NotJson { reason: e.to_string() })?;
+        // `calibrate --json` holds the calibration under "calibration"; the others are one.
+        let record = value.get("calibration").cloned().unwrap_or(value);
+        serde_json::from_value(record).map_err(|e| CalibrationRecordError::NotACalibration { reason: e.to_string() })
+    }
+
+    /// The device calibration, for the device's `range` unless the JSON names one; refuses a fit
+    /// not in g and an implausible calibration.
+    pub fn to_device(&self, range: AccelRange) -> Result<Calibration, CalibrationRecordError> {
+        if let Some(g) = self.g.filter(|g| (g - 1.0).abs() > 1e-12) {
+            return Err(CalibrationRecordError::NotInG { g });
+        }
+        let calibration = Calibration {
+            matrix: self.matrix.map(|row| row.map(|v| v as f32)),
+            offset_g: self.offset.map(|v| v as f32),
+            gyro_bias_dps: self.gyro_bias_dps.unwrap_or_default().map(|v| v as f32),
+            model: model_named(&self.model),
+            range: self.range_g.and_then(AccelRange::from_full_scale_g).unwrap_or(range),
+            temp_c: self.temp_c.unwrap_or(0.0) as f32,
+            residual_mg: self.residual_mg.unwrap_or(0.0) as f32,
+        };
+        calibration.validate().map_err(CalibrationRecordError::Implausible)?;
+        Ok(calibration)
+    }
+}
+
+/// The model of a name; a name this host does not know counts as a full 12-parameter fit.
+fn model_named(name: &str) -> Model {
+    fit::RICHEST_FIRST.into_iter().find(|m| m.name() == name).unwrap_or(Model::Linear12)
+}
+
+/// The device calibration from a host fit over a session's captures (in g): the fit's M and o, the
+/// captures' mean gyro reading as the gyro bias, their mean temperature, and the fit's RMS residual.
+pub fn from_fit(fit: &Fit, session: &Session, range: AccelRange) -> Result<Calibration, CalibrationRecordError> {
+    let n = session.captures.len().max(1) as f32;
+    let stats = session.captures.iter().map(|c| &c.stats);
+    let gyro_bias = stats.clone().fold([0.0f32; 3], |sum, s| linalg::add(sum, linalg::scale(s.gyro_mean_dps, 1.0 / n)));
+    let temp_c = stats.map(|s| s.temp_c).sum::<f32>() / n;
+    let evaluation = fit::evaluate(&session.dataset(), &fit.matrix, &fit.offset, 1.0, &fit.lines_used);
+    let residual_mg = evaluation.rms_norm_error(true).unwrap_or(0.0) * 1000.0;
+    let calibration = Calibration {
+        matrix: fit.matrix.map(|row| row.map(|v| v as f32)),
+        offset_g: fit.offset.map(|v| v as f32),
+        gyro_bias_dps: gyro_bias,
+        model: fit.model,
+        range,
+        temp_c,
+        residual_mg: residual_mg as f32,
+    };
+    let implausible = |reason| CalibrationRecordError::ImplausibleFit { model: fit.model.name(), reason };
+    calibration.validate().map_err(implausible)?;
+    Ok(calibration)
+}
+
+/// One line: model, scales, offset in mg and residual.
+pub fn describe(calibration: &Calibration) -> String {
+    let m = calibration.matrix;
+    let o = calibration.offset_g.map(|v| v * 1000.0);
+    format!(
+        "{}: scale {:.5} {:.5} {:.5}, offset {:+.2} {:+.2} {:+.2} mg, residual {:.3} mg",
+        calibration.model.name(),
+        m[0][0],
+        m[1][1],
+        m[2][2],
+        o[0],
+        o[1],
+        o[2],
+        calibration.residual_mg
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_device_calibration_survives_its_json_form_bit_for_bit() {
+        let mut calibration = Calibration::identity(AccelRange::G4);
+        calibration.matrix[0][1] = 0.0023;
+        calibration.offset_g = [0.012, -0.034, 0.056];
+        calibration.temp_c = 27.5;
+        let json = CalibrationJson::from_device(&calibration);
+        assert_eq!(json.matrix[0][1], f64::from(0.0023f32));
+        let text = serde_json::to_string(&json).unwrap();
+        assert_eq!(CalibrationJson::from_text(&text).unwrap().to_device(AccelRange::G2).unwrap(), calibration);
+    }
+}

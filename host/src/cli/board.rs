@@ -1,0 +1,107 @@
+//! The board itself: `ports`, `info`, `stream`.
+
+use std::io::Write;
+
+use serde::Serialize;
+use shared::protocol::{CalibrationSlot, DeviceInfo, Sample, SensorIdentity, StreamKind};
+use shared::Calibration;
+
+use super::args::{Device, StreamArgs};
+use crate::calibration::{describe, CalibrationJson};
+use crate::error::Error;
+use crate::link::{explain, serial_ports, StreamRequest};
+
+/// `accelcal ports`: serial ports, ours marked.
+pub(super) fn ports() -> Result<(), Error> {
+    let ports = serial_ports()?;
+    if ports.is_empty() {
+        println!("no serial ports found; is the board plugged in?");
+    }
+    for port in ports {
+        println!("{}{}", port.path, if port.is_accelcal { "  <- accelcal board" } else { "" });
+    }
+    Ok(())
+}
+
+/// What `accelcal info --json` prints.
+#[derive(Serialize)]
+struct InfoJson {
+    protocol_version: u8,
+    firmware: String,
+    sensor: SensorJson,
+    range_g: u8,
+    sample_rate_hz: u16,
+    active: Option<CalibrationJson>,
+    stored: Option<CalibrationJson>,
+}
+
+/// The sensor the board found, or why it found none.
+#[derive(Serialize)]
+#[serde(untagged)]
+enum SensorJson {
+    Found(SensorIdentity),
+    Missing { error: String },
+}
+
+/// `accelcal info [--json]`.
+pub(super) fn info(device: &Device, json: bool) -> Result<(), Error> {
+    let mut opened = device.open()?;
+    let client = &mut opened.connection.client;
+    let active = client.calibration(CalibrationSlot::Active)?;
+    let stored = client.calibration(CalibrationSlot::Stored)?;
+    let info = &opened.connection.info;
+    if json {
+        let output = info_json(info, active.as_ref(), stored.as_ref());
+        println!("{}", serde_json::to_string_pretty(&output).unwrap_or_default());
+    } else {
+        print_info(info, active.as_ref(), stored.as_ref());
+    }
+    Ok(())
+}
+
+fn info_json(info: &DeviceInfo, active: Option<&Calibration>, stored: Option<&Calibration>) -> InfoJson {
+    InfoJson {
+        protocol_version: info.protocol_version,
+        firmware: firmware_version(info),
+        sensor: info.sensor.map_or_else(|e| SensorJson::Missing { error: explain(&e) }, SensorJson::Found),
+        range_g: info.config.range.full_scale_g(),
+        sample_rate_hz: info.config.sample_rate_hz,
+        active: active.map(CalibrationJson::from_device),
+        stored: stored.map(CalibrationJson::from_device),
+    }
+}
+
+fn print_info(info: &DeviceInfo, active: Option<&Calibration>, stored: Option<&Calibration>) {
+    println!("firmware {}, protocol {}", firmware_version(info), info.protocol_version);
+    match info.sensor {
+        Ok(s) if s.genuine => println!("sensor: MPU-6050 at 0x{:02x}", s.address),
+        Ok(s) => println!("sensor: MPU-6050-compatible clone (WHO_AM_I 0x{:02x}) at 0x{:02x}", s.who_am_i, s.address),
+        Err(e) => println!("sensor: {}", explain(&e)),
+    }
+    println!("range +-{} g, {} Hz", info.config.range.full_scale_g(), info.config.sample_rate_hz);
+    println!("active calibration: {}", active.map_or("none".to_owned(), describe));
+    println!("stored calibration: {}", stored.map_or("none".to_owned(), describe));
+}
+
+fn firmware_version(info: &DeviceInfo) -> String {
+    let f = info.firmware;
+    format!("{}.{}.{}", f.major, f.minor, f.patch)
+}
+
+/// `accelcal stream`: samples as CSV on stdout.
+pub(super) fn stream(args: &StreamArgs) -> Result<(), Error> {
+    let mut opened = args.device.open()?;
+    let kind = if args.calibrated { StreamKind::Calibrated } else { StreamKind::Raw };
+    let request = StreamRequest { kind, rate_hz: args.rate, count: args.count };
+    let stdout = std::io::stdout();
+    let mut out = stdout.lock();
+    let _ = writeln!(out, "index,ax_g,ay_g,az_g,gx_dps,gy_dps,gz_dps,temp_c");
+    opened.connection.client.stream(request, |sample| write_sample(&mut out, sample))?;
+    Ok(())
+}
+
+fn write_sample(out: &mut impl Write, s: &Sample) {
+    let [ax, ay, az] = s.accel_g;
+    let [gx, gy, gz] = s.gyro_dps;
+    let _ = writeln!(out, "{},{ax:.6},{ay:.6},{az:.6},{gx:.4},{gy:.4},{gz:.4},{:.2}", s.index, s.temp_c);
+}

@@ -1,0 +1,46 @@
+//! Opening the device a command names: a serial port, or a simulated board in this process (with
+//! the tool's own hand on it).
+
+use std::time::Duration;
+
+use super::args::Device;
+use crate::error::Error;
+use crate::link::{open_port, Connection};
+use crate::procedure::{Hand, PersonHand, SimulatedHand};
+use crate::sim::SimBoard;
+
+/// How long the tool waits for the simulated board (which it turns itself) to settle.
+const SIM_WAIT_LIMIT: Duration = Duration::from_secs(60);
+
+/// An open device, and the simulated board behind it when there is one.
+pub(super) struct Opened {
+    /// The session with the device.
+    pub connection: Connection,
+    /// The in-process simulated board, for `--sim`.
+    pub sim: Option<SimBoard>,
+}
+
+impl Device {
+    /// Opens the device and says hello.
+    pub(super) fn open(&self) -> Result<Opened, Error> {
+        match (&self.port, self.sim) {
+            (Some(path), _) => Ok(Opened { connection: open_port(path)?, sim: None }),
+            (None, true) => {
+                let (connection, board) = SimBoard::in_process(self.seed)?;
+                Ok(Opened { connection, sim: Some(board) })
+            }
+            (None, false) => Err(Error::WhichDevice),
+        }
+    }
+}
+
+impl Opened {
+    /// Who turns the board, and how long to wait for it: a person (as long as they take), or the
+    /// tool's own hand on the simulated board, off by `placement_deg`, seeded by `seed`.
+    pub(super) fn hand(&self, placement_deg: f64, seed: u64) -> (Box<dyn Hand>, Option<Duration>) {
+        match &self.sim {
+            Some(board) => (Box::new(SimulatedHand::new(board.controls(), placement_deg, seed)), Some(SIM_WAIT_LIMIT)),
+            None => (Box::new(PersonHand), None),
+        }
+    }
+}

@@ -1,0 +1,49 @@
+//! The command line: arguments ([`args`]), and one file per command group: offline fits
+//! ([`fit`]), the guided procedure ([`procedure`]), moving calibrations to and from the board
+//! ([`transfer`]), the board itself ([`board`]); [`device`] opens the board each command names.
+
+pub mod args;
+mod board;
+mod device;
+mod fit;
+mod procedure;
+mod terminal;
+mod transfer;
+
+use std::process::ExitCode;
+
+use clap::Parser;
+
+use crate::error::Error;
+use args::{Cli, Command};
+
+pub use terminal::Terminal;
+
+/// Runs `accelcal` with the process's arguments: 0 on success, else one line naming the cause.
+pub fn main() -> ExitCode {
+    match run(Cli::parse()) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(error) => {
+            eprintln!("accelcal: {error}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// Runs one command.
+pub fn run(cli: Cli) -> Result<(), Error> {
+    match cli.command {
+        Command::Fit(args) => fit::fit(&args),
+        Command::Ports => board::ports(),
+        Command::Info { device, json } => board::info(&device, json),
+        Command::Calibrate(args) => procedure::calibrate(&args),
+        Command::Capture(args) => procedure::capture(&args),
+        Command::Verify { device, positions } => procedure::verify(&device, positions),
+        Command::Upload { device, file, save } => transfer::upload(&device, &file, save),
+        Command::Save { device } => transfer::save(&device),
+        Command::Download { device, stored } => transfer::download(&device, stored),
+        Command::Erase { device } => transfer::erase(&device),
+        Command::Stream(args) => board::stream(&args),
+        Command::Sim { pty: _, seed } => Ok(crate::sim::serve_pty(seed)?),
+    }
+}

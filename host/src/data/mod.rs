@@ -1,0 +1,78 @@
+//! The calibration data file of DESIGN.md: a CSV with a header row, one averaged reading per row.
+//!
+//! Columns: `x,y,z` the averaged reading in any unit; optional `ref_x,ref_y,ref_z` the known specific
+//! force in output units (cells empty where the orientation is unknown); optional capture statistics
+//! `count`, `std_x,std_y,std_z` (in the reading's unit), `temp_c` and `gyro_x_dps,gyro_y_dps,gyro_z_dps`;
+//! any other columns are accepted and ignored. The published data sets' own headers are accepted too:
+//! `mx,my,mz` or `raw_x,raw_y,raw_z` for the reading, and `incl_deg,toolface_deg` (data/README.md) for
+//! a known orientation.
+
+mod columns;
+mod read;
+mod rows;
+mod write;
+
+pub use rows::{parse_row_list, RowList};
+
+/// One averaged reading and what the file says about it.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Row {
+    /// Line number in the file (the header is line 1).
+    pub line: usize,
+    /// Averaged reading, in the file's unit.
+    pub reading: [f64; 3],
+    /// Known specific force in output units, when the orientation is known.
+    pub reference: Option<[f64; 3]>,
+    /// Samples averaged into the reading (`count`).
+    pub count: Option<u32>,
+    /// Standard deviation of the samples per axis, in the reading's unit (`std_x,std_y,std_z`).
+    pub std: Option<[f64; 3]>,
+    /// Mean die temperature during the capture, in degC (`temp_c`).
+    pub temp_c: Option<f64>,
+    /// Mean gyro reading per axis, in deg/s (`gyro_x_dps,gyro_y_dps,gyro_z_dps`).
+    pub gyro_mean_dps: Option<[f64; 3]>,
+}
+
+impl Row {
+    /// A row with a reading and, when known, its reference; no capture statistics.
+    pub fn new(line: usize, reading: [f64; 3], reference: Option<[f64; 3]>) -> Self {
+        Row { line, reading, reference, ..Row::default() }
+    }
+}
+
+/// A whole calibration data file.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Dataset {
+    /// The rows, in file order.
+    pub rows: Vec<Row>,
+}
+
+impl Dataset {
+    /// The rows whose orientation is known.
+    pub fn references(&self) -> impl Iterator<Item = (&Row, [f64; 3])> {
+        self.rows.iter().filter_map(|row| row.reference.map(|r| (row, r)))
+    }
+}
+
+/// Why a data file was refused; every variant names the line.
+#[derive(Debug, thiserror::Error)]
+pub enum DataError {
+    #[error("cannot read {path}: {source}")]
+    Io { path: String, source: std::io::Error },
+    #[error("line 1: no reading columns: expected x,y,z (or mx,my,mz, or raw_x,raw_y,raw_z); the header has {found}")]
+    MissingColumns { found: String },
+    #[error("line 1: the header has {found} but not all of {expected}; give all of them or none")]
+    PartialColumns { found: String, expected: String },
+    #[error("line {line}, column {column}: {value:?} is not a number")]
+    NotANumber { line: usize, column: String, value: String },
+    #[error("line {line}, column {column}: {value:?} is not a sample count")]
+    NotACount { line: usize, column: String, value: String },
+    #[error("line {line}, column {column}: the reading is empty")]
+    EmptyReading { line: usize, column: String },
+    #[error("line {line}: the {group} is only partly given; fill all of its cells or leave them all empty")]
+    PartlyGiven { line: usize, group: &'static str },
+    #[error("line {line}: {reason}")]
+    BadRow { line: usize, reason: String },
+    #[error("the file has a header but no data rows; add one averaged reading per line")]
+    NoRows,
+}

@@ -1,0 +1,67 @@
+//! The host's thresholds, in one table, each with the reason for its value. Messages quote these
+//! constants; nothing else restates them. The plausibility limits of a calibration are the system's
+//! one table in `shared` ([`calibration`]), which the chip applies too.
+
+pub use shared::calibration::limits as calibration;
+
+/// Largest accelerometer scatter (standard deviation on any axis), in g, of a board that counts as
+/// still.
+///
+/// NOTE: the device's own capture check (`firmware::capture::MAX_STILL_ACCEL_STD_G`): the live
+/// check before a capture accepts exactly what the capture will accept, so a capture started on a
+/// still board is not refused for moving.
+pub const STILL_ACCEL_STD_G: f64 = firmware::capture::MAX_STILL_ACCEL_STD_G as f64;
+
+/// Largest tilt, in degrees, of a reading from a face for it to count as that face: while the
+/// procedure waits for a face, and when a fit detects the faces in a data file.
+///
+/// NOTE: the system's face tolerance (`shared::orientation::DEFAULT_FACE_TOLERANCE_DEG`, whose note
+/// gives the reason: the zero-g offset alone tilts a reading by up to 8.5 degrees).
+pub const FACE_TOLERANCE_DEG: f64 = shared::orientation::DEFAULT_FACE_TOLERANCE_DEG as f64;
+
+/// Largest tilt, in degrees, from a corner (three axes equally up) for the board to count as there.
+///
+/// NOTE: a corner lies 54.7 degrees from each of its three faces: with the face tolerance this
+/// keeps the regions apart (20 + 20 < 54.7), so no reading counts as both a face and a corner.
+pub const CORNER_TOLERANCE_DEG: f64 = 20.0;
+
+/// Tilt, in degrees, within which a *given* reference counts as exactly one of the six faces.
+///
+/// NOTE: a reference is a known direction, not a measurement; only rounding in a file moves it.
+pub const REFERENCE_FACE_TOLERANCE_DEG: f64 = 0.5;
+
+/// Smallest angle, in degrees, between two verification orientations.
+///
+/// NOTE: a hand resting the board "in the same place" again lands within a few degrees of it;
+/// 20 degrees is well clear of that, so two verifications this far apart are two orientations.
+pub const FRESH_DEG: f64 = 20.0;
+
+/// Smallest component of a reading, relative to |m|, for it to count as pointing an axis up or
+/// down when the orientation-free fits check the spread of the positions.
+///
+/// NOTE: cos 72.5 degrees: a position within 72.5 degrees of an axis constrains that axis's scale
+/// and offset usefully; beyond it the axis reads less than 0.3 g and barely moves.
+pub const AXIS_SPREAD: f64 = 0.3;
+
+/// Smallest angle, in degrees, between two known orientations for them to count as independent.
+///
+/// NOTE: `reference-norm12` needs two directions to fix the rotation; two references closer than
+/// this are one direction held twice.
+pub const INDEPENDENT_REFERENCES_DEG: f64 = 10.0;
+
+/// [`AXIS_SPREAD`] as the largest angle from an axis, in whole degrees, for messages.
+pub fn axis_spread_deg() -> f64 {
+    AXIS_SPREAD.acos().to_degrees().round()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_face_and_corner_regions_do_not_overlap() {
+        let corner_to_face_deg = (1.0 / 3f64.sqrt()).acos().to_degrees();
+        assert!((corner_to_face_deg - 54.7356).abs() < 1e-3);
+        assert!(FACE_TOLERANCE_DEG + CORNER_TOLERANCE_DEG < corner_to_face_deg);
+    }
+}

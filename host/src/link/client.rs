@@ -1,0 +1,155 @@
+//! The protocol client: requests out, responses in, over any [`Port`], never waiting forever.
+
+use std::collections::VecDeque;
+use std::io::ErrorKind;
+use std::time::{Duration, Instant};
+
+use shared::protocol::{self, DeviceInfo, Feed, FrameAccumulator, Request, Response, MAX_FRAME_LEN};
+
+use super::error::LinkError;
+use super::port::Port;
+
+/// Longest silence from a device before it is declared gone.
+pub const SILENCE_LIMIT: Duration = Duration::from_secs(2);
+/// How long one read waits, so that silence is noticed promptly.
+const READ_SLICE: Duration = Duration::from_millis(50);
+
+/// A connection to one device.
+pub struct Client<P: Port> {
+    port: P,
+    accumulator: FrameAccumulator,
+    decoded: VecDeque<Result<(u16, Response), LinkError>>,
+    next_id: u16,
+}
+
+impl<P: Port> Client<P> {
+    /// Opens a session: says hello and checks the protocol version.
+    pub fn connect(mut port: P) -> Result<(Self, DeviceInfo), LinkError> {
+        port.set_read_timeout(READ_SLICE).map_err(LinkError::Timeout)?;
+        let mut client = Client { port, accumulator: FrameAccumulator::new(), decoded: VecDeque::new(), next_id: 1 };
+        // A leading delimiter ends any half frame left in the device's buffer by an earlier session.
+        client.port.write_all(&[0]).map_err(LinkError::disconnected)?;
+        let info = client.hello()?;
+        Ok((client, info))
+    }
+
+    /// A request that completes at once: its final response; a device error becomes `Err`.
+    pub fn call(&mut self, request: Request) -> Result<Response, LinkError> {
+        self.run(request, |_| {})
+    }
+
+    /// A request with progress (capture) or samples (stream): each goes to `on_update`; returns the
+    /// final response. Fails when the device is silent for [`SILENCE_LIMIT`].
+    pub fn run(&mut self, request: Request, mut on_update: impl FnMut(&Response)) -> Result<Response, LinkError> {
+        let id = self.send(&request)?;
+        let mut last_heard = Instant::now();
+        let mut updates = 0usize;
+        loop {
+            let (answer_id, response) = match self.receive(&mut last_heard) {
+                // Silence after progress: the device was there and no longer is.
+                Err(LinkError::Silent { .. }) if updates > 0 => return Err(LinkError::StoppedAnswering),
+                other => other?,
+            };
+            if !answers(id, answer_id) {
+                continue;
+            }
+            match response {
+                Response::Error(error) => return Err(error.into()),
+                Response::Progress(_) | Response::Sample(_) => {
+                    updates += 1;
+                    on_update(&response)
+                }
+                last => return Ok(last),
+            }
+        }
+    }
+
+    /// Asks the device to stop its capture or stream (the running `run` then ends).
+    pub fn cancel(&mut self) -> Result<(), LinkError> {
+        self.send(&Request::Cancel).map(|_| ())
+    }
+
+    fn send(&mut self, request: &Request) -> Result<u16, LinkError> {
+        let id = self.next_id;
+        // NOTE: id 0 is reserved for answers to unreadable frames.
+        self.next_id = self.next_id.checked_add(1).unwrap_or(1);
+        let mut frame = [0u8; MAX_FRAME_LEN];
+        let len = protocol::encode(id, request, &mut frame)
+            .map_err(|e| LinkError::Encode { request: request_name(request), reason: format!("{e:?}") })?;
+        self.port.write_all(&frame[..len]).map_err(LinkError::disconnected)?;
+        self.port.flush().map_err(LinkError::disconnected)?;
+        Ok(id)
+    }
+
+    /// The next decodable response: from those already read, else from the port.
+    fn receive(&mut self, last_heard: &mut Instant) -> Result<(u16, Response), LinkError> {
+        let mut buffer = [0u8; 256];
+        loop {
+            if let Some(message) = self.decoded.pop_front() {
+                return message;
+            }
+            match self.port.read(&mut buffer) {
+                Ok(0) => return Err(LinkError::Disconnected { reason: "end of stream".into() }),
+                Ok(n) => {
+                    *last_heard = Instant::now();
+                    self.decode(&buffer[..n]);
+                }
+                Err(e) if matches!(e.kind(), ErrorKind::TimedOut | ErrorKind::WouldBlock | ErrorKind::Interrupted) => {
+                    if last_heard.elapsed() > SILENCE_LIMIT {
+                        return Err(LinkError::Silent { seconds: SILENCE_LIMIT.as_secs_f64() });
+                    }
+                }
+                Err(e) => return Err(LinkError::disconnected(e)),
+            }
+        }
+    }
+
+    /// Feeds bytes to the frame accumulator and queues every message they complete.
+    fn decode(&mut self, bytes: &[u8]) {
+        for &byte in bytes {
+            let Feed::Frame(frame) = self.accumulator.feed(byte) else { continue };
+            match protocol::decode::<Response>(frame) {
+                Ok(message) => self.decoded.push_back(Ok(message)),
+                Err(protocol::FrameError::Version { got }) => self.decoded.push_back(Err(LinkError::version(got))),
+                // A corrupted frame: its request is answered by nothing, and times out.
+                Err(_) => {}
+            }
+        }
+    }
+}
+
+/// Whether a response with `answer_id` answers the request sent as `id`: its own id, or the id of
+/// answers to frames the device could not read.
+fn answers(id: u16, answer_id: u16) -> bool {
+    answer_id == id || answer_id == protocol::frame::UNKNOWN_REQUEST_ID
+}
+
+/// A request's name, for messages.
+pub(super) fn request_name(request: &Request) -> &'static str {
+    match request {
+        Request::Hello { .. } => "Hello",
+        Request::Configure(_) => "Configure",
+        Request::Capture { .. } => "Capture",
+        Request::Cancel => "Cancel",
+        Request::ClearPositions => "ClearPositions",
+        Request::FitSixPosition => "FitSixPosition",
+        Request::GetCalibration(_) => "GetCalibration",
+        Request::SetCalibration(_) => "SetCalibration",
+        Request::SaveCalibration => "SaveCalibration",
+        Request::EraseCalibration => "EraseCalibration",
+        Request::Stream { .. } => "Stream",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn only_the_request_s_own_id_or_the_unreadable_frame_id_answers_it() {
+        assert!(answers(7, 7));
+        assert!(answers(7, protocol::frame::UNKNOWN_REQUEST_ID));
+        assert!(!answers(7, 6));
+        assert!(!answers(7, 8));
+    }
+}

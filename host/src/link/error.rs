@@ -1,0 +1,51 @@
+//! What can go wrong on the link to a device; each message names the cause and the way out.
+
+use shared::protocol::{DeviceError, PROTOCOL_VERSION};
+
+use super::explain::explain;
+
+/// A failure of the link or a refusal by the device.
+#[derive(Debug, thiserror::Error)]
+pub enum LinkError {
+    #[error("cannot open {port}: {reason}; check the cable and the path (`accelcal ports` lists the ports)")]
+    Open { port: String, reason: String },
+    #[error("no answer from the device within {seconds} s: is it an accelcal board running the firmware? (reflash it, or unplug and replug it)")]
+    Silent { seconds: f64 },
+    #[error("the device stopped answering in the middle of the operation: it restarted or lost power; check the cable and the power, then run the command again")]
+    StoppedAnswering,
+    #[error("the device went away ({reason}): it was unplugged or restarted; reconnect and run the command again")]
+    Disconnected { reason: String },
+    #[error("the device speaks protocol version {device}, this accelcal speaks {host}: update {}", if device < host { "the firmware (cargo run --release in firmware/)" } else { "accelcal" })]
+    Version { device: u8, host: u8 },
+    #[error("{}", explain(.0))]
+    Device(DeviceError),
+    #[error("the device answered {answer} to {request}: is it running this version of the firmware? (reflash it)")]
+    UnexpectedAnswer { request: &'static str, answer: String },
+    #[error("cannot encode the request {request}: {reason}; this is a bug in accelcal, please report it")]
+    Encode { request: &'static str, reason: String },
+    #[error("cannot set the read timeout of the port: {0}; unplug and replug the board")]
+    Timeout(std::io::Error),
+    #[error("cannot list serial ports: {reason}; give the port path with --port")]
+    ListPorts { reason: String },
+}
+
+impl From<DeviceError> for LinkError {
+    fn from(error: DeviceError) -> Self {
+        match error {
+            DeviceError::UnsupportedVersion { device, host } => LinkError::Version { device, host },
+            other => LinkError::Device(other),
+        }
+    }
+}
+
+impl LinkError {
+    /// The version mismatch of a device speaking protocol `device`.
+    pub(super) fn version(device: u8) -> Self {
+        LinkError::Version { device, host: PROTOCOL_VERSION }
+    }
+
+    /// An I/O failure of the port: the device went away.
+    pub(super) fn disconnected(error: std::io::Error) -> Self {
+        LinkError::Disconnected { reason: error.to_string() }
+    }
+}

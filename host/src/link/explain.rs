@@ -1,0 +1,126 @@
+//! What the device's typed errors mean for the user: one line each, the cause and what to do.
+//! Numbers come from the constants that set them, never restated.
+
+use shared::calibration::limits;
+use shared::protocol::{DeviceError, FrameError, MAX_CAPTURE_SECONDS, MIN_CAPTURE_SECONDS, PROTOCOL_VERSION};
+use shared::{CalibrationError, SixPositionError};
+
+/// One line: what the device said went wrong, and what to do.
+pub fn explain(error: &DeviceError) -> String {
+    match *error {
+        DeviceError::SensorMissing
+        | DeviceError::UnknownSensor { .. }
+        | DeviceError::Bus
+        | DeviceError::FifoOverflow => sensor(error),
+        DeviceError::Moved { .. }
+        | DeviceError::Clipped { .. }
+        | DeviceError::Cancelled
+        | DeviceError::InvalidDuration { .. }
+        | DeviceError::InvalidRate { .. } => capture(error),
+        DeviceError::SixPosition(reason) => six_position(reason),
+        DeviceError::InvalidCalibration(reason) => {
+            format!("the device refused the calibration: {}", calibration_reason(&reason))
+        }
+        _ => board(error),
+    }
+}
+
+fn sensor(error: &DeviceError) -> String {
+    match *error {
+        DeviceError::SensorMissing => "the MPU-6050 does not answer at 0x68 or 0x69: check VCC, GND, SCL (PB6) and SDA (PB7) and the pull-ups".into(),
+        DeviceError::UnknownSensor { address, who_am_i } => format!("the chip at 0x{address:02x} is not an MPU-6050 (WHO_AM_I 0x{who_am_i:02x}); check the module"),
+        DeviceError::Bus => "an I2C transfer to the sensor failed: check the wiring and the pull-ups, then try again".into(),
+        _ => "the sensor FIFO overflowed and samples were lost: the board was too busy; try again, or lower the sample rate".into(),
+    }
+}
+
+fn capture(error: &DeviceError) -> String {
+    match *error {
+        DeviceError::Moved { accel_std_mg, gyro_std_dps } => format!("the board moved during the capture (scatter {accel_std_mg:.1} mg, {gyro_std_dps:.2} deg/s): rest it against something firm and keep still"),
+        DeviceError::Clipped { samples } => format!("{samples} samples hit the end of the range: the board was knocked, or choose a wider range"),
+        DeviceError::InvalidDuration { seconds } => format!("a capture of {seconds} s is not possible: choose {MIN_CAPTURE_SECONDS} to {MAX_CAPTURE_SECONDS} s"),
+        DeviceError::InvalidRate { rate_hz } => format!("{rate_hz} Hz is not possible: choose a rate that divides the 1 kHz sensor clock (and, for a stream, the sample rate)"),
+        _ => "the operation was cancelled".into(),
+    }
+}
+
+fn six_position(reason: SixPositionError) -> String {
+    match reason {
+        SixPositionError::Missing(p) => {
+            format!("the six-position fit needs a capture with {} up: capture it first", p.name())
+        }
+        SixPositionError::Duplicate(p) => format!("{} was captured twice", p.name()),
+        SixPositionError::Degenerate => {
+            "the six captures do not determine the sensor: opposite faces read alike; capture them again".into()
+        }
+    }
+}
+
+fn board(error: &DeviceError) -> String {
+    match *error {
+        DeviceError::RangeMismatch { calibration, configured } => format!(
+            "the calibration is for +-{} g but the sensor is at +-{} g: configure the range first",
+            calibration.full_scale_g(),
+            configured.full_scale_g()
+        ),
+        DeviceError::NoCalibration => "there is no calibration to save: fit or upload one first".into(),
+        DeviceError::Storage => {
+            "the board could not read or write its flash: try again; if it persists, erase the calibration".into()
+        }
+        DeviceError::Busy => "the device is busy with another capture or stream: wait for it, or cancel it".into(),
+        DeviceError::Frame(frame) => {
+            format!("the device could not read a message ({}); the cable may be bad", frame_reason(&frame))
+        }
+        DeviceError::UnsupportedVersion { device, host } => {
+            format!("protocol version mismatch: device {device}, host {host}")
+        }
+        _ => format!("the device reported {error:?}"),
+    }
+}
+
+/// Why a calibration was refused, in words, with the limit it broke (`shared::calibration::limits`).
+pub fn calibration_reason(reason: &CalibrationError) -> String {
+    let axis = |a: u8| ["x", "y", "z"].get(usize::from(a)).copied().unwrap_or("?");
+    match *reason {
+        CalibrationError::NonFinite => "it holds a value that is not a number".into(),
+        CalibrationError::Singular { determinant } => format!("its matrix is singular (determinant {determinant:.3})"),
+        CalibrationError::ScaleOutOfRange { axis: a, value } => {
+            let (low, high) = limits::SCALE;
+            format!("the {} scale {value:.3} is outside {low}-{high}", axis(a))
+        }
+        CalibrationError::CrossAxisOutOfRange { row, col, value } => {
+            format!("cross-axis term M{}{} = {value:.3} is larger than {}", row + 1, col + 1, limits::CROSS_AXIS)
+        }
+        CalibrationError::OffsetOutOfRange { axis: a, value_g } => {
+            format!("the {} offset {value_g:.3} g is larger than {} g", axis(a), limits::OFFSET_G)
+        }
+        CalibrationError::GyroBiasOutOfRange { axis: a, value_dps } => {
+            format!("the {} gyro bias {value_dps:.1} deg/s is larger than {} deg/s", axis(a), limits::GYRO_BIAS_DPS)
+        }
+    }
+}
+
+fn frame_reason(error: &FrameError) -> String {
+    match error {
+        FrameError::Oversized => "too long".into(),
+        FrameError::Cobs | FrameError::Payload => "garbled".into(),
+        FrameError::Truncated => "cut short".into(),
+        FrameError::Crc => "checksum mismatch".into(),
+        FrameError::Version { got } => format!("protocol version {got}, expected {PROTOCOL_VERSION}"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn refusal_reasons_quote_the_limits_they_broke() {
+        let offset = CalibrationError::OffsetOutOfRange { axis: 0, value_g: 3.0 };
+        assert_eq!(calibration_reason(&offset), "the x offset 3.000 g is larger than 0.5 g");
+        let scale = CalibrationError::ScaleOutOfRange { axis: 2, value: 3.0 };
+        assert_eq!(calibration_reason(&scale), "the z scale 3.000 is outside 0.5-2");
+        let duration = explain(&DeviceError::InvalidDuration { seconds: 3 });
+        assert_eq!(duration, "a capture of 3 s is not possible: choose 5 to 20 s");
+    }
+}

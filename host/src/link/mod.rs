@@ -1,0 +1,18 @@
+//! The link to a device: byte transports, the protocol client with one typed method per request,
+//! opening a serial port, and finding accelcal boards among the serial ports.
+
+mod client;
+mod connect;
+mod discovery;
+mod error;
+mod explain;
+pub mod port;
+mod requests;
+
+pub use client::{Client, SILENCE_LIMIT};
+pub use connect::{open_port, Connection};
+pub use discovery::{serial_ports, SerialPortEntry};
+pub use error::LinkError;
+pub use explain::{calibration_reason, explain};
+pub use port::{open_serial, pipe, PipeEnd, Port};
+pub use requests::StreamRequest;

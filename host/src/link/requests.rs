@@ -1,0 +1,115 @@
+//! One typed method per request: what the device answers, or why not.
+
+use shared::protocol::{
+    CalibrationSlot, CaptureProgress, CaptureStats, DeviceInfo, Request, Response, Sample, StreamKind, PROTOCOL_VERSION,
+};
+use shared::{Calibration, Position};
+
+use super::client::{request_name, Client};
+use super::error::LinkError;
+use super::port::Port;
+
+/// What a stream asks for: raw or corrected samples, how many per second, how many.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct StreamRequest {
+    /// Raw or corrected on the chip.
+    pub kind: StreamKind,
+    /// Samples per second (must divide the sample rate).
+    pub rate_hz: u16,
+    /// Samples to send.
+    pub count: u32,
+}
+
+impl<P: Port> Client<P> {
+    /// Says hello; refuses a device of another protocol version.
+    pub(super) fn hello(&mut self) -> Result<DeviceInfo, LinkError> {
+        let request = Request::Hello { protocol_version: PROTOCOL_VERSION };
+        match self.call(request.clone())? {
+            Response::Hello(info) if info.protocol_version == PROTOCOL_VERSION => Ok(info),
+            Response::Hello(info) => Err(LinkError::version(info.protocol_version)),
+            other => Err(unexpected(&request, &other)),
+        }
+    }
+
+    /// Averages the still sensor for `seconds`, reporting progress; the statistics and the face the
+    /// device detected.
+    pub fn capture(
+        &mut self,
+        seconds: u8,
+        mut on_progress: impl FnMut(&CaptureProgress),
+    ) -> Result<(CaptureStats, Option<Position>), LinkError> {
+        let request = Request::Capture { seconds };
+        let response = self.run(request.clone(), |update| {
+            if let Response::Progress(progress) = update {
+                on_progress(progress)
+            }
+        })?;
+        match response {
+            Response::Captured { stats, position } => Ok((stats, position)),
+            other => Err(unexpected(&request, &other)),
+        }
+    }
+
+    /// Streams samples, each to `on_sample`; the number the device says it sent.
+    pub fn stream(&mut self, wanted: StreamRequest, mut on_sample: impl FnMut(&Sample)) -> Result<u32, LinkError> {
+        let request = Request::Stream { kind: wanted.kind, rate_hz: wanted.rate_hz, count: wanted.count };
+        let response = self.run(request.clone(), |update| {
+            if let Response::Sample(sample) = update {
+                on_sample(sample)
+            }
+        })?;
+        match response {
+            Response::StreamEnded { samples } => Ok(samples),
+            other => Err(unexpected(&request, &other)),
+        }
+    }
+
+    /// The active or the stored calibration; `None` when the slot is empty.
+    pub fn calibration(&mut self, slot: CalibrationSlot) -> Result<Option<Calibration>, LinkError> {
+        let request = Request::GetCalibration(slot);
+        match self.call(request.clone())? {
+            Response::Calibration(calibration) => Ok(calibration),
+            other => Err(unexpected(&request, &other)),
+        }
+    }
+
+    /// Makes a calibration active (until reset, or until saved).
+    pub fn set_calibration(&mut self, calibration: Calibration) -> Result<(), LinkError> {
+        self.expect_done(Request::SetCalibration(calibration))
+    }
+
+    /// Stores the active calibration in flash.
+    pub fn save_calibration(&mut self) -> Result<(), LinkError> {
+        self.expect_done(Request::SaveCalibration)
+    }
+
+    /// Erases the stored calibration.
+    pub fn erase_calibration(&mut self) -> Result<(), LinkError> {
+        self.expect_done(Request::EraseCalibration)
+    }
+
+    /// Forgets the captures kept for the on-chip six-position fit.
+    pub fn clear_positions(&mut self) -> Result<(), LinkError> {
+        self.expect_done(Request::ClearPositions)
+    }
+
+    /// The on-chip six-position fit of the captures the device kept.
+    pub fn fit_six_position(&mut self) -> Result<Calibration, LinkError> {
+        let request = Request::FitSixPosition;
+        match self.call(request.clone())? {
+            Response::Fitted(calibration) => Ok(calibration),
+            other => Err(unexpected(&request, &other)),
+        }
+    }
+
+    fn expect_done(&mut self, request: Request) -> Result<(), LinkError> {
+        match self.call(request.clone())? {
+            Response::Done => Ok(()),
+            other => Err(unexpected(&request, &other)),
+        }
+    }
+}
+
+fn unexpected(request: &Request, answer: &Response) -> LinkError {
+    LinkError::UnexpectedAnswer { request: request_name(request), answer: format!("{answer:?}") }
+}

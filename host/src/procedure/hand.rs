@@ -1,0 +1,42 @@
+//! Who turns the board: the trait, and a person holding the board (instructions only). The tool's
+//! own hand on the simulated board is beside it, in `simulated_hand`.
+
+use super::{Feedback, Orientation, ProcedureError};
+
+/// Who turns the board: a person, or the tool itself on the simulated board.
+pub trait Hand {
+    /// Turns (or asks to turn) the board to a wanted orientation.
+    fn present(&mut self, target: &Orientation, feedback: &mut dyn Feedback) -> Result<(), ProcedureError>;
+    /// Turns (or asks to turn) the board to a fresh orientation for verification.
+    fn fresh(&mut self, index: usize, feedback: &mut dyn Feedback) -> Result<(), ProcedureError>;
+}
+
+/// A person holding the board: instructions only.
+pub struct PersonHand;
+
+impl Hand for PersonHand {
+    fn present(&mut self, target: &Orientation, feedback: &mut dyn Feedback) -> Result<(), ProcedureError> {
+        feedback.say(&format!(
+            "Rest the board with {} pointing up ({}), and hold it still.",
+            target.name,
+            describe(target)
+        ));
+        Ok(())
+    }
+
+    fn fresh(&mut self, index: usize, feedback: &mut dyn Feedback) -> Result<(), ProcedureError> {
+        feedback.say(&format!(
+            "Verification {}: rest the board in a new orientation, unlike the calibration positions, and hold it still.",
+            index + 1
+        ));
+        Ok(())
+    }
+}
+
+fn describe(target: &Orientation) -> String {
+    if target.is_face() {
+        format!("the {} axis printed on the board toward the sky", target.name)
+    } else {
+        "a corner up: tilt the board so that those three axes point equally upward".to_owned()
+    }
+}

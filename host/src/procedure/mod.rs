@@ -1,0 +1,72 @@
+//! The guided procedure: ask for each wanted orientation, see when the board is there and still,
+//! capture, and verify a calibration at fresh orientations. Who turns the board is a [`Hand`]: a
+//! person following instructions, or the tool's own hand on the simulated board.
+
+mod collect;
+mod feedback;
+mod hand;
+mod simulated_hand;
+mod verify;
+mod wait;
+
+use std::time::Duration;
+
+pub use crate::orientation::{corners, faces, Orientation};
+pub use collect::collect;
+pub use feedback::{Feedback, Silent};
+pub use hand::{Hand, PersonHand};
+pub use simulated_hand::SimulatedHand;
+pub use verify::{verify, Verification, VERIFY_SECONDS};
+
+use crate::fit::{self, Fit, FitError, FitOptions, ModelChoice};
+use crate::link::LinkError;
+use crate::session::Session;
+
+/// Why the procedure stopped; each names what to do.
+#[derive(Debug, thiserror::Error)]
+pub enum ProcedureError {
+    #[error(transparent)]
+    Link(#[from] LinkError),
+    #[error("the board never came to rest at any of {wanted}; place it and run the command again")]
+    NeverAtTarget { wanted: String },
+    #[error(
+        "the board never came to rest at a new orientation; turn it and hold it still, then run the command again"
+    )]
+    NeverFresh,
+    #[error("the board kept moving through {attempts} captures: rest it against something firm and keep still, then run the command again")]
+    KeptMoving { attempts: usize },
+    #[error("the device has no active calibration to verify: calibrate or upload one first")]
+    NoActiveCalibration,
+    #[error("the simulated board stopped; run the command again")]
+    SimulatedBoardStopped,
+    #[error(transparent)]
+    Fit(#[from] FitError),
+}
+
+/// How the captures run.
+#[derive(Debug, Clone)]
+pub struct CalibrateOptions {
+    /// Only the six faces, fitted on the chip.
+    pub quick: bool,
+    /// Capture length, in seconds.
+    pub seconds: u8,
+    /// Fresh orientations to verify at.
+    pub verify_positions: usize,
+    /// Give up waiting for a position after this long (`None`: wait for the person).
+    pub wait_limit: Option<Duration>,
+}
+
+/// The orientations a calibration asks for: the six faces, and for a full one the eight corners.
+pub fn targets(quick: bool) -> Vec<Orientation> {
+    if quick {
+        faces()
+    } else {
+        [faces(), corners()].concat()
+    }
+}
+
+/// The host's orientation-free fit of a session (the model `auto` picks for captures without known
+/// orientations), or an error naming what the captures lack.
+pub fn host_fit(session: &Session) -> Result<Fit, FitError> {
+    fit::fit(&session.dataset(), ModelChoice::Auto, &FitOptions::default())
+}

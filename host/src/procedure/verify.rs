@@ -1,0 +1,108 @@
+//! Verification: the active calibration checked at fresh orientations, | |a| - 1 g | before and
+//! after, and the chip's own corrected samples compared with it.
+
+use std::time::Duration;
+
+use serde::Serialize;
+use shared::linalg;
+use shared::protocol::{CalibrationSlot, StreamKind};
+use shared::Calibration;
+
+use super::collect::capture;
+use super::wait::{wait_for_fresh, LIVE_WINDOW};
+use super::{Feedback, Hand, ProcedureError};
+use crate::link::{Client, Port, StreamRequest};
+
+/// Length of each verification capture, in seconds.
+pub const VERIFY_SECONDS: u8 = 5;
+/// Corrected samples averaged to compare the chip with the host.
+const CHIP_SAMPLES: u32 = 20;
+
+/// The errors at the verification orientations, in mg.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Verification {
+    /// Orientations checked.
+    pub positions: usize,
+    /// RMS of | |m| - 1 g | with the raw readings.
+    pub before_rms_mg: f64,
+    /// RMS of | |a| - 1 g | with the calibration.
+    pub after_rms_mg: f64,
+    /// Largest | |a| - 1 g | with the calibration.
+    pub after_max_mg: f64,
+    /// Largest difference between the chip's own corrected samples and the calibration applied to
+    /// the raw capture, in mg: proof the chip applies what was verified (noise of 20 samples).
+    pub on_chip_difference_mg: f64,
+}
+
+/// The errors at one orientation, in mg.
+struct Check {
+    before_mg: f64,
+    after_mg: f64,
+    on_chip_mg: f64,
+}
+
+/// Checks the active calibration at `positions` fresh orientations.
+pub fn verify<P: Port>(
+    client: &mut Client<P>,
+    hand: &mut dyn Hand,
+    positions: usize,
+    wait_limit: Option<Duration>,
+    feedback: &mut dyn Feedback,
+) -> Result<Verification, ProcedureError> {
+    let calibration = client.calibration(CalibrationSlot::Active)?.ok_or(ProcedureError::NoActiveCalibration)?;
+    let mut checks = Vec::with_capacity(positions);
+    let mut used = Vec::with_capacity(positions);
+    for index in 0..positions {
+        hand.fresh(index, feedback)?;
+        used.push(wait_for_fresh(client, &used, wait_limit, feedback)?);
+        let check = check(client, &calibration, feedback)?;
+        feedback.say(&format!(
+            "verification {}: | |a| - 1 g | {:.2} mg raw, {:.3} mg calibrated",
+            index + 1,
+            check.before_mg.abs(),
+            check.after_mg.abs()
+        ));
+        checks.push(check);
+    }
+    Ok(summary(&checks))
+}
+
+/// One capture at the board's orientation, and the chip's corrected samples there.
+fn check<P: Port>(
+    client: &mut Client<P>,
+    calibration: &Calibration,
+    feedback: &mut dyn Feedback,
+) -> Result<Check, ProcedureError> {
+    let (stats, _) = capture(client, VERIFY_SECONDS, feedback)?;
+    let corrected = calibration.apply(stats.mean_g);
+    let chip_mean = chip_corrected_mean(client)?;
+    Ok(Check {
+        before_mg: (f64::from(linalg::norm(stats.mean_g)) - 1.0) * 1000.0,
+        after_mg: (f64::from(linalg::norm(corrected)) - 1.0) * 1000.0,
+        on_chip_mg: f64::from(linalg::norm(linalg::sub(chip_mean, corrected))) * 1000.0,
+    })
+}
+
+fn summary(checks: &[Check]) -> Verification {
+    let rms = |pick: fn(&Check) -> f64| {
+        (checks.iter().map(|c| pick(c).powi(2)).sum::<f64>() / checks.len().max(1) as f64).sqrt()
+    };
+    Verification {
+        positions: checks.len(),
+        before_rms_mg: rms(|c| c.before_mg),
+        after_rms_mg: rms(|c| c.after_mg),
+        after_max_mg: checks.iter().fold(0.0, |m, c| m.max(c.after_mg.abs())),
+        on_chip_difference_mg: checks.iter().fold(0.0, |m, c| m.max(c.on_chip_mg)),
+    }
+}
+
+/// Mean of samples corrected by the chip itself.
+fn chip_corrected_mean<P: Port>(client: &mut Client<P>) -> Result<[f32; 3], ProcedureError> {
+    let request = StreamRequest { kind: StreamKind::Calibrated, rate_hz: LIVE_WINDOW.rate_hz, count: CHIP_SAMPLES };
+    let (mut sum, mut count) = ([0.0f32; 3], 0u32);
+    client.stream(request, |sample| {
+        sum = linalg::add(sum, sample.accel_g);
+        count += 1;
+    })?;
+    Ok(linalg::scale(sum, 1.0 / count.max(1) as f32))
+}

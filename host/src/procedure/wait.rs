@@ -1,0 +1,149 @@
+//! Waiting for the board: one mechanism (a deadline, live windows of raw samples, two accepted
+//! windows in a row) serves both the wait for a wanted orientation and the wait for a fresh one.
+
+use std::time::{Duration, Instant};
+
+use shared::orientation::angle_between_deg;
+use shared::protocol::StreamKind;
+
+use super::{Feedback, Orientation, ProcedureError};
+use crate::limits::{FRESH_DEG, STILL_ACCEL_STD_G};
+use crate::link::{Client, Port, StreamRequest};
+
+/// The live window: half a second of raw samples.
+pub(super) const LIVE_WINDOW: StreamRequest = StreamRequest { kind: StreamKind::Raw, rate_hz: 20, count: 10 };
+
+/// What one live window showed: the mean direction and whether the board was still.
+#[derive(Debug, Clone, Copy)]
+struct Window {
+    mean: [f64; 3],
+    still: bool,
+}
+
+/// Waits until the board rests within tolerance of one of the remaining targets; says how far it
+/// is and refuses a position already captured. Returns the index in `remaining`.
+pub(super) fn wait_for_target<P: Port>(
+    client: &mut Client<P>,
+    remaining: &[Orientation],
+    done: &[Orientation],
+    limit: Option<Duration>,
+    feedback: &mut dyn Feedback,
+) -> Result<usize, ProcedureError> {
+    let gave_up = || {
+        let wanted: Vec<&str> = remaining.iter().map(|t| t.name.as_str()).collect();
+        ProcedureError::NeverAtTarget { wanted: wanted.join(", ") }
+    };
+    wait_for_rest(client, limit, feedback, gave_up, |window| judge_target(window, remaining, done))
+}
+
+/// What a window says about the remaining targets: a line for the user, and the index of the
+/// target reached when the board is still within its tolerance.
+fn judge_target(window: Window, remaining: &[Orientation], done: &[Orientation]) -> (String, Option<usize>) {
+    let tilt = |t: &Orientation| t.tilt_deg(window.mean);
+    let Some((index, nearest)) = remaining.iter().enumerate().min_by(|a, b| tilt(a.1).total_cmp(&tilt(b.1))) else {
+        return ("no position left to capture".into(), None);
+    };
+    if let Some(repeat) = done.iter().find(|t| tilt(t) < t.tolerance_deg.min(tilt(nearest))) {
+        return (format!("{} is already captured: turn the board to {}", repeat.name, nearest.name), None);
+    }
+    let motion = if window.still { "still" } else { "moving" };
+    let line = format!("{:.1} degrees from {} ({motion})", tilt(nearest), nearest.name);
+    (line, (window.still && tilt(nearest) <= nearest.tolerance_deg).then_some(index))
+}
+
+/// Waits until the board rests at an orientation at least [`FRESH_DEG`] from every one in `used`;
+/// returns it.
+pub(super) fn wait_for_fresh<P: Port>(
+    client: &mut Client<P>,
+    used: &[[f64; 3]],
+    limit: Option<Duration>,
+    feedback: &mut dyn Feedback,
+) -> Result<[f64; 3], ProcedureError> {
+    wait_for_rest(
+        client,
+        limit,
+        feedback,
+        || ProcedureError::NeverFresh,
+        |window| {
+            let fresh = used.iter().all(|u| angle_between_deg(window.mean, *u) >= FRESH_DEG);
+            let line = match (window.still, fresh) {
+                (_, false) => "this orientation was already verified: turn the board to a new one",
+                (false, true) => "moving: hold the board still",
+                (true, true) => "still",
+            };
+            (line.to_owned(), (window.still && fresh).then_some(window.mean))
+        },
+    )
+}
+
+/// Streams live windows, showing what `judge` says of each, until two windows in a row are accepted
+/// (`judge` returns a value only for a window that is still and where it should be); gives up after
+/// `limit` with the error `gave_up` makes.
+fn wait_for_rest<P: Port, R>(
+    client: &mut Client<P>,
+    limit: Option<Duration>,
+    feedback: &mut dyn Feedback,
+    gave_up: impl Fn() -> ProcedureError,
+    mut judge: impl FnMut(Window) -> (String, Option<R>),
+) -> Result<R, ProcedureError> {
+    let started = Instant::now();
+    let mut accepted_in_a_row = 0;
+    loop {
+        if limit.is_some_and(|l| started.elapsed() > l) {
+            return Err(gave_up());
+        }
+        let (line, verdict) = judge(live_window(client)?);
+        feedback.live(&line);
+        match verdict {
+            Some(value) if accepted_in_a_row >= 1 => return Ok(value),
+            Some(_) => accepted_in_a_row += 1,
+            None => accepted_in_a_row = 0,
+        }
+    }
+}
+
+/// One live window of raw samples: their mean direction and whether the board was still.
+fn live_window<P: Port>(client: &mut Client<P>) -> Result<Window, ProcedureError> {
+    let mut samples = Vec::with_capacity(LIVE_WINDOW.count as usize);
+    client.stream(LIVE_WINDOW, |sample| samples.push(sample.accel_g.map(f64::from)))?;
+    Ok(window_of(&samples))
+}
+
+/// The mean of `samples` and whether their scatter on every axis is below the stillness threshold.
+fn window_of(samples: &[[f64; 3]]) -> Window {
+    let n = samples.len().max(1) as f64;
+    let mean = [0, 1, 2].map(|k| samples.iter().map(|s| s[k]).sum::<f64>() / n);
+    let spread = [0, 1, 2]
+        .map(|k| (samples.iter().map(|s| (s[k] - mean[k]).powi(2)).sum::<f64>() / n).sqrt())
+        .into_iter()
+        .fold(0.0, f64::max);
+    Window { mean, still: spread < STILL_ACCEL_STD_G && !samples.is_empty() }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use shared::Position;
+
+    #[test]
+    fn a_window_is_still_only_below_the_threshold_on_every_axis() {
+        let wobble = |amplitude: f64| [[0.0, amplitude, 1.0], [0.0, -amplitude, 1.0]];
+        assert!(window_of(&wobble(0.99 * STILL_ACCEL_STD_G)).still);
+        assert!(!window_of(&wobble(1.01 * STILL_ACCEL_STD_G)).still);
+        assert!(!window_of(&[]).still);
+        assert_eq!(window_of(&wobble(0.005)).mean, [0.0, 0.0, 1.0]);
+    }
+
+    #[test]
+    fn a_target_is_accepted_still_and_within_its_tolerance_and_a_repeat_is_named() {
+        let (plus_z, minus_z) = (Orientation::face(Position::PosZ), Orientation::face(Position::NegZ));
+        let tilted = |deg: f64| [deg.to_radians().sin(), 0.0, deg.to_radians().cos()];
+        let still = |deg| Window { mean: tilted(deg), still: true };
+        let remaining = [minus_z.clone(), plus_z.clone()];
+        assert_eq!(judge_target(still(0.9 * plus_z.tolerance_deg), &remaining, &[]).1, Some(1));
+        assert_eq!(judge_target(still(1.1 * plus_z.tolerance_deg), &remaining, &[]).1, None);
+        assert_eq!(judge_target(Window { still: false, ..still(0.0) }, &remaining, &[]).1, None);
+        let (line, verdict) = judge_target(still(0.0), &[minus_z], &[plus_z]);
+        assert_eq!((line.as_str(), verdict), ("+Z is already captured: turn the board to -Z", None));
+    }
+}

@@ -1,0 +1,39 @@
+//! What a fit and a calibration report: one model each, computed once, then rendered as text for a
+//! person ([`text`]) or as the JSON of DESIGN.md ([`json`]).
+
+mod calibrate;
+mod comparison;
+pub mod json;
+pub mod text;
+
+pub use calibrate::{CalibrateReport, HostFitSummary, TruthJson};
+pub use comparison::{ComparedModel, Comparison};
+
+use crate::data::Dataset;
+use crate::fit::{self, Evaluation, Fit, FitError, FitOptions, ModelChoice};
+
+/// A fit of a data file with everything its renderers show.
+#[derive(Debug, Clone)]
+pub struct FitReport {
+    /// The fit.
+    pub fit: Fit,
+    /// Errors of every row before and after.
+    pub evaluation: Evaluation,
+    /// |gravity| in output units.
+    pub g: f64,
+    /// Data rows in the file.
+    pub rows: usize,
+    /// With `--model auto`: every model on the same rows.
+    pub comparison: Option<Comparison>,
+}
+
+impl FitReport {
+    /// Fits `choice` to the data set and evaluates it; for `auto`, compares every model, reusing
+    /// this fit for the model it chose.
+    pub fn new(dataset: &Dataset, choice: ModelChoice, options: &FitOptions) -> Result<Self, FitError> {
+        let fit = fit::fit(dataset, choice, options)?;
+        let evaluation = fit::evaluate(dataset, &fit.matrix, &fit.offset, options.g, &fit.lines_used);
+        let comparison = (choice == ModelChoice::Auto).then(|| Comparison::new(dataset, options, (&fit, &evaluation)));
+        Ok(FitReport { fit, evaluation, g: options.g, rows: dataset.rows.len(), comparison })
+    }
+}

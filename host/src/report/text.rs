@@ -1,0 +1,114 @@
+//! The reports as text for a person.
+
+use std::fmt::Write;
+
+use super::{CalibrateReport, Comparison, FitReport};
+use crate::fit::{Evaluation, Fit};
+
+/// The fit: parameters with standard errors, then errors before and after in mg, then (for `auto`)
+/// the comparison.
+pub fn fit_report(report: &FitReport) -> String {
+    let mut out = String::new();
+    write_fit(&mut out, &report.fit, report.rows, report.g);
+    write_rows(&mut out, &report.evaluation, report.g);
+    if let Some(comparison) = &report.comparison {
+        write_comparison(&mut out, comparison);
+    }
+    out
+}
+
+fn write_fit(out: &mut String, fit: &Fit, rows: usize, g: f64) {
+    let used = fit.lines_used.len();
+    let _ = writeln!(out, "model {} ({used} of {rows} rows used), |g| = {g}", fit.model.name());
+    let _ = writeln!(out, "a = M (m - o); cost {:.3e}, {} iterations", fit.cost, fit.iterations);
+    for parameter in &fit.parameters {
+        let error = parameter.std_error.map_or("(no redundancy)".to_owned(), |e| format!("+- {e:.2e}"));
+        let _ = writeln!(out, "  {:<4} {:>16} {error}", parameter.name, number(parameter.value));
+    }
+    if let Some(test) = &fit.noise_test {
+        let verdict = if test.passed { "consistent with" } else { "larger than" };
+        let _ = writeln!(
+            out,
+            "residuals {verdict} the capture noise: chi-square {:.1} on {} degrees of freedom, p = {:.3}",
+            test.chi_square, test.degrees_of_freedom, test.p_value
+        );
+    }
+    for warning in &fit.warnings {
+        let _ = writeln!(out, "warning: {warning}");
+    }
+}
+
+fn write_rows(out: &mut String, evaluation: &Evaluation, g: f64) {
+    let mg = |value: f64| value / g * 1000.0;
+    let angles = evaluation.rows.iter().any(|r| r.inclination_error_deg.is_some());
+    let _ = write!(out, "line  set    ||a|-g| mg before   after   |a-ref| mg before   after");
+    let _ = writeln!(out, "{}", if angles { "  incl err deg  tf err deg" } else { "" });
+    for row in &evaluation.rows {
+        let set = if row.training { "train" } else { "test" };
+        let _ = write!(
+            out,
+            "{:>4}  {set:<5} {:>17.2} {:>7.2} {} {}",
+            row.line,
+            mg(row.norm_error_before),
+            mg(row.norm_error_after),
+            cell(row.reference_error_before.map(mg), 17, 2),
+            cell(row.reference_error_after.map(mg), 7, 2)
+        );
+        if angles {
+            let _ = write!(out, " {} {}", cell(row.inclination_error_deg, 13, 3), cell(row.toolface_error_deg, 11, 3));
+        }
+        out.push('\n');
+    }
+    write_worst(out, evaluation, g);
+}
+
+fn write_worst(out: &mut String, evaluation: &Evaluation, g: f64) {
+    let mg = |value: f64| value / g * 1000.0;
+    let (before, after) = evaluation.worst_norm_error();
+    let _ = writeln!(out, "worst ||a|-g|: {:.2} mg before, {:.2} mg after", mg(before), mg(after));
+    if let Some((before, after)) = evaluation.worst_reference_error() {
+        let _ = writeln!(out, "worst |a-ref|: {:.2} mg before, {:.2} mg after", mg(before), mg(after));
+    }
+}
+
+fn write_comparison(out: &mut String, comparison: &Comparison) {
+    out.push_str("model comparison (same rows):\n  model             cost        ||a|-g| rms mg train  test\n");
+    for m in &comparison.models {
+        match &m.refused {
+            Some(reason) => {
+                let _ = writeln!(out, "  {:<17} not supported: {reason}", m.model);
+            }
+            None => {
+                let cost = m.cost.map_or("-".to_owned(), |c| format!("{c:.3e}"));
+                let (train, test) = (cell(m.training_rms_mg, 1, 3), cell(m.test_rms_mg, 1, 3));
+                let _ = writeln!(out, "  {:<17} {cost:<11} {train:>20} {test:>6}", m.model);
+            }
+        }
+    }
+    if let Some(angle) = comparison.misalignment_deg {
+        let _ = writeln!(out, "placement misalignment (12- vs 9-parameter fit): {angle:.2} degrees");
+    }
+}
+
+/// The result of a calibration: the verification line.
+pub fn calibrate_report(report: &CalibrateReport) -> String {
+    let v = &report.verification;
+    format!(
+        "verified at {} fresh orientations: | |a| - 1 g | rms {:.2} mg before, {:.3} mg after (worst {:.3} mg)\n",
+        v.positions, v.before_rms_mg, v.after_rms_mg, v.after_max_mg
+    )
+}
+
+/// A number right-aligned in `width` with `digits` decimals, or `-`.
+fn cell(value: Option<f64>, width: usize, digits: usize) -> String {
+    value.map_or(format!("{:>width$}", "-"), |v| format!("{v:>width$.digits$}"))
+}
+
+/// A parameter value in plain notation where that stays readable, else in scientific notation.
+fn number(value: f64) -> String {
+    if value == 0.0 || (1e-3..1e5).contains(&value.abs()) {
+        format!("{value:+.8}")
+    } else {
+        format!("{value:+.7e}")
+    }
+}

@@ -1,0 +1,17 @@
+//! The host side of the simulation: the firmware library's own `Device` on the simulated MPU-6050
+//! and a RAM flash, served over any [`Port`] from a thread, exactly as the real board serves its USB
+//! port; a pseudo-terminal server for `accelcal sim --pty`; random draws and synthetic data sets.
+//!
+//! Whoever turns the simulated board (the procedure's simulated hand, a test) does so through the
+//! [`SimCommand`] handle that [`SimBoard::controls`] gives.
+
+mod board;
+mod pty;
+pub mod random;
+mod serve;
+pub mod synthetic;
+
+pub use board::{SimBoard, SimCommand};
+pub use pty::{serve_pty, SimError};
+
+use crate::link::Port;
