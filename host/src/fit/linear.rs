@@ -43,29 +43,14 @@ pub(super) fn linear12(dataset: &Dataset, options: &FitOptions) -> Result<Fit, F
 /// The six-position closed form of `shared` (in f64), with standard errors from the equivalent
 /// least-squares problem.
 pub(super) fn six_position(dataset: &Dataset, options: &FitOptions) -> Result<Fit, FitError> {
-    let mut first_row_at: [Option<usize>; 6] = [None; 6];
-    for (index, row) in dataset.rows.iter().enumerate() {
-        let Some(position) = face_of(row, options.face_tolerance_deg) else {
-            continue;
-        };
-        if let Some(first) = first_row_at[position.index()] {
-            let first_line = dataset.rows[first].line;
-            return Err(FitError::DuplicatePosition { position, first_line, second_line: row.line });
-        }
-        first_row_at[position.index()] = Some(index);
-    }
+    let first_row_at = rows_at_faces(dataset, options.face_tolerance_deg)?;
     let mut readings = PositionReadings::<f64>::new();
     let mut pairs: Vec<Pair> = Vec::with_capacity(6);
     for (position, row) in Position::ALL.into_iter().zip(first_row_at) {
         if let Some(row) = row {
-            readings.replace(position, dataset.rows[row].reading);
-            let line = dataset.rows[row].line;
-            pairs.push(Pair {
-                row,
-                line,
-                reading: dataset.rows[row].reading,
-                reference: face_force(position, options.g),
-            });
+            let (line, reading) = (dataset.rows[row].line, dataset.rows[row].reading);
+            readings.replace(position, reading);
+            pairs.push(Pair { row, line, reading, reference: face_force(position, options.g) });
         }
     }
     let closed_form = readings.fit(options.g).map_err(|error| match error {
@@ -77,6 +62,22 @@ pub(super) fn six_position(dataset: &Dataset, options: &FitOptions) -> Result<Fi
     pairs.sort_by_key(|p| p.row);
     let solution = LinearSolution::solve(&pairs, Model::SixPosition)?;
     Ok(solution.into_fit(Model::SixPosition, closed_form.matrix, closed_form.offset, &pairs, options.g))
+}
+
+/// The index of the row at each face, in the order of `Position::ALL`; a face met twice is refused.
+fn rows_at_faces(dataset: &Dataset, tolerance_deg: f64) -> Result<[Option<usize>; 6], FitError> {
+    let mut first_row_at: [Option<usize>; 6] = [None; 6];
+    for (index, row) in dataset.rows.iter().enumerate() {
+        let Some(position) = face_of(row, tolerance_deg) else {
+            continue;
+        };
+        if let Some(first) = first_row_at[position.index()] {
+            let first_line = dataset.rows[first].line;
+            return Err(FitError::DuplicatePosition { position, first_line, second_line: row.line });
+        }
+        first_row_at[position.index()] = Some(index);
+    }
+    Ok(first_row_at)
 }
 
 /// The face a row was taken at: from its known orientation when it has one, else from its reading.

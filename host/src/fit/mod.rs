@@ -4,6 +4,7 @@ mod evaluate;
 mod linear;
 mod models;
 mod nonlinear;
+mod normalization;
 mod shape;
 mod statistics;
 

@@ -6,7 +6,8 @@ use serde::Serialize;
 use shared::linalg::Mat3;
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 
-use super::nonlinear::{Normalization, Observation, Solution};
+use super::nonlinear::{Observation, Solution};
+use super::normalization::Normalization;
 use super::shape::Shape;
 use crate::data::{Dataset, Row};
 
