@@ -47,7 +47,19 @@ fn default_calibration_over_a_pty_survives_a_restart_and_verifies_below_1_mg() {
     let mut feedback = Silent { yes: true };
     let targets = procedure::targets(false);
     let session = procedure::collect(&mut client, &mut hand, &targets, &options(), &mut feedback).unwrap();
-    assert_eq!(session.captures.len(), 14);
+    // Every target captured once, under its own name, with the board resting within that target's
+    // tolerance (the reading's own offset, under 0.1 g, tilts it by at most 6 degrees more).
+    let mut captured: Vec<&str> = session.captures.iter().map(|c| c.name.as_str()).collect();
+    let mut wanted: Vec<&str> = targets.iter().map(|t| t.name.as_str()).collect();
+    captured.sort();
+    wanted.sort();
+    assert_eq!(captured, wanted);
+    for capture in &session.captures {
+        let target = capture.target.as_ref().expect("each capture records its wanted orientation");
+        assert_eq!(target.name, capture.name);
+        let tilt = target.tilt_deg(capture.stats.mean_g.map(f64::from));
+        assert!(tilt < target.tolerance_deg + 6.0, "{} captured {tilt:.1} degrees away", capture.name);
+    }
     let fit = procedure::host_fit(&session).unwrap();
     assert_eq!(fit.model, shared::Model::Ortho9);
     let calibration = calibration::from_fit(&fit, &session, shared::AccelRange::G2).unwrap();
@@ -199,7 +211,8 @@ fn a_port_that_vanishes_mid_capture_is_an_error_within_2_s_and_the_session_file_
             }
         })
         .unwrap_err();
-    assert!(matches!(error, LinkError::Disconnected { .. } | LinkError::StoppedAnswering), "{error}");
+    // The board's end of the link is gone: the client says so at once, not after a silence.
+    assert!(matches!(error, LinkError::Disconnected { .. }), "{error}");
     // NOTE: a bound on a hang, not a timing measurement: the client gives up after SILENCE_LIMIT
     // (2 s) of silence at most; a dropped link is noticed at once. Generous for a loaded machine.
     let bound = accelcal::link::SILENCE_LIMIT + Duration::from_secs(3);

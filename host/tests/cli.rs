@@ -163,27 +163,91 @@ fn a_device_of_another_protocol_version_is_named_with_what_to_update() {
     );
 }
 
+/// `accelcal sim --pty` running in the background, killed when dropped.
+struct SimPty {
+    child: std::process::Child,
+    path: String,
+}
+
+impl SimPty {
+    fn start(seed: &str) -> Self {
+        use std::io::BufRead;
+        let mut child = Command::new(env!("CARGO_BIN_EXE_accelcal"))
+            .args(["sim", "--pty", "--seed", seed])
+            .stdin(std::process::Stdio::piped())
+            .stdout(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        let mut first_line = String::new();
+        std::io::BufReader::new(child.stdout.take().unwrap()).read_line(&mut first_line).unwrap();
+        SimPty { child, path: first_line.trim().to_owned() }
+    }
+}
+
+impl Drop for SimPty {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
 #[test]
 fn sim_pty_prints_its_path_and_speaks_the_board_protocol() {
-    use std::io::BufRead;
-    let mut sim = Command::new(env!("CARGO_BIN_EXE_accelcal"))
-        .args(["sim", "--pty", "--seed", "4"])
-        .stdin(std::process::Stdio::piped())
-        .stdout(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    let mut first_line = String::new();
-    std::io::BufReader::new(sim.stdout.take().unwrap()).read_line(&mut first_line).unwrap();
-    let path = first_line.trim().to_owned();
-    assert!(path.starts_with("/dev/pts/"), "{path}");
-    let output = accelcal(&["info", "--port", &path, "--json"]);
-    let _ = sim.kill();
-    let _ = sim.wait();
+    let sim = SimPty::start("4");
+    assert!(sim.path.starts_with("/dev/pts/"), "{}", sim.path);
+    let output = accelcal(&["info", "--port", &sim.path, "--json"]);
     assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
     let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
     assert_eq!(json["sensor"]["address"], 0x68);
     assert_eq!(json["protocol_version"], shared::protocol::PROTOCOL_VERSION);
     assert_eq!(json["active"], serde_json::Value::Null);
+}
+
+/// Uploads `file` to the board at `port` and returns what `download` then prints.
+fn upload_then_download(port: &str, file: &std::path::Path) -> serde_json::Value {
+    let output = accelcal(&["upload", "--port", port, file.to_str().unwrap()]);
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let output = accelcal(&["download", "--port", port]);
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    serde_json::from_slice(&output.stdout).expect("download prints one JSON object")
+}
+
+/// The largest difference between the matrices and offsets of two calibration objects.
+fn largest_difference(a: &serde_json::Value, b: &serde_json::Value) -> f64 {
+    let numbers = |v: &serde_json::Value| -> Vec<f64> {
+        let matrix = v["matrix"].as_array().unwrap().iter().flat_map(|row| row.as_array().unwrap().clone());
+        matrix.chain(v["offset"].as_array().unwrap().clone()).map(|x| x.as_f64().unwrap()).collect()
+    };
+    let (a, b) = (numbers(a), numbers(b));
+    assert_eq!((a.len(), b.len()), (12, 12));
+    a.iter().zip(&b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max)
+}
+
+#[test]
+fn upload_takes_what_download_fit_json_and_calibrate_json_write() {
+    let sim = SimPty::start("5");
+    // calibrate --json: the calibration is the object under "calibration".
+    let calibrated = accelcal(&["calibrate", "--sim", "--json", "--seed", "5"]);
+    assert!(calibrated.status.success(), "{}", String::from_utf8_lossy(&calibrated.stderr));
+    let calibrate_json: serde_json::Value = serde_json::from_slice(&calibrated.stdout).unwrap();
+    let path = write_temp("calibrate.json", &String::from_utf8(calibrated.stdout).unwrap());
+    let on_board = upload_then_download(&sim.path, &path);
+    assert_eq!(on_board["model"], "ortho9");
+    assert!(largest_difference(&on_board, &calibrate_json["calibration"]) < 1e-7);
+    // download: the board's own record, uploaded again unchanged.
+    let path = write_temp("download.json", &on_board.to_string());
+    assert_eq!(upload_then_download(&sim.path, &path), on_board);
+    // fit --json on data in g: six faces of a sensor with 20 mg offsets and 1 % scale errors.
+    let faces = "x,y,z\n1.03,0.02,-0.02\n-0.99,0.02,-0.02\n0.02,1.01,-0.02\n0.02,-0.97,-0.02\n\
+                 0.02,0.02,0.98\n0.02,0.02,-1.02\n";
+    let fitted =
+        accelcal(&["fit", write_temp("faces.csv", faces).to_str().unwrap(), "--model", "six-position", "--json"]);
+    assert!(fitted.status.success(), "{}", String::from_utf8_lossy(&fitted.stderr));
+    let fit_json: serde_json::Value = serde_json::from_slice(&fitted.stdout).unwrap();
+    let on_board = upload_then_download(&sim.path, &write_temp("fit.json", &String::from_utf8(fitted.stdout).unwrap()));
+    assert_eq!(on_board["model"], "six-position");
+    assert!(largest_difference(&on_board, &fit_json) < 1e-7);
+    assert!((on_board["offset"][0].as_f64().unwrap() - 0.02).abs() < 1e-6, "{on_board}");
 }
 
 #[test]
