@@ -13,6 +13,7 @@ use crate::limits::FACE_TOLERANCE_DEG;
 #[derive(Parser)]
 #[command(name = "accelcal", version, about)]
 pub struct Cli {
+    /// What to do.
     #[command(subcommand)]
     pub command: Command,
 }
@@ -117,6 +118,7 @@ pub struct StreamArgs {
     pub rate: u16,
 }
 
+/// The commands of `accelcal`.
 #[derive(Subcommand)]
 pub enum Command {
     /// Fits a calibration to a calibration data file (CSV, see README).

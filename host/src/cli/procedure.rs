@@ -43,13 +43,9 @@ pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
     }
     let fitted = choose(client, session, range, args.quick)?;
     show_choice(feedback.as_mut(), &fitted);
-    if !feedback.confirm("Upload this calibration to the board and save it in flash?") {
-        feedback.say("not uploaded; the board keeps its previous calibration");
+    if !upload_if_confirmed(client, &fitted.chosen, feedback.as_mut())? {
         return Ok(());
     }
-    client.set_calibration(fitted.chosen)?;
-    client.save_calibration()?;
-    feedback.say("uploaded and saved; now checking it at fresh orientations");
     let verification = procedure::verify(client, hand.as_mut(), args.verify, wait_limit, feedback.as_mut())?;
     let truth = opened.sim.as_ref().map(|board| board.truth());
     let captures = fitted.session.captures.len();
@@ -57,6 +53,22 @@ pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
         CalibrateReport::new(&fitted.chosen, &fitted.chip, fitted.host.as_ref(), truth, verification, captures);
     print_report(&report, args.json);
     Ok(())
+}
+
+/// Uploads and saves the calibration if the user agrees; whether it did.
+fn upload_if_confirmed<P: Port>(
+    client: &mut Client<P>,
+    calibration: &Calibration,
+    feedback: &mut dyn Feedback,
+) -> Result<bool, Error> {
+    if !feedback.confirm("Upload this calibration to the board and save it in flash?") {
+        feedback.say("not uploaded; the board keeps its previous calibration");
+        return Ok(false);
+    }
+    client.set_calibration(*calibration)?;
+    client.save_calibration()?;
+    feedback.say("uploaded and saved; now checking it at fresh orientations");
+    Ok(true)
 }
 
 /// The on-chip fit, and for a full calibration the host's fit, which is then the one chosen.

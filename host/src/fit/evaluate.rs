@@ -5,7 +5,7 @@ use serde::Serialize;
 use shared::linalg::{self, Mat3, Vec3};
 use shared::orientation::{inclination_deg, toolface_deg};
 
-use crate::data::Dataset;
+use crate::data::{Dataset, Row};
 
 /// Inclination beyond which toolface is undefined (the x-y projection vanishes), in degrees.
 const TOOLFACE_UNDEFINED_ABOVE_DEG: f64 = 89.0;
@@ -53,25 +53,30 @@ pub fn evaluate(
         .iter()
         .map(|row| {
             let corrected = linalg::mul_vec(matrix, linalg::sub(row.reading, *offset));
-            let distance = |a: Vec3<f64>| row.reference.map(|r| linalg::norm(linalg::sub(a, r)));
-            let inclination_error_deg = row.reference.map(|r| inclination_deg(corrected) - inclination_deg(r));
-            let toolface_error_deg = row
-                .reference
-                .filter(|r| inclination_deg(*r).abs() < TOOLFACE_UNDEFINED_ABOVE_DEG)
-                .map(|r| wrap_deg(toolface_deg(corrected) - toolface_deg(r)));
-            RowEvaluation {
-                line: row.line,
-                training: training_lines.contains(&row.line),
-                norm_error_before: (linalg::norm(row.reading) - g).abs(),
-                norm_error_after: (linalg::norm(corrected) - g).abs(),
-                reference_error_before: distance(row.reading),
-                reference_error_after: distance(corrected),
-                inclination_error_deg,
-                toolface_error_deg,
-            }
+            evaluate_row(row, corrected, g, training_lines.contains(&row.line))
         })
         .collect();
     Evaluation { rows }
+}
+
+/// The errors of one row whose corrected reading is `corrected`.
+fn evaluate_row(row: &Row, corrected: Vec3<f64>, g: f64, training: bool) -> RowEvaluation {
+    let distance = |a: Vec3<f64>| row.reference.map(|r| linalg::norm(linalg::sub(a, r)));
+    let inclination_error_deg = row.reference.map(|r| inclination_deg(corrected) - inclination_deg(r));
+    let toolface_error_deg = row
+        .reference
+        .filter(|r| inclination_deg(*r).abs() < TOOLFACE_UNDEFINED_ABOVE_DEG)
+        .map(|r| wrap_deg(toolface_deg(corrected) - toolface_deg(r)));
+    RowEvaluation {
+        line: row.line,
+        training,
+        norm_error_before: (linalg::norm(row.reading) - g).abs(),
+        norm_error_after: (linalg::norm(corrected) - g).abs(),
+        reference_error_before: distance(row.reading),
+        reference_error_after: distance(corrected),
+        inclination_error_deg,
+        toolface_error_deg,
+    }
 }
 
 /// An angle difference wrapped to (-180, 180].
