@@ -87,18 +87,35 @@ fn wait_for_rest<P: Port, R>(
     mut judge: impl FnMut(Window) -> (String, Option<R>),
 ) -> Result<R, ProcedureError> {
     let started = Instant::now();
-    let mut accepted_in_a_row = 0;
+    let mut streak = Streak::default();
     loop {
         if limit.is_some_and(|l| started.elapsed() > l) {
             return Err(gave_up());
         }
         let (line, verdict) = judge(live_window(client)?);
         feedback.live(&line);
-        match verdict {
-            Some(value) if accepted_in_a_row >= 1 => return Ok(value),
-            Some(_) => accepted_in_a_row += 1,
-            None => accepted_in_a_row = 0,
+        if let Some(value) = streak.settled(verdict) {
+            return Ok(value);
         }
+    }
+}
+
+/// Windows accepted in a row: a board counts as at rest only when two windows in a row are
+/// accepted, so that one lucky half second while it is still being turned does not count.
+#[derive(Debug, Default)]
+struct Streak {
+    accepted_in_a_row: usize,
+}
+
+impl Streak {
+    /// Counts one window's verdict; the value once it is the second accepted window in a row.
+    fn settled<R>(&mut self, verdict: Option<R>) -> Option<R> {
+        match verdict {
+            Some(value) if self.accepted_in_a_row >= 1 => return Some(value),
+            Some(_) => self.accepted_in_a_row += 1,
+            None => self.accepted_in_a_row = 0,
+        }
+        None
     }
 }
 
@@ -132,6 +149,15 @@ mod tests {
         assert!(!window_of(&wobble(1.01 * STILL_ACCEL_STD_G)).still);
         assert!(!window_of(&[]).still);
         assert_eq!(window_of(&wobble(0.005)).mean, [0.0, 0.0, 1.0]);
+    }
+
+    #[test]
+    fn the_board_is_at_rest_only_after_two_accepted_windows_in_a_row() {
+        let mut streak = Streak::default();
+        assert_eq!(streak.settled(Some(1)), None);
+        assert_eq!(streak.settled(None::<i32>), None);
+        assert_eq!(streak.settled(Some(2)), None);
+        assert_eq!(streak.settled(Some(3)), Some(3));
     }
 
     #[test]
