@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
-use shared::protocol::DEFAULT_CAPTURE_SECONDS;
+use shared::protocol::{SensorConfig, DEFAULT_CAPTURE_SECONDS, MAX_CAPTURE_SECONDS, MIN_CAPTURE_SECONDS};
 
 use crate::data::RowList;
 use crate::fit::ModelChoice;
@@ -66,8 +66,7 @@ pub struct CalibrateArgs {
     /// Only the six faces, fitted on the chip.
     #[arg(long)]
     pub quick: bool,
-    /// Seconds to average each position (5-20).
-    #[arg(long, default_value_t = DEFAULT_CAPTURE_SECONDS)]
+    #[arg(long, default_value_t = DEFAULT_CAPTURE_SECONDS, help = seconds_help("Seconds to average each position"))]
     pub seconds: u8,
     /// Fresh orientations to verify at.
     #[arg(long, default_value_t = 6)]
@@ -97,8 +96,7 @@ pub struct CaptureArgs {
     /// A name for the position (a face or corner name such as +X or +X+Y+Z records that orientation).
     #[arg(long, default_value = "position")]
     pub name: String,
-    /// Seconds to average (5-20).
-    #[arg(long, default_value_t = DEFAULT_CAPTURE_SECONDS)]
+    #[arg(long, default_value_t = DEFAULT_CAPTURE_SECONDS, help = seconds_help("Seconds to average"))]
     pub seconds: u8,
 }
 
@@ -113,8 +111,7 @@ pub struct StreamArgs {
     /// Samples to stream.
     #[arg(long, default_value_t = 100)]
     pub count: u32,
-    /// Samples per second (must divide the 100 Hz sample rate).
-    #[arg(long, default_value_t = 10)]
+    #[arg(long, default_value_t = 10, help = rate_help())]
     pub rate: u16,
 }
 
@@ -184,4 +181,14 @@ pub enum Command {
         #[arg(long, default_value_t = 1)]
         seed: u64,
     },
+}
+
+/// Help for a capture length, with the limits the device accepts.
+fn seconds_help(what: &str) -> String {
+    format!("{what} ({MIN_CAPTURE_SECONDS}-{MAX_CAPTURE_SECONDS})")
+}
+
+/// Help for a stream rate, with the sample rate it must divide.
+fn rate_help() -> String {
+    format!("Samples per second (must divide the {} Hz sample rate)", SensorConfig::default().sample_rate_hz)
 }

@@ -13,6 +13,9 @@ use crate::limits::{AXIS_SPREAD, INDEPENDENT_REFERENCES_DEG};
 use levenberg_marquardt::LeastSquaresProblem;
 use shared::linalg::{Mat3, Vec3};
 
+/// Known orientations `reference-norm12` needs at least [`INDEPENDENT_REFERENCES_DEG`] apart: two fix
+/// the rotation that the |a| = g rows cannot see.
+const INDEPENDENT_REFERENCES: usize = 2;
 /// Below this ratio of smallest to largest singular value the parameters are not observable.
 /// NOTE: the ratio comes from eigenvalues of J^T J, whose rounding floor is 1e-16 relative: 1e-7 in
 /// singular values stays clear of it.
@@ -114,7 +117,11 @@ fn check_references(training: &Dataset, model: Model, shape: Shape) -> Result<()
     let independent =
         references.iter().any(|a| references.iter().any(|b| angle_between(a, b) > INDEPENDENT_REFERENCES_DEG));
     if !independent {
-        return Err(FitError::TooFewReferences { model: name, needed: 2, found: references.len().min(1) });
+        return Err(FitError::TooFewReferences {
+            model: name,
+            needed: INDEPENDENT_REFERENCES,
+            found: references.len().min(1),
+        });
     }
     let residuals = training.rows.len() + 2 * references.len();
     if residuals < shape.len() + 3 {
