@@ -6,7 +6,7 @@ use std::time::Duration;
 
 use accelcal::calibration;
 use accelcal::link::{open_serial, pipe, Client, LinkError, Port};
-use accelcal::procedure::{self, CalibrateOptions, Feedback, Hand, Orientation, ProcedureError, Silent, SimulatedHand};
+use accelcal::procedure::{self, CollectOptions, Feedback, Hand, Orientation, ProcedureError, Silent, SimulatedHand};
 use accelcal::sim::{SimBoard, SimCommand};
 use firmware::sim::physics::Motion;
 use firmware::sim::SimFlash;
@@ -35,8 +35,8 @@ fn connect_serial(path: &str) -> Client<Box<dyn Port>> {
     Client::connect(Box::new(port) as Box<dyn Port>).expect("the simulated board answers").0
 }
 
-fn options() -> CalibrateOptions {
-    CalibrateOptions { quick: false, seconds: 10, verify_positions: 12, wait_limit: WAIT }
+fn options() -> CollectOptions {
+    CollectOptions { seconds: 10, wait_limit: WAIT }
 }
 
 #[test]
@@ -95,8 +95,7 @@ fn quick_six_position_on_the_chip_improves_the_error_too() {
         let (mut client, _) = Client::connect(host).unwrap();
         let mut hand = SimulatedHand::new(board.controls(), PLACEMENT_DEG, seed);
         let mut feedback = Silent { yes: true };
-        let options = CalibrateOptions { quick: true, ..options() };
-        procedure::collect(&mut client, &mut hand, &procedure::faces(), &options, &mut feedback).unwrap();
+        procedure::collect(&mut client, &mut hand, &procedure::faces(), &options(), &mut feedback).unwrap();
         let chip = client.fit_six_position().unwrap();
         client.set_calibration(chip).unwrap();
         client.save_calibration().unwrap();
@@ -150,7 +149,7 @@ fn a_repeated_position_is_refused_by_name_and_the_wait_ends_with_what_is_missing
     let (mut client, _) = Client::connect(host).unwrap();
     let targets = [Orientation::face(Position::PosX), Orientation::face(Position::NegX)];
     let mut recorder = Recorder::default();
-    let options = CalibrateOptions { wait_limit: Some(Duration::from_secs(2)), ..options() };
+    let options = CollectOptions { wait_limit: Some(Duration::from_secs(2)), ..options() };
     let error = procedure::collect(&mut client, &mut Stubborn(board.controls()), &targets, &options, &mut recorder)
         .unwrap_err()
         .to_string();

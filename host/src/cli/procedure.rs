@@ -10,7 +10,7 @@ use crate::error::Error;
 use crate::fit::Fit;
 use crate::link::{Client, LinkError, Port};
 use crate::orientation::Orientation;
-use crate::procedure::{self, CalibrateOptions, Feedback};
+use crate::procedure::{self, CollectOptions, Feedback};
 use crate::report::{self, CalibrateReport};
 use crate::session::{CaptureRecord, Session};
 
@@ -32,8 +32,7 @@ pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
     let yes = args.yes || (args.json && opened.sim.is_some());
     let mut feedback = feedback(args.json, yes);
     let (mut hand, wait_limit) = opened.hand(args.sim_placement_deg, args.device.seed);
-    let options =
-        CalibrateOptions { quick: args.quick, seconds: args.seconds, verify_positions: args.verify, wait_limit };
+    let options = CollectOptions { seconds: args.seconds, wait_limit };
     let range = opened.connection.info.config.range;
     let client = &mut opened.connection.client;
     let session =

@@ -5,7 +5,7 @@ use shared::protocol::{CaptureStats, DeviceError};
 use shared::Position;
 
 use super::wait::wait_for_target;
-use super::{CalibrateOptions, Feedback, Hand, Orientation, ProcedureError};
+use super::{CollectOptions, Feedback, Hand, Orientation, ProcedureError};
 use crate::link::{explain, Client, LinkError, Port};
 use crate::session::{CaptureRecord, Session};
 
@@ -17,7 +17,7 @@ pub fn collect<P: Port>(
     client: &mut Client<P>,
     hand: &mut dyn Hand,
     targets: &[Orientation],
-    options: &CalibrateOptions,
+    options: &CollectOptions,
     feedback: &mut dyn Feedback,
 ) -> Result<Session, ProcedureError> {
     client.clear_positions()?;

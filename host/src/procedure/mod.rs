@@ -43,15 +43,11 @@ pub enum ProcedureError {
     Fit(#[from] FitError),
 }
 
-/// How the captures run.
+/// How the captures of [`collect`] run.
 #[derive(Debug, Clone)]
-pub struct CalibrateOptions {
-    /// Only the six faces, fitted on the chip.
-    pub quick: bool,
+pub struct CollectOptions {
     /// Capture length, in seconds.
     pub seconds: u8,
-    /// Fresh orientations to verify at.
-    pub verify_positions: usize,
     /// Give up waiting for a position after this long (`None`: wait for the person).
     pub wait_limit: Option<Duration>,
 }
