@@ -50,7 +50,7 @@ fn default_calibration_over_a_pty_survives_a_restart_and_verifies_below_1_mg() {
     let session = calibrate::collect(&mut client, &mut hand, &targets, &options(), &mut feedback).unwrap();
     assert_eq!(session.captures.len(), 14);
     let fit = calibrate::host_fit(&session).unwrap();
-    assert_eq!(fit.model, shared::Model::Ortho9);
+    assert_eq!(fit.model, accelcal::fit::Model::Ortho9);
     let calibration = calibrate::calibration_from_fit(&fit, &session, shared::AccelRange::G2).unwrap();
     calibrate::upload_and_save(&mut client, &calibration).unwrap();
     drop(client);

@@ -4,6 +4,7 @@
 use std::time::{Duration, Instant};
 
 use serde::Serialize;
+use shared::calibration::GyroCalibration;
 use shared::linalg;
 use shared::orientation::angle_between_deg;
 use shared::protocol::{CalibrationSlot, CaptureStats, DeviceError, Request, Response, StreamKind};
@@ -287,10 +288,11 @@ pub fn calibration_from_fit(fit: &Fit, session: &Session, range: AccelRange) -> 
     let calibration = Calibration {
         matrix: fit.matrix.map(|row| row.map(|v| v as f32)),
         offset_g: fit.offset.map(|v| v as f32),
-        gyro_bias_dps: gyro_bias,
-        model: fit.model,
+        gyro: GyroCalibration { bias_dps: gyro_bias, ..GyroCalibration::default() },
+        origin: fit.model.origin(),
         range,
-        temp_c,
+        mean_temp_c: temp_c,
+        temperature: None,
         residual_mg: residual_mg as f32,
     };
     calibration.validate().map_err(|reason| {

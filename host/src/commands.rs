@@ -5,8 +5,9 @@ use std::path::PathBuf;
 use std::time::Duration;
 
 use serde_json::json;
+use shared::calibration::{GyroCalibration, ModelTag, Origin, Procedure};
 use shared::protocol::{CalibrationSlot, Request, Response, StreamKind, USB_PID, USB_VID};
-use shared::{AccelRange, Calibration, Model};
+use shared::{AccelRange, Calibration};
 
 use crate::calibrate::{self, CalibrateOptions, Feedback, Hand, PersonHand};
 use crate::connect::{connect, Connection, Target};
@@ -130,7 +131,7 @@ fn describe(calibration: &Calibration) -> String {
     let o = calibration.offset_g.map(|v| v * 1000.0);
     format!(
         "{}: scale {:.5} {:.5} {:.5}, offset {:+.2} {:+.2} {:+.2} mg, residual {:.3} mg",
-        calibration.model.name(),
+        calibration.origin.model.as_str(),
         m[0][0],
         m[1][1],
         m[2][2],
@@ -144,12 +145,12 @@ fn describe(calibration: &Calibration) -> String {
 /// A calibration as JSON, under the convention a = matrix (m - offset), in g.
 pub fn calibration_json(calibration: &Calibration) -> serde_json::Value {
     json!({
-        "model": calibration.model.name(),
+        "model": calibration.origin.model.as_str(),
         "matrix": calibration.matrix,
         "offset": calibration.offset_g,
-        "gyro_bias_dps": calibration.gyro_bias_dps,
+        "gyro_bias_dps": calibration.gyro.bias_dps,
         "range_g": calibration.range.full_scale_g(),
-        "temp_c": calibration.temp_c,
+        "temp_c": calibration.mean_temp_c,
         "residual_mg": calibration.residual_mg,
     })
 }
@@ -175,7 +176,7 @@ pub fn calibration_from_json(text: &str, range: AccelRange) -> Result<Calibratio
         array("offset").filter(|o| o.len() == 3).ok_or_else(|| Error::Refused("no 3-element \"offset\"".into()))?;
     let gyro = array("gyro_bias_dps").filter(|g| g.len() == 3).unwrap_or(vec![0.0; 3]);
     let model_name = value.get("model").and_then(|m| m.as_str()).unwrap_or("");
-    let model = crate::fit::RICHEST_FIRST.into_iter().find(|m| m.name() == model_name).unwrap_or(Model::Linear12);
+    let origin = Origin { procedure: Procedure::Uploaded, model: ModelTag::new(model_name).unwrap_or_default() };
     let range = value
         .get("range_g")
         .and_then(|r| r.as_u64())
@@ -188,10 +189,11 @@ pub fn calibration_from_json(text: &str, range: AccelRange) -> Result<Calibratio
             [matrix[6], matrix[7], matrix[8]],
         ],
         offset_g: [offset[0], offset[1], offset[2]],
-        gyro_bias_dps: [gyro[0], gyro[1], gyro[2]],
-        model,
+        gyro: GyroCalibration { bias_dps: [gyro[0], gyro[1], gyro[2]], ..GyroCalibration::default() },
+        origin,
         range,
-        temp_c: value.get("temp_c").and_then(|t| t.as_f64()).unwrap_or(0.0) as f32,
+        mean_temp_c: value.get("temp_c").and_then(|t| t.as_f64()).unwrap_or(0.0) as f32,
+        temperature: None,
         residual_mg: value.get("residual_mg").and_then(|t| t.as_f64()).unwrap_or(0.0) as f32,
     };
     calibration.validate().map_err(|reason| {

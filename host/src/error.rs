@@ -57,7 +57,6 @@ pub fn explain(error: &DeviceError) -> String {
         DeviceError::InvalidDuration { seconds } => format!("a capture of {seconds} s is not possible: choose 5 to 20 s"),
         DeviceError::InvalidRate { rate_hz } => format!("{rate_hz} Hz is not possible: choose a rate that divides the 1 kHz sensor clock (and, for a stream, the sample rate)"),
         DeviceError::SixPosition(SixPositionError::Missing(p)) => format!("the six-position fit needs a capture with {} up: capture it first", p.name()),
-        DeviceError::SixPosition(SixPositionError::Duplicate(p)) => format!("{} was captured twice", p.name()),
         DeviceError::SixPosition(SixPositionError::Degenerate) => "the six captures do not determine the sensor: opposite faces read alike; capture them again".into(),
         DeviceError::InvalidCalibration(reason) => format!("the device refused the calibration: {}", calibration_reason(&reason)),
         DeviceError::RangeMismatch { calibration, configured } => format!("the calibration is for +-{} g but the sensor is at +-{} g: configure the range first", calibration.full_scale_g(), configured.full_scale_g()),
@@ -69,23 +68,50 @@ pub fn explain(error: &DeviceError) -> String {
     }
 }
 
-/// Why a calibration was refused, in words.
+/// Why a calibration was refused, in words; the limits are quoted from shared's one table.
 pub fn calibration_reason(reason: &CalibrationError) -> String {
+    use shared::calibration::limits::*;
     let axis = |a: u8| ["x", "y", "z"].get(usize::from(a)).copied().unwrap_or("?");
+    let (low_c, high_c) = OPERATING_TEMP_C;
+    let over = format!("somewhere in {low_c}..{high_c} degC");
     match *reason {
         CalibrationError::NonFinite => "it holds a value that is not a number".into(),
         CalibrationError::Singular { determinant } => format!("its matrix is singular (determinant {determinant:.3})"),
         CalibrationError::ScaleOutOfRange { axis: a, value } => {
-            format!("the {} scale {value:.3} is outside 0.5-2", axis(a))
+            format!("the {} scale {value:.3} is outside {}-{}", axis(a), SCALE.0, SCALE.1)
         }
         CalibrationError::CrossAxisOutOfRange { row, col, value } => {
-            format!("cross-axis term M{}{} = {value:.3} is larger than 0.25", row + 1, col + 1)
+            format!("cross-axis term M{}{} = {value:.3} is larger than {CROSS_AXIS}", row + 1, col + 1)
         }
         CalibrationError::OffsetOutOfRange { axis: a, value_g } => {
-            format!("the {} offset {value_g:.3} g is larger than 0.5 g", axis(a))
+            format!("the {} offset {value_g:.3} g is larger than {OFFSET_G} g", axis(a))
         }
         CalibrationError::GyroBiasOutOfRange { axis: a, value_dps } => {
-            format!("the {} gyro bias {value_dps:.1} deg/s is larger than 50 deg/s", axis(a))
+            format!("the {} gyro bias {value_dps:.1} deg/s is larger than {GYRO_BIAS_DPS} deg/s", axis(a))
+        }
+        CalibrationError::GyroSingular { determinant } => {
+            format!("its gyro matrix is singular (determinant {determinant:.3})")
+        }
+        CalibrationError::GyroScaleOutOfRange { axis: a, value } => {
+            format!("the {} gyro scale {value:.3} is outside {}-{}", axis(a), GYRO_SCALE.0, GYRO_SCALE.1)
+        }
+        CalibrationError::GyroCrossAxisOutOfRange { row, col, value } => {
+            format!("gyro cross-axis term G{}{} = {value:.3} is larger than {GYRO_CROSS_AXIS}", row + 1, col + 1)
+        }
+        CalibrationError::ReferenceTemperatureOutOfRange { value_c } => {
+            format!("its reference temperature {value_c:.1} degC is outside {low_c}..{high_c} degC")
+        }
+        CalibrationError::OffsetDriftOutOfRange { axis: a, value_g } => {
+            format!("the {} offset drifts by {value_g:.3} g {over}, more than {OFFSET_DRIFT_G} g", axis(a))
+        }
+        CalibrationError::ScaleDriftOutOfRange { axis: a, value } => {
+            format!("the {} scale drifts by {value:.3} {over}, more than {SCALE_DRIFT}", axis(a))
+        }
+        CalibrationError::GyroBiasDriftOutOfRange { axis: a, value_dps } => {
+            format!(
+                "the {} gyro bias drifts by {value_dps:.1} deg/s {over}, more than {GYRO_BIAS_DRIFT_DPS} deg/s",
+                axis(a)
+            )
         }
     }
 }

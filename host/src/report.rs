@@ -4,10 +4,9 @@ use std::collections::BTreeMap;
 use std::fmt::Write;
 
 use serde::Serialize;
-use shared::Model;
 
 use crate::data::Dataset;
-use crate::fit::{self, misalignment_deg, Evaluation, Fit, FitOptions, NoiseTest};
+use crate::fit::{self, misalignment_deg, Evaluation, Fit, FitOptions, Model, NoiseTest};
 
 /// The JSON object printed by `accelcal fit --json` (DESIGN.md, "Interfaces").
 #[derive(Debug, Serialize)]

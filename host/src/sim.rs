@@ -11,10 +11,9 @@ use std::time::Duration;
 
 use embassy_futures::block_on;
 use firmware::device::Device;
-use firmware::link::Link;
+use firmware::server::Server;
 use firmware::sim::physics::{Motion, TrueErrors};
-use firmware::sim::{SimFlash, SimMpu6050, SIM_FLASH_RANGE};
-use shared::protocol::MAX_FRAME_LEN;
+use firmware::sim::{sim_serial_number, SimFlash, SimMpu6050, SIM_FLASH_RANGE};
 
 use crate::port::Port;
 
@@ -55,8 +54,8 @@ impl SimBoard {
         let thread = std::thread::spawn(move || {
             // NOTE: boot fails only for a flash range that does not fit the flash, and
             // SIM_FLASH_RANGE is the whole of SimFlash; the board then simply never answers.
-            match block_on(Device::boot(sensor, flash, SIM_FLASH_RANGE)) {
-                Ok(device) => serve(port, device, inbox),
+            match block_on(Device::boot(sensor, flash, SIM_FLASH_RANGE, sim_serial_number(seed))) {
+                Ok(device) => serve(port, Server::new(device), inbox),
                 Err(_) => SimFlash::default(),
             }
         });
@@ -91,46 +90,43 @@ impl Drop for SimBoard {
 
 fn serve<P: Port>(
     mut port: P,
-    mut device: Device<SimMpu6050, SimFlash>,
+    mut server: Server<SimMpu6050, SimFlash>,
     inbox: std::sync::mpsc::Receiver<SimCommand>,
 ) -> SimFlash {
-    let mut link = Link::new();
     let mut buffer = [0u8; 256];
     loop {
+        let device = server.device_mut();
         match inbox.try_recv() {
             Ok(SimCommand::Place(up)) => device.bus_mut().place(up),
             Ok(SimCommand::Move(motion)) => device.bus_mut().set_motion(motion),
             Ok(SimCommand::Connect(connected)) => device.bus_mut().set_connected(connected),
             Ok(SimCommand::Restart) => {
-                let (sensor, flash) = device.into_parts();
-                match block_on(Device::boot(sensor, flash, SIM_FLASH_RANGE)) {
-                    Ok(rebooted) => device = rebooted,
+                let serial = server.device().serial();
+                let (sensor, flash) = server.into_device().into_parts();
+                match block_on(Device::boot(sensor, flash, SIM_FLASH_RANGE, serial)) {
+                    Ok(rebooted) => server = Server::new(rebooted),
                     Err(_) => return SimFlash::default(),
                 }
-                link = Link::new();
             }
             Ok(SimCommand::Stop) | Err(TryRecvError::Disconnected) => break,
             Err(TryRecvError::Empty) => {}
         }
-        let wait = if device.is_busy() { Duration::ZERO } else { IDLE_WAIT };
+        let wait = if server.device().is_busy() { Duration::ZERO } else { IDLE_WAIT };
         let _ = port.set_read_timeout(wait);
         match port.read(&mut buffer) {
-            Ok(n) => block_on(link.receive(&buffer[..n], &mut device)),
+            Ok(n) => block_on(server.receive(&buffer[..n])),
             Err(e) if matches!(e.kind(), ErrorKind::TimedOut | ErrorKind::WouldBlock | ErrorKind::Interrupted) => {}
             Err(e) if e.kind() == ErrorKind::BrokenPipe => break, // the in-process host is gone
             Err(_) => std::thread::sleep(IDLE_WAIT),              // a pty with no one on the other side yet
         }
-        device.bus_mut().advance_us(TICK_US);
-        device.poll();
-        while let Some((id, response)) = device.next_response() {
-            let mut frame = [0u8; MAX_FRAME_LEN];
-            if port.write_all(Link::encode(id, &response, &mut frame)).is_err() {
-                break;
-            }
-        }
+        server.device_mut().bus_mut().advance_us(TICK_US);
+        server.poll();
+        // NOTE: after a failed write the rest of the frames are dropped: the host is gone.
+        let mut writing = true;
+        server.drain(|frame| writing = writing && port.write_all(frame).is_ok());
         let _ = port.flush();
     }
-    device.into_parts().1
+    server.into_device().into_parts().1
 }
 
 /// The tool's own hand on the simulated board: it turns the board to each target, a few degrees off

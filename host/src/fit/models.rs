@@ -2,11 +2,10 @@
 //! normalised solve, and the map back to the file's units with standard errors.
 
 use nalgebra::{DMatrix, DVector, Vector3};
-use shared::Model;
 
 use super::nonlinear::{solve, Normalization, Observation, Problem, Solution};
 use super::shape::Shape;
-use super::{statistics, Fit, FitError, FitOptions, Parameter};
+use super::{statistics, Fit, FitError, FitOptions, Model, Parameter};
 use crate::data::Dataset;
 use levenberg_marquardt::LeastSquaresProblem;
 
