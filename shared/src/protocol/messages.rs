@@ -9,6 +9,9 @@ use crate::six_position::SixPositionError;
 use super::FrameError;
 
 /// What the host asks of the device.
+// NOTE: a calibration makes one variant large; without an allocator it cannot be boxed, and a
+// message is built once and handed on, so the size costs RAM in the outbox, not time.
+#[allow(clippy::large_enum_variant)]
 #[derive(Serialize, Deserialize, Debug, Clone, PartialEq)]
 pub enum Request {
     /// Opens a session; answered with [`Response::Hello`]. Sent first.
@@ -36,6 +39,9 @@ pub enum Request {
 }
 
 /// What the device answers.
+// NOTE: a calibration makes one variant large; without an allocator it cannot be boxed, and a
+// message is built once and handed on, so the size costs RAM in the outbox, not time.
+#[allow(clippy::large_enum_variant)]
 #[derive(Serialize, Deserialize, Debug, Clone, PartialEq)]
 pub enum Response {
     /// Answer to [`Request::Hello`].
