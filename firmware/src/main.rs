@@ -114,11 +114,7 @@ mod board {
         // NOTE: the Black Pill does not route VBUS to PA9, so VBUS sensing must stay off.
         usb_config.vbus_detection = false;
         let driver = usb::Driver::new_fs(p.USB_OTG_FS, Irqs, p.PA12, p.PA11, &mut ep_out_buffer, usb_config);
-        let mut config = embassy_usb::Config::new(USB_VID, USB_PID);
-        config.manufacturer = Some(USB_MANUFACTURER);
-        config.product = Some(USB_PRODUCT);
-        // NOTE: hex digits are ASCII, so the conversion cannot fail.
-        config.serial_number = core::str::from_utf8(&serial_text).ok();
+        let config = usb_identity(&serial_text);
         let mut config_descriptor = [0; 256];
         let mut bos_descriptor = [0; 256];
         let mut control_buf = [0; 64];
@@ -129,36 +125,56 @@ mod board {
         let mut usb = builder.build();
 
         let mut server = Server::new(device);
-        let serve = async {
-            let mut last_error = None;
-            loop {
-                let mut packet = [0u8; USB_PACKET_LEN as usize];
-                let connected = class.dtr();
-                match select(class.read_packet(&mut packet), Timer::after(POLL_PERIOD)).await {
-                    Either::First(Ok(n)) => server.receive(&packet[..n]).await,
-                    Either::First(Err(_)) => Timer::after(POLL_PERIOD).await, // not connected yet
-                    Either::Second(()) => server.poll(),
-                }
-                let mut buffer = [0u8; MAX_FRAME_LEN];
-                while let Some((frame, is_error)) = server.next_frame(&mut buffer) {
-                    if is_error {
-                        // NOTE: core::fmt of the error (it holds floats) would cost 15 KiB of flash;
-                        // the host names the error, the log only marks that one happened.
-                        warn!("a request was answered with an error");
-                        last_error = Some(Instant::now());
-                    }
-                    if connected {
-                        send(&mut class, frame).await;
-                    }
-                }
-                led.set_level(led_level(server.device().is_busy(), last_error));
-            }
-        };
-        join(usb.run(), serve).await;
+        join(usb.run(), serve(&mut server, &mut class, &mut led)).await;
     }
 
+    /// The board's USB identity: shared's ids and strings, and its own serial number (24 hex digits).
+    fn usb_identity(serial_text: &[u8; 24]) -> embassy_usb::Config<'_> {
+        let mut config = embassy_usb::Config::new(USB_VID, USB_PID);
+        config.manufacturer = Some(USB_MANUFACTURER);
+        config.product = Some(USB_PRODUCT);
+        // NOTE: hex digits are ASCII, so the conversion cannot fail.
+        config.serial_number = core::str::from_utf8(serial_text).ok();
+        config
+    }
+
+    /// Serves the USB serial port for ever: the library's serve step, with the LED showing what
+    /// the device does.
+    async fn serve<'d, I, E, F>(server: &mut Server<I, F>, class: &mut UsbSerial<'d>, led: &mut Output<'_>)
+    where
+        I: embedded_hal::blocking::i2c::Write<Error = E> + embedded_hal::blocking::i2c::WriteRead<Error = E>,
+        F: embedded_storage_async::nor_flash::NorFlash,
+    {
+        let mut last_error = None;
+        loop {
+            let mut packet = [0u8; USB_PACKET_LEN as usize];
+            let connected = class.dtr();
+            match select(class.read_packet(&mut packet), Timer::after(POLL_PERIOD)).await {
+                Either::First(Ok(n)) => server.receive(&packet[..n]).await,
+                Either::First(Err(_)) => Timer::after(POLL_PERIOD).await, // not connected yet
+                Either::Second(()) => server.poll(),
+            }
+            let mut buffer = [0u8; MAX_FRAME_LEN];
+            while let Some((frame, is_error)) = server.next_frame(&mut buffer) {
+                if is_error {
+                    // NOTE: core::fmt of the error (it holds floats) would cost 15 KiB of flash;
+                    // the host names the error, the log only marks that one happened.
+                    warn!("a request was answered with an error");
+                    last_error = Some(Instant::now());
+                }
+                if connected {
+                    send(class, frame).await;
+                }
+            }
+            led.set_level(led_level(server.device().is_busy(), last_error));
+        }
+    }
+
+    /// The CDC-ACM serial port on the USB OTG FS peripheral.
+    type UsbSerial<'d> = CdcAcmClass<'d, usb::Driver<'d, peripherals::USB_OTG_FS>>;
+
     /// Writes one frame in USB packets, ending a transfer that fills whole packets with an empty one.
-    async fn send<'d>(class: &mut CdcAcmClass<'d, usb::Driver<'d, peripherals::USB_OTG_FS>>, frame: &[u8]) {
+    async fn send(class: &mut UsbSerial<'_>, frame: &[u8]) {
         for chunk in frame.chunks(USB_PACKET_LEN as usize) {
             if class.write_packet(chunk).await.is_err() {
                 return; // host gone: the response is dropped, the device carries on

@@ -7,6 +7,7 @@
 //! temperature; the physics are in [`physics`]. Time only passes when the owner calls
 //! [`SimMpu6050::advance_us`], so runs are exactly repeatable.
 
+mod board;
 pub mod flash;
 pub mod physics;
 
@@ -15,6 +16,7 @@ use heapless::Deque;
 use shared::linalg::{self, Vec3};
 
 use crate::sensor::registers as reg;
+pub use board::{sim_serial_number, SimFlash, SIM_FLASH_RANGE};
 use physics::{Motion, Physics};
 
 /// Register file size: every register address is below 0x80.
@@ -285,17 +287,3 @@ impl WriteRead for SimMpu6050 {
 
 #[cfg(test)]
 mod tests;
-
-/// The simulated board's serial number: "SIM" and a zero, then the seed, so that two simulated boards
-/// differ as real ones do and a simulated serial is never mistaken for an STM32's unique ID.
-pub fn sim_serial_number(seed: u64) -> shared::protocol::SerialNumber {
-    let mut id = [0u8; shared::protocol::SERIAL_NUMBER_LEN];
-    id[..3].copy_from_slice(b"SIM");
-    id[4..].copy_from_slice(&seed.to_be_bytes());
-    shared::protocol::SerialNumber(id)
-}
-
-/// The simulated board's flash: four 4 KiB pages (small pages exercise page changes quickly).
-pub type SimFlash = flash::RamFlash<4096, 4>;
-/// The byte range of [`SimFlash`] holding the calibration: all of it.
-pub const SIM_FLASH_RANGE: core::ops::Range<u32> = 0..4 * 4096;

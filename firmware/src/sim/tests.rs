@@ -143,3 +143,10 @@ fn an_asleep_chip_fills_no_fifo_until_it_is_woken() {
     sim.advance_us(500_000);
     assert_eq!(sim.fifo_len(), 50 * 14, "awake, 0.5 s at 100 Hz of 14-byte samples");
 }
+
+#[test]
+fn simulated_boards_have_distinct_serial_numbers_marked_as_simulated() {
+    let (first, second) = (super::sim_serial_number(1), super::sim_serial_number(2));
+    assert_ne!(first, second);
+    assert_eq!(&first.hex(), b"53494D000000000000000001", "\"SIM\", a zero, then the seed");
+}
