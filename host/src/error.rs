@@ -2,7 +2,7 @@
 
 use std::fmt;
 
-use shared::protocol::{DeviceError, FrameError, PROTOCOL_VERSION};
+use shared::protocol::{DeviceError, FrameError, MAX_CAPTURE_SECONDS, MIN_CAPTURE_SECONDS, PROTOCOL_VERSION};
 use shared::{CalibrationError, SixPositionError};
 
 use crate::data::DataError;
@@ -54,7 +54,7 @@ pub fn explain(error: &DeviceError) -> String {
         DeviceError::Moved { accel_std_mg, gyro_std_dps } => format!("the board moved during the capture (scatter {accel_std_mg:.1} mg, {gyro_std_dps:.2} deg/s): rest it against something firm and keep still"),
         DeviceError::Clipped { samples } => format!("{samples} samples hit the end of the range: the board was knocked, or choose a wider range"),
         DeviceError::Cancelled => "the operation was cancelled".into(),
-        DeviceError::InvalidDuration { seconds } => format!("a capture of {seconds} s is not possible: choose 5 to 20 s"),
+        DeviceError::InvalidDuration { seconds } => format!("a capture of {seconds} s is not possible: choose {MIN_CAPTURE_SECONDS} to {MAX_CAPTURE_SECONDS} s"),
         DeviceError::InvalidRate { rate_hz } => format!("{rate_hz} Hz is not possible: choose a rate that divides the 1 kHz sensor clock (and, for a stream, the sample rate)"),
         DeviceError::SixPosition(SixPositionError::Missing(p)) => format!("the six-position fit needs a capture with {} up: capture it first", p.name()),
         DeviceError::SixPosition(SixPositionError::Degenerate) => "the six captures do not determine the sensor: opposite faces read alike; capture them again".into(),

@@ -11,5 +11,5 @@ pub mod protocol;
 pub mod six_position;
 
 pub use calibration::{AccelRange, Calibration, CalibrationError};
-pub use orientation::{Position, PositionError, PositionMap};
+pub use orientation::{Orientation, Position, PositionError, PositionMap};
 pub use six_position::{SixPositionError, SixPositionFit};

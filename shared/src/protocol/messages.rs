@@ -18,7 +18,8 @@ pub enum Request {
     Hello { protocol_version: u8 },
     /// Sets range, sample rate and filter; answered with [`Response::Configured`] (the rate achieved).
     Configure(SensorConfig),
-    /// Averages the still sensor for `seconds` (5-20); progress, then [`Response::Captured`].
+    /// Averages the still sensor for `seconds` (see [`super::MIN_CAPTURE_SECONDS`]); progress, then
+    /// [`Response::Captured`].
     Capture { seconds: u8 },
     /// Stops the running capture or stream; the stopped operation ends with an error or its end message.
     Cancel,
@@ -252,13 +253,14 @@ pub enum DeviceError {
     Bus,
     /// The sensor FIFO overflowed, so samples were lost.
     FifoOverflow,
-    /// The board moved during the capture: the scatter exceeded the stillness limits.
+    /// The board moved during the capture: the scatter exceeded [`super::MAX_STILL_ACCEL_STD_G`] or
+    /// [`super::MAX_STILL_GYRO_STD_DPS`].
     Moved { accel_std_mg: f32, gyro_std_dps: f32 },
     /// Samples reached the end of the range.
     Clipped { samples: u32 },
     /// The operation was cancelled by the host.
     Cancelled,
-    /// A capture length outside 5-20 s.
+    /// A capture length outside [`super::MIN_CAPTURE_SECONDS`]..=[`super::MAX_CAPTURE_SECONDS`].
     InvalidDuration { seconds: u8 },
     /// A sample rate the sensor cannot run at, or a stream rate above the sample rate.
     InvalidRate { rate_hz: u16 },
