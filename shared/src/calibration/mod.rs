@@ -123,7 +123,7 @@ impl Calibration {
         let Some(model) = &self.temperature else {
             return self.apply(reading_g);
         };
-        let delta_c = temp_c - model.ref_temp_c;
+        let delta_c = model.delta_c(temp_c);
         let offset = linalg::add(self.offset_g, drift(&model.offset_g, delta_c));
         let scale = drift(&model.scale, delta_c);
         let centred = linalg::sub(reading_g, offset);
@@ -136,7 +136,7 @@ impl Calibration {
     /// b(T) = b + sum e_k dT^k (b alone without a temperature model).
     pub fn apply_gyro(&self, reading_dps: Vec3<f32>, temp_c: f32) -> Vec3<f32> {
         let bias = match &self.temperature {
-            Some(model) => linalg::add(self.gyro.bias_dps, drift(&model.gyro_bias_dps, temp_c - model.ref_temp_c)),
+            Some(model) => linalg::add(self.gyro.bias_dps, drift(&model.gyro_bias_dps, model.delta_c(temp_c))),
             None => self.gyro.bias_dps,
         };
         linalg::mul_vec(&self.gyro.matrix, linalg::sub(reading_dps, bias))

@@ -35,6 +35,13 @@ impl TemperatureModel {
         }
     }
 
+    /// T - T_ref for a die temperature in degC, with T held to the operating range: the model is
+    /// validated over that range only, so a wild temperature reading cannot make it blow up.
+    pub fn delta_c(&self, temp_c: f32) -> f32 {
+        let (low, high) = super::limits::OPERATING_TEMP_C;
+        temp_c.clamp(low, high) - self.ref_temp_c
+    }
+
     /// Every coefficient, T_ref first (for the finiteness check).
     pub fn values(&self) -> impl Iterator<Item = &f32> {
         let coefficients = self.offset_g.iter().chain(&self.scale).chain(&self.gyro_bias_dps).flatten();

@@ -62,6 +62,10 @@ fn apply_at_moves_offset_and_scale_with_the_temperature_difference() {
     );
     // At T_ref the model vanishes: exactly the plain correction.
     assert_eq!(cal.apply_at([1.7, 0.6, 3.0], 20.0), cal.apply([1.7, 0.6, 3.0]));
+    // A temperature beyond the operating range is held to its end, where the model was validated.
+    let hottest = limits::OPERATING_TEMP_C.1;
+    assert_eq!(cal.apply_at([1.7, 0.6, 3.0], 400.0), cal.apply_at([1.7, 0.6, 3.0], hottest));
+    assert_ne!(cal.apply_at([1.7, 0.6, 3.0], 400.0), cal.apply_at([1.7, 0.6, 3.0], hottest - 1.0));
 }
 
 #[test]
