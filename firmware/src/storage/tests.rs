@@ -166,3 +166,13 @@ fn a_record_of_an_unknown_format_version_is_refused_as_corrupt_not_misread() {
         assert_eq!(boot(storage.into_flash()).1, expected, "format version {version}");
     }
 }
+
+#[test]
+fn an_erase_written_by_record_format_1_reads_as_no_calibration_and_a_cut_one_as_corrupt() {
+    let (mut storage, _) = boot(Flash::new());
+    block_on(storage.store(&[1, 0])).unwrap(); // format 1, postcard `None`
+    let (mut storage, loaded) = boot(storage.into_flash());
+    assert_eq!(loaded, Ok(None));
+    block_on(storage.store(&[1, 1, 0x0c, 0x93])).unwrap(); // format 1, `Some`, cut after two bytes
+    assert_eq!(boot(storage.into_flash()).1, Err(StorageError::Corrupt));
+}
