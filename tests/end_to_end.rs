@@ -61,7 +61,7 @@ fn default_calibration_over_a_pty_survives_a_restart_and_verifies_below_1_mg() {
         assert!(tilt < target.tolerance_deg + 6.0, "{} captured {tilt:.1} degrees away", capture.name);
     }
     let fit = procedure::host_fit(&session).unwrap();
-    assert_eq!(fit.model, shared::Model::Ortho9);
+    assert_eq!(fit.model, accelcal::fit::Model::Ortho9);
     let calibration = calibration::from_fit(&fit, &session, shared::AccelRange::G2).unwrap();
     client.set_calibration(calibration).unwrap();
     client.save_calibration().unwrap();

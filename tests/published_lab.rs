@@ -2,10 +2,10 @@
 //! row 10 as +z references, the other 18 as |a| = g), tested on the last 12.
 
 use accelcal::data::Dataset;
+use accelcal::fit::Model;
 use accelcal::fit::{self, Fit, FitOptions, ModelChoice};
 use accelcal_tests::data_path;
 use nalgebra::{Matrix3, Vector3};
-use shared::Model;
 
 /// The publication's gravity, m/s^2.
 const LAB_G: f64 = 9.8061;

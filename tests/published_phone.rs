@@ -1,10 +1,11 @@
 //! The six-position and linear12 fits on the published phone readings (Georgieva and Hofreither).
 
 use accelcal::data::Dataset;
+use accelcal::fit::Model;
 use accelcal::fit::{self, FitOptions, ModelChoice};
 use accelcal_tests::{data_path, phone_dataset, PHONE_G};
 use nalgebra::{Matrix3, Vector3};
-use shared::{Model, Position, PositionReadings};
+use shared::{Position, PositionMap};
 
 fn options() -> FitOptions {
     FitOptions { g: PHONE_G, ..FitOptions::default() }
@@ -32,7 +33,7 @@ fn closed_form_f64(rows: &[[f64; 3]]) -> (Matrix3<f64>, Vector3<f64>) {
 fn on_chip_f32_six_position_agrees_with_f64_on_the_phone_data_to_1e_5_relative() {
     let dataset = phone_dataset();
     let rows: Vec<[f64; 3]> = dataset.rows.iter().map(|r| r.reading).collect();
-    let mut readings = PositionReadings::<f32>::new();
+    let mut readings = PositionMap::<[f32; 3]>::new();
     for (position, row) in PUBLISHED_ORDER.into_iter().zip(&rows) {
         readings.insert(position, row.map(|v| v as f32)).unwrap();
     }

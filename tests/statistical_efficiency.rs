@@ -4,13 +4,13 @@
 //! standard errors of zero.
 
 use accelcal::data::{Dataset, Row};
+use accelcal::fit::Model;
 use accelcal::fit::{self, FitOptions, ModelChoice};
 use firmware::sim::physics::TrueErrors;
 use nalgebra::{DMatrix, Matrix3, Vector3};
 use rand_distr::{Distribution, StandardNormal};
 use rand_xoshiro::rand_core::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
-use shared::Model;
 
 const PROBLEMS: usize = 200;
 const POSITIONS: usize = 24;

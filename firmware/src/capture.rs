@@ -5,20 +5,12 @@
 //! scatter shows motion or a sample hit the end of the range.
 
 use shared::protocol::{
-    CaptureProgress, CaptureStats, DeviceError, SensorConfig, MAX_CAPTURE_SECONDS, MIN_CAPTURE_SECONDS,
+    CaptureProgress, CaptureStats, DeviceError, SensorConfig, MAX_CAPTURE_SECONDS, MAX_STILL_ACCEL_STD_G,
+    MAX_STILL_GYRO_STD_DPS, MIN_CAPTURE_SECONDS,
 };
 
 use crate::sensor::registers::{GYRO_LSB_PER_DPS, TEMP_LSB_PER_C, TEMP_OFFSET_C};
 use crate::sensor::RawSample;
-
-/// Largest accelerometer standard deviation of a still board, in g, on any axis.
-///
-/// NOTE: the noise density of 400 ug/sqrt(Hz) (Product Specification 6.2) gives 2.8 mg rms at the
-/// default 100 Hz / 44 Hz filter and 9 mg with the filter off at 1 kHz; 15 mg keeps clear of both
-/// while a hand's tremor or a turn of a few degrees exceeds it.
-pub const MAX_STILL_ACCEL_STD_G: f32 = 0.015;
-/// Largest gyro standard deviation of a still board, in deg/s (noise is 0.05 deg/s rms, spec 6.1).
-pub const MAX_STILL_GYRO_STD_DPS: f32 = 0.5;
 
 /// Integer sums over the samples of a capture.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]

@@ -8,5 +8,7 @@ pub mod capture;
 pub mod device;
 pub mod link;
 pub mod sensor;
+pub mod server;
+#[cfg(feature = "sim")]
 pub mod sim;
 pub mod storage;

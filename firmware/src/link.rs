@@ -62,7 +62,7 @@ mod tests {
 
     use super::*;
     use crate::sim::flash::RamFlash;
-    use crate::sim::SimMpu6050;
+    use crate::sim::{sim_serial_number, SimMpu6050};
 
     fn responses(device: &mut Device<SimMpu6050, RamFlash<2048, 4>>) -> Vec<(u16, Response)> {
         let mut out = Vec::new();
@@ -77,7 +77,9 @@ mod tests {
 
     #[test]
     fn requests_split_across_reads_are_answered_and_garbage_is_answered_with_an_error() {
-        let mut device = block_on(Device::boot(SimMpu6050::new(1), RamFlash::<2048, 4>::new(), 0..8192)).unwrap();
+        let mut device =
+            block_on(Device::boot(SimMpu6050::new(1), RamFlash::<2048, 4>::new(), 0..8192, sim_serial_number(1)))
+                .unwrap();
         let mut link = Link::new();
         let mut frame = [0u8; MAX_FRAME_LEN];
         let len = encode(42, &Request::Hello { protocol_version: PROTOCOL_VERSION }, &mut frame).unwrap();

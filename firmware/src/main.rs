@@ -24,8 +24,8 @@ mod board {
     use embassy_usb::Builder;
     use firmware::board::CALIBRATION_FLASH_RANGE;
     use firmware::device::Device;
-    use firmware::link::Link;
-    use shared::protocol::{Response, MAX_FRAME_LEN, USB_MANUFACTURER, USB_PID, USB_PRODUCT, USB_VID};
+    use firmware::server::Server;
+    use shared::protocol::{SerialNumber, MAX_FRAME_LEN, USB_MANUFACTURER, USB_PID, USB_PRODUCT, USB_VID};
     use {defmt_rtt as _, panic_probe as _};
 
     bind_interrupts!(struct Irqs {
@@ -62,6 +62,18 @@ mod board {
         config
     }
 
+    /// The STM32's 96-bit unique device ID (RM0383 section 24.2), in memory order.
+    ///
+    /// NOTE: read a word at a time: `embassy_stm32::uid::uid()` copies the 12 bytes with a memmove
+    /// that links 1.5 KiB of flash.
+    fn unique_id() -> [u8; 12] {
+        let mut id = [0u8; 12];
+        for (i, word) in id.chunks_exact_mut(4).enumerate() {
+            word.copy_from_slice(&embassy_stm32::pac::UID.uid(i).read().to_le_bytes());
+        }
+        id
+    }
+
     /// The LED on PC13 (lit when low): slow heartbeat idle, steady while capturing or streaming,
     /// fast flashing for a few seconds after an error.
     fn led_level(busy: bool, last_error: Option<Instant>) -> Level {
@@ -89,7 +101,9 @@ mod board {
         i2c_config.frequency = Hertz::khz(400);
         let i2c = I2c::new_blocking(p.I2C1, p.PB6, p.PB7, i2c_config);
         let flash = BlockingAsync::new(Flash::new_blocking(p.FLASH));
-        let Ok(mut device) = Device::boot(i2c, flash, CALIBRATION_FLASH_RANGE).await else {
+        let serial = SerialNumber(unique_id());
+        let serial_text = serial.hex();
+        let Ok(device) = Device::boot(i2c, flash, CALIBRATION_FLASH_RANGE, serial).await else {
             // NOTE: only a flash range that does not fit the chip fails here: a build error.
             defmt::panic!("calibration flash range does not fit the flash");
         };
@@ -100,10 +114,7 @@ mod board {
         // NOTE: the Black Pill does not route VBUS to PA9, so VBUS sensing must stay off.
         usb_config.vbus_detection = false;
         let driver = usb::Driver::new_fs(p.USB_OTG_FS, Irqs, p.PA12, p.PA11, &mut ep_out_buffer, usb_config);
-        let mut config = embassy_usb::Config::new(USB_VID, USB_PID);
-        config.manufacturer = Some(USB_MANUFACTURER);
-        config.product = Some(USB_PRODUCT);
-        config.serial_number = Some("accelcal");
+        let config = usb_identity(&serial_text);
         let mut config_descriptor = [0; 256];
         let mut bos_descriptor = [0; 256];
         let mut control_buf = [0; 64];
@@ -113,38 +124,57 @@ mod board {
         let mut class = CdcAcmClass::new(&mut builder, &mut state, USB_PACKET_LEN);
         let mut usb = builder.build();
 
-        let serve = async {
-            let mut link = Link::new();
-            let mut last_error = None;
-            loop {
-                let mut packet = [0u8; USB_PACKET_LEN as usize];
-                let connected = class.dtr();
-                match select(class.read_packet(&mut packet), Timer::after(POLL_PERIOD)).await {
-                    Either::First(Ok(n)) => link.receive(&packet[..n], &mut device).await,
-                    Either::First(Err(_)) => Timer::after(POLL_PERIOD).await, // not connected yet
-                    Either::Second(()) => device.poll(),
-                }
-                while let Some((request_id, response)) = device.next_response() {
-                    if let Response::Error(_) = response {
-                        // NOTE: core::fmt of the error (it holds floats) would cost 15 KiB of flash;
-                        // the host names the error, the log only marks that one happened.
-                        warn!("request {} answered with an error", request_id);
-                        last_error = Some(Instant::now());
-                    }
-                    if connected {
-                        let mut buffer = [0u8; MAX_FRAME_LEN];
-                        let frame = Link::encode(request_id, &response, &mut buffer);
-                        send(&mut class, frame).await;
-                    }
-                }
-                led.set_level(led_level(device.is_busy(), last_error));
-            }
-        };
-        join(usb.run(), serve).await;
+        let mut server = Server::new(device);
+        join(usb.run(), serve(&mut server, &mut class, &mut led)).await;
     }
 
+    /// The board's USB identity: shared's ids and strings, and its own serial number (24 hex digits).
+    fn usb_identity(serial_text: &[u8; 24]) -> embassy_usb::Config<'_> {
+        let mut config = embassy_usb::Config::new(USB_VID, USB_PID);
+        config.manufacturer = Some(USB_MANUFACTURER);
+        config.product = Some(USB_PRODUCT);
+        // NOTE: hex digits are ASCII, so the conversion cannot fail.
+        config.serial_number = core::str::from_utf8(serial_text).ok();
+        config
+    }
+
+    /// Serves the USB serial port for ever: the library's serve step, with the LED showing what
+    /// the device does.
+    async fn serve<'d, I, E, F>(server: &mut Server<I, F>, class: &mut UsbSerial<'d>, led: &mut Output<'_>)
+    where
+        I: embedded_hal::blocking::i2c::Write<Error = E> + embedded_hal::blocking::i2c::WriteRead<Error = E>,
+        F: embedded_storage_async::nor_flash::NorFlash,
+    {
+        let mut last_error = None;
+        loop {
+            let mut packet = [0u8; USB_PACKET_LEN as usize];
+            let connected = class.dtr();
+            match select(class.read_packet(&mut packet), Timer::after(POLL_PERIOD)).await {
+                Either::First(Ok(n)) => server.receive(&packet[..n]).await,
+                Either::First(Err(_)) => Timer::after(POLL_PERIOD).await, // not connected yet
+                Either::Second(()) => server.poll(),
+            }
+            let mut buffer = [0u8; MAX_FRAME_LEN];
+            while let Some((frame, is_error)) = server.next_frame(&mut buffer) {
+                if is_error {
+                    // NOTE: core::fmt of the error (it holds floats) would cost 15 KiB of flash;
+                    // the host names the error, the log only marks that one happened.
+                    warn!("a request was answered with an error");
+                    last_error = Some(Instant::now());
+                }
+                if connected {
+                    send(class, frame).await;
+                }
+            }
+            led.set_level(led_level(server.device().is_busy(), last_error));
+        }
+    }
+
+    /// The CDC-ACM serial port on the USB OTG FS peripheral.
+    type UsbSerial<'d> = CdcAcmClass<'d, usb::Driver<'d, peripherals::USB_OTG_FS>>;
+
     /// Writes one frame in USB packets, ending a transfer that fills whole packets with an empty one.
-    async fn send<'d>(class: &mut CdcAcmClass<'d, usb::Driver<'d, peripherals::USB_OTG_FS>>, frame: &[u8]) {
+    async fn send(class: &mut UsbSerial<'_>, frame: &[u8]) {
         for chunk in frame.chunks(USB_PACKET_LEN as usize) {
             if class.write_packet(chunk).await.is_err() {
                 return; // host gone: the response is dropped, the device carries on

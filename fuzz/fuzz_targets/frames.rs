@@ -6,12 +6,12 @@
 use embassy_futures::block_on;
 use firmware::device::Device;
 use firmware::link::Link;
-use firmware::sim::{SimFlash, SimMpu6050, SIM_FLASH_RANGE};
+use firmware::sim::{sim_serial_number, SimFlash, SimMpu6050, SIM_FLASH_RANGE};
 use libfuzzer_sys::fuzz_target;
 use shared::protocol::{self, Request, Response, MAX_FRAME_LEN, PROTOCOL_VERSION};
 
 fuzz_target!(|bytes: &[u8]| {
-    let Ok(mut device) = block_on(Device::boot(SimMpu6050::new(1), SimFlash::new(), SIM_FLASH_RANGE)) else {
+    let Ok(mut device) = block_on(Device::boot(SimMpu6050::new(1), SimFlash::new(), SIM_FLASH_RANGE, sim_serial_number(1))) else {
         return;
     };
     let mut link = Link::new();

@@ -1,9 +1,9 @@
 //! Every model at 6, 24 and 100 positions (criterion): `cargo bench -p accelcal --bench fits`.
 
+use accelcal::fit::Model;
 use accelcal::fit::{self, FitOptions, ModelChoice, RICHEST_FIRST};
 use accelcal::sim::synthetic::random_positions;
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use shared::Model;
 
 fn fits(c: &mut Criterion) {
     let mut group = c.benchmark_group("fit");

@@ -6,9 +6,9 @@ use std::io::Write;
 use std::process::{Command, Stdio};
 use std::time::Instant;
 
+use accelcal::fit::Model;
 use accelcal::fit::{self, FitOptions, ModelChoice};
 use accelcal::sim::synthetic::random_positions;
-use shared::Model;
 
 const PROBLEMS: u64 = 200;
 const REPEATS: usize = 5;

@@ -3,8 +3,9 @@
 //! and its one-line description. No other host code reads or writes `shared::Calibration` fields.
 
 use serde::{Deserialize, Serialize};
+use shared::calibration::{GyroCalibration, ModelTag, Origin, Procedure, TemperatureModel, MODEL_TAG_LEN};
 use shared::linalg;
-use shared::{AccelRange, Calibration, CalibrationError, Model};
+use shared::{AccelRange, Calibration, CalibrationError};
 
 use crate::fit::{self, Fit};
 use crate::link::calibration_reason;
@@ -22,15 +23,24 @@ pub struct CalibrationJson {
     /// |gravity| in the unit of `offset`; absent means g (a device calibration).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub g: Option<f64>,
+    /// Which procedure made it (`chip-fit`, `host-fit`, `uploaded`); absent for a fit of a data file.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub procedure: Option<Procedure>,
     /// Gyro bias in deg/s; absent for a fit of accelerometer data alone.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub gyro_bias_dps: Option<[f64; 3]>,
+    /// Gyro scale and misalignment matrix G, 3 rows; absent means identity.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gyro_matrix: Option<[[f64; 3]; 3]>,
     /// The accelerometer range it belongs to, full scale in g.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub range_g: Option<u8>,
-    /// Mean sensor temperature during the captures, in degC.
+    /// Mean die temperature of the captures it was fitted from, in degC (`temp_c` in older files).
+    #[serde(default, alias = "temp_c", skip_serializing_if = "Option::is_none")]
+    pub mean_temp_c: Option<f64>,
+    /// How offset, scale and gyro bias change with temperature (DESIGN.md); absent: they do not.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub temp_c: Option<f64>,
+    pub temperature: Option<TemperatureModel>,
     /// RMS fit residual, in mg.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub residual_mg: Option<f64>,
@@ -56,13 +66,16 @@ impl CalibrationJson {
     /// calibration read back is bit for bit the one written.
     pub fn from_device(calibration: &Calibration) -> Self {
         CalibrationJson {
-            model: calibration.model.name().to_owned(),
-            matrix: calibration.matrix.map(|row| row.map(f64::from)),
+            model: calibration.origin.model.as_str().to_owned(),
+            matrix: widen(calibration.matrix),
             offset: calibration.offset_g.map(f64::from),
             g: None,
-            gyro_bias_dps: Some(calibration.gyro_bias_dps.map(f64::from)),
+            procedure: Some(calibration.origin.procedure),
+            gyro_bias_dps: Some(calibration.gyro.bias_dps.map(f64::from)),
+            gyro_matrix: Some(widen(calibration.gyro.matrix)),
             range_g: Some(calibration.range.full_scale_g()),
-            temp_c: Some(f64::from(calibration.temp_c)),
+            mean_temp_c: Some(f64::from(calibration.mean_temp_c)),
+            temperature: calibration.temperature,
             residual_mg: Some(f64::from(calibration.residual_mg)),
         }
     }
@@ -74,9 +87,12 @@ impl CalibrationJson {
             matrix: fit.matrix,
             offset: fit.offset,
             g: Some(g),
+            procedure: None,
             gyro_bias_dps: None,
+            gyro_matrix: None,
             range_g: None,
-            temp_c: None,
+            mean_temp_c: None,
+            temperature: None,
             residual_mg: None,
         }
     }
@@ -96,13 +112,18 @@ impl CalibrationJson {
         if let Some(g) = self.g.filter(|g| (g - 1.0).abs() > 1e-12) {
             return Err(CalibrationRecordError::NotInG { g });
         }
+        let identity = Calibration::identity(range);
         let calibration = Calibration {
-            matrix: self.matrix.map(|row| row.map(|v| v as f32)),
-            offset_g: self.offset.map(|v| v as f32),
-            gyro_bias_dps: self.gyro_bias_dps.unwrap_or_default().map(|v| v as f32),
-            model: model_named(&self.model),
+            origin: self.origin(),
             range: self.range_g.and_then(AccelRange::from_full_scale_g).unwrap_or(range),
-            temp_c: self.temp_c.unwrap_or(0.0) as f32,
+            matrix: narrow(self.matrix),
+            offset_g: self.offset.map(|v| v as f32),
+            gyro: GyroCalibration {
+                matrix: self.gyro_matrix.map_or(identity.gyro.matrix, narrow),
+                bias_dps: self.gyro_bias_dps.unwrap_or_default().map(|v| v as f32),
+            },
+            mean_temp_c: self.mean_temp_c.unwrap_or(0.0) as f32,
+            temperature: self.temperature,
             residual_mg: self.residual_mg.unwrap_or(0.0) as f32,
         };
         calibration.validate().map_err(CalibrationRecordError::Implausible)?;
@@ -110,9 +131,24 @@ impl CalibrationJson {
     }
 }
 
-/// The model of a name; a name this host does not know counts as a full 12-parameter fit.
-fn model_named(name: &str) -> Model {
-    fit::RICHEST_FIRST.into_iter().find(|m| m.name() == name).unwrap_or(Model::Linear12)
+impl CalibrationJson {
+    /// Where the record came from: as written by a device, else uploaded with the model's name as its
+    /// tag (cut to the tag's length, so a long name from another tool still loads).
+    fn origin(&self) -> Origin {
+        let tag = (0..=self.model.len().min(MODEL_TAG_LEN))
+            .rev()
+            .find_map(|len| self.model.get(..len).and_then(ModelTag::new))
+            .unwrap_or_default();
+        Origin { procedure: self.procedure.unwrap_or(Procedure::Uploaded), model: tag }
+    }
+}
+
+fn widen(matrix: [[f32; 3]; 3]) -> [[f64; 3]; 3] {
+    matrix.map(|row| row.map(f64::from))
+}
+
+fn narrow(matrix: [[f64; 3]; 3]) -> [[f32; 3]; 3] {
+    matrix.map(|row| row.map(|v| v as f32))
 }
 
 /// The device calibration from a host fit over a session's captures (in g): the fit's M and o, the
@@ -121,16 +157,17 @@ pub fn from_fit(fit: &Fit, session: &Session, range: AccelRange) -> Result<Calib
     let n = session.captures.len().max(1) as f32;
     let stats = session.captures.iter().map(|c| &c.stats);
     let gyro_bias = stats.clone().fold([0.0f32; 3], |sum, s| linalg::add(sum, linalg::scale(s.gyro_mean_dps, 1.0 / n)));
-    let temp_c = stats.map(|s| s.temp_c).sum::<f32>() / n;
+    let mean_temp_c = stats.map(|s| s.temp_c).sum::<f32>() / n;
     let evaluation = fit::evaluate(&session.dataset(), &fit.matrix, &fit.offset, 1.0, &fit.lines_used);
     let residual_mg = evaluation.rms_norm_error(true).unwrap_or(0.0) * 1000.0;
     let calibration = Calibration {
-        matrix: fit.matrix.map(|row| row.map(|v| v as f32)),
-        offset_g: fit.offset.map(|v| v as f32),
-        gyro_bias_dps: gyro_bias,
-        model: fit.model,
+        origin: fit.model.origin(),
         range,
-        temp_c,
+        matrix: narrow(fit.matrix),
+        offset_g: fit.offset.map(|v| v as f32),
+        gyro: GyroCalibration { bias_dps: gyro_bias, ..Calibration::identity(range).gyro },
+        mean_temp_c,
+        temperature: None,
         residual_mg: residual_mg as f32,
     };
     let implausible = |reason| CalibrationRecordError::ImplausibleFit { model: fit.model.name(), reason };
@@ -144,7 +181,7 @@ pub fn describe(calibration: &Calibration) -> String {
     let o = calibration.offset_g.map(|v| v * 1000.0);
     format!(
         "{}: scale {:.5} {:.5} {:.5}, offset {:+.2} {:+.2} {:+.2} mg, residual {:.3} mg",
-        calibration.model.name(),
+        calibration.origin.model.as_str(),
         m[0][0],
         m[1][1],
         m[2][2],
@@ -164,7 +201,7 @@ mod tests {
         let mut calibration = Calibration::identity(AccelRange::G4);
         calibration.matrix[0][1] = 0.0023;
         calibration.offset_g = [0.012, -0.034, 0.056];
-        calibration.temp_c = 27.5;
+        calibration.mean_temp_c = 27.5;
         let json = CalibrationJson::from_device(&calibration);
         assert_eq!(json.matrix[0][1], f64::from(0.0023f32));
         let text = serde_json::to_string(&json).unwrap();

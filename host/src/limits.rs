@@ -7,10 +7,10 @@ pub use shared::calibration::limits as calibration;
 /// Largest accelerometer scatter (standard deviation on any axis), in g, of a board that counts as
 /// still.
 ///
-/// NOTE: the device's own capture check (`firmware::capture::MAX_STILL_ACCEL_STD_G`): the live
+/// NOTE: the device's own capture check (`shared::protocol::MAX_STILL_ACCEL_STD_G`): the live
 /// check before a capture accepts exactly what the capture will accept, so a capture started on a
 /// still board is not refused for moving.
-pub const STILL_ACCEL_STD_G: f64 = firmware::capture::MAX_STILL_ACCEL_STD_G as f64;
+pub const STILL_ACCEL_STD_G: f64 = shared::protocol::MAX_STILL_ACCEL_STD_G as f64;
 
 /// Largest tilt, in degrees, of a reading from a face for it to count as that face: while the
 /// procedure waits for a face, and when a fit detects the faces in a data file.

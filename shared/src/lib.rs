@@ -10,6 +10,6 @@ pub mod orientation;
 pub mod protocol;
 pub mod six_position;
 
-pub use calibration::{AccelRange, Calibration, CalibrationError, Model};
-pub use orientation::{Position, PositionError};
-pub use six_position::{PositionReadings, SixPositionError, SixPositionFit};
+pub use calibration::{AccelRange, Calibration, CalibrationError};
+pub use orientation::{Orientation, Position, PositionError, PositionMap};
+pub use six_position::{SixPositionError, SixPositionFit};

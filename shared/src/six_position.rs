@@ -8,72 +8,19 @@ use num_traits::Float;
 use serde::{Deserialize, Serialize};
 
 use crate::linalg::{self, Mat3, Vec3};
-use crate::orientation::Position;
+use crate::orientation::{Position, PositionMap};
 
 /// Why the six-position fit could not run.
 #[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq, Eq)]
 pub enum SixPositionError {
     /// No reading for this position.
     Missing(Position),
-    /// A second reading for a position that already has one.
-    Duplicate(Position),
     /// The readings do not determine X (opposite faces read the same, or values are not finite).
     Degenerate,
 }
 
-/// One averaged reading per position, keyed by position (any unit).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PositionReadings<T> {
-    readings: [Option<Vec3<T>>; 6],
-}
-
-impl<T: Float> Default for PositionReadings<T> {
-    fn default() -> Self {
-        PositionReadings { readings: [None; 6] }
-    }
-}
-
-impl<T: Float> PositionReadings<T> {
-    /// An empty set.
-    pub fn new() -> Self {
-        Self::default()
-    }
-
-    /// Adds the reading of a position; refuses a position that already has one.
-    pub fn insert(&mut self, position: Position, reading: Vec3<T>) -> Result<(), SixPositionError> {
-        let slot = &mut self.readings[position.index()];
-        if slot.is_some() {
-            return Err(SixPositionError::Duplicate(position));
-        }
-        *slot = Some(reading);
-        Ok(())
-    }
-
-    /// Adds or replaces the reading of a position (the chip keeps the latest capture of each).
-    pub fn replace(&mut self, position: Position, reading: Vec3<T>) {
-        self.readings[position.index()] = Some(reading);
-    }
-
-    /// Forgets every reading.
-    pub fn clear(&mut self) {
-        *self = Self::default();
-    }
-
-    /// The reading of a position, if any.
-    pub fn get(&self, position: Position) -> Option<Vec3<T>> {
-        self.readings[position.index()]
-    }
-
-    /// The positions that have a reading.
-    pub fn present(&self) -> impl Iterator<Item = Position> + '_ {
-        Position::ALL.into_iter().filter(|p| self.get(*p).is_some())
-    }
-
-    /// The first position without a reading, in the order of [`Position::ALL`].
-    pub fn first_missing(&self) -> Option<Position> {
-        Position::ALL.into_iter().find(|p| self.get(*p).is_none())
-    }
-
+/// The six-position fit over one averaged reading per position (any unit).
+impl<T: Float> PositionMap<Vec3<T>> {
     /// Fits `m = X a + y` and returns the calibration M = X^-1, o = y, with `g` the magnitude of
     /// gravity in the readings' unit (1 for readings in g).
     pub fn fit(&self, g: T) -> Result<SixPositionFit<T>, SixPositionError> {
@@ -97,7 +44,7 @@ impl<T: Float> PositionReadings<T> {
     }
 
     fn require(&self, position: Position) -> Result<Vec3<T>, SixPositionError> {
-        self.get(position).ok_or(SixPositionError::Missing(position))
+        self.get(position).copied().ok_or(SixPositionError::Missing(position))
     }
 }
 
@@ -120,8 +67,8 @@ mod tests {
     const X: Mat3<f64> = [[1.021, 0.013, -0.004], [-0.007, 0.985, 0.009], [0.002, -0.011, 1.034]];
     const Y: Vec3<f64> = [0.0276, -0.0057, -0.0783];
 
-    fn readings_of(x: &Mat3<f64>, y: Vec3<f64>, g: f64) -> PositionReadings<f32> {
-        let mut set = PositionReadings::new();
+    fn readings_of(x: &Mat3<f64>, y: Vec3<f64>, g: f64) -> PositionMap<Vec3<f32>> {
+        let mut set = PositionMap::new();
         for position in Position::ALL {
             let a = linalg::scale(position.specific_force_g(), g);
             let m = linalg::add(linalg::mul_vec(x, a), y);
@@ -156,9 +103,9 @@ mod tests {
     fn names_the_missing_position() {
         let full = readings_of(&X, Y, 1.0);
         for missing in Position::ALL {
-            let mut set = PositionReadings::new();
+            let mut set = PositionMap::new();
             for p in full.present().filter(|p| *p != missing) {
-                set.insert(p, full.get(p).unwrap()).unwrap();
+                set.insert(p, *full.get(p).unwrap()).unwrap();
             }
             assert_eq!(set.fit(1.0), Err(SixPositionError::Missing(missing)));
             assert_eq!(set.first_missing(), Some(missing));
@@ -166,15 +113,17 @@ mod tests {
     }
 
     #[test]
-    fn names_a_duplicated_position() {
+    fn a_second_reading_for_a_position_is_refused_and_the_first_kept() {
         let mut set = readings_of(&X, Y, 1.0);
-        assert_eq!(set.insert(Position::NegY, [0.0, -1.0, 0.0]), Err(SixPositionError::Duplicate(Position::NegY)));
+        let first = *set.get(Position::NegY).unwrap();
+        assert_eq!(set.insert(Position::NegY, [0.0, -1.0, 0.0]), Err(Position::NegY));
+        assert_eq!(set.get(Position::NegY), Some(&first));
     }
 
     #[test]
     fn opposite_faces_reading_alike_is_degenerate() {
         let mut set = readings_of(&X, Y, 1.0);
-        set.replace(Position::NegZ, set.get(Position::PosZ).unwrap());
+        set.replace(Position::NegZ, *set.get(Position::PosZ).unwrap());
         assert_eq!(set.fit(1.0), Err(SixPositionError::Degenerate));
     }
 }

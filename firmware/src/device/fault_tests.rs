@@ -13,14 +13,14 @@ use shared::{AccelRange, Calibration};
 use super::Device;
 use crate::link::Link;
 use crate::sim::flash::RamFlash;
-use crate::sim::SimMpu6050;
+use crate::sim::{sim_serial_number, SimMpu6050};
 
 type Flash = RamFlash<2048, 4>;
 type SimDevice = Device<SimMpu6050, Flash>;
 const TICK_US: u64 = 20_000;
 
 fn boot(seed: u64) -> SimDevice {
-    block_on(Device::boot(SimMpu6050::new(seed), Flash::new(), 0..4 * 2048)).unwrap()
+    block_on(Device::boot(SimMpu6050::new(seed), Flash::new(), 0..4 * 2048, sim_serial_number(seed))).unwrap()
 }
 
 fn drain(device: &mut SimDevice) -> Vec<(u16, Response)> {
@@ -97,7 +97,7 @@ fn power_cuts_at_random_points_across_1000_save_cycles_boot_to_the_old_or_new_ca
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(7);
     let calibration = |n: u32| Calibration {
         offset_g: [n as f32 * 1e-5, 0.01, -0.02],
-        temp_c: n as f32,
+        mean_temp_c: n as f32,
         ..Calibration::identity(AccelRange::G2)
     };
     let mut flash = Flash::new();
@@ -226,7 +226,7 @@ fn non_finite_singular_and_absurd_uploads_are_refused_with_the_reason_and_the_st
     assert_eq!(feed(&mut device, &frame(&Request::SetCalibration(good))), [(5, Response::Done)]);
     assert_eq!(feed(&mut device, &frame(&Request::SaveCalibration)), [(5, Response::Done)]);
     let mut non_finite = good;
-    non_finite.gyro_bias_dps[2] = f32::INFINITY;
+    non_finite.gyro.bias_dps[2] = f32::INFINITY;
     let mut singular = good;
     singular.matrix = [[1.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]];
     let mut absurd = good;

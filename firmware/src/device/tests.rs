@@ -1,33 +1,34 @@
 //! The device on the simulated MPU-6050 and RAM flash, request by request as the host drives it.
 
 use embassy_futures::block_on;
+use shared::calibration::{GyroCalibration, ModelTag, Origin, Procedure};
 use shared::linalg;
 use shared::protocol::{
     ActiveCalibration, CalibrationSlot, DeviceError, Request, Response, StreamKind, PROTOCOL_VERSION,
 };
-use shared::{AccelRange, Calibration, CalibrationError, Model, Position, SixPositionError};
+use shared::{AccelRange, Calibration, CalibrationError, Position, SixPositionError};
 
 use super::Device;
 use crate::sim::flash::RamFlash;
 use crate::sim::physics::Motion;
-use crate::sim::SimMpu6050;
+use crate::sim::{sim_serial_number, SimMpu6050};
 
-type Flash = RamFlash<2048, 4>;
-type SimDevice = Device<SimMpu6050, Flash>;
+pub(super) type Flash = RamFlash<2048, 4>;
+pub(super) type SimDevice = Device<SimMpu6050, Flash>;
 
 /// Board loop period in the simulation, in microseconds.
 const TICK_US: u64 = 20_000;
 
-fn boot(sim: SimMpu6050, flash: Flash) -> SimDevice {
-    block_on(Device::boot(sim, flash, 0..4 * 2048)).expect("boots")
+pub(super) fn boot(sim: SimMpu6050, flash: Flash) -> SimDevice {
+    block_on(Device::boot(sim, flash, 0..4 * 2048, sim_serial_number(0))).expect("boots")
 }
 
-fn drain(device: &mut SimDevice) -> Vec<(u16, Response)> {
+pub(super) fn drain(device: &mut SimDevice) -> Vec<(u16, Response)> {
     std::iter::from_fn(|| device.next_response()).collect()
 }
 
 /// One request with an instant answer: exactly one response, for that request.
-fn ask(device: &mut SimDevice, id: u16, request: Request) -> Response {
+pub(super) fn ask(device: &mut SimDevice, id: u16, request: Request) -> Response {
     block_on(device.handle(id, request));
     let mut responses = drain(device);
     assert_eq!(responses.len(), 1, "{responses:?}");
@@ -37,7 +38,7 @@ fn ask(device: &mut SimDevice, id: u16, request: Request) -> Response {
 }
 
 /// Runs a long request to its final response; returns it and the progress messages before it.
-fn run(device: &mut SimDevice, id: u16, request: Request) -> (Response, Vec<Response>) {
+pub(super) fn run(device: &mut SimDevice, id: u16, request: Request) -> (Response, Vec<Response>) {
     block_on(device.handle(id, request));
     let mut progress = Vec::new();
     for _ in 0..100_000 {
@@ -54,7 +55,7 @@ fn run(device: &mut SimDevice, id: u16, request: Request) -> (Response, Vec<Resp
     panic!("no final response");
 }
 
-fn capture_at(device: &mut SimDevice, up: [f32; 3]) -> Response {
+pub(super) fn capture_at(device: &mut SimDevice, up: [f32; 3]) -> Response {
     device.bus_mut().place(up);
     run(device, 7, Request::Capture { seconds: 10 }).0
 }
@@ -101,7 +102,7 @@ fn the_on_chip_six_position_fit_recovers_the_true_error_model() {
     for axis in 0..3 {
         let offset_error_mg = (calibration.offset_g[axis] - truth.offset_g[axis]).abs() * 1000.0;
         assert!(offset_error_mg < 0.5, "offset {axis} off by {offset_error_mg} mg");
-        let bias_error = (calibration.gyro_bias_dps[axis] - truth.gyro_bias_dps[axis]).abs();
+        let bias_error = (calibration.gyro.bias_dps[axis] - truth.gyro_bias_dps[axis]).abs();
         assert!(bias_error < 0.01, "gyro bias {axis} off by {bias_error} deg/s");
     }
     let matrix_error = linalg::max_abs_diff(&calibration.matrix, &truth.matrix);
@@ -146,14 +147,14 @@ fn a_moved_board_is_reported_and_nothing_is_kept() {
     let Response::Hello(info) = ask(&mut device, 2, Request::Hello { protocol_version: PROTOCOL_VERSION }) else {
         panic!()
     };
-    assert_eq!(info.positions.0, 0);
+    assert_eq!(info.positions.present().count(), 0);
 }
 
 #[test]
 fn a_saved_calibration_is_active_again_after_a_reboot() {
     let mut device = boot(SimMpu6050::new(7), Flash::new());
-    let calibration =
-        Calibration { offset_g: [0.02, -0.01, 0.05], model: Model::Ortho9, ..Calibration::identity(AccelRange::G2) };
+    let origin = Origin { procedure: Procedure::HostFit, model: ModelTag::new("ortho9").unwrap() };
+    let calibration = Calibration { offset_g: [0.02, -0.01, 0.05], origin, ..Calibration::identity(AccelRange::G2) };
     assert_eq!(ask(&mut device, 1, Request::SetCalibration(calibration)), Response::Done);
     assert_eq!(ask(&mut device, 2, Request::SaveCalibration), Response::Done);
     let (sim, flash) = device.into_parts();
@@ -195,7 +196,7 @@ fn streamed_samples_are_corrected_on_the_chip() {
     let calibration = Calibration {
         matrix: truth.matrix,
         offset_g: truth.offset_g,
-        gyro_bias_dps: truth.gyro_bias_dps,
+        gyro: GyroCalibration { bias_dps: truth.gyro_bias_dps, ..GyroCalibration::default() },
         ..Calibration::identity(AccelRange::G2)
     };
     ask(&mut device, 1, Request::SetCalibration(calibration));

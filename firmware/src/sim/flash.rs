@@ -46,6 +46,16 @@ impl<const PAGE: usize, const PAGES: usize> RamFlash<PAGE, PAGES> {
         Self::default()
     }
 
+    /// A flash holding `image` (a dump of [`Self::bytes`]), as a board's flash after a firmware update;
+    /// bytes beyond the flash are ignored, a short image leaves the rest erased.
+    pub fn from_bytes(image: &[u8]) -> Self {
+        let mut flash = Self::default();
+        for (page, bytes) in flash.pages.iter_mut().zip(image.chunks_exact(PAGE)) {
+            page.copy_from_slice(bytes);
+        }
+        flash
+    }
+
     /// Writes and erases done so far.
     pub fn operations(&self) -> u32 {
         self.operations

@@ -7,6 +7,7 @@
 //! temperature; the physics are in [`physics`]. Time only passes when the owner calls
 //! [`SimMpu6050::advance_us`], so runs are exactly repeatable.
 
+mod board;
 pub mod flash;
 pub mod physics;
 
@@ -15,6 +16,7 @@ use heapless::Deque;
 use shared::linalg::{self, Vec3};
 
 use crate::sensor::registers as reg;
+pub use board::{sim_serial_number, SimFlash, SIM_FLASH_RANGE};
 use physics::{Motion, Physics};
 
 /// Register file size: every register address is below 0x80.
@@ -285,8 +287,3 @@ impl WriteRead for SimMpu6050 {
 
 #[cfg(test)]
 mod tests;
-
-/// The simulated board's flash: four 4 KiB pages (small pages exercise page changes quickly).
-pub type SimFlash = flash::RamFlash<4096, 4>;
-/// The byte range of [`SimFlash`] holding the calibration: all of it.
-pub const SIM_FLASH_RANGE: core::ops::Range<u32> = 0..4 * 4096;

@@ -128,8 +128,25 @@ fn a_stalled_reader_sees_a_fifo_overflow() {
 }
 
 #[test]
-fn an_asleep_chip_produces_no_samples() {
+fn an_asleep_chip_fills_no_fifo_until_it_is_woken() {
+    use embedded_hal::blocking::i2c::Write;
+    // Register addresses from the register map rev 4.2: CONFIG 0x1A, SMPLRT_DIV 0x19, FIFO_EN 0x23,
+    // USER_CTRL 0x6A, PWR_MGMT_1 0x6B.
     let mut sim = SimMpu6050::new(8);
+    let setup: [&[u8]; 4] = [&[0x1A, 0x03], &[0x19, 9], &[0x23, 0xF8], &[0x6A, 0x40]]; // 100 Hz, FIFO on
+    for bytes in setup {
+        sim.write(0x68, bytes).unwrap();
+    }
     sim.advance_us(1_000_000);
-    assert_eq!(sim.fifo_len(), 0);
+    assert_eq!(sim.fifo_len(), 0, "asleep since power-up, yet the FIFO filled");
+    sim.write(0x68, &[0x6B, 0x01]).unwrap(); // awake, PLL on x gyro
+    sim.advance_us(500_000);
+    assert_eq!(sim.fifo_len(), 50 * 14, "awake, 0.5 s at 100 Hz of 14-byte samples");
+}
+
+#[test]
+fn simulated_boards_have_distinct_serial_numbers_marked_as_simulated() {
+    let (first, second) = (super::sim_serial_number(1), super::sim_serial_number(2));
+    assert_ne!(first, second);
+    assert_eq!(&first.hex(), b"53494D000000000000000001", "\"SIM\", a zero, then the seed");
 }

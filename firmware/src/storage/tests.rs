@@ -1,7 +1,8 @@
 //! Power cuts at every flash operation of a save; erase; corrupted records.
 
 use embassy_futures::block_on;
-use shared::{AccelRange, Calibration, Model};
+use shared::calibration::{GyroCalibration, ModelTag, Origin, Procedure, TemperatureModel};
+use shared::{AccelRange, Calibration};
 
 use super::{Storage, StorageError};
 use crate::sim::flash::RamFlash;
@@ -13,12 +14,19 @@ const RANGE: core::ops::Range<u32> = 0..(4 * 2048);
 fn calibration(n: u32) -> Calibration {
     let tweak = n as f32 * 1e-4;
     Calibration {
+        origin: Origin::CHIP_SIX_POSITION,
+        range: AccelRange::G2,
         matrix: [[1.0 + tweak, 0.001, 0.0], [0.0, 0.99 - tweak, 0.002], [0.0, 0.0, 1.01]],
         offset_g: [0.02 + tweak, -0.01, 0.07],
-        gyro_bias_dps: [0.5, -0.25, tweak],
-        model: Model::SixPosition,
-        range: AccelRange::G2,
-        temp_c: 25.0 + tweak,
+        gyro: GyroCalibration {
+            matrix: [[1.01, 0.0, 0.0], [0.0, 0.99, 0.0], [0.0, 0.0, 1.0]],
+            bias_dps: [0.5, -0.25, tweak],
+        },
+        mean_temp_c: 25.0 + tweak,
+        temperature: Some(TemperatureModel {
+            offset_g: [[1e-3, 0.0, -tweak * 1e-2], [0.0; 3], [0.0; 3]],
+            ..TemperatureModel::flat(24.0)
+        }),
         residual_mg: 0.1,
     }
 }
@@ -113,4 +121,58 @@ fn an_invalid_calibration_in_a_well_formed_record_is_refused() {
     block_on(storage.save(&absurd)).unwrap();
     let (_, loaded) = boot(storage.into_flash());
     assert_eq!(loaded, Err(StorageError::Corrupt));
+}
+
+/// The flash image record format 1 (the firmware before issue 9) left after one save, on
+/// `RamFlash<2048, 4>`: kept, not regenerated, since today's code can no longer write it.
+const V1_FLASH_IMAGE: &[u8; 4 * 2048] = include_bytes!("v1_flash.bin");
+
+/// What that image holds, as the old firmware was given it.
+fn v1_calibration_migrated() -> Calibration {
+    Calibration {
+        origin: Origin { procedure: Procedure::HostFit, model: ModelTag::new("ortho9").unwrap() },
+        range: AccelRange::G2,
+        matrix: [[1.0123, 0.0021, -0.0034], [-0.0011, 0.9876, 0.0045], [0.0007, -0.0018, 1.0211]],
+        offset_g: [0.0276, -0.0057, -0.0783],
+        gyro: GyroCalibration { bias_dps: [-1.25, 0.75, 0.125], ..GyroCalibration::default() },
+        mean_temp_c: 27.5,
+        temperature: None,
+        residual_mg: 1.5,
+    }
+}
+
+#[test]
+fn a_board_updated_from_record_format_1_boots_with_its_calibration_migrated() {
+    let (mut storage, loaded) = boot(Flash::from_bytes(V1_FLASH_IMAGE));
+    assert_eq!(loaded, Ok(Some(v1_calibration_migrated())));
+    // The next save writes today's format over it, and that reads back as saved.
+    block_on(storage.save(&calibration(2))).unwrap();
+    let (_, loaded) = boot(storage.into_flash());
+    assert_eq!(loaded, Ok(Some(calibration(2))));
+}
+
+#[test]
+fn a_record_of_an_unknown_format_version_is_refused_as_corrupt_not_misread() {
+    let mut record = [0u8; super::RECORD_LEN];
+    let body_len = postcard::to_slice(&Some(calibration(4)), &mut record[1..]).unwrap().len();
+    for (version, expected) in [
+        (super::RECORD_FORMAT_VERSION, Ok(Some(calibration(4)))),
+        (3, Err(StorageError::Corrupt)),
+        (0, Err(StorageError::Corrupt)),
+    ] {
+        let (mut storage, _) = boot(Flash::new());
+        record[0] = version;
+        block_on(storage.store(&record[..1 + body_len])).unwrap();
+        assert_eq!(boot(storage.into_flash()).1, expected, "format version {version}");
+    }
+}
+
+#[test]
+fn an_erase_written_by_record_format_1_reads_as_no_calibration_and_a_cut_one_as_corrupt() {
+    let (mut storage, _) = boot(Flash::new());
+    block_on(storage.store(&[1, 0])).unwrap(); // format 1, postcard `None`
+    let (mut storage, loaded) = boot(storage.into_flash());
+    assert_eq!(loaded, Ok(None));
+    block_on(storage.store(&[1, 1, 0x0c, 0x93])).unwrap(); // format 1, `Some`, cut after two bytes
+    assert_eq!(boot(storage.into_flash()).1, Err(StorageError::Corrupt));
 }

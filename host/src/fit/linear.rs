@@ -3,9 +3,9 @@
 
 use nalgebra::{DMatrix, Matrix3, Matrix4, SymmetricEigen, Vector3};
 use shared::linalg::{self, Mat3, Vec3};
-use shared::{Model, Position, PositionReadings, SixPositionError};
+use shared::{Position, PositionMap, SixPositionError};
 
-use super::{full_parameters, Fit, FitError, FitOptions};
+use super::{full_parameters, Fit, FitError, FitOptions, Model};
 use crate::data::{Dataset, Row};
 use crate::limits::REFERENCE_FACE_TOLERANCE_DEG;
 
@@ -44,7 +44,7 @@ pub(super) fn linear12(dataset: &Dataset, options: &FitOptions) -> Result<Fit, F
 /// least-squares problem.
 pub(super) fn six_position(dataset: &Dataset, options: &FitOptions) -> Result<Fit, FitError> {
     let first_row_at = rows_at_faces(dataset, options.face_tolerance_deg)?;
-    let mut readings = PositionReadings::<f64>::new();
+    let mut readings = PositionMap::<Vec3<f64>>::new();
     let mut pairs: Vec<Pair> = Vec::with_capacity(6);
     for (position, row) in Position::ALL.into_iter().zip(first_row_at) {
         if let Some(row) = row {
@@ -57,7 +57,7 @@ pub(super) fn six_position(dataset: &Dataset, options: &FitOptions) -> Result<Fi
         SixPositionError::Missing(position) => {
             FitError::MissingPosition { position, tolerance_deg: options.face_tolerance_deg }
         }
-        SixPositionError::Duplicate(_) | SixPositionError::Degenerate => FitError::Degenerate,
+        SixPositionError::Degenerate => FitError::Degenerate,
     })?;
     pairs.sort_by_key(|p| p.row);
     let solution = LinearSolution::solve(&pairs, Model::SixPosition)?;

@@ -2,6 +2,7 @@
 
 mod evaluate;
 mod linear;
+mod model;
 mod models;
 mod nonlinear;
 mod normalization;
@@ -13,11 +14,12 @@ use std::str::FromStr;
 
 use serde::Serialize;
 use shared::linalg::{Mat3, Vec3};
-use shared::{Model, Position};
+use shared::Position;
 
 use crate::data::Dataset;
 
 pub use evaluate::{evaluate, Evaluation, RowEvaluation};
+pub use model::Model;
 pub use statistics::{misalignment_deg, NoiseTest};
 
 /// The model asked for on the command line.

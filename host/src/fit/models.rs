@@ -2,12 +2,11 @@
 //! normalised solve, and the map back to the file's units with standard errors.
 
 use nalgebra::{DMatrix, DVector, Vector3};
-use shared::Model;
 
 use super::nonlinear::{solve, Observation, Problem, Solution};
 use super::normalization::Normalization;
 use super::shape::Shape;
-use super::{statistics, Fit, FitError, FitOptions, NoiseTest, Parameter};
+use super::{statistics, Fit, FitError, FitOptions, Model, NoiseTest, Parameter};
 use crate::data::Dataset;
 use crate::limits::{AXIS_SPREAD, INDEPENDENT_REFERENCES_DEG};
 use levenberg_marquardt::LeastSquaresProblem;

@@ -1,7 +1,7 @@
 //! Every model fitted to the same rows, and the misalignment the 9- and 12-parameter fits reveal.
 
+use crate::fit::Model;
 use serde::Serialize;
-use shared::Model;
 
 use crate::data::Dataset;
 use crate::fit::{self, misalignment_deg, Evaluation, Fit, FitError, FitOptions, ModelChoice, RICHEST_FIRST};

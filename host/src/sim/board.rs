@@ -5,8 +5,9 @@ use std::thread::JoinHandle;
 
 use embassy_futures::block_on;
 use firmware::device::Device;
+use firmware::server::Server;
 use firmware::sim::physics::{Motion, TrueErrors};
-use firmware::sim::{SimFlash, SimMpu6050, SIM_FLASH_RANGE};
+use firmware::sim::{sim_serial_number, SimFlash, SimMpu6050, SIM_FLASH_RANGE};
 
 use super::serve::serve;
 use super::Port;
@@ -44,8 +45,8 @@ impl SimBoard {
         let thread = std::thread::spawn(move || {
             // NOTE: boot fails only for a flash range that does not fit the flash, and
             // SIM_FLASH_RANGE is the whole of SimFlash; the board then simply never answers.
-            match block_on(Device::boot(sensor, flash, SIM_FLASH_RANGE)) {
-                Ok(device) => serve(port, device, inbox),
+            match block_on(Device::boot(sensor, flash, SIM_FLASH_RANGE, sim_serial_number(seed))) {
+                Ok(device) => serve(port, Server::new(device), inbox),
                 Err(_) => SimFlash::default(),
             }
         });

@@ -10,9 +10,8 @@ use std::time::Duration;
 
 use embassy_futures::block_on;
 use firmware::device::Device;
-use firmware::link::Link;
+use firmware::server::Server;
 use firmware::sim::{SimFlash, SimMpu6050, SIM_FLASH_RANGE};
-use shared::protocol::MAX_FRAME_LEN;
 
 use super::board::SimCommand;
 use super::Port;
@@ -22,30 +21,30 @@ const TICK_US: u64 = 10_000;
 /// Read wait while idle: simulated time then runs at about real speed.
 const IDLE_WAIT: Duration = Duration::from_millis(10);
 
-type SimDevice = Device<SimMpu6050, SimFlash>;
+type SimServer = Server<SimMpu6050, SimFlash>;
 
 /// Serves `port` until told to stop or the host end goes away; returns the flash.
-pub(super) fn serve<P: Port>(mut port: P, mut device: SimDevice, inbox: Receiver<SimCommand>) -> SimFlash {
-    let mut link = Link::new();
+pub(super) fn serve<P: Port>(mut port: P, mut server: SimServer, inbox: Receiver<SimCommand>) -> SimFlash {
     loop {
         match inbox.try_recv() {
             Ok(SimCommand::Stop) | Err(TryRecvError::Disconnected) => break,
-            Ok(SimCommand::Restart) => match restart(device) {
-                Some(rebooted) => (device, link) = (rebooted, Link::new()),
+            Ok(SimCommand::Restart) => match restart(server) {
+                Some(rebooted) => server = rebooted,
                 None => return SimFlash::default(),
             },
-            Ok(command) => turn(&mut device, command),
+            Ok(command) => turn(&mut server, command),
             Err(TryRecvError::Empty) => {}
         }
-        if !step(&mut port, &mut device, &mut link) {
+        if !step(&mut port, &mut server) {
             break;
         }
     }
-    device.into_parts().1
+    server.into_device().into_parts().1
 }
 
 /// Applies a command to the simulated sensor.
-fn turn(device: &mut SimDevice, command: SimCommand) {
+fn turn(server: &mut SimServer, command: SimCommand) {
+    let device = server.device_mut();
     match command {
         SimCommand::Place(up) => device.bus_mut().place(up),
         SimCommand::Move(motion) => device.bus_mut().set_motion(motion),
@@ -54,36 +53,28 @@ fn turn(device: &mut SimDevice, command: SimCommand) {
     }
 }
 
-/// Reboots the board on its own sensor and flash (RAM state is lost).
-fn restart(device: SimDevice) -> Option<SimDevice> {
-    let (sensor, flash) = device.into_parts();
-    block_on(Device::boot(sensor, flash, SIM_FLASH_RANGE)).ok()
+/// Reboots the board on its own sensor, flash and serial number (RAM state is lost).
+fn restart(server: SimServer) -> Option<SimServer> {
+    let serial = server.device().serial();
+    let (sensor, flash) = server.into_device().into_parts();
+    block_on(Device::boot(sensor, flash, SIM_FLASH_RANGE, serial)).ok().map(Server::new)
 }
 
 /// One service cycle; `false` when the host end is gone.
-fn step<P: Port>(port: &mut P, device: &mut SimDevice, link: &mut Link) -> bool {
+fn step<P: Port>(port: &mut P, server: &mut SimServer) -> bool {
     let mut buffer = [0u8; 256];
-    let wait = if device.is_busy() { Duration::ZERO } else { IDLE_WAIT };
+    let wait = if server.device().is_busy() { Duration::ZERO } else { IDLE_WAIT };
     let _ = port.set_read_timeout(wait);
     match port.read(&mut buffer) {
-        Ok(n) => block_on(link.receive(&buffer[..n], device)),
+        Ok(n) => block_on(server.receive(&buffer[..n])),
         Err(e) if matches!(e.kind(), ErrorKind::TimedOut | ErrorKind::WouldBlock | ErrorKind::Interrupted) => {}
         Err(e) if e.kind() == ErrorKind::BrokenPipe => return false, // the in-process host is gone
         Err(_) => std::thread::sleep(IDLE_WAIT),                     // a pty with no one on the other side yet
     }
-    device.bus_mut().advance_us(TICK_US);
-    device.poll();
-    write_responses(port, device);
-    true
-}
-
-/// Encodes and writes every response the device has ready.
-fn write_responses<P: Port>(port: &mut P, device: &mut SimDevice) {
-    while let Some((id, response)) = device.next_response() {
-        let mut frame = [0u8; MAX_FRAME_LEN];
-        if port.write_all(Link::encode(id, &response, &mut frame)).is_err() {
-            break;
-        }
-    }
+    server.device_mut().bus_mut().advance_us(TICK_US);
+    server.poll();
+    let mut writing = true;
+    server.drain(|frame| writing = writing && port.write_all(frame).is_ok());
     let _ = port.flush();
+    true
 }

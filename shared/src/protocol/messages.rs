@@ -3,19 +3,23 @@
 use serde::{Deserialize, Serialize};
 
 use crate::calibration::{AccelRange, Calibration, CalibrationError};
-use crate::orientation::Position;
+use crate::orientation::{Position, PositionMap};
 use crate::six_position::SixPositionError;
 
 use super::FrameError;
 
 /// What the host asks of the device.
+// NOTE: a calibration makes one variant large; without an allocator it cannot be boxed, and a
+// message is built once and handed on, so the size costs RAM in the outbox, not time.
+#[allow(clippy::large_enum_variant)]
 #[derive(Serialize, Deserialize, Debug, Clone, PartialEq)]
 pub enum Request {
     /// Opens a session; answered with [`Response::Hello`]. Sent first.
     Hello { protocol_version: u8 },
     /// Sets range, sample rate and filter; answered with [`Response::Configured`] (the rate achieved).
     Configure(SensorConfig),
-    /// Averages the still sensor for `seconds` (5-20); progress, then [`Response::Captured`].
+    /// Averages the still sensor for `seconds` (see [`super::MIN_CAPTURE_SECONDS`]); progress, then
+    /// [`Response::Captured`].
     Capture { seconds: u8 },
     /// Stops the running capture or stream; the stopped operation ends with an error or its end message.
     Cancel,
@@ -36,6 +40,9 @@ pub enum Request {
 }
 
 /// What the device answers.
+// NOTE: a calibration makes one variant large; without an allocator it cannot be boxed, and a
+// message is built once and handed on, so the size costs RAM in the outbox, not time.
+#[allow(clippy::large_enum_variant)]
 #[derive(Serialize, Deserialize, Debug, Clone, PartialEq)]
 pub enum Response {
     /// Answer to [`Request::Hello`].
@@ -74,7 +81,8 @@ pub enum CalibrationSlot {
 pub enum StreamKind {
     /// Sensor output converted to g and deg/s, uncorrected.
     Raw,
-    /// Corrected with the active calibration: a = M (m - o), gyro bias removed.
+    /// Corrected with the active calibration at the sample's temperature: a = M(T) (m - o(T)),
+    /// w = G (w_raw - b(T)).
     Calibrated,
 }
 
@@ -150,6 +158,8 @@ pub enum ActiveCalibration {
 pub struct DeviceInfo {
     /// The device's protocol version.
     pub protocol_version: u8,
+    /// The board's serial number (also its USB serial number).
+    pub serial: SerialNumber,
     /// The firmware version.
     pub firmware: FirmwareVersion,
     /// The sensor found at boot, or the error that prevented finding it.
@@ -161,22 +171,27 @@ pub struct DeviceInfo {
     /// Whether flash holds a calibration.
     pub stored: bool,
     /// The positions whose captures are kept for the six-position fit.
-    pub positions: PositionSet,
+    pub positions: PositionMap<()>,
 }
 
-/// A set of positions as a bit mask over [`Position::ALL`].
-#[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub struct PositionSet(pub u8);
+/// Length of the STM32's unique device ID (RM0383 section 24.2), in bytes.
+pub const SERIAL_NUMBER_LEN: usize = 12;
 
-impl PositionSet {
-    /// Adds a position.
-    pub fn insert(&mut self, position: Position) {
-        self.0 |= 1 << position.index();
-    }
+/// A board's serial number: the STM32's 96-bit unique device ID (the simulated board's is derived
+/// from its seed). Shown as 24 hexadecimal digits, the same in the USB descriptor and in sessions.
+#[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct SerialNumber(pub [u8; SERIAL_NUMBER_LEN]);
 
-    /// Whether the set holds a position.
-    pub fn contains(self, position: Position) -> bool {
-        self.0 & (1 << position.index()) != 0
+impl SerialNumber {
+    /// The 24 upper-case hexadecimal digits, in ASCII, most significant byte of the ID first.
+    pub fn hex(&self) -> [u8; 2 * SERIAL_NUMBER_LEN] {
+        const DIGITS: &[u8; 16] = b"0123456789ABCDEF";
+        let mut text = [0u8; 2 * SERIAL_NUMBER_LEN];
+        for (pair, byte) in text.chunks_exact_mut(2).zip(self.0) {
+            pair[0] = DIGITS[usize::from(byte >> 4)];
+            pair[1] = DIGITS[usize::from(byte & 0x0F)];
+        }
+        text
     }
 }
 
@@ -221,7 +236,7 @@ pub struct Sample {
     pub index: u32,
     /// Specific force in g (corrected when the stream is calibrated).
     pub accel_g: [f32; 3],
-    /// Angular rate in deg/s (bias removed when the stream is calibrated).
+    /// Angular rate in deg/s (corrected when the stream is calibrated).
     pub gyro_dps: [f32; 3],
     /// Die temperature in degC.
     pub temp_c: f32,
@@ -238,13 +253,14 @@ pub enum DeviceError {
     Bus,
     /// The sensor FIFO overflowed, so samples were lost.
     FifoOverflow,
-    /// The board moved during the capture: the scatter exceeded the stillness limits.
+    /// The board moved during the capture: the scatter exceeded [`super::MAX_STILL_ACCEL_STD_G`] or
+    /// [`super::MAX_STILL_GYRO_STD_DPS`].
     Moved { accel_std_mg: f32, gyro_std_dps: f32 },
     /// Samples reached the end of the range.
     Clipped { samples: u32 },
     /// The operation was cancelled by the host.
     Cancelled,
-    /// A capture length outside 5-20 s.
+    /// A capture length outside [`super::MIN_CAPTURE_SECONDS`]..=[`super::MAX_CAPTURE_SECONDS`].
     InvalidDuration { seconds: u8 },
     /// A sample rate the sensor cannot run at, or a stream rate above the sample rate.
     InvalidRate { rate_hz: u16 },

@@ -4,19 +4,31 @@
 use proptest::prelude::*;
 
 use super::*;
-use crate::calibration::{AccelRange, Calibration, CalibrationError, Model};
-use crate::orientation::Position;
+use crate::calibration::{
+    AccelRange, Calibration, CalibrationError, GyroCalibration, ModelTag, Origin, Procedure, TemperatureModel,
+};
+use crate::orientation::{Position, PositionMap};
 use crate::six_position::SixPositionError;
 
-/// Large values take the most postcard bytes (varints), so sizes here are the worst case.
+/// Large values take the most postcard bytes (varints), so sizes here are the worst case: every
+/// optional part present, the longest model tag.
 fn calibration() -> Calibration {
     Calibration {
+        origin: Origin { procedure: Procedure::Uploaded, model: ModelTag::new("reference-norm12").unwrap() },
+        range: AccelRange::G16,
         matrix: [[1.0006, 3.58e-4, -7.29e-3], [0.0, 1.003, 4.62e-4], [0.0, 0.0, 0.9834]],
         offset_g: [0.0276, -0.0057, -0.0783],
-        gyro_bias_dps: [-1.25, 0.5, 3.0],
-        model: Model::ReferenceNorm12,
-        range: AccelRange::G16,
-        temp_c: 31.5,
+        gyro: GyroCalibration {
+            matrix: [[1.01, 0.002, 0.0], [0.0, 0.99, 0.0], [0.0, 0.0, 1.0]],
+            bias_dps: [-1.25, 0.5, 3.0],
+        },
+        mean_temp_c: 31.5,
+        temperature: Some(TemperatureModel {
+            offset_g: [[1e-3; 3], [-2e-5; 3], [3e-7; 3]],
+            scale: [[2e-4; 3], [1e-6; 3], [1e-8; 3]],
+            gyro_bias_dps: [[0.05; 3], [1e-4; 3], [1e-6; 3]],
+            ..TemperatureModel::flat(25.0)
+        }),
         residual_mg: 0.42,
     }
 }
@@ -94,6 +106,12 @@ fn every_error() -> Vec<DeviceError> {
     ]
 }
 
+fn every_position() -> PositionMap<()> {
+    let mut all = PositionMap::new();
+    Position::ALL.into_iter().for_each(|p| all.replace(p, ()));
+    all
+}
+
 fn every_response() -> Vec<Response> {
     let info = DeviceInfo {
         protocol_version: PROTOCOL_VERSION,
@@ -102,7 +120,8 @@ fn every_response() -> Vec<Response> {
         config: SensorConfig::default(),
         active: ActiveCalibration::Unsaved,
         stored: true,
-        positions: PositionSet(0x3f),
+        serial: SerialNumber([0xFF; SERIAL_NUMBER_LEN]),
+        positions: every_position(),
     };
     let mut all = vec![
         Response::Hello(info.clone()),
@@ -261,4 +280,10 @@ proptest! {
         let result = decode::<Request>(&mut frame[..len]);
         prop_assert!(result.is_err(), "corrupted frame decoded as {:?}", result);
     }
+}
+
+#[test]
+fn a_serial_number_reads_as_24_hex_digits_most_significant_byte_first() {
+    let serial = SerialNumber([0x00, 0x1F, 0xA0, 0x5B, 0x12, 0x34, 0x56, 0x78, 0x9A, 0xBC, 0xDE, 0xF0]);
+    assert_eq!(&serial.hex(), b"001FA05B123456789ABCDEF0");
 }

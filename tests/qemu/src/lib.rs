@@ -4,9 +4,9 @@
 
 use embassy_futures::block_on;
 use firmware::device::Device;
-use firmware::sim::{SimFlash, SimMpu6050, SIM_FLASH_RANGE};
+use firmware::sim::{sim_serial_number, SimFlash, SimMpu6050, SIM_FLASH_RANGE};
 use shared::protocol::{Request, Response, StreamKind};
-use shared::{Position, PositionReadings};
+use shared::{Position, PositionMap};
 
 /// The published phone readings in m/s^2 (Georgieva and Hofreither), the six faces in their order.
 const PHONE: [(Position, [f32; 3]); 6] = [
@@ -33,7 +33,7 @@ pub fn run(report: &mut impl FnMut(Result<'_>)) -> bool {
 
 /// shared's six-position closed form on the published phone readings, in f32.
 fn phone_six_position(report: &mut impl FnMut(Result<'_>)) -> bool {
-    let mut readings = PositionReadings::<f32>::new();
+    let mut readings = PositionMap::<[f32; 3]>::new();
     for (position, reading) in PHONE {
         if readings.insert(position, reading).is_err() {
             return false;
@@ -52,7 +52,9 @@ fn phone_six_position(report: &mut impl FnMut(Result<'_>)) -> bool {
 /// The firmware library on the simulated MPU-6050: six 5 s captures at the faces, the on-chip fit,
 /// and samples corrected on the chip.
 fn device_calibration(report: &mut impl FnMut(Result<'_>)) -> bool {
-    let Ok(mut device) = block_on(Device::boot(SimMpu6050::new(2024), SimFlash::new(), SIM_FLASH_RANGE)) else {
+    let Ok(mut device) =
+        block_on(Device::boot(SimMpu6050::new(2024), SimFlash::new(), SIM_FLASH_RANGE, sim_serial_number(2024)))
+    else {
         return false;
     };
     let mut means = [0.0f32; 18];

@@ -3,8 +3,9 @@
 //! same code on the host.
 //!
 //! Needs the on-target binary (`cargo build -p qemu-tests --release --target thumbv7em-none-eabihf`)
-//! and `qemu-system-arm` (Debian package); `.ci/run` provides both. Without them the test says so and
-//! passes, except under CI, where their absence is a failure.
+//! and `qemu-system-arm` (Debian package); `.ci/run` provides both. Without them the test says on
+//! stderr that it was skipped and why (visible without `--nocapture`), except under CI (`CI` set),
+//! where their absence is a failure.
 
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -16,6 +17,15 @@ fn elf() -> PathBuf {
         .map(PathBuf::from)
         .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../target"));
     target.join("thumbv7em-none-eabihf/release/qemu-tests")
+}
+
+/// Says on the terminal that the test was skipped and why, even when the harness captures output.
+///
+/// NOTE: the test harness captures `println!` and `eprintln!` of passing tests; a write to the
+/// stderr handle itself is not captured, so a skip is never silent.
+fn say_skipped(reason: &str) {
+    use std::io::Write;
+    let _ = writeln!(std::io::stderr(), "on-target test SKIPPED: {reason}");
 }
 
 /// Runs the binary under QEMU; its `name hex...` lines as f32 values, by name.
@@ -30,7 +40,7 @@ fn on_target() -> Option<BTreeMap<String, Vec<u32>>> {
     };
     if let Some(reason) = missing {
         assert!(std::env::var_os("CI").is_none(), "on-target test cannot run under CI: {reason}");
-        println!("skipped: {reason}");
+        say_skipped(&reason);
         return None;
     }
     let mut qemu = Command::new("qemu-system-arm")

@@ -4,7 +4,11 @@
 //! live item has been copied out of it, so a power cut at any moment of a save leaves the previous
 //! item readable: the board boots with the old or the new calibration, never garbage and never none
 //! when one existed. An erase stores an empty record rather than removing the item, for the same
-//! reason. On top of the item CRC, each record carries a format version and is validated before use.
+//! reason. On top of the item CRC, each record carries a format version and is validated before use;
+//! a record of an older format is read by its frozen layout ([`v1`]) and migrated, one of an unknown
+//! format is refused.
+
+mod v1;
 
 use core::ops::Range;
 
@@ -15,12 +19,15 @@ use shared::Calibration;
 
 /// The map key of the calibration record.
 const CALIBRATION_KEY: u8 = 1;
-/// Version of the record layout: bump it when `Calibration` changes shape.
-pub const RECORD_FORMAT_VERSION: u8 = 1;
-/// Largest record: format version and postcard `Option<Calibration>` (at most 73 bytes today).
-const RECORD_LEN: usize = 96;
+/// Version of the record layout: bump it when `Calibration` changes shape, and keep the old layout
+/// readable (as [`v1`] is) so that stored calibrations survive the update.
+pub const RECORD_FORMAT_VERSION: u8 = 2;
+/// The layout of the firmware before the calibration record of issue 9.
+const V1_FORMAT_VERSION: u8 = 1;
+/// Largest record: format version and postcard `Option<Calibration>` (at most 237 bytes today).
+const RECORD_LEN: usize = 256;
 /// sequential-storage's scratch buffer: key plus record, rounded up to the flash word.
-const RECORD_BUFFER_LEN: usize = 128;
+const RECORD_BUFFER_LEN: usize = 288;
 
 /// Why the stored calibration could not be read or written.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -64,12 +71,7 @@ impl<F: NorFlash> Storage<F> {
         let Some(record) = record else {
             return Ok(None);
         };
-        let (&version, body) = record.split_first().ok_or(StorageError::Corrupt)?;
-        if version != RECORD_FORMAT_VERSION {
-            return Err(StorageError::Corrupt);
-        }
-        let calibration: Option<Calibration> = postcard::from_bytes(body).map_err(|_| StorageError::Corrupt)?;
-        match calibration {
+        match decode(record)? {
             Some(c) if c.validate().is_err() => Err(StorageError::Corrupt),
             other => Ok(other),
         }
@@ -89,8 +91,12 @@ impl<F: NorFlash> Storage<F> {
         let mut record = [0u8; RECORD_LEN];
         record[0] = RECORD_FORMAT_VERSION;
         let body_len = postcard::to_slice(&calibration, &mut record[1..]).map_err(|_| StorageError::Corrupt)?.len();
-        let value: &[u8] = &record[..1 + body_len];
-        self.map.store_item(&mut self.buffer, &CALIBRATION_KEY, &value).await?;
+        self.store(&record[..1 + body_len]).await
+    }
+
+    /// Stores one record as it is.
+    async fn store(&mut self, record: &[u8]) -> Result<(), StorageError> {
+        self.map.store_item(&mut self.buffer, &CALIBRATION_KEY, &record).await?;
         Ok(())
     }
 
@@ -98,6 +104,17 @@ impl<F: NorFlash> Storage<F> {
     pub fn into_flash(self) -> F {
         self.map.destroy().0
     }
+}
+
+/// The calibration in a record of a known format, migrated to today's; anything else is refused.
+fn decode(record: &[u8]) -> Result<Option<Calibration>, StorageError> {
+    let (&version, body) = record.split_first().ok_or(StorageError::Corrupt)?;
+    let decoded = match version {
+        RECORD_FORMAT_VERSION => postcard::from_bytes(body),
+        V1_FORMAT_VERSION => return v1::decode(body).ok_or(StorageError::Corrupt),
+        _ => return Err(StorageError::Corrupt),
+    };
+    decoded.map_err(|_| StorageError::Corrupt)
 }
 
 #[cfg(test)]

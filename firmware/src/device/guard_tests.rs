@@ -1,0 +1,67 @@
+//! The guards of the device, each against the case it exists for: a calibrated stream at another
+//! range, stream decimation, and an implausible on-chip fit.
+
+use shared::protocol::{DeviceError, Request, Response, SensorConfig, StreamKind};
+use shared::{AccelRange, Calibration, CalibrationError, Position};
+
+use super::tests::{ask, boot, capture_at, run, Flash, SimDevice};
+use crate::sim::SimMpu6050;
+
+fn samples(device: &mut SimDevice, kind: StreamKind, rate_hz: u16, count: u32) -> Vec<shared::protocol::Sample> {
+    let (last, streamed) = run(device, 2, Request::Stream { kind, rate_hz, count });
+    assert_eq!(last, Response::StreamEnded { samples: count });
+    streamed.into_iter().filter_map(|r| if let Response::Sample(s) = r { Some(s) } else { None }).collect()
+}
+
+#[test]
+fn a_calibrated_stream_at_another_range_than_the_calibration_is_refused_and_a_raw_one_is_not() {
+    let mut device = boot(SimMpu6050::new(21), Flash::new());
+    let calibration = Calibration { offset_g: [0.02, 0.0, 0.0], ..Calibration::identity(AccelRange::G2) };
+    assert_eq!(ask(&mut device, 1, Request::SetCalibration(calibration)), Response::Done);
+    let wider = SensorConfig { range: AccelRange::G8, ..SensorConfig::default() };
+    assert!(matches!(ask(&mut device, 1, Request::Configure(wider)), Response::Configured(_)));
+    let stream = Request::Stream { kind: StreamKind::Calibrated, rate_hz: 50, count: 5 };
+    assert_eq!(
+        ask(&mut device, 3, stream),
+        Response::Error(DeviceError::RangeMismatch { calibration: AccelRange::G2, configured: AccelRange::G8 })
+    );
+    assert!(!device.is_busy(), "the refused stream must not have started");
+    assert_eq!(samples(&mut device, StreamKind::Raw, 50, 5).len(), 5);
+}
+
+#[test]
+fn a_decimated_stream_sends_exactly_count_samples_every_nth_of_the_sensor_s() {
+    // Two boards with the same seed produce the same samples at the same simulated times, so the
+    // 25 Hz stream must be exactly every 4th sample of the 100 Hz one, starting with the first.
+    let mut full_rate = boot(SimMpu6050::new(22), Flash::new());
+    let mut decimated = boot(SimMpu6050::new(22), Flash::new());
+    let every = samples(&mut full_rate, StreamKind::Raw, 100, 120);
+    let quarter = samples(&mut decimated, StreamKind::Raw, 25, 30);
+    assert_eq!(quarter.len(), 30);
+    for (k, sample) in quarter.iter().enumerate() {
+        assert_eq!(sample.index, k as u32);
+        let source = &every[4 * k];
+        assert_eq!((sample.accel_g, sample.gyro_dps), (source.accel_g, source.gyro_dps), "sample {k}");
+    }
+}
+
+#[test]
+fn an_absurd_six_position_fit_is_refused_with_the_reason_and_the_active_calibration_is_kept() {
+    let mut sim = SimMpu6050::new(23);
+    // A sensor reading 0.4 g for 1 g on x: its correction scale would be 2.5, beyond the limit.
+    sim.physics.truth.matrix[0][0] = 2.5;
+    let mut device = boot(sim, Flash::new());
+    let kept = Calibration { offset_g: [0.01, 0.0, 0.0], ..Calibration::identity(AccelRange::G2) };
+    assert_eq!(ask(&mut device, 1, Request::SetCalibration(kept)), Response::Done);
+    for position in Position::ALL {
+        let answer = capture_at(&mut device, position.specific_force_g());
+        assert!(matches!(answer, Response::Captured { position: Some(p), .. } if p == position), "{answer:?}");
+    }
+    let answer = ask(&mut device, 8, Request::FitSixPosition);
+    let Response::Error(DeviceError::InvalidCalibration(CalibrationError::ScaleOutOfRange { axis: 0, value })) = answer
+    else {
+        panic!("expected the x scale refused, got {answer:?}")
+    };
+    assert!((value - 2.5).abs() < 0.01, "fitted x scale {value}");
+    assert_eq!(device.active_calibration(), Some(kept));
+}

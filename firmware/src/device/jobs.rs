@@ -1,0 +1,171 @@
+//! The long operations: a capture (progress, then its statistics) and a stream (samples, then its
+//! end), moved on by [`Device::poll`] with whatever the sensor FIFO holds.
+
+use embedded_hal::blocking::i2c::{Write, WriteRead};
+use embedded_storage_async::nor_flash::NorFlash;
+use shared::orientation::DEFAULT_FACE_TOLERANCE_DEG;
+use shared::protocol::{ActiveCalibration, CaptureStats, DeviceError, Response, StreamKind};
+use shared::Position;
+
+use super::{sample_message, Device, OUTBOX_LEN};
+use crate::capture::Capture;
+use crate::sensor::RawSample;
+
+/// Samples read from the FIFO per read in a poll.
+const READ_BATCH: usize = 16;
+
+/// A long operation in progress.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Job {
+    Idle,
+    Capturing { request_id: u16, capture: Capture, next_progress: u32 },
+    Streaming(Stream),
+}
+
+/// A stream in progress: every `decimation`-th FIFO sample is sent, `skip` more are dropped first.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Stream {
+    request_id: u16,
+    kind: StreamKind,
+    decimation: u32,
+    remaining: Option<u32>,
+    sent: u32,
+    skip: u32,
+}
+
+impl<I, E, F> Device<I, F>
+where
+    I: Write<Error = E> + WriteRead<Error = E>,
+    F: NorFlash,
+{
+    /// Moves the running capture or stream on with whatever the FIFO holds. Call every few ms.
+    pub fn poll(&mut self) {
+        match self.job {
+            Job::Idle => {}
+            Job::Capturing { .. } => self.poll_capture(),
+            Job::Streaming(stream) => self.poll_stream(stream),
+        }
+    }
+
+    pub(super) fn start_capture(&mut self, request_id: u16, seconds: u8) -> Result<(), DeviceError> {
+        let capture = Capture::new(seconds, self.config)?;
+        self.with_sensor(|sensor, bus| sensor.start_fifo(bus))?;
+        let next_progress = u32::from(self.config.sample_rate_hz);
+        self.job = Job::Capturing { request_id, capture, next_progress };
+        Ok(())
+    }
+
+    fn poll_capture(&mut self) {
+        let Job::Capturing { request_id, mut capture, mut next_progress } = self.job else {
+            return;
+        };
+        let mut batch = [RawSample::default(); READ_BATCH];
+        loop {
+            match self.read_fifo(&mut batch) {
+                Ok(0) => break,
+                Ok(n) => capture.take(&batch[..n]),
+                Err(error) => return self.end_job(request_id, Response::Error(error)),
+            };
+            if capture.is_complete() {
+                let response = capture.finish().map_or_else(Response::Error, |stats| self.keep(stats));
+                return self.end_job(request_id, response);
+            }
+            if capture.samples() >= next_progress {
+                self.send(request_id, Response::Progress(capture.progress()));
+                next_progress += u32::from(self.config.sample_rate_hz);
+            }
+        }
+        self.job = Job::Capturing { request_id, capture, next_progress };
+    }
+
+    /// Keeps a finished capture for the six-position fit when it was taken at a face.
+    fn keep(&mut self, stats: CaptureStats) -> Response {
+        let position = Position::detect(stats.mean_g, DEFAULT_FACE_TOLERANCE_DEG).ok().map(|(p, _)| p);
+        if let Some(p) = position {
+            self.positions.replace(p, stats);
+        }
+        Response::Captured { stats, position }
+    }
+
+    fn read_fifo(&mut self, batch: &mut [RawSample]) -> Result<usize, DeviceError> {
+        self.with_sensor(|sensor, bus| sensor.read_fifo(bus, batch))
+    }
+
+    fn end_job(&mut self, request_id: u16, response: Response) {
+        self.job = Job::Idle;
+        let bus = &mut self.bus;
+        if let Ok(sensor) = self.sensor.as_mut() {
+            let _ = sensor.stop_fifo(bus);
+        }
+        self.send(request_id, response);
+    }
+
+    pub(super) fn cancel(&mut self) -> Response {
+        match self.job {
+            Job::Idle => {}
+            Job::Capturing { request_id, .. } => self.end_job(request_id, Response::Error(DeviceError::Cancelled)),
+            Job::Streaming(s) => self.end_job(s.request_id, Response::StreamEnded { samples: s.sent }),
+        }
+        Response::Done
+    }
+
+    pub(super) fn start_stream(
+        &mut self,
+        request_id: u16,
+        kind: StreamKind,
+        rate_hz: u16,
+        count: u32,
+    ) -> Result<(), DeviceError> {
+        let sample_rate = self.config.sample_rate_hz;
+        if rate_hz == 0 || rate_hz > sample_rate || !sample_rate.is_multiple_of(rate_hz) {
+            return Err(DeviceError::InvalidRate { rate_hz });
+        }
+        let calibrated = kind == StreamKind::Calibrated && self.source != ActiveCalibration::None;
+        if calibrated && self.active.range != self.config.range {
+            return Err(DeviceError::RangeMismatch { calibration: self.active.range, configured: self.config.range });
+        }
+        self.with_sensor(|sensor, bus| sensor.start_fifo(bus))?;
+        let decimation = u32::from(sample_rate / rate_hz);
+        let remaining = (count > 0).then_some(count);
+        self.job = Job::Streaming(Stream { request_id, kind, decimation, remaining, sent: 0, skip: 0 });
+        Ok(())
+    }
+
+    fn poll_stream(&mut self, mut stream: Stream) {
+        let room = OUTBOX_LEN - self.outbox.len();
+        let mut batch = [RawSample::default(); READ_BATCH];
+        // NOTE: never read more samples than the outbox can send; the rest waits in the FIFO.
+        let readable = (room.saturating_sub(1) * stream.decimation as usize).min(READ_BATCH);
+        let n = match self.read_fifo(&mut batch[..readable]) {
+            Ok(n) => n,
+            Err(error) => return self.end_job(stream.request_id, Response::Error(error)),
+        };
+        for raw in &batch[..n] {
+            if stream.skip > 0 {
+                stream.skip -= 1;
+                continue;
+            }
+            stream.skip = stream.decimation - 1;
+            if self.send_sample(&mut stream, raw) {
+                return self.end_job(stream.request_id, Response::StreamEnded { samples: stream.sent });
+            }
+        }
+        self.job = Job::Streaming(stream);
+    }
+
+    /// Sends one sample of the stream; whether that was its last.
+    fn send_sample(&mut self, stream: &mut Stream, raw: &RawSample) -> bool {
+        let calibrated = stream.kind == StreamKind::Calibrated;
+        let calibration = calibrated.then(|| self.active_calibration()).flatten();
+        let sample = sample_message(raw, stream.sent, self.config, calibration.as_ref());
+        self.send(stream.request_id, Response::Sample(sample));
+        stream.sent += 1;
+        match stream.remaining.as_mut() {
+            Some(left) => {
+                *left -= 1;
+                *left == 0
+            }
+            None => false,
+        }
+    }
+}

@@ -1,0 +1,194 @@
+//! The device: answers every request with exactly one final response, runs captures and streams,
+//! fits six positions, and keeps the calibration active in RAM and stored in flash.
+//!
+//! Target-independent: the board binary feeds it decoded requests and polls it every few
+//! milliseconds; tests and the host's simulated device do the same on the simulated MPU-6050.
+//!
+//! Split by concern: [`dispatch`] routes requests, [`jobs`] runs the long operations (capture,
+//! stream), [`slots`] keeps the active and stored calibration, [`sample`] turns a sensor reading
+//! into a message.
+
+mod dispatch;
+mod jobs;
+mod sample;
+mod slots;
+
+use core::ops::Range;
+
+use embedded_hal::blocking::i2c::{Write, WriteRead};
+use embedded_storage_async::nor_flash::NorFlash;
+use heapless::Deque;
+use shared::protocol::{
+    ActiveCalibration, CaptureStats, DeviceError, FirmwareVersion, FrameError, Response, SensorConfig, SerialNumber,
+};
+use shared::{Calibration, PositionMap};
+
+use crate::sensor::{self, Sensor};
+use crate::storage::{Storage, StorageError};
+
+pub use sample::sample_message;
+
+/// Responses waiting to be sent: enough for a poll's worth of streamed samples.
+pub const OUTBOX_LEN: usize = 16;
+
+/// The firmware version, from the package version.
+pub const FIRMWARE_VERSION: FirmwareVersion = FirmwareVersion {
+    major: parse_u8(env!("CARGO_PKG_VERSION_MAJOR")),
+    minor: parse_u8(env!("CARGO_PKG_VERSION_MINOR")),
+    patch: parse_u8(env!("CARGO_PKG_VERSION_PATCH")),
+};
+
+/// The device state machine over an I2C bus `I` and a flash `F`.
+pub struct Device<I, F: NorFlash> {
+    bus: I,
+    serial: SerialNumber,
+    sensor: Result<Sensor, DeviceError>,
+    config: SensorConfig,
+    storage: Storage<F>,
+    stored: bool,
+    active: Calibration,
+    source: ActiveCalibration,
+    /// The latest capture at each face, kept for the six-position fit.
+    positions: PositionMap<CaptureStats>,
+    job: jobs::Job,
+    outbox: Deque<(u16, Response), OUTBOX_LEN>,
+}
+
+impl<I, E, F> Device<I, F>
+where
+    I: Write<Error = E> + WriteRead<Error = E>,
+    F: NorFlash,
+{
+    /// Boots the board `serial`: finds and configures the sensor, loads the stored calibration from
+    /// `range` of `flash`.
+    pub async fn boot(bus: I, flash: F, range: Range<u32>, serial: SerialNumber) -> Result<Self, StorageError> {
+        let mut storage = Storage::new(flash, range)?;
+        let loaded = storage.load().await;
+        let config = SensorConfig::default();
+        let mut device = Device {
+            bus,
+            serial,
+            sensor: Err(DeviceError::SensorMissing),
+            config,
+            storage,
+            stored: matches!(loaded, Ok(Some(_))),
+            active: Calibration::identity(config.range),
+            source: ActiveCalibration::None,
+            positions: PositionMap::new(),
+            job: jobs::Job::Idle,
+            outbox: Deque::new(),
+        };
+        if let Ok(Some(calibration)) = loaded {
+            device.active = calibration;
+            device.source = ActiveCalibration::Stored;
+        }
+        let _ = device.sensor();
+        Ok(device)
+    }
+
+    /// The I2C bus (the simulated sensor, in tests).
+    pub fn bus_mut(&mut self) -> &mut I {
+        &mut self.bus
+    }
+
+    /// The board's serial number.
+    pub fn serial(&self) -> SerialNumber {
+        self.serial
+    }
+
+    /// The calibration applied to samples now.
+    pub fn active_calibration(&self) -> Option<Calibration> {
+        (self.source != ActiveCalibration::None).then_some(self.active)
+    }
+
+    /// Whether a capture or a stream is running.
+    pub fn is_busy(&self) -> bool {
+        self.job != jobs::Job::Idle
+    }
+
+    /// Takes the device apart, to reboot it on the same bus and flash.
+    pub fn into_parts(self) -> (I, F) {
+        (self.bus, self.storage.into_flash())
+    }
+
+    /// The next response to send, if any.
+    pub fn next_response(&mut self) -> Option<(u16, Response)> {
+        self.outbox.pop_front()
+    }
+
+    /// Answers a frame that could not be read; its request id is unknown.
+    pub fn reject_frame(&mut self, error: FrameError) {
+        self.send(shared::protocol::frame::UNKNOWN_REQUEST_ID, Response::Error(DeviceError::Frame(error)));
+    }
+
+    fn send(&mut self, request_id: u16, response: Response) {
+        // NOTE: the outbox is drained after every request and poll, and polls take no more samples
+        // than it has room for; a full outbox would only drop this message, never block.
+        let _ = self.outbox.push_back((request_id, response));
+    }
+
+    /// The sensor, found again if it was missing (a loose wire put back).
+    fn sensor(&mut self) -> Result<&mut Sensor, DeviceError> {
+        if self.sensor.is_err() {
+            self.sensor = Sensor::probe(&mut self.bus).map_err(|e| e.to_device_error()).and_then(|mut sensor| {
+                sensor.configure(&mut self.bus, self.config).map_err(|e| e.to_device_error())?;
+                Ok(sensor)
+            });
+        }
+        self.sensor.as_mut().map_err(|e| *e)
+    }
+
+    /// Records a bus failure and looks for the sensor again at once: a sensor that no longer answers
+    /// is reported as missing, a passing fault as the bus error it was.
+    fn sensor_failed(&mut self, error: sensor::Error<E>) -> DeviceError {
+        let error = error.to_device_error();
+        if error == DeviceError::Bus {
+            self.sensor = Err(DeviceError::Bus);
+            if let Err(missing) = self.sensor() {
+                return missing;
+            }
+        }
+        error
+    }
+
+    /// Runs one driver operation on the sensor (found again first if it was missing).
+    fn with_sensor<R>(
+        &mut self,
+        operation: impl FnOnce(&mut Sensor, &mut I) -> Result<R, sensor::Error<E>>,
+    ) -> Result<R, DeviceError> {
+        self.sensor()?;
+        let result = match self.sensor.as_mut() {
+            Ok(sensor) => operation(sensor, &mut self.bus),
+            Err(error) => return Err(*error),
+        };
+        result.map_err(|e| self.sensor_failed(e))
+    }
+}
+
+/// Parses a decimal version component at compile time (0 when it is not a number below 256).
+const fn parse_u8(text: &str) -> u8 {
+    let bytes = text.as_bytes();
+    let mut value: u32 = 0;
+    let mut i = 0;
+    while i < bytes.len() {
+        if !bytes[i].is_ascii_digit() || value > 25 {
+            return 0;
+        }
+        value = value * 10 + (bytes[i] - b'0') as u32;
+        i += 1;
+    }
+    if value > 255 {
+        0
+    } else {
+        value as u8
+    }
+}
+
+#[cfg(test)]
+mod tests;
+
+#[cfg(test)]
+mod fault_tests;
+
+#[cfg(test)]
+mod guard_tests;

@@ -1,0 +1,103 @@
+//! The calibration slots: the active one in RAM (fitted on the chip or uploaded) and the stored one in
+//! flash, each change validated first.
+
+use embedded_hal::blocking::i2c::{Write, WriteRead};
+use embedded_storage_async::nor_flash::NorFlash;
+use shared::calibration::{GyroCalibration, Origin};
+use shared::linalg::{self, Vec3};
+use shared::protocol::{ActiveCalibration, CalibrationSlot, CaptureStats, DeviceError, Response};
+use shared::{Calibration, Position, PositionMap, SixPositionError};
+
+use super::Device;
+
+impl<I, E, F> Device<I, F>
+where
+    I: Write<Error = E> + WriteRead<Error = E>,
+    F: NorFlash,
+{
+    /// Fits the kept captures on the chip; the result becomes active only when it is plausible.
+    pub(super) fn fit_six_position(&mut self) -> Result<Response, DeviceError> {
+        let calibration = six_position_calibration(&self.positions, self.config.range)?;
+        calibration.validate().map_err(DeviceError::InvalidCalibration)?;
+        self.active = calibration;
+        self.source = ActiveCalibration::Unsaved;
+        Ok(Response::Fitted(calibration))
+    }
+
+    pub(super) fn set_calibration(&mut self, calibration: Calibration) -> Result<Response, DeviceError> {
+        calibration.validate().map_err(DeviceError::InvalidCalibration)?;
+        if calibration.range != self.config.range {
+            return Err(DeviceError::RangeMismatch { calibration: calibration.range, configured: self.config.range });
+        }
+        self.active = calibration;
+        self.source = ActiveCalibration::Unsaved;
+        Ok(Response::Done)
+    }
+
+    pub(super) async fn get_calibration(&mut self, slot: CalibrationSlot) -> Result<Response, DeviceError> {
+        match slot {
+            CalibrationSlot::Active => Ok(Response::Calibration(self.active_calibration())),
+            CalibrationSlot::Stored if self.is_busy() => Err(DeviceError::Busy),
+            CalibrationSlot::Stored => {
+                self.storage.load().await.map(Response::Calibration).map_err(|_| DeviceError::Storage)
+            }
+        }
+    }
+
+    pub(super) async fn save(&mut self) -> Result<Response, DeviceError> {
+        let calibration = self.active_calibration().ok_or(DeviceError::NoCalibration)?;
+        self.storage.save(&calibration).await.map_err(|_| DeviceError::Storage)?;
+        self.stored = true;
+        self.source = ActiveCalibration::Stored;
+        Ok(Response::Done)
+    }
+
+    pub(super) async fn erase(&mut self) -> Result<Response, DeviceError> {
+        self.storage.erase().await.map_err(|_| DeviceError::Storage)?;
+        self.stored = false;
+        self.active = Calibration::identity(self.config.range);
+        self.source = ActiveCalibration::None;
+        Ok(Response::Done)
+    }
+}
+
+/// The six-position closed form over the kept captures, with the gyro bias and temperature averaged
+/// over them and the residual the placement and noise leave.
+fn six_position_calibration(
+    captures: &PositionMap<CaptureStats>,
+    range: shared::AccelRange,
+) -> Result<Calibration, DeviceError> {
+    let mut readings = PositionMap::<Vec3<f32>>::new();
+    let (mut gyro_bias_dps, mut mean_temp_c) = ([0.0f32; 3], 0.0f32);
+    for position in Position::ALL {
+        let kept = captures.get(position).ok_or(DeviceError::SixPosition(SixPositionError::Missing(position)))?;
+        readings.replace(position, kept.mean_g);
+        gyro_bias_dps = linalg::add(gyro_bias_dps, linalg::scale(kept.gyro_mean_dps, 1.0 / 6.0));
+        mean_temp_c += kept.temp_c / 6.0;
+    }
+    let fit = readings.fit(1.0).map_err(DeviceError::SixPosition)?;
+    let mut calibration = Calibration {
+        origin: Origin::CHIP_SIX_POSITION,
+        range,
+        matrix: fit.matrix,
+        offset_g: fit.offset,
+        gyro: GyroCalibration { bias_dps: gyro_bias_dps, ..GyroCalibration::default() },
+        mean_temp_c,
+        temperature: None,
+        residual_mg: 0.0,
+    };
+    calibration.residual_mg = six_position_residual_mg(&calibration, &readings);
+    Ok(calibration)
+}
+
+/// RMS over the six faces of |M (m - o) - face| in mg: what the placement and noise leave.
+fn six_position_residual_mg(calibration: &Calibration, readings: &PositionMap<Vec3<f32>>) -> f32 {
+    let mut sum = 0.0;
+    for position in readings.present() {
+        if let Some(&reading) = readings.get(position) {
+            let error = linalg::sub(calibration.apply(reading), position.specific_force_g());
+            sum += linalg::dot(error, error);
+        }
+    }
+    libm::sqrtf(sum / 6.0) * 1000.0
+}

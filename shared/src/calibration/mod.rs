@@ -1,0 +1,147 @@
+//! The calibration model `a = M (m - o)`, its temperature model and the gyro correction
+//! `w = G (w_raw - b)`, with the checks that keep absurd calibrations off the chip.
+
+mod origin;
+mod temperature;
+mod validate;
+
+use serde::{Deserialize, Serialize};
+
+use crate::linalg::{self, Mat3, Vec3};
+
+pub use origin::{ModelTag, Origin, Procedure, MODEL_TAG_LEN};
+pub use temperature::{drift, TempCoefficients, TemperatureModel, MAX_TEMP_ORDER};
+pub use validate::{limits, CalibrationError};
+
+/// Full-scale range of the MPU-6050 accelerometer (register ACCEL_CONFIG, AFS_SEL).
+#[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum AccelRange {
+    /// +-2 g, 16384 LSB/g (the default).
+    #[default]
+    G2,
+    /// +-4 g, 8192 LSB/g.
+    G4,
+    /// +-8 g, 4096 LSB/g.
+    G8,
+    /// +-16 g, 2048 LSB/g.
+    G16,
+}
+
+impl AccelRange {
+    /// Sensitivity in LSB per g (MPU-6000/6050 Product Specification rev 3.4, section 6.2).
+    pub const fn lsb_per_g(self) -> f32 {
+        match self {
+            AccelRange::G2 => 16384.0,
+            AccelRange::G4 => 8192.0,
+            AccelRange::G8 => 4096.0,
+            AccelRange::G16 => 2048.0,
+        }
+    }
+
+    /// Full scale in g.
+    pub const fn full_scale_g(self) -> u8 {
+        match self {
+            AccelRange::G2 => 2,
+            AccelRange::G4 => 4,
+            AccelRange::G8 => 8,
+            AccelRange::G16 => 16,
+        }
+    }
+
+    /// The range with the given full scale in g, if the sensor has one.
+    pub const fn from_full_scale_g(full_scale_g: u8) -> Option<Self> {
+        match full_scale_g {
+            2 => Some(AccelRange::G2),
+            4 => Some(AccelRange::G4),
+            8 => Some(AccelRange::G8),
+            16 => Some(AccelRange::G16),
+            _ => None,
+        }
+    }
+}
+
+/// The gyro correction `w = G (w_raw - b)`, in deg/s.
+#[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq)]
+pub struct GyroCalibration {
+    /// Scale and misalignment matrix G (row-major, dimensionless; identity when not fitted).
+    pub matrix: Mat3<f32>,
+    /// Bias b in deg/s at the reference temperature, subtracted before G is applied.
+    pub bias_dps: Vec3<f32>,
+}
+
+impl Default for GyroCalibration {
+    fn default() -> Self {
+        GyroCalibration { matrix: linalg::identity(), bias_dps: [0.0; 3] }
+    }
+}
+
+/// A complete calibration for one sensor at one range: `a = M (m - o)` in g, `w = G (w_raw - b)` in
+/// deg/s, both optionally varying with temperature.
+#[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq)]
+pub struct Calibration {
+    /// Which procedure and model made it.
+    pub origin: Origin,
+    /// The accelerometer range the calibration belongs to.
+    pub range: AccelRange,
+    /// Correction matrix M (row-major, dimensionless).
+    pub matrix: Mat3<f32>,
+    /// Offset o in g, subtracted before M is applied.
+    pub offset_g: Vec3<f32>,
+    /// The gyro correction.
+    pub gyro: GyroCalibration,
+    /// Mean die temperature of the captures the calibration was fitted from, in degC.
+    pub mean_temp_c: f32,
+    /// How offset, scale and gyro bias change with temperature; `None`: they do not.
+    pub temperature: Option<TemperatureModel>,
+    /// RMS fit residual in mg (0 for an exactly determined fit).
+    pub residual_mg: f32,
+}
+
+impl Calibration {
+    /// The identity calibration: samples pass through unchanged.
+    pub fn identity(range: AccelRange) -> Self {
+        Calibration {
+            origin: Origin::IDENTITY,
+            range,
+            matrix: linalg::identity(),
+            offset_g: [0.0; 3],
+            gyro: GyroCalibration::default(),
+            mean_temp_c: 0.0,
+            temperature: None,
+            residual_mg: 0.0,
+        }
+    }
+
+    /// Corrects one accelerometer reading in g without a temperature: `a = M (m - o)`.
+    pub fn apply(&self, reading_g: Vec3<f32>) -> Vec3<f32> {
+        linalg::mul_vec(&self.matrix, linalg::sub(reading_g, self.offset_g))
+    }
+
+    /// Corrects one accelerometer reading in g taken at `temp_c` degC: `a = M(T) (m - o(T))`, with
+    /// o(T) = o + sum c_k dT^k and M(T) = M diag(1 + sum d_k dT^k)^-1; [`Self::apply`] without a model.
+    pub fn apply_at(&self, reading_g: Vec3<f32>, temp_c: f32) -> Vec3<f32> {
+        let Some(model) = &self.temperature else {
+            return self.apply(reading_g);
+        };
+        let delta_c = model.delta_c(temp_c);
+        let offset = linalg::add(self.offset_g, drift(&model.offset_g, delta_c));
+        let scale = drift(&model.scale, delta_c);
+        let centred = linalg::sub(reading_g, offset);
+        // NOTE: validation keeps |scale drift| well below 1 over the operating range, so 1 + drift > 0.
+        let unscaled = [0, 1, 2].map(|axis| centred[axis] / (1.0 + scale[axis]));
+        linalg::mul_vec(&self.matrix, unscaled)
+    }
+
+    /// Corrects one gyro reading in deg/s taken at `temp_c` degC: `w = G (w_raw - b(T))`, with
+    /// b(T) = b + sum e_k dT^k (b alone without a temperature model).
+    pub fn apply_gyro(&self, reading_dps: Vec3<f32>, temp_c: f32) -> Vec3<f32> {
+        let bias = match &self.temperature {
+            Some(model) => linalg::add(self.gyro.bias_dps, drift(&model.gyro_bias_dps, model.delta_c(temp_c))),
+            None => self.gyro.bias_dps,
+        };
+        linalg::mul_vec(&self.gyro.matrix, linalg::sub(reading_dps, bias))
+    }
+}
+
+#[cfg(test)]
+mod tests;
