@@ -124,3 +124,19 @@ fn over_forty_problems_the_statistic_averages_its_degrees_of_freedom() {
     // At the 0.001 level, at most one of 40 honest problems may fail (expected 0.04).
     assert!(passed >= problems as usize - 1, "{passed} of {problems} passed");
 }
+
+#[test]
+fn the_verdict_turns_at_p_0_001_as_the_readme_states() {
+    // The fit does not depend on the stated noise, so the statistic scales as 1 / factor^2: state the
+    // noise so that p lands at 0.002 (passes) and at 0.0005 (fails).
+    let (_, honest) = checked_noise_test(Model::Ortho9, &spread_rows(3, 1.0));
+    let distribution = ChiSquared::new(honest.degrees_of_freedom as f64).unwrap();
+    for (p_wanted, passes) in [(2e-3, true), (5e-4, false)] {
+        let chi_square = distribution.inverse_cdf(1.0 - p_wanted);
+        let factor = (honest.chi_square / chi_square).sqrt();
+        let (fit, test) = checked_noise_test(Model::Ortho9, &spread_rows(3, factor));
+        assert!((test.p_value / p_wanted - 1.0).abs() < 1e-3, "p {} for {p_wanted}", test.p_value);
+        assert_eq!(test.passed, passes, "{test:?}");
+        assert_eq!(fit.warnings.iter().any(|w| w.contains("chi-square")), !passes, "{:?}", fit.warnings);
+    }
+}
