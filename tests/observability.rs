@@ -51,8 +51,7 @@ fn a_missing_axis_direction_is_refused_naming_the_axis_and_the_way_to_turn_it() 
         for axis in 0..3 {
             for sign in [1.0, -1.0] {
                 // Leave out every position within 84 degrees of this axis direction.
-                let rows: Vec<SyntheticRow> =
-                    spread_rows().into_iter().filter(|r| sign * r.up[axis] < 0.1).collect();
+                let rows: Vec<SyntheticRow> = spread_rows().into_iter().filter(|r| sign * r.up[axis] < 0.1).collect();
                 let letter = ['x', 'y', 'z'][axis];
                 let (way, turn) = if sign > 0.0 { ("up", '+') } else { ("down", '-') };
                 let message = refusal(&rows, model).to_string();

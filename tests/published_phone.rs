@@ -107,17 +107,6 @@ fn six_position_finds_the_six_faces_by_detection_without_references() {
 }
 
 #[test]
-fn data_copies_match_the_shared_originals() {
-    for name in ["huawei-phone-13.csv", "ivanov-lab-32.csv"] {
-        let original = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/data").join(name);
-        match std::fs::read(&original) {
-            Ok(bytes) => assert_eq!(std::fs::read(data_path(name)).unwrap(), bytes, "{name} differs from the original"),
-            Err(_) => println!("{} not present; copy not checked", original.display()),
-        }
-    }
-}
-
-#[test]
 fn every_model_the_thirteen_rows_support_improves_the_norm_error() {
     let dataset = phone_dataset();
     println!("| model | rows used | worst ||a|-g| before (m/s^2) | after | rms after |");
