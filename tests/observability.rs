@@ -80,9 +80,12 @@ fn too_few_references_are_refused_with_how_many_are_needed_and_found() {
         }
         rows
     };
-    for (references, found) in [(0, 0), (1, 1)] {
+    // Two references along the same direction count as one.
+    let mut parallel = with_references(1);
+    parallel.push(parallel[0].clone());
+    for (rows, found) in [(with_references(0), 0), (with_references(1), 1), (parallel, 1)] {
         assert_eq!(
-            refusal(&with_references(references), Model::ReferenceNorm12).to_string(),
+            refusal(&rows, Model::ReferenceNorm12).to_string(),
             format!(
                 "reference-norm12 needs at least 2 rows with a known orientation (ref_x,ref_y,ref_z); the file has {found}"
             )
@@ -149,6 +152,18 @@ fn a_parameter_the_jacobian_cannot_see_is_refused_by_name() {
              add positions spread over the sphere"
         )
     );
+}
+
+#[test]
+fn a_parameter_the_jacobian_barely_sees_is_refused_too() {
+    // The z readings differ by thousandths of a count: not exactly flat, but far below what the fit
+    // could resolve (condition number beyond 1e7).
+    let mut rows = flat_rows();
+    for (i, row) in rows.iter_mut().enumerate() {
+        row.reading[2] += 1e-3 * [1.0, -1.0, 0.5, 0.0, -0.5, 1.0, 0.3, -0.7, 0.2, 0.9, -0.4, 0.6][i];
+    }
+    let error = refusal(&rows, Model::ReferenceNorm12);
+    assert!(matches!(error, FitError::Unobservable { model: "reference-norm12", .. }), "{error}");
 }
 
 #[test]
