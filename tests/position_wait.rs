@@ -1,6 +1,6 @@
 //! The position wait of the guided calibration accepts a position only after two live windows in a
 //! row are still and at the target: one still window, or two with a moving one between them, is not
-//! enough. Driven by a scripted device that serves each live window from a script and logs every
+//! enough; the same holds for the verification's wait for a fresh orientation. Driven by a scripted device that serves each live window from a script and logs every
 //! request, so the test sees exactly when the capture was asked for.
 
 use std::sync::{Arc, Mutex};
@@ -8,10 +8,10 @@ use std::time::Duration;
 
 use accelcal::calibrate::{self, CalibrateOptions, Feedback, PersonHand};
 use accelcal::client::Client;
-use accelcal::port::pipe;
+use accelcal::port::{pipe, PipeEnd};
 use accelcal_tests::scripted::{self, frame};
-use shared::protocol::{CaptureStats, DeviceError, Request, Response, Sample};
-use shared::{AccelRange, Position};
+use shared::protocol::{CaptureStats, DeviceError, Request, Response, Sample, StreamKind};
+use shared::{AccelRange, Calibration, Position};
 
 /// One live window as the script serves it.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -50,15 +50,21 @@ fn captured(id: u16) -> Vec<u8> {
     frame(id, &Response::Captured { stats, position: Some(Position::PosZ) })
 }
 
-/// Runs the position wait for +Z against `script` (the last window repeats); returns the requests
-/// the device saw, by kind, and the live lines shown.
-fn wait_for_z(script: &[Window]) -> (Vec<&'static str>, Vec<String>) {
+/// A client on a scripted device that serves the live windows of `script` (the last one repeats) and
+/// logs each request by kind.
+fn scripted_client(script: &[Window]) -> (Client<PipeEnd>, Arc<Mutex<Vec<&'static str>>>) {
     let log = Arc::new(Mutex::new(Vec::new()));
     let (host, device) = pipe();
     let (device_log, mut windows) = (Arc::clone(&log), script.to_vec());
     let _device = scripted::spawn(device, move |id, request| {
         let (kind, answer) = match request {
             Request::ClearPositions => ("clear", frame(id, &Response::Done)),
+            Request::GetCalibration(_) => {
+                ("get", frame(id, &Response::Calibration(Some(Calibration::identity(AccelRange::G2)))))
+            }
+            Request::Stream { kind: StreamKind::Calibrated, count, .. } => {
+                ("calibrated", samples(id, Window::Still, count))
+            }
             Request::Stream { count, .. } => {
                 let window = if windows.len() > 1 { windows.remove(0) } else { windows[0] };
                 ("window", samples(id, window, count))
@@ -69,7 +75,14 @@ fn wait_for_z(script: &[Window]) -> (Vec<&'static str>, Vec<String>) {
         device_log.lock().unwrap().push(kind);
         answer
     });
-    let (mut client, _) = Client::connect(host).expect("the scripted device says hello");
+    let (client, _) = Client::connect(host).expect("the scripted device says hello");
+    (client, log)
+}
+
+/// Runs the position wait for +Z against `script`; returns the requests the device saw, by kind,
+/// and the live lines shown.
+fn wait_for_z(script: &[Window]) -> (Vec<&'static str>, Vec<String>) {
+    let (mut client, log) = scripted_client(script);
     let target = calibrate::faces().into_iter().find(|t| t.name == "+Z").expect("a +Z face");
     let options =
         CalibrateOptions { quick: true, seconds: 5, verify_positions: 0, wait_limit: Some(Duration::from_secs(20)) };
@@ -114,4 +127,17 @@ fn one_still_window_is_not_enough_and_a_moving_one_starts_the_count_again() {
     assert_eq!(requests, expected);
     assert_eq!(live[1], "0.0 degrees from +Z (moving)", "{live:?}");
     assert_eq!(live.len(), 7, "{live:?}");
+}
+
+#[test]
+fn the_verification_waits_for_two_still_windows_in_a_row_too() {
+    use Window::{Moving, Still};
+    let (mut client, log) = scripted_client(&[Still, Moving, Still, Still]);
+    let mut feedback = LiveLines::default();
+    let wait = Some(Duration::from_secs(20));
+    let verification = calibrate::verify(&mut client, &mut PersonHand, 1, wait, &mut feedback).unwrap();
+    assert_eq!(verification.positions, 1);
+    let requests = log.lock().unwrap().clone();
+    assert_eq!(requests, ["get", "window", "window", "window", "window", "capture", "calibrated"]);
+    assert_eq!(feedback.0, ["still", "moving: hold the board still", "still", "still"]);
 }
