@@ -75,9 +75,20 @@ pub fn rows(
     std_factor: f64,
     with_reference: impl Fn(usize) -> bool,
 ) -> Vec<SyntheticRow> {
+    rows_with_noise(directions, seed, SAMPLE_STD_COUNTS, std_factor, with_reference)
+}
+
+/// As [`rows`], with `sample_std_counts` of noise per axis instead of [`SAMPLE_STD_COUNTS`].
+pub fn rows_with_noise(
+    directions: &[Vector3<f64>],
+    seed: u64,
+    sample_std_counts: [f64; 3],
+    std_factor: f64,
+    with_reference: impl Fn(usize) -> bool,
+) -> Vec<SyntheticRow> {
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
     let (x, y) = (sensor_matrix(), sensor_offset());
-    let sigma_mean = Vector3::from(SAMPLE_STD_COUNTS) / SAMPLES_PER_ROW.sqrt();
+    let sigma_mean = Vector3::from(sample_std_counts) / SAMPLES_PER_ROW.sqrt();
     directions
         .iter()
         .enumerate()
@@ -88,7 +99,7 @@ pub fn rows(
                 up: *up,
                 reading: x * force + y + noise,
                 reference: with_reference(i).then_some(force),
-                stated_std: Vector3::from(SAMPLE_STD_COUNTS) * std_factor,
+                stated_std: Vector3::from(sample_std_counts) * std_factor,
             }
         })
         .collect()
