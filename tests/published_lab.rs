@@ -54,6 +54,8 @@ fn reference_norm12_reaches_the_minimum_of_the_published_objective() {
     let (matrix, offset) = parts(&fit);
     let at_fit = objective(&dataset, &matrix, &offset);
     assert!((at_fit - fit.cost).abs() < 1e-12 * at_fit.max(1e-30) + 1e-18, "reported {} vs {at_fit}", fit.cost);
+    // The README's figure: the minimum is 3.009947e-5 (the solver's relative cost tolerance is 1e-12).
+    assert!((fit.cost / 3.009947e-5 - 1.0).abs() < 1e-6, "cost {:e}", fit.cost);
 
     // Independent check: no step of an independent Gauss-Newton on the written-out objective, with
     // a finite-difference Jacobian in scaled parameters, lowers the cost by more than rounding.
@@ -100,19 +102,22 @@ fn reference_norm12_finds_the_same_minimum_from_every_starting_point() {
             row.reading = [0, 1, 2].map(|k| row.reading[k] * factor + shift[k]);
         }
         let fit = fit::fit(&moved, ModelChoice::Only(Model::ReferenceNorm12), &options).unwrap();
+        // NOTE: the solver stops at a relative cost change of 1e-12, so that is what it promises;
+        // measured 2.5e-14 to 3.6e-14.
         let relative = (fit.cost - reference.cost).abs() / reference.cost;
-        assert!(relative < 1e-7, "shift {shift:?} factor {factor}: cost {} vs {}", fit.cost, reference.cost);
-        // The same point, to a count in 1e6 per g (the offset's own standard error is far larger:
-        // this is convergence, not precision).
+        assert!(relative < 1e-12, "shift {shift:?} factor {factor}: cost {} vs {}", fit.cost, reference.cost);
+        // The same point: the offsets agree to 2.0e-4 count (of 1e6 per g) at worst, measured, along
+        // the flat valley the missing z-down position leaves; bounded at 1.5 times that, scaled
+        // with the data (the offset's own standard error is far larger: this is convergence).
         for (k, (found, shift)) in fit.offset.iter().zip(shift).enumerate() {
             let expected = reference.offset[k] * factor + shift;
-            assert!((found - expected).abs() < factor.max(1.0), "offset {k}: {found} vs {expected}");
+            assert!((found - expected).abs() < 3e-4 * factor.max(1.0), "offset {k}: {found} vs {expected}");
         }
     }
 }
 
 #[test]
-fn test_rows_have_toolface_and_inclination_errors_within_2_degrees() {
+fn test_rows_have_toolface_and_inclination_errors_within_2_degrees_and_training_rows_their_measured_ones() {
     let (dataset, options) = lab();
     let fit = fit::fit(&dataset, ModelChoice::Only(Model::ReferenceNorm12), &options).unwrap();
     let evaluation = fit::evaluate(&dataset, &fit.matrix, &fit.offset, LAB_G, &fit.lines_used);
@@ -123,10 +128,23 @@ fn test_rows_have_toolface_and_inclination_errors_within_2_degrees() {
         let set = if row.training { "train" } else { "test" };
         println!("| {} | {set} | {} | {} |", i + 1, cell(row.inclination_error_deg), cell(row.toolface_error_deg));
     }
-    let test_rows: Vec<_> = evaluation.rows.iter().filter(|r| !r.training).collect();
-    assert_eq!(test_rows.len(), 12);
-    for row in test_rows {
-        let worst = row.inclination_error_deg.unwrap().abs().max(row.toolface_error_deg.unwrap_or(0.0).abs());
-        assert!(worst <= 2.0, "line {}: {worst} degrees", row.line);
+    // Worst inclination and toolface errors per set, in degrees (the README's table). Bounds: 1.5
+    // times the measured worst, except the README's promise of 2 degrees on the test rows, which is
+    // tighter (measured 1.73 and 1.34).
+    let sets = [
+        ("rows 1-10 (train)", 0..10, 0.46, 0.09, 0.69, 0.14),
+        ("rows 11-20 (train)", 10..20, 1.93, 1.56, 2.9, 2.34),
+        ("rows 21-32 (test)", 20..32, 1.73, 1.34, 2.0, 2.0),
+    ];
+    for (name, rows, measured_inclination, measured_toolface, inclination_bound, toolface_bound) in sets {
+        let rows = &evaluation.rows[rows];
+        assert!(rows.iter().all(|r| r.training == name.contains("train")), "{name}: training flags");
+        let worst = |pick: fn(&fit::RowEvaluation) -> Option<f64>| {
+            rows.iter().filter_map(pick).map(f64::abs).fold(0.0f64, f64::max)
+        };
+        let (inclination, toolface) = (worst(|r| r.inclination_error_deg), worst(|r| r.toolface_error_deg));
+        println!("{name}: worst inclination {inclination:.2} (measured {measured_inclination}), toolface {toolface:.2} (measured {measured_toolface})");
+        assert!(inclination <= inclination_bound, "{name}: inclination {inclination} degrees");
+        assert!(toolface <= toolface_bound, "{name}: toolface {toolface} degrees");
     }
 }

@@ -1,5 +1,9 @@
-//! Helpers shared by the workspace integration tests: where the published data lives, and the
-//! published phone data set with the orientations its paper gives.
+//! Helpers shared by the workspace integration tests: where the published data lives, the
+//! published phone data set with the orientations its paper gives, synthetic data files with a known
+//! truth, and a scripted device for the link.
+
+pub mod problem;
+pub mod scripted;
 
 use std::path::PathBuf;
 

@@ -1,0 +1,141 @@
+//! The position wait of the guided calibration accepts a position only after two live windows in a
+//! row are still and at the target: one still window, or two with a moving one between them, is not
+//! enough; the same holds for the verification's wait for a fresh orientation. Driven by a scripted device that serves each live window from a script and logs every
+//! request, so the test sees exactly when the capture was asked for.
+
+use std::sync::{Arc, Mutex};
+use std::time::Duration;
+
+use accelcal::link::{pipe, Client, PipeEnd};
+use accelcal::procedure::{self as calibrate, CollectOptions, Feedback, PersonHand};
+use accelcal_tests::scripted::{self, frame};
+use shared::protocol::{CaptureStats, DeviceError, Request, Response, Sample, StreamKind};
+use shared::{AccelRange, Calibration, Position};
+
+/// One live window as the script serves it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Window {
+    /// At +Z up, with a scatter of 1 mg (the still limit is 10 mg).
+    Still,
+    /// At +Z up, swinging by 50 mg.
+    Moving,
+}
+
+/// Samples of a window: +Z up, alternating by the window's swing.
+fn samples(id: u16, window: Window, count: u32) -> Vec<u8> {
+    let swing = if window == Window::Still { 0.001 } else { 0.05 };
+    let sample = |i: u32| {
+        let sign = if i.is_multiple_of(2) { 1.0 } else { -1.0 };
+        let accel_g = [sign * swing, -sign * swing, 1.0];
+        frame(id, &Response::Sample(Sample { index: i, accel_g, gyro_dps: [0.0; 3], temp_c: 25.0 }))
+    };
+    let mut frames: Vec<Vec<u8>> = (0..count).map(sample).collect();
+    frames.push(frame(id, &Response::StreamEnded { samples: count }));
+    frames.concat()
+}
+
+fn captured(id: u16) -> Vec<u8> {
+    let stats = CaptureStats {
+        samples: 500,
+        seconds: 5.0,
+        mean_g: [0.0, 0.0, 1.0],
+        std_g: [0.001; 3],
+        gyro_mean_dps: [0.0; 3],
+        gyro_std_dps: [0.01; 3],
+        temp_c: 25.0,
+        clipped: 0,
+        range: AccelRange::G2,
+    };
+    frame(id, &Response::Captured { stats, position: Some(Position::PosZ) })
+}
+
+/// A client on a scripted device that serves the live windows of `script` (the last one repeats) and
+/// logs each request by kind.
+fn scripted_client(script: &[Window]) -> (Client<PipeEnd>, Arc<Mutex<Vec<&'static str>>>) {
+    let log = Arc::new(Mutex::new(Vec::new()));
+    let (host, device) = pipe();
+    let (device_log, mut windows) = (Arc::clone(&log), script.to_vec());
+    let _device = scripted::spawn(device, move |id, request| {
+        let (kind, answer) = match request {
+            Request::ClearPositions => ("clear", frame(id, &Response::Done)),
+            Request::GetCalibration(_) => {
+                ("get", frame(id, &Response::Calibration(Some(Calibration::identity(AccelRange::G2)))))
+            }
+            Request::Stream { kind: StreamKind::Calibrated, count, .. } => {
+                ("calibrated", samples(id, Window::Still, count))
+            }
+            Request::Stream { count, .. } => {
+                let window = if windows.len() > 1 { windows.remove(0) } else { windows[0] };
+                ("window", samples(id, window, count))
+            }
+            Request::Capture { .. } => ("capture", captured(id)),
+            _ => ("other", frame(id, &Response::Error(DeviceError::Busy))),
+        };
+        device_log.lock().unwrap().push(kind);
+        answer
+    });
+    let (client, _) = Client::connect(host).expect("the scripted device says hello");
+    (client, log)
+}
+
+/// Runs the position wait for +Z against `script`; returns the requests the device saw, by kind,
+/// and the live lines shown.
+fn wait_for_z(script: &[Window]) -> (Vec<&'static str>, Vec<String>) {
+    let (mut client, log) = scripted_client(script);
+    let target = calibrate::faces().into_iter().find(|t| t.name == "+Z").expect("a +Z face");
+    let options = CollectOptions { seconds: 5, wait_limit: Some(Duration::from_secs(20)) };
+    let mut feedback = LiveLines::default();
+    let session = calibrate::collect(&mut client, &mut PersonHand, &[target], &options, &mut feedback).unwrap();
+    assert_eq!(session.captures.len(), 1);
+    let requests = log.lock().unwrap().clone();
+    (requests, feedback.0)
+}
+
+/// A feedback that keeps the live lines.
+#[derive(Default)]
+struct LiveLines(Vec<String>);
+
+impl Feedback for LiveLines {
+    fn say(&mut self, _: &str) {}
+    fn live(&mut self, line: &str) {
+        self.0.push(line.to_owned());
+    }
+    fn progress(&mut self, _: u32, _: u32) {}
+    fn progress_done(&mut self) {}
+    fn confirm(&mut self, _: &str) -> bool {
+        true
+    }
+}
+
+#[test]
+fn two_still_windows_in_a_row_start_the_capture() {
+    let (requests, live) = wait_for_z(&[Window::Still]);
+    assert_eq!(requests, ["clear", "window", "window", "capture"]);
+    assert_eq!(live, ["0.0 degrees from +Z (still)", "0.0 degrees from +Z (still)"]);
+}
+
+#[test]
+fn one_still_window_is_not_enough_and_a_moving_one_starts_the_count_again() {
+    use Window::{Moving, Still};
+    let (requests, live) = wait_for_z(&[Still, Moving, Still, Moving, Moving, Still, Still]);
+    // Still, moving (count back to zero), still, moving, moving, still, still: accepted at the 7th.
+    let mut expected = vec!["clear"];
+    expected.extend(["window"; 7]);
+    expected.push("capture");
+    assert_eq!(requests, expected);
+    assert_eq!(live[1], "0.0 degrees from +Z (moving)", "{live:?}");
+    assert_eq!(live.len(), 7, "{live:?}");
+}
+
+#[test]
+fn the_verification_waits_for_two_still_windows_in_a_row_too() {
+    use Window::{Moving, Still};
+    let (mut client, log) = scripted_client(&[Still, Moving, Still, Still]);
+    let mut feedback = LiveLines::default();
+    let wait = Some(Duration::from_secs(20));
+    let verification = calibrate::verify(&mut client, &mut PersonHand, 1, wait, &mut feedback).unwrap();
+    assert_eq!(verification.positions, 1);
+    let requests = log.lock().unwrap().clone();
+    assert_eq!(requests, ["get", "window", "window", "window", "window", "capture", "calibrated"]);
+    assert_eq!(feedback.0, ["still", "moving: hold the board still", "still", "still"]);
+}
