@@ -152,22 +152,25 @@ fn truncated_oversized_corrupted_and_foreign_frames_are_answered_with_errors_and
     let mut device = boot(64);
     let upload = frame(&Request::SetCalibration(Calibration::identity(AccelRange::G2)));
     let body = &upload[..upload.len() - 1];
-    let cases: Vec<(Vec<u8>, FrameError)> = vec![
-        ([&body[..body.len() / 2], &[0]].concat(), FrameError::Cobs),
-        (vec![0x55; MAX_FRAME_LEN + 5].into_iter().chain([0]).collect(), FrameError::Oversized),
+    // NOTE: a frame cut in half is caught by whichever layer sees it first (its COBS code bytes, its
+    // length, or its CRC, depending on where the cut falls); every other case has exactly one answer.
+    let cut = &[FrameError::Cobs, FrameError::Truncated, FrameError::Crc][..];
+    let cases: Vec<(Vec<u8>, &[FrameError])> = vec![
+        ([&body[..body.len() / 2], &[0]].concat(), cut),
+        (vec![0x55; MAX_FRAME_LEN + 5].into_iter().chain([0]).collect(), &[FrameError::Oversized]),
         (
             {
                 let mut corrupted = upload.clone();
                 corrupted[10] ^= 0x04;
                 corrupted
             },
-            FrameError::Crc,
+            &[FrameError::Crc],
         ),
     ];
     for (bytes, expected) in cases {
         let answers = feed(&mut device, &bytes);
         assert!(
-            matches!(answers.as_slice(), [(0, Response::Error(DeviceError::Frame(e)))] if *e == expected || matches!(e, FrameError::Cobs | FrameError::Crc | FrameError::Truncated)),
+            matches!(answers.as_slice(), [(0, Response::Error(DeviceError::Frame(e)))] if expected.contains(e)),
             "{expected:?}: {answers:?}"
         );
         assert_eq!(device.active_calibration(), None, "a bad frame was acted on");
