@@ -13,6 +13,8 @@ pub enum LinkError {
     Silent { seconds: f64 },
     #[error("the device stopped answering in the middle of the operation: it restarted or lost power; check the cable and the power, then run the command again")]
     StoppedAnswering,
+    #[error("something answers on this port but it is not an accelcal board: it sent {seen} and no accelcal frame within {seconds} s; check that --port names the board (`accelcal ports` marks it)")]
+    NotAccelcal { seconds: f64, seen: String },
     #[error("the device went away ({reason}): it was unplugged or restarted; reconnect and run the command again")]
     Disconnected { reason: String },
     #[error("the device speaks protocol version {device}, this accelcal speaks {host}: update {}", if device < host { "the firmware (cargo run --release in firmware/)" } else { "accelcal" })]

@@ -6,6 +6,7 @@ mod connect;
 mod discovery;
 mod error;
 mod explain;
+mod listening;
 pub mod port;
 mod requests;
 
