@@ -42,9 +42,22 @@ impl<P: Port> Client<P> {
     /// A request with progress (capture) or samples (stream): each goes to `on_update`; returns the
     /// final response. Fails when the device is silent for [`SILENCE_LIMIT`].
     pub fn run(&mut self, request: Request, mut on_update: impl FnMut(&Response)) -> Result<Response, LinkError> {
+        self.run_while(request, |update| {
+            on_update(update);
+            true
+        })
+    }
+
+    /// As [`Client::run`]; once `on_update` returns `false` the device is asked to stop, and its
+    /// final response is still awaited (a cancelled stream ends with what it sent).
+    pub fn run_while(
+        &mut self,
+        request: Request,
+        mut on_update: impl FnMut(&Response) -> bool,
+    ) -> Result<Response, LinkError> {
         let id = self.send(&request)?;
         let mut listening = Listening::new();
-        let mut updates = 0usize;
+        let (mut updates, mut cancelled) = (0usize, false);
         loop {
             let (answer_id, response) = match self.receive(&mut listening) {
                 // Silence after progress: the device was there and no longer is.
@@ -58,7 +71,10 @@ impl<P: Port> Client<P> {
                 Response::Error(error) => return Err(error.into()),
                 Response::Progress(_) | Response::Sample(_) => {
                     updates += 1;
-                    on_update(&response)
+                    if !on_update(&response) && !cancelled {
+                        self.cancel()?;
+                        cancelled = true;
+                    }
                 }
                 last => return Ok(last),
             }

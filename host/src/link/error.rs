@@ -23,6 +23,8 @@ pub enum LinkError {
     Device(DeviceError),
     #[error("the device answered {answer} to {request}: is it running this version of the firmware? (reflash it)")]
     UnexpectedAnswer { request: &'static str, answer: String },
+    #[error("{} of {expected} samples were lost ({dropped} dropped by the board, which the host did not read in time; {} on the link): the rows written are real but not consecutive (see the index column); stream at a lower --rate, or keep other programs off the USB port, then stream again", .dropped + .on_link, .on_link)]
+    SamplesLost { expected: u32, dropped: u32, on_link: u32 },
     #[error("cannot encode the request {request}: {reason}; this is a bug in accelcal, please report it")]
     Encode { request: &'static str, reason: String },
     #[error("cannot set the read timeout of the port: {0}; unplug and replug the board")]

@@ -32,7 +32,7 @@ fn read_in_background(mut pipe: impl Read + Send + 'static) -> std::thread::Join
     })
 }
 
-fn wait_or_kill(child: &mut Child, limit: Duration) -> std::process::ExitStatus {
+pub fn wait_or_kill(child: &mut Child, limit: Duration) -> std::process::ExitStatus {
     let started = Instant::now();
     loop {
         if let Some(status) = child.try_wait().unwrap() {
@@ -67,6 +67,17 @@ impl SimPty {
         let mut first_line = String::new();
         std::io::BufReader::new(child.stdout.take().unwrap()).read_line(&mut first_line).unwrap();
         SimPty { child, path: first_line.trim().to_owned() }
+    }
+}
+
+impl SimPty {
+    /// Writes one command line to the simulated board's stdin and gives it time to act.
+    pub fn command(&mut self, line: &str) {
+        use std::io::Write;
+        let stdin = self.child.stdin.as_mut().unwrap();
+        writeln!(stdin, "{line}").unwrap();
+        stdin.flush().unwrap();
+        std::thread::sleep(Duration::from_millis(200));
     }
 }
 
