@@ -53,3 +53,21 @@ fn a_port_printing_nmea_text_is_named_not_an_accelcal_board_within_3_s() {
     // NOTE: 2 s without an accelcal frame, plus process start-up.
     assert!(elapsed < Duration::from_secs(3), "took {elapsed:?}");
 }
+
+#[test]
+fn a_port_held_by_another_program_is_named_busy_with_how_to_find_the_program() {
+    let (_master, slave) = serialport::TTYPort::pair().unwrap();
+    let path = serialport::SerialPort::name(&slave).unwrap();
+    // Another program holds the port as accelcal does: exclusively (TIOCEXCL and flock).
+    let _held = serialport::new(&path, 115_200).open().unwrap();
+    let (output, _) = accelcal_within(&["info", "--port", &path], Duration::from_secs(10));
+    let stderr = String::from_utf8(output.stderr).unwrap();
+    assert!(!output.status.success(), "{stderr}");
+    assert_eq!(
+        stderr.trim_end(),
+        format!(
+            "accelcal: {path} is in use by another program (a serial terminal, a monitor, ModemManager, another \
+             accelcal): close it and run the command again; `fuser -v {path}` or `lsof {path}` names it"
+        )
+    );
+}

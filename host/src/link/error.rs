@@ -9,6 +9,8 @@ use super::explain::explain;
 pub enum LinkError {
     #[error("cannot open {port}: {reason}; check the cable and the path (`accelcal ports` lists the ports)")]
     Open { port: String, reason: String },
+    #[error("{port} is in use by another program (a serial terminal, a monitor, ModemManager, another accelcal): close it and run the command again; `fuser -v {port}` or `lsof {port}` names it")]
+    PortBusy { port: String },
     #[error("no answer from the device within {seconds} s: is it an accelcal board running the firmware? (reflash it, or unplug and replug it)")]
     Silent { seconds: f64 },
     #[error("the device stopped answering in the middle of the operation: it restarted or lost power; check the cable and the power, then run the command again")]
@@ -46,6 +48,16 @@ impl LinkError {
     /// The version mismatch of a device speaking protocol `device`.
     pub(super) fn version(device: u8) -> Self {
         LinkError::Version { device, host: PROTOCOL_VERSION }
+    }
+
+    /// Why the serial port at `port` did not open.
+    pub(super) fn opening(port: &str, error: serialport::Error) -> Self {
+        // NOTE: serialport reports a port another program holds (open(2) failing with EBUSY under
+        // its TIOCEXCL, or its exclusive flock taken) as NoDevice; a missing path is Io(NotFound).
+        match error.kind() {
+            serialport::ErrorKind::NoDevice => LinkError::PortBusy { port: port.to_owned() },
+            _ => LinkError::Open { port: port.to_owned(), reason: error.to_string() },
+        }
     }
 
     /// An I/O failure of the port: the device went away.
