@@ -19,10 +19,12 @@ fn indices(stdout: &[u8]) -> Vec<u32> {
 fn a_stream_of_1000_samples_over_sim_pty_arrives_whole_with_consecutive_sequence_numbers() {
     let sim = SimPty::start(&["--fast"]);
     let args = ["stream", "--port", &sim.path, "--count", "1000", "--rate", "100"];
-    let (output, _) = accelcal_within(&args, Duration::from_secs(60));
+    let (output, elapsed) = accelcal_within(&args, Duration::from_secs(60));
     assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
     let indices = indices(&output.stdout);
     assert_eq!(indices.len(), 1000);
+    // NOTE: --fast: 10 s of samples in a fraction of that (a bound, not a timing measurement).
+    assert!(elapsed < Duration::from_secs(5), "took {elapsed:?}");
     assert!(indices.iter().enumerate().all(|(k, &i)| i == k as u32), "gaps in {indices:?}");
 }
 
@@ -63,6 +65,19 @@ fn a_stream_into_head_ends_promptly_and_quietly_when_head_exits() {
     assert_eq!(stderr, "");
     // NOTE: a bound on a hang: start-up, four samples at 100 Hz, the cancel's round trip.
     assert!(started.elapsed() < Duration::from_secs(3), "took {:?}", started.elapsed());
+}
+
+#[test]
+fn sim_pty_runs_in_real_time_by_default() {
+    let sim = SimPty::start(&[]);
+    let args = ["stream", "--port", &sim.path, "--count", "60", "--rate", "100"];
+    let (output, elapsed) = accelcal_within(&args, Duration::from_secs(30));
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    assert_eq!(indices(&output.stdout).len(), 60);
+    // 60 samples at 100 Hz take 0.6 s of the sensor's time, and as long on the wall clock.
+    assert!(elapsed >= Duration::from_millis(550), "took only {elapsed:?}: not real time");
+    let last = String::from_utf8(output.stdout).unwrap().lines().last().unwrap().to_owned();
+    assert!(last.starts_with("59,0.590000,"), "{last}");
 }
 
 #[test]

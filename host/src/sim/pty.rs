@@ -26,7 +26,11 @@ pub fn serve_pty(seed: u64, pace: Pace) -> Result<(), SimError> {
     let board = SimBoard::spawn_at(master, SimFlash::new(), seed, pace);
     println!("{path}");
     let _ = std::io::stdout().flush();
-    eprintln!("simulated board on {path} ({pace:?}); type help for the commands that move it");
+    let time = match pace {
+        Pace::RealTime => "in real time",
+        Pace::Fast => "fast-forwarded while it works",
+    };
+    eprintln!("simulated board on {path}, {time}; type help for the commands that move it");
     obey_stdin(&board.controls());
     // NOTE: keep the slave end open: with no open slave, reads on the master fail.
     let _keep_open = slave;
