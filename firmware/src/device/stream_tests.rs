@@ -1,5 +1,6 @@
-//! A stream's sequence numbers and sample times, and what it does when the host does not read:
-//! samples are dropped and counted, never silently lost, and the FIFO does not overflow.
+//! A stream's sequence numbers and sample times; a host that does not read (samples are dropped
+//! and counted, never silently lost, and the FIFO does not overflow); and what hello says of a
+//! sensor that came loose.
 
 use embassy_futures::block_on;
 use shared::protocol::{Request, Response, Sample, StreamKind};
@@ -45,4 +46,23 @@ fn a_host_that_does_not_read_gets_counted_drops_and_gaps_not_a_fifo_overflow() {
     let indices: Vec<u32> = samples_of(&responses).iter().map(|s| s.index).collect();
     assert_eq!(indices, (0..sent).collect::<Vec<_>>());
     assert!(!device.is_busy(), "the stream ended after 300 sequence numbers");
+}
+
+#[test]
+fn a_sensor_unplugged_while_idle_is_missing_in_the_next_hello_and_found_after_replug() {
+    use shared::protocol::{DeviceError, PROTOCOL_VERSION};
+    let hello_sensor = |device: &mut SimDevice| match super::tests::ask(
+        device,
+        1,
+        Request::Hello { protocol_version: PROTOCOL_VERSION },
+    ) {
+        Response::Hello(info) => info.sensor.map(|s| s.address),
+        other => panic!("no hello: {other:?}"),
+    };
+    let mut device = boot(SimMpu6050::new(33), Flash::new());
+    assert_eq!(hello_sensor(&mut device), Ok(0x68));
+    device.bus_mut().set_connected(false);
+    assert_eq!(hello_sensor(&mut device), Err(DeviceError::SensorMissing));
+    device.bus_mut().set_connected(true);
+    assert_eq!(hello_sensor(&mut device), Ok(0x68));
 }
