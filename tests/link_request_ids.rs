@@ -8,7 +8,13 @@ use accelcal_tests::scripted::{self, frame};
 use shared::protocol::{CalibrationSlot, DeviceError, FrameError, Request, Response, Sample, StreamKind};
 
 fn sample(index: u32) -> Response {
-    Response::Sample(Sample { index, accel_g: [0.0, 0.0, 1.0], gyro_dps: [0.0; 3], temp_c: 25.0 })
+    Response::Sample(Sample {
+        index,
+        time_us: u64::from(index) * 10_000,
+        accel_g: [0.0, 0.0, 1.0],
+        gyro_dps: [0.0; 3],
+        temp_c: 25.0,
+    })
 }
 
 #[test]
@@ -31,9 +37,10 @@ fn a_stale_answer_to_an_earlier_request_is_not_taken_as_the_answer() {
 fn samples_of_another_request_are_not_counted_as_this_stream_s() {
     let (host, device) = pipe();
     let _device = scripted::spawn(device, |id, _| {
-        let mut frames = vec![frame(id - 1, &sample(99)), frame(id - 1, &Response::StreamEnded { samples: 1 })];
+        let mut frames =
+            vec![frame(id - 1, &sample(99)), frame(id - 1, &Response::StreamEnded { samples: 1, dropped: 0 })];
         frames.extend((0..3).map(|i| frame(id, &sample(i))));
-        frames.push(frame(id, &Response::StreamEnded { samples: 3 }));
+        frames.push(frame(id, &Response::StreamEnded { samples: 3, dropped: 0 }));
         frames.concat()
     });
     let (mut client, _) = Client::connect(host).expect("the scripted device says hello");
@@ -46,7 +53,7 @@ fn samples_of_another_request_are_not_counted_as_this_stream_s() {
         })
         .expect("the stream ends");
     assert_eq!(indices, [0, 1, 2]);
-    assert_eq!(last, Response::StreamEnded { samples: 3 });
+    assert_eq!(last, Response::StreamEnded { samples: 3, dropped: 0 });
 }
 
 #[test]

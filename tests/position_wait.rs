@@ -27,10 +27,19 @@ fn samples(id: u16, window: Window, count: u32) -> Vec<u8> {
     let sample = |i: u32| {
         let sign = if i.is_multiple_of(2) { 1.0 } else { -1.0 };
         let accel_g = [sign * swing, -sign * swing, 1.0];
-        frame(id, &Response::Sample(Sample { index: i, accel_g, gyro_dps: [0.0; 3], temp_c: 25.0 }))
+        frame(
+            id,
+            &Response::Sample(Sample {
+                index: i,
+                time_us: u64::from(i) * 10_000,
+                accel_g,
+                gyro_dps: [0.0; 3],
+                temp_c: 25.0,
+            }),
+        )
     };
     let mut frames: Vec<Vec<u8>> = (0..count).map(sample).collect();
-    frames.push(frame(id, &Response::StreamEnded { samples: count }));
+    frames.push(frame(id, &Response::StreamEnded { samples: count, dropped: 0 }));
     frames.concat()
 }
 

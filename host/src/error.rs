@@ -39,3 +39,30 @@ pub enum Error {
     #[error("cannot read {}: {source}; check the path", .path.display())]
     ReadFile { path: PathBuf, source: std::io::Error },
 }
+
+impl Error {
+    /// A data file refused: a file that cannot be read is named once (the reader's message already
+    /// holds the path), a bad one with the path before the line and cause.
+    pub fn data_file(path: &std::path::Path, source: DataError) -> Self {
+        match source {
+            DataError::Io { source, .. } => Error::ReadFile { path: path.to_owned(), source },
+            source => Error::DataFile { path: path.to_owned(), source },
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_data_file_that_cannot_be_read_names_its_path_once() {
+        let path = std::path::Path::new("/tmp/accelcal-missing.csv");
+        let source = std::io::Error::from(std::io::ErrorKind::NotFound);
+        let error = Error::data_file(path, DataError::Io { path: path.display().to_string(), source });
+        let text = error.to_string();
+        assert_eq!(text.matches("/tmp/accelcal-missing.csv").count(), 1, "{text}");
+        assert!(text.starts_with("cannot read /tmp/accelcal-missing.csv: "), "{text}");
+        assert!(text.ends_with("; check the path"), "{text}");
+    }
+}

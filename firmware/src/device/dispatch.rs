@@ -55,6 +55,11 @@ where
         if host_version != PROTOCOL_VERSION {
             return Response::Error(DeviceError::UnsupportedVersion { device: PROTOCOL_VERSION, host: host_version });
         }
+        if !self.is_busy() {
+            // NOTE: a sensor found earlier may have come loose since: look again, so hello tells
+            // the truth (never mid-capture or mid-stream, where the FIFO is in use).
+            self.sensor = Err(DeviceError::SensorMissing);
+        }
         let sensor = self.sensor().map(|s| s.identity());
         Response::Hello(DeviceInfo {
             protocol_version: PROTOCOL_VERSION,

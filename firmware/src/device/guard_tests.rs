@@ -9,7 +9,7 @@ use crate::sim::SimMpu6050;
 
 fn samples(device: &mut SimDevice, kind: StreamKind, rate_hz: u16, count: u32) -> Vec<shared::protocol::Sample> {
     let (last, streamed) = run(device, 2, Request::Stream { kind, rate_hz, count });
-    assert_eq!(last, Response::StreamEnded { samples: count });
+    assert_eq!(last, Response::StreamEnded { samples: count, dropped: 0 });
     streamed.into_iter().filter_map(|r| if let Response::Sample(s) = r { Some(s) } else { None }).collect()
 }
 

@@ -22,15 +22,29 @@ pub(super) enum Job {
     Streaming(Stream),
 }
 
-/// A stream in progress: every `decimation`-th FIFO sample is sent, `skip` more are dropped first.
+/// A stream in progress: every `decimation`-th FIFO sample is taken, `skip` more are passed over
+/// first. A taken sample gets the next sequence number and is sent, or dropped and counted when the
+/// outbox is full.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) struct Stream {
     request_id: u16,
     kind: StreamKind,
     decimation: u32,
     remaining: Option<u32>,
+    taken: u32,
     sent: u32,
+    dropped: u32,
+    /// FIFO samples read since the start: the sensor's clock.
+    fifo_samples: u64,
+    sample_period_us: u32,
     skip: u32,
+}
+
+impl Stream {
+    /// The final response: what was sent and what was dropped.
+    fn ended(&self) -> Response {
+        Response::StreamEnded { samples: self.sent, dropped: self.dropped }
+    }
 }
 
 impl<I, E, F> Device<I, F>
@@ -104,7 +118,7 @@ where
         match self.job {
             Job::Idle => {}
             Job::Capturing { request_id, .. } => self.end_job(request_id, Response::Error(DeviceError::Cancelled)),
-            Job::Streaming(s) => self.end_job(s.request_id, Response::StreamEnded { samples: s.sent }),
+            Job::Streaming(s) => self.end_job(s.request_id, s.ended()),
         }
         Response::Done
     }
@@ -127,39 +141,65 @@ where
         self.with_sensor(|sensor, bus| sensor.start_fifo(bus))?;
         let decimation = u32::from(sample_rate / rate_hz);
         let remaining = (count > 0).then_some(count);
-        self.job = Job::Streaming(Stream { request_id, kind, decimation, remaining, sent: 0, skip: 0 });
+        let sample_period_us = 1_000_000 / u32::from(sample_rate);
+        let (taken, sent, dropped, fifo_samples, skip) = (0, 0, 0, 0, 0);
+        let stream = Stream {
+            request_id,
+            kind,
+            decimation,
+            remaining,
+            taken,
+            sent,
+            dropped,
+            fifo_samples,
+            sample_period_us,
+            skip,
+        };
+        self.job = Job::Streaming(stream);
         Ok(())
     }
 
     fn poll_stream(&mut self, mut stream: Stream) {
         let room = OUTBOX_LEN - self.outbox.len();
         let mut batch = [RawSample::default(); READ_BATCH];
-        // NOTE: never read more samples than the outbox can send; the rest waits in the FIFO.
-        let readable = (room.saturating_sub(1) * stream.decimation as usize).min(READ_BATCH);
+        // NOTE: read no more samples than the outbox can send, the rest waits in the FIFO; but with
+        // the outbox full (a host that does not read) read on and drop, so the FIFO never overflows.
+        let readable = match room.saturating_sub(1) {
+            0 => READ_BATCH,
+            free => (free * stream.decimation as usize).min(READ_BATCH),
+        };
         let n = match self.read_fifo(&mut batch[..readable]) {
             Ok(n) => n,
             Err(error) => return self.end_job(stream.request_id, Response::Error(error)),
         };
         for raw in &batch[..n] {
+            let time_us = stream.fifo_samples * u64::from(stream.sample_period_us);
+            stream.fifo_samples += 1;
             if stream.skip > 0 {
                 stream.skip -= 1;
                 continue;
             }
             stream.skip = stream.decimation - 1;
-            if self.send_sample(&mut stream, raw) {
-                return self.end_job(stream.request_id, Response::StreamEnded { samples: stream.sent });
+            if self.take_sample(&mut stream, raw, time_us) {
+                return self.end_job(stream.request_id, stream.ended());
             }
         }
         self.job = Job::Streaming(stream);
     }
 
-    /// Sends one sample of the stream; whether that was its last.
-    fn send_sample(&mut self, stream: &mut Stream, raw: &RawSample) -> bool {
-        let calibrated = stream.kind == StreamKind::Calibrated;
-        let calibration = calibrated.then(|| self.active_calibration()).flatten();
-        let sample = sample_message(raw, stream.sent, self.config, calibration.as_ref());
-        self.send(stream.request_id, Response::Sample(sample));
-        stream.sent += 1;
+    /// Takes one sample of the stream: sent, or dropped when the outbox has no room for it beside
+    /// the stream's final response. Whether that was its last.
+    fn take_sample(&mut self, stream: &mut Stream, raw: &RawSample, time_us: u64) -> bool {
+        if self.outbox.len() + 1 < OUTBOX_LEN {
+            let calibrated = stream.kind == StreamKind::Calibrated;
+            let calibration = calibrated.then(|| self.active_calibration()).flatten();
+            let sample = sample_message(raw, stream.taken, time_us, self.config, calibration.as_ref());
+            self.send(stream.request_id, Response::Sample(sample));
+            stream.sent += 1;
+        } else {
+            stream.dropped += 1;
+        }
+        stream.taken += 1;
         match stream.remaining.as_mut() {
             Some(left) => {
                 *left -= 1;

@@ -192,3 +192,6 @@ mod fault_tests;
 
 #[cfg(test)]
 mod guard_tests;
+
+#[cfg(test)]
+mod stream_tests;

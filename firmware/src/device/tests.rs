@@ -202,7 +202,7 @@ fn streamed_samples_are_corrected_on_the_chip() {
     ask(&mut device, 1, Request::SetCalibration(calibration));
     let mean_z = |device: &mut SimDevice, kind| {
         let (last, samples) = run(device, 2, Request::Stream { kind, rate_hz: 50, count: 200 });
-        assert_eq!(last, Response::StreamEnded { samples: 200 });
+        assert_eq!(last, Response::StreamEnded { samples: 200, dropped: 0 });
         assert_eq!(samples.len(), 200);
         let z: f32 = samples.iter().map(|s| if let Response::Sample(s) = s { s.accel_g[2] } else { 0.0 }).sum();
         z / 200.0

@@ -102,6 +102,13 @@ impl SimMpu6050 {
         self.pose_since_us = self.now_us;
     }
 
+    /// Stops moving, resting where the motion brought the board (a turn ends at its new orientation).
+    pub fn stop_motion(&mut self) {
+        let seconds = (self.now_us - self.pose_since_us) as f32 * 1e-6;
+        let up = self.physics.up_at(seconds);
+        self.place(up);
+    }
+
     /// Connects or disconnects the sensor from the bus (a loose wire).
     pub fn set_connected(&mut self, connected: bool) {
         self.connected = connected;

@@ -116,6 +116,15 @@ impl Physics {
         }
     }
 
+    /// The direction up in the body frame `seconds` after the orientation was set (a shake moves
+    /// the board about its resting orientation, so only a turn changes it).
+    pub fn up_at(&self, seconds: f32) -> Vec3<f32> {
+        match self.motion {
+            Motion::Rotating { .. } => self.kinematics(seconds).0,
+            Motion::Still | Motion::Vibrating { .. } => self.up,
+        }
+    }
+
     /// True specific force (g) and angular rate (deg/s) at a time.
     fn kinematics(&self, seconds: f32) -> (Vec3<f32>, Vec3<f32>) {
         match self.motion {

@@ -150,3 +150,15 @@ fn simulated_boards_have_distinct_serial_numbers_marked_as_simulated() {
     assert_ne!(first, second);
     assert_eq!(&first.hex(), b"53494D000000000000000001", "\"SIM\", a zero, then the seed");
 }
+
+#[test]
+fn a_turn_that_stops_leaves_the_board_at_its_new_orientation() {
+    let mut sim = SimMpu6050::new(5);
+    sim.set_motion(Motion::Rotating { axis: [1.0, 0.0, 0.0], rate_dps: 90.0 });
+    sim.advance_us(1_000_000);
+    sim.stop_motion();
+    // A quarter turn about +x from +Z up brings +Y up; the board then rests.
+    let up = sim.physics.up;
+    assert!(linalg::norm(linalg::sub(up, [0.0, 1.0, 0.0])) < 1e-3, "up {up:?}");
+    assert_eq!(sim.physics.motion, Motion::Still);
+}

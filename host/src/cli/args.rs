@@ -108,8 +108,8 @@ pub struct StreamArgs {
     /// Corrected on the chip (default: raw).
     #[arg(long)]
     pub calibrated: bool,
-    /// Samples to stream.
-    #[arg(long, default_value_t = 100)]
+    /// Samples to stream (1 or more; to stop early, close the output, e.g. `| head`).
+    #[arg(long, default_value_t = 100, value_parser = clap::value_parser!(u32).range(1..))]
     pub count: u32,
     #[arg(long, default_value_t = 10, help = rate_help())]
     pub rate: u16,
@@ -180,6 +180,10 @@ pub enum Command {
         /// Seed of the simulated sensor's noise.
         #[arg(long, default_value_t = 1)]
         seed: u64,
+        /// Fast-forward simulated time while the board works (a 10 s capture takes a fraction of
+        /// a second); by default it runs in real time, as a board does.
+        #[arg(long)]
+        fast: bool,
     },
 }
 

@@ -88,20 +88,28 @@ fn firmware_version(info: &DeviceInfo) -> String {
     format!("{}.{}.{}", f.major, f.minor, f.patch)
 }
 
-/// `accelcal stream`: samples as CSV on stdout.
+/// `accelcal stream`: samples as CSV on stdout; fails naming the loss when any sample was lost.
+/// A reader that goes away (`| head`) ends the stream on the board and the command quietly.
 pub(super) fn stream(args: &StreamArgs) -> Result<(), Error> {
     let mut opened = args.device.open()?;
     let kind = if args.calibrated { StreamKind::Calibrated } else { StreamKind::Raw };
     let request = StreamRequest { kind, rate_hz: args.rate, count: args.count };
     let stdout = std::io::stdout();
     let mut out = stdout.lock();
-    let _ = writeln!(out, "index,ax_g,ay_g,az_g,gx_dps,gy_dps,gz_dps,temp_c");
-    opened.connection.client.stream(request, |sample| write_sample(&mut out, sample))?;
+    let mut reading = writeln!(out, "index,time_s,ax_g,ay_g,az_g,gx_dps,gy_dps,gz_dps,temp_c").is_ok();
+    let tally = opened.connection.client.stream_while(request, |sample| {
+        reading = reading && write_sample(&mut out, sample).is_ok();
+        reading
+    })?;
+    if reading && out.flush().is_ok() {
+        tally.complete()?;
+    }
     Ok(())
 }
 
-fn write_sample(out: &mut impl Write, s: &Sample) {
+fn write_sample(out: &mut impl Write, s: &Sample) -> std::io::Result<()> {
     let [ax, ay, az] = s.accel_g;
     let [gx, gy, gz] = s.gyro_dps;
-    let _ = writeln!(out, "{},{ax:.6},{ay:.6},{az:.6},{gx:.4},{gy:.4},{gz:.4},{:.2}", s.index, s.temp_c);
+    let time_s = s.time_us as f64 * 1e-6;
+    writeln!(out, "{},{time_s:.6},{ax:.6},{ay:.6},{az:.6},{gx:.4},{gy:.4},{gz:.4},{:.2}", s.index, s.temp_c)
 }

@@ -11,8 +11,7 @@ pub(super) fn fit(args: &FitArgs) -> Result<(), Error> {
     if !(args.g.is_finite() && args.g > 0.0) {
         return Err(Error::BadGravity { g: args.g });
     }
-    let dataset =
-        Dataset::from_path(&args.file, args.g).map_err(|source| Error::DataFile { path: args.file.clone(), source })?;
+    let dataset = Dataset::from_path(&args.file, args.g).map_err(|source| Error::data_file(&args.file, source))?;
     let report = FitReport::new(&dataset, args.model, &options(args)).map_err(|source| Error::CannotFit {
         path: args.file.clone(),
         model: args.model,

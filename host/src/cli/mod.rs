@@ -44,6 +44,9 @@ pub fn run(cli: Cli) -> Result<(), Error> {
         Command::Download { device, stored } => transfer::download(&device, stored),
         Command::Erase { device } => transfer::erase(&device),
         Command::Stream(args) => board::stream(&args),
-        Command::Sim { pty: _, seed } => Ok(crate::sim::serve_pty(seed)?),
+        Command::Sim { pty: _, seed, fast } => {
+            let pace = if fast { crate::sim::Pace::Fast } else { crate::sim::Pace::RealTime };
+            Ok(crate::sim::serve_pty(seed, pace)?)
+        }
     }
 }

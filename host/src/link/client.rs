@@ -2,11 +2,12 @@
 
 use std::collections::VecDeque;
 use std::io::ErrorKind;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use shared::protocol::{self, DeviceInfo, Feed, FrameAccumulator, Request, Response, MAX_FRAME_LEN};
 
 use super::error::LinkError;
+use super::listening::Listening;
 use super::port::Port;
 
 /// Longest silence from a device before it is declared gone.
@@ -41,11 +42,24 @@ impl<P: Port> Client<P> {
     /// A request with progress (capture) or samples (stream): each goes to `on_update`; returns the
     /// final response. Fails when the device is silent for [`SILENCE_LIMIT`].
     pub fn run(&mut self, request: Request, mut on_update: impl FnMut(&Response)) -> Result<Response, LinkError> {
+        self.run_while(request, |update| {
+            on_update(update);
+            true
+        })
+    }
+
+    /// As [`Client::run`]; once `on_update` returns `false` the device is asked to stop, and its
+    /// final response is still awaited (a cancelled stream ends with what it sent).
+    pub fn run_while(
+        &mut self,
+        request: Request,
+        mut on_update: impl FnMut(&Response) -> bool,
+    ) -> Result<Response, LinkError> {
         let id = self.send(&request)?;
-        let mut last_heard = Instant::now();
-        let mut updates = 0usize;
+        let mut listening = Listening::new();
+        let (mut updates, mut cancelled) = (0usize, false);
         loop {
-            let (answer_id, response) = match self.receive(&mut last_heard) {
+            let (answer_id, response) = match self.receive(&mut listening) {
                 // Silence after progress: the device was there and no longer is.
                 Err(LinkError::Silent { .. }) if updates > 0 => return Err(LinkError::StoppedAnswering),
                 other => other?,
@@ -57,7 +71,10 @@ impl<P: Port> Client<P> {
                 Response::Error(error) => return Err(error.into()),
                 Response::Progress(_) | Response::Sample(_) => {
                     updates += 1;
-                    on_update(&response)
+                    if !on_update(&response) && !cancelled {
+                        self.cancel()?;
+                        cancelled = true;
+                    }
                 }
                 last => return Ok(last),
             }
@@ -81,26 +98,25 @@ impl<P: Port> Client<P> {
         Ok(id)
     }
 
-    /// The next decodable response: from those already read, else from the port.
-    fn receive(&mut self, last_heard: &mut Instant) -> Result<(u16, Response), LinkError> {
+    /// The next decodable response: from those already read, else from the port. Fails after
+    /// [`SILENCE_LIMIT`] without a frame, however many other bytes arrive.
+    fn receive(&mut self, listening: &mut Listening) -> Result<(u16, Response), LinkError> {
         let mut buffer = [0u8; 256];
         loop {
             if let Some(message) = self.decoded.pop_front() {
+                listening.frame();
                 return message;
             }
             match self.port.read(&mut buffer) {
                 Ok(0) => return Err(LinkError::Disconnected { reason: "end of stream".into() }),
                 Ok(n) => {
-                    *last_heard = Instant::now();
+                    listening.bytes(&buffer[..n]);
                     self.decode(&buffer[..n]);
                 }
-                Err(e) if matches!(e.kind(), ErrorKind::TimedOut | ErrorKind::WouldBlock | ErrorKind::Interrupted) => {
-                    if last_heard.elapsed() > SILENCE_LIMIT {
-                        return Err(LinkError::Silent { seconds: SILENCE_LIMIT.as_secs_f64() });
-                    }
-                }
+                Err(e) if matches!(e.kind(), ErrorKind::TimedOut | ErrorKind::WouldBlock | ErrorKind::Interrupted) => {}
                 Err(e) => return Err(LinkError::disconnected(e)),
             }
+            listening.check(SILENCE_LIMIT)?;
         }
     }
 

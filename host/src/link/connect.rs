@@ -24,6 +24,6 @@ impl Connection {
 
 /// Opens the serial port at `path` and says hello.
 pub fn open_port(path: &str) -> Result<Connection, LinkError> {
-    let port = open_serial(path).map_err(|e| LinkError::Open { port: path.to_owned(), reason: e.to_string() })?;
+    let port = open_serial(path).map_err(|e| LinkError::opening(path, e))?;
     Connection::over(Box::new(port))
 }

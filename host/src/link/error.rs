@@ -9,10 +9,14 @@ use super::explain::explain;
 pub enum LinkError {
     #[error("cannot open {port}: {reason}; check the cable and the path (`accelcal ports` lists the ports)")]
     Open { port: String, reason: String },
+    #[error("{port} is in use by another program (a serial terminal, a monitor, ModemManager, another accelcal): close it and run the command again; `fuser -v {port}` or `lsof {port}` names it")]
+    PortBusy { port: String },
     #[error("no answer from the device within {seconds} s: is it an accelcal board running the firmware? (reflash it, or unplug and replug it)")]
     Silent { seconds: f64 },
     #[error("the device stopped answering in the middle of the operation: it restarted or lost power; check the cable and the power, then run the command again")]
     StoppedAnswering,
+    #[error("something answers on this port but it is not an accelcal board: it sent {seen} and no accelcal frame within {seconds} s; check that --port names the board (`accelcal ports` marks it)")]
+    NotAccelcal { seconds: f64, seen: String },
     #[error("the device went away ({reason}): it was unplugged or restarted; reconnect and run the command again")]
     Disconnected { reason: String },
     #[error("the device speaks protocol version {device}, this accelcal speaks {host}: update {}", if device < host { "the firmware (cargo run --release in firmware/)" } else { "accelcal" })]
@@ -21,6 +25,8 @@ pub enum LinkError {
     Device(DeviceError),
     #[error("the device answered {answer} to {request}: is it running this version of the firmware? (reflash it)")]
     UnexpectedAnswer { request: &'static str, answer: String },
+    #[error("{} of {expected} samples were lost ({dropped} dropped by the board, which the host did not read in time; {} on the link): the rows written are real but not consecutive (see the index column); stream at a lower --rate, or keep other programs off the USB port, then stream again", .dropped + .on_link, .on_link)]
+    SamplesLost { expected: u32, dropped: u32, on_link: u32 },
     #[error("cannot encode the request {request}: {reason}; this is a bug in accelcal, please report it")]
     Encode { request: &'static str, reason: String },
     #[error("cannot set the read timeout of the port: {0}; unplug and replug the board")]
@@ -42,6 +48,16 @@ impl LinkError {
     /// The version mismatch of a device speaking protocol `device`.
     pub(super) fn version(device: u8) -> Self {
         LinkError::Version { device, host: PROTOCOL_VERSION }
+    }
+
+    /// Why the serial port at `port` did not open.
+    pub(super) fn opening(port: &str, error: serialport::Error) -> Self {
+        // NOTE: serialport reports a port another program holds (open(2) failing with EBUSY under
+        // its TIOCEXCL, or its exclusive flock taken) as NoDevice; a missing path is Io(NotFound).
+        match error.kind() {
+            serialport::ErrorKind::NoDevice => LinkError::PortBusy { port: port.to_owned() },
+            _ => LinkError::Open { port: port.to_owned(), reason: error.to_string() },
+        }
     }
 
     /// An I/O failure of the port: the device went away.

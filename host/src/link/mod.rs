@@ -6,8 +6,10 @@ mod connect;
 mod discovery;
 mod error;
 mod explain;
+mod listening;
 pub mod port;
 mod requests;
+mod tally;
 
 pub use client::{Client, SILENCE_LIMIT};
 pub use connect::{open_port, Connection};
@@ -16,3 +18,4 @@ pub use error::LinkError;
 pub use explain::{calibration_reason, explain};
 pub use port::{open_serial, pipe, PipeEnd, Port};
 pub use requests::StreamRequest;
+pub use tally::Tally;

@@ -8,6 +8,7 @@ use shared::{Calibration, Position};
 use super::client::{request_name, Client};
 use super::error::LinkError;
 use super::port::Port;
+use super::tally::Tally;
 
 /// What a stream asks for: raw or corrected samples, how many per second, how many.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -50,16 +51,31 @@ impl<P: Port> Client<P> {
         }
     }
 
-    /// Streams samples, each to `on_sample`; the number the device says it sent.
-    pub fn stream(&mut self, wanted: StreamRequest, mut on_sample: impl FnMut(&Sample)) -> Result<u32, LinkError> {
+    /// Streams samples, each to `on_sample`; what arrived and what was lost.
+    pub fn stream(&mut self, wanted: StreamRequest, mut on_sample: impl FnMut(&Sample)) -> Result<Tally, LinkError> {
+        self.stream_while(wanted, |sample| {
+            on_sample(sample);
+            true
+        })
+    }
+
+    /// As [`Client::stream`]; once `on_sample` returns `false` the stream is cancelled on the board.
+    pub fn stream_while(
+        &mut self,
+        wanted: StreamRequest,
+        mut on_sample: impl FnMut(&Sample) -> bool,
+    ) -> Result<Tally, LinkError> {
         let request = Request::Stream { kind: wanted.kind, rate_hz: wanted.rate_hz, count: wanted.count };
-        let response = self.run(request.clone(), |update| {
-            if let Response::Sample(sample) = update {
+        let mut tally = Tally::default();
+        let response = self.run_while(request.clone(), |update| match update {
+            Response::Sample(sample) => {
+                tally.arrived(sample.index);
                 on_sample(sample)
             }
+            _ => true,
         })?;
         match response {
-            Response::StreamEnded { samples } => Ok(samples),
+            Response::StreamEnded { samples, dropped } => Ok(tally.ended(samples, dropped)),
             other => Err(unexpected(&request, &other)),
         }
     }

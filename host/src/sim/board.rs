@@ -9,6 +9,7 @@ use firmware::server::Server;
 use firmware::sim::physics::{Motion, TrueErrors};
 use firmware::sim::{sim_serial_number, SimFlash, SimMpu6050, SIM_FLASH_RANGE};
 
+use super::clock::Pace;
 use super::serve::serve;
 use super::Port;
 use crate::link::{pipe, Connection, LinkError};
@@ -20,8 +21,12 @@ pub enum SimCommand {
     Place([f32; 3]),
     /// Start moving.
     Move(Motion),
+    /// Move for this many seconds of simulated time, then rest where the motion left the board.
+    MoveFor { motion: Motion, seconds: f32 },
     /// Disconnect or reconnect the sensor.
     Connect(bool),
+    /// The link loses the next this many streamed samples (a flaky cable).
+    LoseSamples(u32),
     /// Reboot the board (a reset or brown-out): RAM state is lost, the flash and the port stay.
     Restart,
     /// Stop serving and hand the flash back.
@@ -37,8 +42,14 @@ pub struct SimBoard {
 
 impl SimBoard {
     /// Boots a board on `flash` (keep it across `stop` and `spawn` to simulate a restart), with the
-    /// published error model and noise seeded by `seed`, and serves `port` until stopped.
+    /// published error model and noise seeded by `seed`, and serves `port` until stopped, its time
+    /// fast-forwarded while it works.
     pub fn spawn<P: Port + 'static>(port: P, flash: SimFlash, seed: u64) -> Self {
+        Self::spawn_at(port, flash, seed, Pace::Fast)
+    }
+
+    /// As [`SimBoard::spawn`], with simulated time running at `pace`.
+    pub fn spawn_at<P: Port + 'static>(port: P, flash: SimFlash, seed: u64, pace: Pace) -> Self {
         let sensor = SimMpu6050::new(seed);
         let truth = sensor.physics.truth;
         let (commands, inbox) = channel();
@@ -46,7 +57,7 @@ impl SimBoard {
             // NOTE: boot fails only for a flash range that does not fit the flash, and
             // SIM_FLASH_RANGE is the whole of SimFlash; the board then simply never answers.
             match block_on(Device::boot(sensor, flash, SIM_FLASH_RANGE, sim_serial_number(seed))) {
-                Ok(device) => serve(port, Server::new(device), inbox),
+                Ok(device) => serve(port, Server::new(device), inbox, pace),
                 Err(_) => SimFlash::default(),
             }
         });

@@ -6,12 +6,16 @@
 //! [`SimCommand`] handle that [`SimBoard::controls`] gives.
 
 mod board;
+mod clock;
+mod commands;
+mod outgoing;
 mod pty;
 pub mod random;
 mod serve;
 pub mod synthetic;
 
 pub use board::{SimBoard, SimCommand};
+pub use clock::Pace;
 pub use pty::{serve_pty, SimError};
 
 use crate::link::Port;

@@ -6,6 +6,8 @@ use std::sync::mpsc::Sender;
 use firmware::sim::SimFlash;
 
 use super::board::{SimBoard, SimCommand};
+use super::clock::Pace;
+use super::commands::{help, parse, Line};
 
 /// Why the pseudo-terminal server could not start.
 #[derive(Debug, thiserror::Error)]
@@ -16,17 +18,19 @@ pub enum SimError {
     Unnamed,
 }
 
-/// The commands stdin takes, for the message on an unknown one.
-const USAGE: &str = "use place X Y Z, place +X, disconnect, connect";
-
-/// Serves a simulated board on a pseudo-terminal until killed; prints the path first. Lines on
-/// stdin turn the board: `place X Y Z`, `place +X`, `disconnect`, `connect`.
-pub fn serve_pty(seed: u64) -> Result<(), SimError> {
+/// Serves a simulated board on a pseudo-terminal until killed, its time running at `pace`; prints
+/// the path first. Lines on stdin turn the board (`help` lists them).
+pub fn serve_pty(seed: u64, pace: Pace) -> Result<(), SimError> {
     let (master, slave) = serialport::TTYPort::pair().map_err(|e| SimError::Pty { reason: e.to_string() })?;
     let path = serialport::SerialPort::name(&slave).ok_or(SimError::Unnamed)?;
-    let board = SimBoard::spawn(master, SimFlash::new(), seed);
+    let board = SimBoard::spawn_at(master, SimFlash::new(), seed, pace);
     println!("{path}");
     let _ = std::io::stdout().flush();
+    let time = match pace {
+        Pace::RealTime => "in real time",
+        Pace::Fast => "fast-forwarded while it works",
+    };
+    eprintln!("simulated board on {path}, {time}; type help for the commands that move it");
     obey_stdin(&board.controls());
     // NOTE: keep the slave end open: with no open slave, reads on the master fail.
     let _keep_open = slave;
@@ -37,38 +41,14 @@ pub fn serve_pty(seed: u64) -> Result<(), SimError> {
 
 fn obey_stdin(controls: &Sender<SimCommand>) {
     for line in std::io::stdin().lock().lines().map_while(Result::ok) {
-        match parse_command(&line) {
-            Some(command) => {
+        match parse(&line) {
+            Some(Line::Board(command)) => {
                 let _ = controls.send(command);
             }
-            None => eprintln!("unknown command {line:?}: {USAGE}"),
+            Some(Line::Help) => print!("{}", help()),
+            None if line.trim().is_empty() => {}
+            None => eprintln!("unknown command {line:?}; the commands are:\n{}", help()),
         }
-    }
-}
-
-fn parse_command(line: &str) -> Option<SimCommand> {
-    let words: Vec<&str> = line.split_whitespace().collect();
-    match words.as_slice() {
-        ["place", face] => shared::Position::ALL
-            .iter()
-            .find(|p| p.name().eq_ignore_ascii_case(face))
-            .map(|p| SimCommand::Place(p.specific_force_g())),
-        ["place", x, y, z] => Some(SimCommand::Place([x.parse().ok()?, y.parse().ok()?, z.parse().ok()?])),
-        ["disconnect"] => Some(SimCommand::Connect(false)),
-        ["connect"] => Some(SimCommand::Connect(true)),
-        _ => None,
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn stdin_lines_become_board_commands() {
-        assert_eq!(parse_command("place -y"), Some(SimCommand::Place([0.0, -1.0, 0.0])));
-        assert_eq!(parse_command("place 0.5 0 -1"), Some(SimCommand::Place([0.5, 0.0, -1.0])));
-        assert_eq!(parse_command("disconnect"), Some(SimCommand::Connect(false)));
-        assert_eq!(parse_command("place sideways"), None);
+        let _ = std::io::stdout().flush();
     }
 }

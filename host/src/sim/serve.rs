@@ -1,12 +1,12 @@
 //! The simulated board's service loop: commands from its owner, then one step of the board's own
 //! serve cycle (read, hand to the link, poll, drain responses, encode, write).
 //!
-//! Simulated time advances 10 ms per service loop: at the pace of real time while idle, as fast as
-//! the loop runs while a capture or stream is under way, so a 10 s capture takes a fraction of that.
+//! Simulated time runs at the [`Pace`] the board was spawned with. It stands still while written
+//! frames wait for the host to read them: the board is held up, as USB holds up the real one, and
+//! never drops a frame because the host is slow.
 
 use std::io::ErrorKind;
 use std::sync::mpsc::{Receiver, TryRecvError};
-use std::time::Duration;
 
 use embassy_futures::block_on;
 use firmware::device::Device;
@@ -14,17 +14,23 @@ use firmware::server::Server;
 use firmware::sim::{SimFlash, SimMpu6050, SIM_FLASH_RANGE};
 
 use super::board::SimCommand;
+use super::clock::{Clock, Pace};
+use super::outgoing::Outgoing;
 use super::Port;
-
-/// Simulated time per service loop, in microseconds.
-const TICK_US: u64 = 10_000;
-/// Read wait while idle: simulated time then runs at about real speed.
-const IDLE_WAIT: Duration = Duration::from_millis(10);
 
 type SimServer = Server<SimMpu6050, SimFlash>;
 
+/// The serve loop's own state beside the board: time, unwritten frames, a motion's end.
+struct Service {
+    clock: Clock,
+    outgoing: Outgoing,
+    /// Simulated time at which a timed motion stops, in microseconds.
+    motion_ends_us: Option<u64>,
+}
+
 /// Serves `port` until told to stop or the host end goes away; returns the flash.
-pub(super) fn serve<P: Port>(mut port: P, mut server: SimServer, inbox: Receiver<SimCommand>) -> SimFlash {
+pub(super) fn serve<P: Port>(mut port: P, mut server: SimServer, inbox: Receiver<SimCommand>, pace: Pace) -> SimFlash {
+    let mut service = Service { clock: Clock::new(pace), outgoing: Outgoing::default(), motion_ends_us: None };
     loop {
         match inbox.try_recv() {
             Ok(SimCommand::Stop) | Err(TryRecvError::Disconnected) => break,
@@ -32,25 +38,14 @@ pub(super) fn serve<P: Port>(mut port: P, mut server: SimServer, inbox: Receiver
                 Some(rebooted) => server = rebooted,
                 None => return SimFlash::default(),
             },
-            Ok(command) => turn(&mut server, command),
+            Ok(command) => service.obey(&mut server, command),
             Err(TryRecvError::Empty) => {}
         }
-        if !step(&mut port, &mut server) {
+        if !service.step(&mut port, &mut server) {
             break;
         }
     }
     server.into_device().into_parts().1
-}
-
-/// Applies a command to the simulated sensor.
-fn turn(server: &mut SimServer, command: SimCommand) {
-    let device = server.device_mut();
-    match command {
-        SimCommand::Place(up) => device.bus_mut().place(up),
-        SimCommand::Move(motion) => device.bus_mut().set_motion(motion),
-        SimCommand::Connect(connected) => device.bus_mut().set_connected(connected),
-        SimCommand::Restart | SimCommand::Stop => {}
-    }
 }
 
 /// Reboots the board on its own sensor, flash and serial number (RAM state is lost).
@@ -60,21 +55,61 @@ fn restart(server: SimServer) -> Option<SimServer> {
     block_on(Device::boot(sensor, flash, SIM_FLASH_RANGE, serial)).ok().map(Server::new)
 }
 
-/// One service cycle; `false` when the host end is gone.
-fn step<P: Port>(port: &mut P, server: &mut SimServer) -> bool {
+impl Service {
+    /// Applies a command to the simulated sensor or link.
+    fn obey(&mut self, server: &mut SimServer, command: SimCommand) {
+        let sensor = server.device_mut().bus_mut();
+        self.motion_ends_us = None;
+        match command {
+            SimCommand::Place(up) => sensor.place(up),
+            SimCommand::Move(motion) => sensor.set_motion(motion),
+            SimCommand::MoveFor { motion, seconds } => {
+                sensor.set_motion(motion);
+                self.motion_ends_us = Some(sensor.now_us() + (f64::from(seconds) * 1e6) as u64);
+            }
+            SimCommand::Connect(connected) => sensor.set_connected(connected),
+            SimCommand::LoseSamples(count) => self.outgoing.lose_samples(count),
+            SimCommand::Restart | SimCommand::Stop => {}
+        }
+    }
+
+    /// One service cycle; `false` when the host end is gone.
+    fn step<P: Port>(&mut self, port: &mut P, server: &mut SimServer) -> bool {
+        let working = server.device().is_busy() && self.outgoing.is_empty();
+        let _ = port.set_read_timeout(self.clock.read_wait(working));
+        if !receive(port, server) || !self.outgoing.write(port) {
+            return false;
+        }
+        if !self.outgoing.is_empty() {
+            // NOTE: back-pressure: the board waits for the host to take what it wrote.
+            self.clock.hold();
+            return true;
+        }
+        self.let_time_pass(server);
+        server.poll();
+        server.drain(|frame| self.outgoing.queue(frame));
+        self.outgoing.write(port)
+    }
+
+    /// Advances the sensor's time, ending a timed motion when it is due.
+    fn let_time_pass(&mut self, server: &mut SimServer) {
+        let sensor = server.device_mut().bus_mut();
+        sensor.advance_us(self.clock.step_us());
+        if self.motion_ends_us.is_some_and(|end| sensor.now_us() >= end) {
+            self.motion_ends_us = None;
+            sensor.stop_motion();
+        }
+    }
+}
+
+/// Reads what the host sent and hands it to the board; `false` when the host end is gone.
+fn receive<P: Port>(port: &mut P, server: &mut SimServer) -> bool {
     let mut buffer = [0u8; 256];
-    let wait = if server.device().is_busy() { Duration::ZERO } else { IDLE_WAIT };
-    let _ = port.set_read_timeout(wait);
     match port.read(&mut buffer) {
         Ok(n) => block_on(server.receive(&buffer[..n])),
         Err(e) if matches!(e.kind(), ErrorKind::TimedOut | ErrorKind::WouldBlock | ErrorKind::Interrupted) => {}
         Err(e) if e.kind() == ErrorKind::BrokenPipe => return false, // the in-process host is gone
-        Err(_) => std::thread::sleep(IDLE_WAIT),                     // a pty with no one on the other side yet
+        Err(_) => std::thread::sleep(std::time::Duration::from_millis(10)), // a pty with no one on the other side yet
     }
-    server.device_mut().bus_mut().advance_us(TICK_US);
-    server.poll();
-    let mut writing = true;
-    server.drain(|frame| writing = writing && port.write_all(frame).is_ok());
-    let _ = port.flush();
     true
 }

@@ -59,8 +59,9 @@ pub enum Response {
     Calibration(Option<Calibration>),
     /// One streamed sample.
     Sample(Sample),
-    /// A stream ended after this many samples.
-    StreamEnded { samples: u32 },
+    /// A stream ended: `samples` were sent, `dropped` more were taken but had to be dropped because
+    /// the outbox was full (the host read too slowly); their sequence numbers are the gaps.
+    StreamEnded { samples: u32, dropped: u32 },
     /// The request was carried out and has nothing to report.
     Done,
     /// The request failed; nothing was changed unless the error says so.
@@ -232,8 +233,12 @@ pub struct CaptureStats {
 /// One streamed sample.
 #[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq)]
 pub struct Sample {
-    /// Sample number within the stream, from 0.
+    /// Sequence number within the stream, from 0: every sample the stream took counts, sent or
+    /// dropped, so a missing number is a lost sample.
     pub index: u32,
+    /// The sensor's sample time since the stream started, in microseconds: FIFO samples counted at
+    /// the sample rate (decimated-away samples count too), so it runs on the sensor's own clock.
+    pub time_us: u64,
     /// Specific force in g (corrected when the stream is calibrated).
     pub accel_g: [f32; 3],
     /// Angular rate in deg/s (corrected when the stream is calibrated).

@@ -12,8 +12,9 @@ pub use messages::*;
 /// Protocol version carried in every frame's header and in [`Response::Hello`].
 ///
 /// NOTE: 2 from issue 9: the calibration record (origin tag, gyro matrix, temperature model) and the
-/// board's serial number in [`DeviceInfo`].
-pub const PROTOCOL_VERSION: u8 = 2;
+/// board's serial number in [`DeviceInfo`]. 3 from issue 10: samples carry the sensor's sample time,
+/// and the end of a stream says how many samples the board dropped.
+pub const PROTOCOL_VERSION: u8 = 3;
 
 /// Largest postcard payload of one message, in bytes.
 ///

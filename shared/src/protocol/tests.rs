@@ -132,8 +132,14 @@ fn every_response() -> Vec<Response> {
         Response::Fitted(calibration()),
         Response::Calibration(Some(calibration())),
         Response::Calibration(None),
-        Response::Sample(Sample { index: u32::MAX, accel_g: [1.0; 3], gyro_dps: [250.0; 3], temp_c: 85.0 }),
-        Response::StreamEnded { samples: u32::MAX },
+        Response::Sample(Sample {
+            index: u32::MAX,
+            time_us: u64::MAX,
+            accel_g: [1.0; 3],
+            gyro_dps: [250.0; 3],
+            temp_c: 85.0,
+        }),
+        Response::StreamEnded { samples: u32::MAX, dropped: u32::MAX },
         Response::Done,
     ];
     all.extend(every_error().into_iter().map(Response::Error));

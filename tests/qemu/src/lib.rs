@@ -86,7 +86,7 @@ fn device_calibration(report: &mut impl FnMut(Result<'_>)) -> bool {
             count += 1;
         }
     });
-    if !matches!(ended, Some(Response::StreamEnded { samples: 10 })) {
+    if !matches!(ended, Some(Response::StreamEnded { samples: 10, dropped: 0 })) {
         return false;
     }
     report(Result { name: "device-corrected-samples", values: &corrected });

@@ -1,0 +1,75 @@
+//! How simulated time runs: fast-forward (tests, `--sim`, `sim --pty --fast`) or real time
+//! (`sim --pty`, so a person sees progress, can press Ctrl-C and can move the board mid-capture).
+
+use std::time::{Duration, Instant};
+
+/// Simulated time per service loop when fast-forwarding, in microseconds.
+const FAST_TICK_US: u64 = 10_000;
+/// Largest step of simulated time in real time, in microseconds: a loop held up longer (a slow
+/// machine, a debugger) is not made up for in one jump that would overflow the sensor FIFO.
+const MAX_REAL_STEP_US: u64 = 100_000;
+
+/// The pace of simulated time.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Pace {
+    /// 10 ms of simulated time per service loop: as fast as the loop runs while the board works.
+    Fast,
+    /// Simulated time follows the wall clock.
+    RealTime,
+}
+
+/// Simulated time, handed out step by step.
+pub(super) struct Clock {
+    pace: Pace,
+    last: Instant,
+}
+
+impl Clock {
+    /// A clock running at `pace` from now.
+    pub(super) fn new(pace: Pace) -> Self {
+        Clock { pace, last: Instant::now() }
+    }
+
+    /// Microseconds of simulated time to let pass now.
+    pub(super) fn step_us(&mut self) -> u64 {
+        match self.pace {
+            Pace::Fast => FAST_TICK_US,
+            Pace::RealTime => {
+                let now = Instant::now();
+                let elapsed = now.duration_since(self.last).as_micros();
+                self.last = now;
+                u64::try_from(elapsed).unwrap_or(u64::MAX).min(MAX_REAL_STEP_US)
+            }
+        }
+    }
+
+    /// Simulated time stands still (the board waits for the host to read what it wrote).
+    pub(super) fn hold(&mut self) {
+        self.last = Instant::now();
+    }
+
+    /// How long a read waits for the host: no wait while the board works and time is fast-forwarded.
+    pub(super) fn read_wait(&self, busy: bool) -> Duration {
+        match (self.pace, busy) {
+            (Pace::Fast, true) => Duration::ZERO,
+            _ => Duration::from_micros(FAST_TICK_US),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn real_time_follows_the_wall_clock_and_stands_still_while_held() {
+        let mut clock = Clock::new(Pace::RealTime);
+        std::thread::sleep(Duration::from_millis(30));
+        let step = clock.step_us();
+        assert!((30_000..MAX_REAL_STEP_US).contains(&step), "{step} us");
+        std::thread::sleep(Duration::from_millis(30));
+        clock.hold();
+        assert!(clock.step_us() < 10_000, "time held still must not be made up");
+        assert_eq!(Clock::new(Pace::Fast).step_us(), FAST_TICK_US);
+    }
+}
