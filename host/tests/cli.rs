@@ -78,7 +78,9 @@ fn a_missing_file_and_an_unknown_model_are_named() {
 
 #[test]
 fn calibrate_sim_json_has_calibration_truth_and_verification() {
-    let output = accelcal(&["calibrate", "--sim", "--json", "--seed", "3"]);
+    // NOTE: sub-mg claims need one temperature: the settled sensor (the realistic one warms during
+    // the session; see the test below for what that costs).
+    let output = accelcal(&["calibrate", "--sim", "--sim-sensor", "settled", "--json", "--seed", "3"]);
     assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
     let json: serde_json::Value = serde_json::from_slice(&output.stdout).expect("one JSON object");
     assert_eq!(json["calibration"]["model"], "ortho9");
@@ -98,6 +100,19 @@ fn calibrate_sim_json_has_calibration_truth_and_verification() {
     assert!(verification["before_rms_mg"].as_f64().unwrap() > 10.0, "{verification}");
     assert!(verification["after_rms_mg"].as_f64().unwrap() < 1.0, "{verification}");
     assert!(verification["after_max_mg"].as_f64().unwrap() < 1.0, "{verification}");
+}
+
+#[test]
+fn calibrate_sim_on_the_realistic_sensor_that_warms_during_the_session_verifies_within_2_5_mg() {
+    // The default simulated board has just been powered on: its die warms from 20 degC during the
+    // session, so the offsets drift while the faces are captured. Measured: 1.07-1.63 mg rms after
+    // calibration over seeds 1-5 (0.07 mg on the settled sensor).
+    let output = accelcal(&["calibrate", "--sim", "--json", "--seed", "1"]);
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&output.stdout).expect("one JSON object");
+    let verification = &json["verification"];
+    assert!(verification["before_rms_mg"].as_f64().unwrap() > 10.0, "{verification}");
+    assert!(verification["after_rms_mg"].as_f64().unwrap() < 2.5, "{verification}");
 }
 
 #[test]

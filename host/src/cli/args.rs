@@ -8,6 +8,7 @@ use shared::protocol::{SensorConfig, DEFAULT_CAPTURE_SECONDS, MAX_CAPTURE_SECOND
 use crate::data::RowList;
 use crate::fit::ModelChoice;
 use crate::limits::FACE_TOLERANCE_DEG;
+use crate::sim::SimSensor;
 
 /// Calibrates the accelerometer of an MPU-6050.
 #[derive(Parser)]
@@ -30,6 +31,9 @@ pub struct Device {
     /// With --sim: seed of the simulated sensor's noise and of the hand's placement.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
+    /// With --sim: the simulated sensor, realistic (warming and drifting) or settled (one temperature).
+    #[arg(long, value_enum, default_value_t = SimSensor::Realistic)]
+    pub sim_sensor: SimSensor,
 }
 
 /// `accelcal fit`.

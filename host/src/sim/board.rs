@@ -28,6 +28,16 @@ pub enum SimCommand {
     Stop,
 }
 
+/// Which simulated MPU-6050 a board carries.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum SimSensor {
+    /// Just powered on in a 20 degC room: it warms, drifts with temperature, its biases wander.
+    #[default]
+    Realistic,
+    /// The published static model held at 25 degC with white noise only (an idealised part).
+    Settled,
+}
+
 /// A running simulated board.
 pub struct SimBoard {
     commands: Sender<SimCommand>,
@@ -37,9 +47,17 @@ pub struct SimBoard {
 
 impl SimBoard {
     /// Boots a board on `flash` (keep it across `stop` and `spawn` to simulate a restart), with the
-    /// published error model and noise seeded by `seed`, and serves `port` until stopped.
+    /// realistic simulated sensor seeded by `seed`, and serves `port` until stopped.
     pub fn spawn<P: Port + 'static>(port: P, flash: SimFlash, seed: u64) -> Self {
-        let sensor = SimMpu6050::new(seed);
+        Self::spawn_with(port, flash, seed, SimSensor::Realistic)
+    }
+
+    /// [`Self::spawn`] with the simulated sensor of the owner's choice.
+    pub fn spawn_with<P: Port + 'static>(port: P, flash: SimFlash, seed: u64, kind: SimSensor) -> Self {
+        let sensor = match kind {
+            SimSensor::Realistic => SimMpu6050::new(seed),
+            SimSensor::Settled => SimMpu6050::settled(seed),
+        };
         let truth = sensor.physics.truth;
         let (commands, inbox) = channel();
         let thread = std::thread::spawn(move || {
@@ -54,9 +72,9 @@ impl SimBoard {
     }
 
     /// A fresh simulated board in this process, behind an in-memory pipe, and a session with it.
-    pub fn in_process(seed: u64) -> Result<(Connection, SimBoard), LinkError> {
+    pub fn in_process(seed: u64, kind: SimSensor) -> Result<(Connection, SimBoard), LinkError> {
         let (host_end, device_end) = pipe();
-        let board = SimBoard::spawn(device_end, SimFlash::new(), seed);
+        let board = SimBoard::spawn_with(device_end, SimFlash::new(), seed, kind);
         Ok((Connection::over(Box::new(host_end))?, board))
     }
 
@@ -65,7 +83,7 @@ impl SimBoard {
         self.commands.clone()
     }
 
-    /// The simulated sensor's true errors (its true calibration).
+    /// The simulated sensor's true errors at 25 degC (its true static calibration).
     pub fn truth(&self) -> TrueErrors {
         self.truth
     }

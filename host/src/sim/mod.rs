@@ -11,7 +11,7 @@ pub mod random;
 mod serve;
 pub mod synthetic;
 
-pub use board::{SimBoard, SimCommand};
+pub use board::{SimBoard, SimCommand, SimSensor};
 pub use pty::{serve_pty, SimError};
 
 use crate::link::Port;
