@@ -3,10 +3,11 @@
 //! and its one-line description. No other host code reads or writes `shared::Calibration` fields.
 
 use serde::{Deserialize, Serialize};
-use shared::calibration::{GyroCalibration, ModelTag, Origin, Procedure, TemperatureModel, MODEL_TAG_LEN};
+use shared::calibration::{drift, GyroCalibration, ModelTag, Origin, Procedure, TemperatureModel, MODEL_TAG_LEN};
 use shared::linalg;
 use shared::{AccelRange, Calibration, CalibrationError};
 
+use crate::fit::thermal::ThermalReference;
 use crate::fit::{self, Fit};
 use crate::link::calibration_reason;
 use crate::session::Session;
@@ -173,6 +174,45 @@ pub fn from_fit(fit: &Fit, session: &Session, range: AccelRange) -> Result<Calib
     let implausible = |reason| CalibrationRecordError::ImplausibleFit { model: fit.model.name(), reason };
     calibration.validate().map_err(implausible)?;
     Ok(calibration)
+}
+
+/// What the chip applies at `temp_c` degC, as a = matrix (m - offset): M diag(1 + d(T))^-1 and o(T).
+pub fn applied_at(calibration: &Calibration, temp_c: f32) -> ([[f64; 3]; 3], [f64; 3]) {
+    let Some(model) = &calibration.temperature else {
+        return static_part(calibration);
+    };
+    let dt = model.delta_c(temp_c);
+    let scale = drift(&model.scale, dt);
+    let matrix = calibration.matrix.map(|row| [0, 1, 2].map(|j| f64::from(row[j]) / (1.0 + f64::from(scale[j]))));
+    let offset = linalg::add(calibration.offset_g, drift(&model.offset_g, dt));
+    (matrix, offset.map(f64::from))
+}
+
+/// M and o without the temperature model.
+pub fn static_part(calibration: &Calibration) -> ([[f64; 3]; 3], [f64; 3]) {
+    (widen(calibration.matrix), calibration.offset_g.map(f64::from))
+}
+
+/// The gyro bias b(T) the chip subtracts at `temp_c` degC, in deg/s.
+pub fn gyro_bias_at(calibration: &Calibration, temp_c: f32) -> [f64; 3] {
+    let extra = calibration.temperature.map_or([0.0; 3], |m| drift(&m.gyro_bias_dps, m.delta_c(temp_c)));
+    linalg::add(calibration.gyro.bias_dps, extra).map(f64::from)
+}
+
+/// What a temperature model is fitted around: the captures' mean temperature and M.
+pub fn thermal_reference(calibration: &Calibration) -> ThermalReference {
+    ThermalReference { ref_temp_c: calibration.mean_temp_c, matrix: calibration.matrix }
+}
+
+/// The calibration with a fitted temperature model, checked like any other.
+pub fn with_temperature(
+    calibration: &Calibration,
+    model: TemperatureModel,
+) -> Result<Calibration, CalibrationRecordError> {
+    let combined = Calibration { temperature: Some(model), ..*calibration };
+    let implausible = |reason| CalibrationRecordError::ImplausibleFit { model: "temperature", reason };
+    combined.validate().map_err(implausible)?;
+    Ok(combined)
 }
 
 /// One line: model, scales, offset in mg and residual.

@@ -77,6 +77,9 @@ impl Environment {
 
     /// Lets `seconds` pass: the surroundings ramp, the die follows.
     pub fn advance(&mut self, seconds: f32) {
+        if seconds <= 0.0 {
+            return;
+        }
         let step = self.ramp_c_per_s * seconds;
         let gap = self.ramp_target_c - self.ambient_c;
         self.ambient_c += gap.clamp(-step, step);

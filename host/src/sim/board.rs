@@ -6,7 +6,7 @@ use std::thread::JoinHandle;
 use embassy_futures::block_on;
 use firmware::device::Device;
 use firmware::server::Server;
-use firmware::sim::physics::{Motion, TrueErrors};
+use firmware::sim::physics::{Motion, Physics, TrueErrors};
 use firmware::sim::{sim_serial_number, SimFlash, SimMpu6050, SIM_FLASH_RANGE};
 
 use super::serve::serve;
@@ -20,6 +20,10 @@ pub enum SimCommand {
     Place([f32; 3]),
     /// Start moving.
     Move(Motion),
+    /// Move the surroundings towards a temperature (degC) at a rate (degC/s; infinite: at once).
+    Ambient { target_c: f32, c_per_s: f32 },
+    /// Let this many seconds pass at once while idle (a soak), without producing every sample.
+    Elapse(f32),
     /// Disconnect or reconnect the sensor.
     Connect(bool),
     /// Reboot the board (a reset or brown-out): RAM state is lost, the flash and the port stay.
@@ -43,6 +47,7 @@ pub struct SimBoard {
     commands: Sender<SimCommand>,
     thread: Option<JoinHandle<SimFlash>>,
     truth: TrueErrors,
+    kind: SimSensor,
 }
 
 impl SimBoard {
@@ -68,7 +73,7 @@ impl SimBoard {
                 Err(_) => SimFlash::default(),
             }
         });
-        SimBoard { commands, thread: Some(thread), truth }
+        SimBoard { commands, thread: Some(thread), truth, kind }
     }
 
     /// A fresh simulated board in this process, behind an in-memory pipe, and a session with it.
@@ -86,6 +91,16 @@ impl SimBoard {
     /// The simulated sensor's true errors at 25 degC (its true static calibration).
     pub fn truth(&self) -> TrueErrors {
         self.truth
+    }
+
+    /// The simulated sensor's true errors when its TEMP_OUT reads `reading_c` degC (the settled
+    /// sensor's are the same at every temperature).
+    pub fn truth_at(&self, reading_c: f32) -> TrueErrors {
+        let physics = Physics::new(0);
+        match self.kind {
+            SimSensor::Realistic => physics.drift.at(&self.truth, reading_c - physics.environment.reading_offset_c),
+            SimSensor::Settled => self.truth,
+        }
     }
 
     /// Stops the board and returns its flash.

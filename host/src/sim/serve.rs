@@ -25,15 +25,19 @@ type SimServer = Server<SimMpu6050, SimFlash>;
 
 /// Serves `port` until told to stop or the host end goes away; returns the flash.
 pub(super) fn serve<P: Port>(mut port: P, mut server: SimServer, inbox: Receiver<SimCommand>) -> SimFlash {
-    loop {
-        match inbox.try_recv() {
-            Ok(SimCommand::Stop) | Err(TryRecvError::Disconnected) => break,
-            Ok(SimCommand::Restart) => match restart(server) {
-                Some(rebooted) => server = rebooted,
-                None => return SimFlash::default(),
-            },
-            Ok(command) => turn(&mut server, command),
-            Err(TryRecvError::Empty) => {}
+    'serving: loop {
+        // NOTE: every waiting command is applied before the port is read, so a command sent before
+        // a request is in force when the device answers a request sent after it.
+        loop {
+            match inbox.try_recv() {
+                Ok(SimCommand::Stop) | Err(TryRecvError::Disconnected) => break 'serving,
+                Ok(SimCommand::Restart) => match restart(server) {
+                    Some(rebooted) => server = rebooted,
+                    None => return SimFlash::default(),
+                },
+                Ok(command) => turn(&mut server, command),
+                Err(TryRecvError::Empty) => break,
+            }
         }
         if !step(&mut port, &mut server) {
             break;
@@ -49,7 +53,19 @@ fn turn(server: &mut SimServer, command: SimCommand) {
         SimCommand::Place(up) => device.bus_mut().place(up),
         SimCommand::Move(motion) => device.bus_mut().set_motion(motion),
         SimCommand::Connect(connected) => device.bus_mut().set_connected(connected),
+        SimCommand::Ambient { target_c, c_per_s } => device.bus_mut().physics.environment.ramp_to(target_c, c_per_s),
+        SimCommand::Elapse(seconds) => soak(device.bus_mut(), seconds),
         SimCommand::Restart | SimCommand::Stop => {}
+    }
+}
+
+/// Lets `seconds` pass in steps short enough for a ramp of the surroundings to stay smooth.
+fn soak(sensor: &mut SimMpu6050, seconds: f32) {
+    const STEP_S: f32 = 5.0;
+    let mut left = seconds;
+    while left > 0.0 {
+        sensor.elapse_seconds(left.min(STEP_S));
+        left -= STEP_S;
     }
 }
 
