@@ -89,6 +89,22 @@ pub struct CalibrateArgs {
     pub sim_placement_deg: f64,
 }
 
+/// `accelcal thermal`.
+#[derive(Args)]
+pub struct ThermalArgs {
+    #[command(flatten)]
+    pub device: Device,
+    /// Stop learning once the temperature has spanned this many degC (at least 10 are needed).
+    #[arg(long, default_value_t = 34.0)]
+    pub target_span_c: f64,
+    /// With --sim: fresh orientations verified at each temperature.
+    #[arg(long, default_value_t = 8)]
+    pub verify: usize,
+    /// Print one JSON object (non-interactive).
+    #[arg(long)]
+    pub json: bool,
+}
+
 /// `accelcal capture`.
 #[derive(Args)]
 pub struct CaptureArgs {
@@ -176,6 +192,9 @@ pub enum Command {
     },
     /// Streams samples as CSV on stdout.
     Stream(StreamArgs),
+    /// Learns how the sensor drifts with temperature and adds the temperature model to the active
+    /// calibration (with --sim: the whole simulated story, verified at 15-45 degC).
+    Thermal(ThermalArgs),
     /// Runs a simulated board on a pseudo-terminal; prints its path, then serves until killed.
     Sim {
         /// Serve on a pseudo-terminal (the only transport offered).

@@ -103,6 +103,15 @@ impl SimBoard {
         }
     }
 
+    /// The surroundings, in degC, in which the settled sensor reports `reading_c`.
+    pub fn ambient_for(&self, reading_c: f32) -> f32 {
+        let environment = Physics::new(0).environment;
+        match self.kind {
+            SimSensor::Realistic => reading_c - environment.reading_offset_c - environment.self_heating_c,
+            SimSensor::Settled => reading_c,
+        }
+    }
+
     /// Stops the board and returns its flash.
     pub fn stop(mut self) -> SimFlash {
         let _ = self.commands.send(SimCommand::Stop);
