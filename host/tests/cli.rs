@@ -116,6 +116,38 @@ fn calibrate_sim_on_the_realistic_sensor_that_warms_during_the_session_verifies_
 }
 
 #[test]
+fn thermal_sim_json_compensates_15_to_45_degc_to_within_1_mg_where_the_static_calibration_errs_by_10() {
+    let output = accelcal(&["thermal", "--sim", "--json", "--seed", "2"]);
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&output.stdout).expect("one JSON object");
+    assert!(json["calibration"]["temperature"]["ref_temp_c"].as_f64().is_some(), "{}", json["calibration"]);
+    let rows = json["verification"].as_array().expect("verification rows");
+    let temps: Vec<f64> = rows.iter().map(|r| r["temp_c"].as_f64().unwrap()).collect();
+    for (got, want) in temps.iter().zip([15.0, 25.0, 35.0, 45.0]) {
+        assert!((got - want).abs() < 0.5, "verified at {temps:?}");
+    }
+    for row in rows {
+        let compensated = row["compensated_rms_mg"].as_f64().unwrap();
+        assert!(compensated <= 1.0, "with the temperature model: {row}");
+        // The chip's offset at that temperature is the true one to within 1 mg.
+        for k in 0..3 {
+            let (applied, truth) = (row["applied_offset"][k].as_f64().unwrap(), row["offset"][k].as_f64().unwrap());
+            assert!(
+                (applied - truth).abs() < 1e-3,
+                "offset {k}: applied {applied} vs true {truth} at {}",
+                row["temp_c"]
+            );
+        }
+        for key in ["matrix", "applied_matrix", "static_matrix", "static_offset", "uncompensated_rms_mg"] {
+            assert!(!row[key].is_null(), "{key} missing from {row}");
+        }
+    }
+    let hot = &rows[3];
+    assert!(hot["uncompensated_rms_mg"].as_f64().unwrap() >= 10.0, "the static calibration at 45 degC: {hot}");
+    assert!(hot["gyro_bias_error_dps"].as_f64().unwrap() <= 0.05, "gyro bias at 45 degC: {hot}");
+}
+
+#[test]
 fn no_device_on_the_port_is_one_line_naming_the_port_and_the_fix() {
     let output = accelcal(&["info", "--port", "/dev/accelcal-no-such-port"]);
     assert!(!output.status.success());
