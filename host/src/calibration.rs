@@ -5,6 +5,7 @@
 use serde::{Deserialize, Serialize};
 use shared::calibration::{drift, GyroCalibration, ModelTag, Origin, Procedure, TemperatureModel, MODEL_TAG_LEN};
 use shared::linalg;
+use shared::protocol::{LowPassFilter, SensorConfig};
 use shared::{AccelRange, Calibration, CalibrationError};
 
 use crate::fit::thermal::ThermalReference;
@@ -36,6 +37,9 @@ pub struct CalibrationJson {
     /// The accelerometer range it belongs to, full scale in g.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub range_g: Option<u8>,
+    /// The low-pass filter it belongs to (`Hz44`, ...); absent means the default, 44 Hz.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub filter: Option<LowPassFilter>,
     /// Mean die temperature of the captures it was fitted from, in degC (`temp_c` in older files).
     #[serde(default, alias = "temp_c", skip_serializing_if = "Option::is_none")]
     pub mean_temp_c: Option<f64>,
@@ -75,6 +79,7 @@ impl CalibrationJson {
             gyro_bias_dps: Some(calibration.gyro.bias_dps.map(f64::from)),
             gyro_matrix: Some(widen(calibration.gyro.matrix)),
             range_g: Some(calibration.range.full_scale_g()),
+            filter: Some(calibration.filter),
             mean_temp_c: Some(f64::from(calibration.mean_temp_c)),
             temperature: calibration.temperature,
             residual_mg: Some(f64::from(calibration.residual_mg)),
@@ -92,6 +97,7 @@ impl CalibrationJson {
             gyro_bias_dps: None,
             gyro_matrix: None,
             range_g: None,
+            filter: None,
             mean_temp_c: None,
             temperature: None,
             residual_mg: None,
@@ -117,6 +123,7 @@ impl CalibrationJson {
         let calibration = Calibration {
             origin: self.origin(),
             range: self.range_g.and_then(AccelRange::from_full_scale_g).unwrap_or(range),
+            filter: self.filter.unwrap_or_default(),
             matrix: narrow(self.matrix),
             offset_g: self.offset.map(|v| v as f32),
             gyro: GyroCalibration {
@@ -152,9 +159,10 @@ fn narrow(matrix: [[f64; 3]; 3]) -> [[f32; 3]; 3] {
     matrix.map(|row| row.map(|v| v as f32))
 }
 
-/// The device calibration from a host fit over a session's captures (in g): the fit's M and o, the
+/// The device calibration from a host fit over a session's captures (in g) taken with `config`: the fit's M and o, the
 /// captures' mean gyro reading as the gyro bias, their mean temperature, and the fit's RMS residual.
-pub fn from_fit(fit: &Fit, session: &Session, range: AccelRange) -> Result<Calibration, CalibrationRecordError> {
+pub fn from_fit(fit: &Fit, session: &Session, config: SensorConfig) -> Result<Calibration, CalibrationRecordError> {
+    let range = config.range;
     let n = session.captures.len().max(1) as f32;
     let stats = session.captures.iter().map(|c| &c.stats);
     let gyro_bias = stats.clone().fold([0.0f32; 3], |sum, s| linalg::add(sum, linalg::scale(s.gyro_mean_dps, 1.0 / n)));
@@ -164,6 +172,7 @@ pub fn from_fit(fit: &Fit, session: &Session, range: AccelRange) -> Result<Calib
     let calibration = Calibration {
         origin: fit.model.origin(),
         range,
+        filter: config.filter,
         matrix: narrow(fit.matrix),
         offset_g: fit.offset.map(|v| v as f32),
         gyro: GyroCalibration { bias_dps: gyro_bias, ..Calibration::identity(range).gyro },
@@ -242,6 +251,7 @@ mod tests {
         calibration.matrix[0][1] = 0.0023;
         calibration.offset_g = [0.012, -0.034, 0.056];
         calibration.mean_temp_c = 27.5;
+        calibration.filter = LowPassFilter::Hz10;
         let json = CalibrationJson::from_device(&calibration);
         assert_eq!(json.matrix[0][1], f64::from(0.0023f32));
         let text = serde_json::to_string(&json).unwrap();

@@ -242,3 +242,17 @@ fn a_bus_error_during_a_capture_is_named_and_the_next_capture_works() {
     let (last, _) = run(&mut device, 2, Request::Capture { seconds: 5 });
     assert!(matches!(last, Response::Captured { .. }), "{last:?}");
 }
+
+#[test]
+fn the_chip_s_fit_keeps_the_filter_its_captures_were_taken_through() {
+    use shared::protocol::{LowPassFilter, SensorConfig};
+    let mut device = boot(SimMpu6050::settled(12), Flash::new());
+    let config = SensorConfig { filter: LowPassFilter::Hz21, ..SensorConfig::default() };
+    let configured = ask(&mut device, 1, Request::Configure(config));
+    assert!(matches!(configured, Response::Configured(c) if c.filter == LowPassFilter::Hz21), "{configured:?}");
+    for position in Position::ALL {
+        capture_at(&mut device, position.specific_force_g());
+    }
+    let Response::Fitted(calibration) = ask(&mut device, 8, Request::FitSixPosition) else { panic!("no fit") };
+    assert_eq!(calibration.filter, LowPassFilter::Hz21);
+}
