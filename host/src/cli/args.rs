@@ -97,9 +97,9 @@ pub struct ThermalArgs {
     /// Stop learning once the temperature has spanned this many degC (at least 10 are needed).
     #[arg(long, default_value_t = 34.0)]
     pub target_span_c: f64,
-    /// With --sim: fresh orientations verified at each temperature.
-    #[arg(long, default_value_t = 8)]
-    pub verify: usize,
+    /// With --sim: fresh orientations verified at each temperature (corners of a turned cube, 1-8).
+    #[arg(long, default_value_t = 8, value_parser = clap::value_parser!(u8).range(1..=8))]
+    pub verify: u8,
     /// Print one JSON object (non-interactive).
     #[arg(long)]
     pub json: bool,

@@ -18,7 +18,7 @@ use crate::error::Error;
 use crate::fit::thermal::{fit_temperature, ThermalFit};
 use crate::link::{Connection, LinkError};
 use crate::procedure::thermal::{capture_now, learn, LearnEnd, LearnOptions, LearnStatus, ThermalBins, ThermalBoard};
-use crate::procedure::{faces, ProcedureError};
+use crate::procedure::{corners, faces, ProcedureError};
 use crate::report::thermal::{ThermalFitJson, ThermalReport, ThermalRow};
 use crate::sim::{random, SimBoard, SimCommand};
 
@@ -109,7 +109,7 @@ fn sim_story(connection: &mut Connection, board: &SimBoard, args: &ThermalArgs) 
     let mut verification = Vec::new();
     for temp_c in VERIFY_TEMPS_C {
         sim.settle_at(temp_c)?;
-        verification.push(verify_row(connection, &mut sim, &calibration, args.verify, &mut rng)?);
+        verification.push(verify_row(connection, &mut sim, &calibration, usize::from(args.verify), &mut rng)?);
     }
     Ok(ThermalReport { calibration: CalibrationJson::from_device(&calibration), fit: fit_json, verification })
 }
@@ -179,8 +179,8 @@ fn verify_row(
     rng: &mut Xoshiro256PlusPlus,
 ) -> Result<ThermalRow, Error> {
     let (mut static_sq, mut compensated_sq, mut temp_sum) = (0.0, 0.0, 0.0);
-    for _ in 0..positions {
-        sim.place(random::random_unit(rng))?;
+    for up in fresh_orientations(rng).into_iter().take(positions) {
+        sim.place(up)?;
         let stats = capture_now(connection, CAPTURE_S)?;
         let norm_error = |a: Vec3<f32>| f64::from(linalg::norm(a)) - 1.0;
         static_sq += norm_error(calibration.apply(stats.mean_g)).powi(2);
@@ -194,6 +194,20 @@ fn verify_row(
     row.compensated_rms_mg = (compensated_sq / n).sqrt() * 1000.0;
     row.positions = positions;
     Ok(row)
+}
+
+/// The eight corners of a cube turned about a random axis by a random angle: fresh orientations,
+/// spread evenly, so the rms |a| error they show does not hinge on where a few random draws fell
+/// (an offset error e shows as |e| / sqrt(3) rms over them, in any direction).
+fn fresh_orientations(rng: &mut Xoshiro256PlusPlus) -> Vec<Vec3<f64>> {
+    let axis = random::random_unit(rng);
+    let angle = random::gaussian(rng).atan2(random::gaussian(rng));
+    let (sin, cos) = angle.sin_cos();
+    let turn = |v: Vec3<f64>| {
+        let along = linalg::scale(axis, linalg::dot(axis, v) * (1.0 - cos));
+        linalg::add(linalg::add(linalg::scale(v, cos), linalg::scale(linalg::cross(axis, v), sin)), along)
+    };
+    corners().iter().map(|corner| turn(corner.up)).collect()
 }
 
 /// The truth, the applied and the static correction at `temp_c`, and the gyro bias error.
