@@ -224,12 +224,18 @@ pub fn with_temperature(
     Ok(combined)
 }
 
-/// One line: model, scales, offset in mg and residual.
+/// One line: model, scales, offset in mg, residual, and the temperature model when there is one.
 pub fn describe(calibration: &Calibration) -> String {
-    let m = calibration.matrix;
-    let o = calibration.offset_g.map(|v| v * 1000.0);
+    let (m, o) = (calibration.matrix, calibration.offset_g.map(|v| v * 1000.0));
+    let temperature = calibration.temperature.map_or(String::new(), |model| {
+        let slope = model.offset_g[0].map(|v| v * 1000.0);
+        format!(
+            "; temperature model around {:.1} degC (offset {:+.2} {:+.2} {:+.2} mg/degC)",
+            model.ref_temp_c, slope[0], slope[1], slope[2]
+        )
+    });
     format!(
-        "{}: scale {:.5} {:.5} {:.5}, offset {:+.2} {:+.2} {:+.2} mg, residual {:.3} mg",
+        "{}: scale {:.5} {:.5} {:.5}, offset {:+.2} {:+.2} {:+.2} mg, residual {:.3} mg{temperature}",
         calibration.origin.model.as_str(),
         m[0][0],
         m[1][1],
@@ -256,5 +262,16 @@ mod tests {
         assert_eq!(json.matrix[0][1], f64::from(0.0023f32));
         let text = serde_json::to_string(&json).unwrap();
         assert_eq!(CalibrationJson::from_text(&text).unwrap().to_device(AccelRange::G2).unwrap(), calibration);
+    }
+
+    #[test]
+    fn the_description_names_the_temperature_model_when_there_is_one() {
+        let mut calibration = Calibration::identity(AccelRange::G2);
+        assert!(!describe(&calibration).contains("temperature"));
+        let mut model = TemperatureModel::flat(25.0);
+        model.offset_g[0] = [0.75e-3, -0.7e-3, 1.4e-3];
+        calibration.temperature = Some(model);
+        let text = describe(&calibration);
+        assert!(text.ends_with("; temperature model around 25.0 degC (offset +0.75 -0.70 +1.40 mg/degC)"), "{text}");
     }
 }
