@@ -62,7 +62,7 @@ fn default_calibration_over_a_pty_survives_a_restart_and_verifies_below_1_mg() {
     }
     let fit = procedure::host_fit(&session).unwrap();
     assert_eq!(fit.model, accelcal::fit::Model::Ortho9);
-    let calibration = calibration::from_fit(&fit, &session, shared::AccelRange::G2).unwrap();
+    let calibration = calibration::from_fit(&fit, &session, shared::protocol::SensorConfig::default()).unwrap();
     client.set_calibration(calibration).unwrap();
     client.save_calibration().unwrap();
     drop(client);

@@ -3,10 +3,12 @@
 //! and its one-line description. No other host code reads or writes `shared::Calibration` fields.
 
 use serde::{Deserialize, Serialize};
-use shared::calibration::{GyroCalibration, ModelTag, Origin, Procedure, TemperatureModel, MODEL_TAG_LEN};
+use shared::calibration::{drift, GyroCalibration, ModelTag, Origin, Procedure, TemperatureModel, MODEL_TAG_LEN};
 use shared::linalg;
+use shared::protocol::{LowPassFilter, SensorConfig};
 use shared::{AccelRange, Calibration, CalibrationError};
 
+use crate::fit::thermal::ThermalReference;
 use crate::fit::{self, Fit};
 use crate::link::calibration_reason;
 use crate::session::Session;
@@ -35,6 +37,9 @@ pub struct CalibrationJson {
     /// The accelerometer range it belongs to, full scale in g.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub range_g: Option<u8>,
+    /// The low-pass filter it belongs to (`Hz44`, ...); absent means the default, 44 Hz.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub filter: Option<LowPassFilter>,
     /// Mean die temperature of the captures it was fitted from, in degC (`temp_c` in older files).
     #[serde(default, alias = "temp_c", skip_serializing_if = "Option::is_none")]
     pub mean_temp_c: Option<f64>,
@@ -74,6 +79,7 @@ impl CalibrationJson {
             gyro_bias_dps: Some(calibration.gyro.bias_dps.map(f64::from)),
             gyro_matrix: Some(widen(calibration.gyro.matrix)),
             range_g: Some(calibration.range.full_scale_g()),
+            filter: Some(calibration.filter),
             mean_temp_c: Some(f64::from(calibration.mean_temp_c)),
             temperature: calibration.temperature,
             residual_mg: Some(f64::from(calibration.residual_mg)),
@@ -91,6 +97,7 @@ impl CalibrationJson {
             gyro_bias_dps: None,
             gyro_matrix: None,
             range_g: None,
+            filter: None,
             mean_temp_c: None,
             temperature: None,
             residual_mg: None,
@@ -116,6 +123,7 @@ impl CalibrationJson {
         let calibration = Calibration {
             origin: self.origin(),
             range: self.range_g.and_then(AccelRange::from_full_scale_g).unwrap_or(range),
+            filter: self.filter.unwrap_or_default(),
             matrix: narrow(self.matrix),
             offset_g: self.offset.map(|v| v as f32),
             gyro: GyroCalibration {
@@ -151,9 +159,10 @@ fn narrow(matrix: [[f64; 3]; 3]) -> [[f32; 3]; 3] {
     matrix.map(|row| row.map(|v| v as f32))
 }
 
-/// The device calibration from a host fit over a session's captures (in g): the fit's M and o, the
+/// The device calibration from a host fit over a session's captures (in g) taken with `config`: the fit's M and o, the
 /// captures' mean gyro reading as the gyro bias, their mean temperature, and the fit's RMS residual.
-pub fn from_fit(fit: &Fit, session: &Session, range: AccelRange) -> Result<Calibration, CalibrationRecordError> {
+pub fn from_fit(fit: &Fit, session: &Session, config: SensorConfig) -> Result<Calibration, CalibrationRecordError> {
+    let range = config.range;
     let n = session.captures.len().max(1) as f32;
     let stats = session.captures.iter().map(|c| &c.stats);
     let gyro_bias = stats.clone().fold([0.0f32; 3], |sum, s| linalg::add(sum, linalg::scale(s.gyro_mean_dps, 1.0 / n)));
@@ -163,6 +172,7 @@ pub fn from_fit(fit: &Fit, session: &Session, range: AccelRange) -> Result<Calib
     let calibration = Calibration {
         origin: fit.model.origin(),
         range,
+        filter: config.filter,
         matrix: narrow(fit.matrix),
         offset_g: fit.offset.map(|v| v as f32),
         gyro: GyroCalibration { bias_dps: gyro_bias, ..Calibration::identity(range).gyro },
@@ -175,12 +185,57 @@ pub fn from_fit(fit: &Fit, session: &Session, range: AccelRange) -> Result<Calib
     Ok(calibration)
 }
 
-/// One line: model, scales, offset in mg and residual.
+/// What the chip applies at `temp_c` degC, as a = matrix (m - offset): M diag(1 + d(T))^-1 and o(T).
+pub fn applied_at(calibration: &Calibration, temp_c: f32) -> ([[f64; 3]; 3], [f64; 3]) {
+    let Some(model) = &calibration.temperature else {
+        return static_part(calibration);
+    };
+    let dt = model.delta_c(temp_c);
+    let scale = drift(&model.scale, dt);
+    let matrix = calibration.matrix.map(|row| [0, 1, 2].map(|j| f64::from(row[j]) / (1.0 + f64::from(scale[j]))));
+    let offset = linalg::add(calibration.offset_g, drift(&model.offset_g, dt));
+    (matrix, offset.map(f64::from))
+}
+
+/// M and o without the temperature model.
+pub fn static_part(calibration: &Calibration) -> ([[f64; 3]; 3], [f64; 3]) {
+    (widen(calibration.matrix), calibration.offset_g.map(f64::from))
+}
+
+/// The gyro bias b(T) the chip subtracts at `temp_c` degC, in deg/s.
+pub fn gyro_bias_at(calibration: &Calibration, temp_c: f32) -> [f64; 3] {
+    let extra = calibration.temperature.map_or([0.0; 3], |m| drift(&m.gyro_bias_dps, m.delta_c(temp_c)));
+    linalg::add(calibration.gyro.bias_dps, extra).map(f64::from)
+}
+
+/// What a temperature model is fitted around: the captures' mean temperature and M.
+pub fn thermal_reference(calibration: &Calibration) -> ThermalReference {
+    ThermalReference { ref_temp_c: calibration.mean_temp_c, matrix: calibration.matrix }
+}
+
+/// The calibration with a fitted temperature model, checked like any other.
+pub fn with_temperature(
+    calibration: &Calibration,
+    model: TemperatureModel,
+) -> Result<Calibration, CalibrationRecordError> {
+    let combined = Calibration { temperature: Some(model), ..*calibration };
+    let implausible = |reason| CalibrationRecordError::ImplausibleFit { model: "temperature", reason };
+    combined.validate().map_err(implausible)?;
+    Ok(combined)
+}
+
+/// One line: model, scales, offset in mg, residual, and the temperature model when there is one.
 pub fn describe(calibration: &Calibration) -> String {
-    let m = calibration.matrix;
-    let o = calibration.offset_g.map(|v| v * 1000.0);
+    let (m, o) = (calibration.matrix, calibration.offset_g.map(|v| v * 1000.0));
+    let temperature = calibration.temperature.map_or(String::new(), |model| {
+        let slope = model.offset_g[0].map(|v| v * 1000.0);
+        format!(
+            "; temperature model around {:.1} degC (offset {:+.2} {:+.2} {:+.2} mg/degC)",
+            model.ref_temp_c, slope[0], slope[1], slope[2]
+        )
+    });
     format!(
-        "{}: scale {:.5} {:.5} {:.5}, offset {:+.2} {:+.2} {:+.2} mg, residual {:.3} mg",
+        "{}: scale {:.5} {:.5} {:.5}, offset {:+.2} {:+.2} {:+.2} mg, residual {:.3} mg{temperature}",
         calibration.origin.model.as_str(),
         m[0][0],
         m[1][1],
@@ -202,9 +257,21 @@ mod tests {
         calibration.matrix[0][1] = 0.0023;
         calibration.offset_g = [0.012, -0.034, 0.056];
         calibration.mean_temp_c = 27.5;
+        calibration.filter = LowPassFilter::Hz10;
         let json = CalibrationJson::from_device(&calibration);
         assert_eq!(json.matrix[0][1], f64::from(0.0023f32));
         let text = serde_json::to_string(&json).unwrap();
         assert_eq!(CalibrationJson::from_text(&text).unwrap().to_device(AccelRange::G2).unwrap(), calibration);
+    }
+
+    #[test]
+    fn the_description_names_the_temperature_model_when_there_is_one() {
+        let mut calibration = Calibration::identity(AccelRange::G2);
+        assert!(!describe(&calibration).contains("temperature"));
+        let mut model = TemperatureModel::flat(25.0);
+        model.offset_g[0] = [0.75e-3, -0.7e-3, 1.4e-3];
+        calibration.temperature = Some(model);
+        let text = describe(&calibration);
+        assert!(text.ends_with("; temperature model around 25.0 degC (offset +0.75 -0.70 +1.40 mg/degC)"), "{text}");
     }
 }

@@ -30,6 +30,8 @@ pub enum Error {
     CannotFit { path: PathBuf, model: ModelChoice, source: FitError },
     #[error(transparent)]
     Fit(#[from] FitError),
+    #[error("cannot fit the temperature model: {0}; learn over a wider span and run again")]
+    ThermalFit(#[from] crate::fit::thermal::ThermalFitError),
     #[error("--g must be a positive number, got {g}")]
     BadGravity { g: f64 },
     #[error("which device? give --port PATH (see `accelcal ports`) or --sim")]

@@ -54,6 +54,15 @@ pub fn axis_spread_deg() -> f64 {
     AXIS_SPREAD.acos().to_degrees().round()
 }
 
+/// Smallest temperature span a temperature model is learned from, in degC: over less, the drift of
+/// 1-2 mg/degC is hardly above the bias wander and a polynomial extrapolates wildly.
+pub const MIN_THERMAL_SPAN_C: f64 = 10.0;
+/// A learning run counts as stalled when the temperature moved less than this over
+/// [`THERMAL_STALL_ROUNDS`] rounds, in degC: the die has settled where it is.
+pub const THERMAL_STALL_C: f64 = 0.3;
+/// Rounds of captures over which a stall is judged.
+pub const THERMAL_STALL_ROUNDS: usize = 10;
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -5,7 +5,7 @@ use embedded_hal::blocking::i2c::{Write, WriteRead};
 use embedded_storage_async::nor_flash::NorFlash;
 use shared::calibration::{GyroCalibration, Origin};
 use shared::linalg::{self, Vec3};
-use shared::protocol::{ActiveCalibration, CalibrationSlot, CaptureStats, DeviceError, Response};
+use shared::protocol::{ActiveCalibration, CalibrationSlot, CaptureStats, DeviceError, Response, SensorConfig};
 use shared::{Calibration, Position, PositionMap, SixPositionError};
 
 use super::Device;
@@ -17,7 +17,7 @@ where
 {
     /// Fits the kept captures on the chip; the result becomes active only when it is plausible.
     pub(super) fn fit_six_position(&mut self) -> Result<Response, DeviceError> {
-        let calibration = six_position_calibration(&self.positions, self.config.range)?;
+        let calibration = six_position_calibration(&self.positions, self.config)?;
         calibration.validate().map_err(DeviceError::InvalidCalibration)?;
         self.active = calibration;
         self.source = ActiveCalibration::Unsaved;
@@ -65,7 +65,7 @@ where
 /// over them and the residual the placement and noise leave.
 fn six_position_calibration(
     captures: &PositionMap<CaptureStats>,
-    range: shared::AccelRange,
+    config: SensorConfig,
 ) -> Result<Calibration, DeviceError> {
     let mut readings = PositionMap::<Vec3<f32>>::new();
     let (mut gyro_bias_dps, mut mean_temp_c) = ([0.0f32; 3], 0.0f32);
@@ -78,7 +78,8 @@ fn six_position_calibration(
     let fit = readings.fit(1.0).map_err(DeviceError::SixPosition)?;
     let mut calibration = Calibration {
         origin: Origin::CHIP_SIX_POSITION,
-        range,
+        range: config.range,
+        filter: config.filter,
         matrix: fit.matrix,
         offset_g: fit.offset,
         gyro: GyroCalibration { bias_dps: gyro_bias_dps, ..GyroCalibration::default() },

@@ -92,7 +92,8 @@ fn a_capture_reports_progress_every_second_then_one_final_result_with_its_positi
 
 #[test]
 fn the_on_chip_six_position_fit_recovers_the_true_error_model() {
-    let mut device = boot(SimMpu6050::new(3), Flash::new());
+    // NOTE: a sub-mg claim about the fit needs one temperature: the settled static sensor.
+    let mut device = boot(SimMpu6050::settled(3), Flash::new());
     let truth = device.bus_mut().physics.truth;
     for position in Position::ALL {
         let answer = capture_at(&mut device, position.specific_force_g());
@@ -189,7 +190,8 @@ fn an_absurd_upload_is_refused_with_the_reason_and_changes_nothing() {
 
 #[test]
 fn streamed_samples_are_corrected_on_the_chip() {
-    let mut sim = SimMpu6050::new(9);
+    // NOTE: the settled static sensor, so that the truth holds at the temperature streamed at.
+    let mut sim = SimMpu6050::settled(9);
     sim.place([0.0, 0.0, -1.0]);
     let truth = sim.physics.truth;
     let mut device = boot(sim, Flash::new());
@@ -239,4 +241,18 @@ fn a_bus_error_during_a_capture_is_named_and_the_next_capture_works() {
     assert_eq!(drain(&mut device), [(1, Response::Error(DeviceError::Bus))]);
     let (last, _) = run(&mut device, 2, Request::Capture { seconds: 5 });
     assert!(matches!(last, Response::Captured { .. }), "{last:?}");
+}
+
+#[test]
+fn the_chip_s_fit_keeps_the_filter_its_captures_were_taken_through() {
+    use shared::protocol::{LowPassFilter, SensorConfig};
+    let mut device = boot(SimMpu6050::settled(12), Flash::new());
+    let config = SensorConfig { filter: LowPassFilter::Hz21, ..SensorConfig::default() };
+    let configured = ask(&mut device, 1, Request::Configure(config));
+    assert!(matches!(configured, Response::Configured(c) if c.filter == LowPassFilter::Hz21), "{configured:?}");
+    for position in Position::ALL {
+        capture_at(&mut device, position.specific_force_g());
+    }
+    let Response::Fitted(calibration) = ask(&mut device, 8, Request::FitSixPosition) else { panic!("no fit") };
+    assert_eq!(calibration.filter, LowPassFilter::Hz21);
 }

@@ -10,6 +10,7 @@
 mod board;
 pub mod flash;
 pub mod physics;
+pub mod thermal;
 
 use embedded_hal::blocking::i2c::{Write, WriteRead};
 use heapless::Deque;
@@ -74,6 +75,21 @@ impl SimMpu6050 {
             failures_left: 0,
             failures_after: 0,
         }
+    }
+
+    /// The published static model held at 25 degC with white noise only (see [`Physics::settled`]):
+    /// for tests that need one known temperature.
+    pub fn settled(seed: u64) -> Self {
+        SimMpu6050 { physics: Physics::settled(seed), ..SimMpu6050::new(seed) }
+    }
+
+    /// Lets `seconds` pass in one step with the FIFO not running: for long waits (a thermal soak),
+    /// far cheaper than producing every sample. The data registers hold one fresh sample after it.
+    pub fn elapse_seconds(&mut self, seconds: f32) {
+        self.physics.elapse(seconds);
+        self.now_us += (seconds * 1e6) as u64;
+        self.next_sample_us = self.now_us + 1;
+        self.advance_us(1);
     }
 
     /// Answers at another address (AD0 high: 0x69).

@@ -1,14 +1,36 @@
-//! What the simulated sensor feels and how it errs: orientation, motion, the true error model, noise.
+//! What the simulated sensor feels and how it errs: orientation, motion, the true error model, its
+//! temperature ([`super::thermal`]), slow bias wander and white noise.
 
 use rand_distr::{Distribution, StandardNormal};
 use rand_xoshiro::rand_core::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
 use shared::linalg::{self, Mat3, Vec3};
 
+use super::thermal::{Environment, ThermalDrift};
+
 /// Accelerometer white-noise density of the MPU-6050, in g/sqrt(Hz) (Product Specification 6.2).
 pub const ACCEL_NOISE_DENSITY_G: f32 = 400e-6;
-/// Gyro rate-noise density of the MPU-6050, in (deg/s)/sqrt(Hz) (Product Specification 6.1).
+/// Gyro rate-noise density of the MPU-6050, in (deg/s)/sqrt(Hz) (Product Specification 6.1); as an
+/// angle random walk 0.005 deg/sqrt(s), close to the 0.003 deg/sqrt(s) a user's Allan plot of an
+/// MPU-6050 showed (robotics.stackexchange.com question 8860).
 pub const GYRO_NOISE_DENSITY_DPS: f32 = 0.005;
+/// Accelerometer bias instability, in g: "tens of ug" in Allan plots of consumer MEMS accelerometers
+/// of this class (DESIGN.md); 40 ug, as a first-order Markov wander.
+pub const ACCEL_BIAS_INSTABILITY_G: f32 = 40e-6;
+/// Accelerometer bias random walk, in g/sqrt(s): 1 ug/sqrt(s), 60 ug after an hour, so that over a
+/// long thermal run it stays of the order of the bias instability, as the flat Allan curves of such
+/// parts over tens of minutes show.
+pub const ACCEL_RANDOM_WALK_G: f32 = 1e-6;
+/// Gyro bias instability, in deg/s: 0.0012 deg/s (4.3 deg/h), the figure the Allan plot cited at
+/// [`GYRO_NOISE_DENSITY_DPS`] gave.
+pub const GYRO_BIAS_INSTABILITY_DPS: f32 = 0.0012;
+/// Gyro bias random walk, in deg/s/sqrt(s): 2e-5, 1.2e-3 deg/s after an hour, of the order of the
+/// bias instability.
+pub const GYRO_RANDOM_WALK_DPS: f32 = 2e-5;
+/// Correlation time of the bias instability's Markov wander, in seconds.
+pub const BIAS_CORRELATION_S: f32 = 100.0;
+/// Gyro g-sensitivity, in deg/s per g (Product Specification 6.1, "linear acceleration sensitivity").
+pub const GYRO_G_SENSITIVITY_DPS_PER_G: f32 = 0.1;
 
 /// The sensor's true calibration in the convention of `shared::Calibration`: a = M (m - o).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -67,13 +89,31 @@ pub struct Physics {
     pub up: Vec3<f32>,
     /// Motion from then on.
     pub motion: Motion,
-    /// The true error model.
+    /// The true error model at 25 degC.
     pub truth: TrueErrors,
-    /// Die temperature in degC.
-    pub temp_c: f32,
-    /// Whether white noise is added.
+    /// How the errors change with temperature.
+    pub drift: ThermalDrift,
+    /// The die's temperature and surroundings.
+    pub environment: Environment,
+    /// The gyro's true scale and misalignment: it reads this matrix times the true rate (before bias).
+    pub gyro_sensor_matrix: Mat3<f32>,
+    /// Gyro g-sensitivity in deg/s per g, per axis.
+    pub gyro_g_sensitivity: f32,
+    /// Whether white noise and bias wander are added.
     pub noisy: bool,
+    /// Whether the biases wander (instability and random walk).
+    pub wandering: bool,
+    wander: Wander,
     rng: Xoshiro256PlusPlus,
+}
+
+/// The slow random part of the biases: a random walk plus a first-order Markov wander, per axis.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+struct Wander {
+    accel_walk_g: Vec3<f32>,
+    accel_markov_g: Vec3<f32>,
+    gyro_walk_dps: Vec3<f32>,
+    gyro_markov_dps: Vec3<f32>,
 }
 
 /// One sample in physical units, before quantisation.
@@ -83,36 +123,78 @@ pub struct PhysicalSample {
     pub accel_g: Vec3<f32>,
     /// Gyro output in deg/s.
     pub gyro_dps: Vec3<f32>,
-    /// Temperature in degC.
+    /// Temperature TEMP_OUT reports, in degC.
     pub temp_c: f32,
 }
 
 impl Physics {
-    /// A still board with +Z up, the published error model and noise, seeded for repeatability.
+    /// A realistic board with +Z up, just powered on in a 20 degC room: the published error model at
+    /// 25 degC, temperature drift, gyro scale, misalignment and g-sensitivity, bias wander and noise,
+    /// seeded for repeatability.
     pub fn new(seed: u64) -> Self {
+        // NOTE: gyro scale errors within the Product Specification's +-3 % (table 6.1) and
+        // misalignments of 0.1-0.35 degrees (a few mrad), typical of the cross-axis sensitivity of
+        // +-2 % being mostly package alignment.
+        let gyro_sensor_matrix = [[1.021, 0.004, -0.003], [-0.005, 0.984, 0.006], [0.002, -0.004, 1.012]];
         Physics {
             up: [0.0, 0.0, 1.0],
             motion: Motion::Still,
             truth: TrueErrors::published_mpu6050(),
-            temp_c: 25.0,
+            drift: ThermalDrift::typical(),
+            environment: Environment::powered_on_at(20.0),
+            gyro_sensor_matrix,
+            gyro_g_sensitivity: GYRO_G_SENSITIVITY_DPS_PER_G,
             noisy: true,
+            wandering: true,
+            wander: Wander::default(),
             rng: Xoshiro256PlusPlus::seed_from_u64(seed),
         }
     }
 
-    /// The sample at `seconds` after the orientation was set, for a sensor sampling at `rate_hz`.
+    /// The published static model held at 25 degC with white noise only: no drift, no wander, an
+    /// ideal gyro apart from its bias (for tests of accuracy at one temperature).
+    pub fn settled(seed: u64) -> Self {
+        Physics {
+            drift: ThermalDrift::none(),
+            environment: Environment::fixed(super::thermal::TRUTH_REF_TEMP_C),
+            gyro_sensor_matrix: linalg::identity(),
+            gyro_g_sensitivity: 0.0,
+            wandering: false,
+            ..Physics::new(seed)
+        }
+    }
+
+    /// The true errors now, at the die's temperature.
+    pub fn truth_now(&self) -> TrueErrors {
+        self.drift.at(&self.truth, self.environment.die_c)
+    }
+
+    /// Lets `seconds` pass without a sample: temperature and bias wander move on.
+    pub fn elapse(&mut self, seconds: f32) {
+        self.environment.advance(seconds);
+        if self.noisy && self.wandering {
+            self.wander_step(seconds);
+        }
+    }
+
+    /// The sample at `seconds` after the orientation was set, for a sensor sampling at `rate_hz`;
+    /// one sample period passes first.
     pub fn sample(&mut self, seconds: f32, rate_hz: f32) -> PhysicalSample {
+        self.elapse(1.0 / rate_hz);
         let (force, rotation_dps) = self.kinematics(seconds);
+        let truth = self.truth_now();
         // NOTE: white noise of density n sampled at f has a standard deviation of n * sqrt(f / 2)
         // (all of it within the Nyquist band), so an average over T seconds has n / sqrt(2 T).
         let band = libm::sqrtf(rate_hz / 2.0);
-        let accel_noise = self.noise(ACCEL_NOISE_DENSITY_G * band);
-        let gyro_noise = self.noise(GYRO_NOISE_DENSITY_DPS * band);
-        let gyro = linalg::add(linalg::add(rotation_dps, self.truth.gyro_bias_dps), gyro_noise);
+        let accel_noise = linalg::add(self.noise(ACCEL_NOISE_DENSITY_G * band), self.accel_wander());
+        let gyro_noise = linalg::add(self.noise(GYRO_NOISE_DENSITY_DPS * band), self.gyro_wander());
+        let felt = linalg::mul_vec(&self.gyro_sensor_matrix, rotation_dps);
+        let g_effect = linalg::scale(force, self.gyro_g_sensitivity);
+        let gyro = linalg::add(linalg::add(felt, truth.gyro_bias_dps), linalg::add(g_effect, gyro_noise));
         PhysicalSample {
-            accel_g: linalg::add(self.truth.reading_g(force), accel_noise),
+            accel_g: linalg::add(truth.reading_g(force), accel_noise),
             gyro_dps: gyro,
-            temp_c: self.temp_c,
+            temp_c: self.environment.reading_c(),
         }
     }
 
@@ -123,6 +205,29 @@ impl Physics {
             Motion::Rotating { .. } => self.kinematics(seconds).0,
             Motion::Still | Motion::Vibrating { .. } => self.up,
         }
+    }
+
+    fn accel_wander(&self) -> Vec3<f32> {
+        linalg::add(self.wander.accel_walk_g, self.wander.accel_markov_g)
+    }
+
+    fn gyro_wander(&self) -> Vec3<f32> {
+        linalg::add(self.wander.gyro_walk_dps, self.wander.gyro_markov_dps)
+    }
+
+    /// Moves the random walks and the Markov wanders on by `seconds` (exact for any step).
+    fn wander_step(&mut self, seconds: f32) {
+        let root = libm::sqrtf(seconds);
+        let keep = libm::expf(-seconds / BIAS_CORRELATION_S);
+        let fresh = libm::sqrtf(1.0 - keep * keep);
+        let w = self.wander;
+        let walk_a = linalg::add(w.accel_walk_g, self.noise(ACCEL_RANDOM_WALK_G * root));
+        let walk_g = linalg::add(w.gyro_walk_dps, self.noise(GYRO_RANDOM_WALK_DPS * root));
+        let markov_a = linalg::add(linalg::scale(w.accel_markov_g, keep), self.noise(ACCEL_BIAS_INSTABILITY_G * fresh));
+        let markov_g =
+            linalg::add(linalg::scale(w.gyro_markov_dps, keep), self.noise(GYRO_BIAS_INSTABILITY_DPS * fresh));
+        self.wander =
+            Wander { accel_walk_g: walk_a, accel_markov_g: markov_a, gyro_walk_dps: walk_g, gyro_markov_dps: markov_g };
     }
 
     /// True specific force (g) and angular rate (deg/s) at a time.

@@ -62,7 +62,8 @@ fn the_mean_lies_within_4_sigma_of_the_true_reading() {
     let sigma = ACCEL_NOISE_DENSITY_G / (2.0f32 * 10.0).sqrt();
     let ups: [Vec3<f32>; 5] = [[0.0, 0.0, 1.0], [-1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.3, -0.5, 0.8], [0.0, 0.0, -1.0]];
     for (seed, up) in ups.into_iter().enumerate() {
-        let mut sim = SimMpu6050::new(seed as u64 + 10);
+        // NOTE: the settled static sensor: white noise is the only error this test allows.
+        let mut sim = SimMpu6050::settled(seed as u64 + 10);
         sim.place(up);
         let truth = sim.physics.truth.reading_g(linalg::scale(up, 1.0 / linalg::norm(up)));
         let stats = capture(&mut sim, SensorConfig::default(), 10).unwrap();

@@ -2,6 +2,7 @@
 
 use embassy_futures::block_on;
 use shared::calibration::{GyroCalibration, ModelTag, Origin, Procedure, TemperatureModel};
+use shared::protocol::LowPassFilter;
 use shared::{AccelRange, Calibration};
 
 use super::{Storage, StorageError};
@@ -16,6 +17,7 @@ fn calibration(n: u32) -> Calibration {
     Calibration {
         origin: Origin::CHIP_SIX_POSITION,
         range: AccelRange::G2,
+        filter: LowPassFilter::Hz21,
         matrix: [[1.0 + tweak, 0.001, 0.0], [0.0, 0.99 - tweak, 0.002], [0.0, 0.0, 1.01]],
         offset_g: [0.02 + tweak, -0.01, 0.07],
         gyro: GyroCalibration {
@@ -132,6 +134,7 @@ fn v1_calibration_migrated() -> Calibration {
     Calibration {
         origin: Origin { procedure: Procedure::HostFit, model: ModelTag::new("ortho9").unwrap() },
         range: AccelRange::G2,
+        filter: LowPassFilter::Hz44,
         matrix: [[1.0123, 0.0021, -0.0034], [-0.0011, 0.9876, 0.0045], [0.0007, -0.0018, 1.0211]],
         offset_g: [0.0276, -0.0057, -0.0783],
         gyro: GyroCalibration { bias_dps: [-1.25, 0.75, 0.125], ..GyroCalibration::default() },

@@ -10,6 +10,7 @@
 
 use shared::calibration::{GyroCalibration, ModelTag, Origin, Procedure};
 use shared::linalg::Vec3;
+use shared::protocol::LowPassFilter;
 use shared::{AccelRange, Calibration};
 
 /// The fit models format 1 named, by variant index, and the procedure that made each.
@@ -27,8 +28,11 @@ const MODELS: [(Procedure, &str); 5] = [
 /// The accelerometer ranges format 1 named, by variant index.
 const RANGES: [AccelRange; 4] = [AccelRange::G2, AccelRange::G4, AccelRange::G8, AccelRange::G16];
 
-/// The calibration of a format-1 record body, migrated: the gyro matrix is the identity and there is
-/// no temperature model, as format 1 had neither. `None` when the body does not follow the layout.
+/// The calibration of a format-1 record body, migrated: the gyro matrix is the identity, there is
+/// no temperature model, and the filter is the default (44 Hz), as format 1 had none of them.
+///
+/// NOTE: the firmware that wrote format 1 never changed the filter from its default, so every
+/// format-1 calibration was captured through it. `None` when the body does not follow the layout.
 pub fn decode(body: &[u8]) -> Option<Option<Calibration>> {
     let mut reader = Reader(body);
     match reader.byte()? {
@@ -47,6 +51,7 @@ fn read_calibration(reader: &mut Reader<'_>) -> Option<Calibration> {
     Some(Calibration {
         origin: Origin { procedure, model: ModelTag::new(name)? },
         range,
+        filter: LowPassFilter::default(),
         matrix,
         offset_g,
         gyro: GyroCalibration { bias_dps: gyro_bias_dps, ..GyroCalibration::default() },

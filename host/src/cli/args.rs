@@ -8,6 +8,7 @@ use shared::protocol::{SensorConfig, DEFAULT_CAPTURE_SECONDS, MAX_CAPTURE_SECOND
 use crate::data::RowList;
 use crate::fit::ModelChoice;
 use crate::limits::FACE_TOLERANCE_DEG;
+use crate::sim::SimSensor;
 
 /// Calibrates the accelerometer of an MPU-6050.
 #[derive(Parser)]
@@ -30,6 +31,9 @@ pub struct Device {
     /// With --sim: seed of the simulated sensor's noise and of the hand's placement.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
+    /// With --sim: the simulated sensor, realistic (warming and drifting) or settled (one temperature).
+    #[arg(long, value_enum, default_value_t = SimSensor::Realistic)]
+    pub sim_sensor: SimSensor,
 }
 
 /// `accelcal fit`.
@@ -83,6 +87,22 @@ pub struct CalibrateArgs {
     /// With --sim: how many degrees off the tool places the board, as a hand would.
     #[arg(long, default_value_t = 3.0)]
     pub sim_placement_deg: f64,
+}
+
+/// `accelcal thermal`.
+#[derive(Args)]
+pub struct ThermalArgs {
+    #[command(flatten)]
+    pub device: Device,
+    /// Stop learning once the temperature has spanned this many degC (at least 10 are needed).
+    #[arg(long, default_value_t = 34.0)]
+    pub target_span_c: f64,
+    /// With --sim: fresh orientations verified at each temperature (corners of a turned cube, 1-8).
+    #[arg(long, default_value_t = 8, value_parser = clap::value_parser!(u8).range(1..=8))]
+    pub verify: u8,
+    /// Print one JSON object (non-interactive).
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// `accelcal capture`.
@@ -172,6 +192,9 @@ pub enum Command {
     },
     /// Streams samples as CSV on stdout.
     Stream(StreamArgs),
+    /// Learns how the sensor drifts with temperature and adds the temperature model to the active
+    /// calibration (with --sim: the whole simulated story, verified at 15-45 degC).
+    Thermal(ThermalArgs),
     /// Runs a simulated board on a pseudo-terminal; prints its path, then serves until killed.
     Sim {
         /// Serve on a pseudo-terminal (the only transport offered).

@@ -26,7 +26,7 @@ impl Device {
         match (&self.port, self.sim) {
             (Some(path), _) => Ok(Opened { connection: open_port(path)?, sim: None }),
             (None, true) => {
-                let (connection, board) = SimBoard::in_process(self.seed)?;
+                let (connection, board) = SimBoard::in_process(self.seed, self.sim_sensor)?;
                 Ok(Opened { connection, sim: Some(board) })
             }
             (None, false) => Err(Error::WhichDevice),

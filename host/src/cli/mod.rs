@@ -8,6 +8,7 @@ mod device;
 mod fit;
 mod procedure;
 mod terminal;
+mod thermal;
 mod transfer;
 
 use std::process::ExitCode;
@@ -44,6 +45,7 @@ pub fn run(cli: Cli) -> Result<(), Error> {
         Command::Download { device, stored } => transfer::download(&device, stored),
         Command::Erase { device } => transfer::erase(&device),
         Command::Stream(args) => board::stream(&args),
+        Command::Thermal(args) => thermal::thermal(&args),
         Command::Sim { pty: _, seed, fast } => {
             let pace = if fast { crate::sim::Pace::Fast } else { crate::sim::Pace::RealTime };
             Ok(crate::sim::serve_pty(seed, pace)?)

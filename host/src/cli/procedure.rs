@@ -1,6 +1,7 @@
 //! The guided procedure on the command line: `calibrate`, `capture`, `verify`.
 
-use shared::{AccelRange, Calibration};
+use shared::protocol::SensorConfig;
+use shared::Calibration;
 
 use super::args::{CalibrateArgs, CaptureArgs, Device};
 use super::device::Opened;
@@ -33,14 +34,14 @@ pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
     let mut feedback = feedback(args.json, yes);
     let (mut hand, wait_limit) = opened.hand(args.sim_placement_deg, args.device.seed);
     let options = CollectOptions { seconds: args.seconds, wait_limit };
-    let range = opened.connection.info.config.range;
+    let config = opened.connection.info.config;
     let client = &mut opened.connection.client;
     let session =
         procedure::collect(client, hand.as_mut(), &procedure::targets(args.quick), &options, feedback.as_mut())?;
     if let Some(path) = &args.session {
         session.save(path)?;
     }
-    let fitted = choose(client, session, range, args.quick)?;
+    let fitted = choose(client, session, config, args.quick)?;
     show_choice(feedback.as_mut(), &fitted);
     if !upload_if_confirmed(client, &fitted.chosen, feedback.as_mut())? {
         return Ok(());
@@ -71,13 +72,18 @@ fn upload_if_confirmed<P: Port>(
 }
 
 /// The on-chip fit, and for a full calibration the host's fit, which is then the one chosen.
-fn choose<P: Port>(client: &mut Client<P>, session: Session, range: AccelRange, quick: bool) -> Result<Fitted, Error> {
+fn choose<P: Port>(
+    client: &mut Client<P>,
+    session: Session,
+    config: SensorConfig,
+    quick: bool,
+) -> Result<Fitted, Error> {
     let chip = client.fit_six_position()?;
     if quick {
         return Ok(Fitted { session, chip, host: None, chosen: chip });
     }
     let fit = procedure::host_fit(&session)?;
-    let chosen = calibration::from_fit(&fit, &session, range)?;
+    let chosen = calibration::from_fit(&fit, &session, config)?;
     Ok(Fitted { session, chip, host: Some(fit), chosen })
 }
 

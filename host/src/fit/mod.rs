@@ -8,6 +8,7 @@ mod nonlinear;
 mod normalization;
 mod shape;
 mod statistics;
+pub mod thermal;
 
 use std::fmt;
 use std::str::FromStr;

@@ -6,6 +6,7 @@ mod collect;
 mod feedback;
 mod hand;
 mod simulated_hand;
+pub mod thermal;
 mod verify;
 mod wait;
 
@@ -37,6 +38,10 @@ pub enum ProcedureError {
     KeptMoving { attempts: usize },
     #[error("the device has no active calibration to verify: calibrate or upload one first")]
     NoActiveCalibration,
+    #[error(
+        "the temperature spanned only {:.1} degC ({low_c:.1} to {high_c:.1} degC); a temperature model needs at least {needed_c} degC: start with the board cold (rested in a cool place or just powered on) and let it warm, or move it between a cool and a warm place", high_c - low_c
+    )]
+    SpanTooSmall { low_c: f64, high_c: f64, needed_c: f64 },
     #[error("the simulated board stopped; run the command again")]
     SimulatedBoardStopped,
     #[error(transparent)]

@@ -5,6 +5,7 @@ mod calibrate;
 mod comparison;
 pub mod json;
 pub mod text;
+pub mod thermal;
 
 pub use calibrate::{CalibrateReport, HostFitSummary, TruthJson};
 pub use comparison::{ComparedModel, Comparison};

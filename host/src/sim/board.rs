@@ -6,7 +6,7 @@ use std::thread::JoinHandle;
 use embassy_futures::block_on;
 use firmware::device::Device;
 use firmware::server::Server;
-use firmware::sim::physics::{Motion, TrueErrors};
+use firmware::sim::physics::{Motion, Physics, TrueErrors};
 use firmware::sim::{sim_serial_number, SimFlash, SimMpu6050, SIM_FLASH_RANGE};
 
 use super::clock::Pace;
@@ -23,6 +23,10 @@ pub enum SimCommand {
     Move(Motion),
     /// Move for this many seconds of simulated time, then rest where the motion left the board.
     MoveFor { motion: Motion, seconds: f32 },
+    /// Move the surroundings towards a temperature (degC) at a rate (degC/s; infinite: at once).
+    Ambient { target_c: f32, c_per_s: f32 },
+    /// Let this many seconds pass at once while idle (a soak), without producing every sample.
+    Elapse(f32),
     /// Disconnect or reconnect the sensor.
     Connect(bool),
     /// The link loses the next this many streamed samples (a flaky cable).
@@ -33,24 +37,38 @@ pub enum SimCommand {
     Stop,
 }
 
+/// Which simulated MPU-6050 a board carries.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum SimSensor {
+    /// Just powered on in a 20 degC room: it warms, drifts with temperature, its biases wander.
+    #[default]
+    Realistic,
+    /// The published static model held at 25 degC with white noise only (an idealised part).
+    Settled,
+}
+
 /// A running simulated board.
 pub struct SimBoard {
     commands: Sender<SimCommand>,
     thread: Option<JoinHandle<SimFlash>>,
     truth: TrueErrors,
+    kind: SimSensor,
 }
 
 impl SimBoard {
     /// Boots a board on `flash` (keep it across `stop` and `spawn` to simulate a restart), with the
     /// published error model and noise seeded by `seed`, and serves `port` until stopped, its time
-    /// fast-forwarded while it works.
+    /// fast-forwarded while it works; the realistic simulated sensor.
     pub fn spawn<P: Port + 'static>(port: P, flash: SimFlash, seed: u64) -> Self {
-        Self::spawn_at(port, flash, seed, Pace::Fast)
+        Self::spawn_with(port, flash, seed, SimSensor::Realistic, Pace::Fast)
     }
 
-    /// As [`SimBoard::spawn`], with simulated time running at `pace`.
-    pub fn spawn_at<P: Port + 'static>(port: P, flash: SimFlash, seed: u64, pace: Pace) -> Self {
-        let sensor = SimMpu6050::new(seed);
+    /// [`Self::spawn`] with the simulated sensor of the owner's choice and simulated time at `pace`.
+    pub fn spawn_with<P: Port + 'static>(port: P, flash: SimFlash, seed: u64, kind: SimSensor, pace: Pace) -> Self {
+        let sensor = match kind {
+            SimSensor::Realistic => SimMpu6050::new(seed),
+            SimSensor::Settled => SimMpu6050::settled(seed),
+        };
         let truth = sensor.physics.truth;
         let (commands, inbox) = channel();
         let thread = std::thread::spawn(move || {
@@ -61,13 +79,13 @@ impl SimBoard {
                 Err(_) => SimFlash::default(),
             }
         });
-        SimBoard { commands, thread: Some(thread), truth }
+        SimBoard { commands, thread: Some(thread), truth, kind }
     }
 
     /// A fresh simulated board in this process, behind an in-memory pipe, and a session with it.
-    pub fn in_process(seed: u64) -> Result<(Connection, SimBoard), LinkError> {
+    pub fn in_process(seed: u64, kind: SimSensor) -> Result<(Connection, SimBoard), LinkError> {
         let (host_end, device_end) = pipe();
-        let board = SimBoard::spawn(device_end, SimFlash::new(), seed);
+        let board = SimBoard::spawn_with(device_end, SimFlash::new(), seed, kind, Pace::Fast);
         Ok((Connection::over(Box::new(host_end))?, board))
     }
 
@@ -76,9 +94,28 @@ impl SimBoard {
         self.commands.clone()
     }
 
-    /// The simulated sensor's true errors (its true calibration).
+    /// The simulated sensor's true errors at 25 degC (its true static calibration).
     pub fn truth(&self) -> TrueErrors {
         self.truth
+    }
+
+    /// The simulated sensor's true errors when its TEMP_OUT reads `reading_c` degC (the settled
+    /// sensor's are the same at every temperature).
+    pub fn truth_at(&self, reading_c: f32) -> TrueErrors {
+        let physics = Physics::new(0);
+        match self.kind {
+            SimSensor::Realistic => physics.drift.at(&self.truth, reading_c - physics.environment.reading_offset_c),
+            SimSensor::Settled => self.truth,
+        }
+    }
+
+    /// The surroundings, in degC, in which the settled sensor reports `reading_c`.
+    pub fn ambient_for(&self, reading_c: f32) -> f32 {
+        let environment = Physics::new(0).environment;
+        match self.kind {
+            SimSensor::Realistic => reading_c - environment.reading_offset_c - environment.self_heating_c,
+            SimSensor::Settled => reading_c,
+        }
     }
 
     /// Stops the board and returns its flash.

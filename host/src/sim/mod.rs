@@ -14,7 +14,7 @@ pub mod random;
 mod serve;
 pub mod synthetic;
 
-pub use board::{SimBoard, SimCommand};
+pub use board::{SimBoard, SimCommand, SimSensor};
 pub use clock::Pace;
 pub use pty::{serve_pty, SimError};
 

@@ -5,7 +5,7 @@ use std::sync::mpsc::Sender;
 
 use firmware::sim::SimFlash;
 
-use super::board::{SimBoard, SimCommand};
+use super::board::{SimBoard, SimCommand, SimSensor};
 use super::clock::Pace;
 use super::commands::{help, parse, Line};
 
@@ -23,7 +23,7 @@ pub enum SimError {
 pub fn serve_pty(seed: u64, pace: Pace) -> Result<(), SimError> {
     let (master, slave) = serialport::TTYPort::pair().map_err(|e| SimError::Pty { reason: e.to_string() })?;
     let path = serialport::SerialPort::name(&slave).ok_or(SimError::Unnamed)?;
-    let board = SimBoard::spawn_at(master, SimFlash::new(), seed, pace);
+    let board = SimBoard::spawn_with(master, SimFlash::new(), seed, SimSensor::Realistic, pace);
     println!("{path}");
     let _ = std::io::stdout().flush();
     let time = match pace {

@@ -31,21 +31,35 @@ struct Service {
 /// Serves `port` until told to stop or the host end goes away; returns the flash.
 pub(super) fn serve<P: Port>(mut port: P, mut server: SimServer, inbox: Receiver<SimCommand>, pace: Pace) -> SimFlash {
     let mut service = Service { clock: Clock::new(pace), outgoing: Outgoing::default(), motion_ends_us: None };
-    loop {
-        match inbox.try_recv() {
-            Ok(SimCommand::Stop) | Err(TryRecvError::Disconnected) => break,
-            Ok(SimCommand::Restart) => match restart(server) {
-                Some(rebooted) => server = rebooted,
-                None => return SimFlash::default(),
-            },
-            Ok(command) => service.obey(&mut server, command),
-            Err(TryRecvError::Empty) => {}
+    'serving: loop {
+        // NOTE: every waiting command is applied before the port is read, so a command sent before
+        // a request is in force when the device answers a request sent after it.
+        loop {
+            match inbox.try_recv() {
+                Ok(SimCommand::Stop) | Err(TryRecvError::Disconnected) => break 'serving,
+                Ok(SimCommand::Restart) => match restart(server) {
+                    Some(rebooted) => server = rebooted,
+                    None => return SimFlash::default(),
+                },
+                Ok(command) => service.obey(&mut server, command),
+                Err(TryRecvError::Empty) => break,
+            }
         }
         if !service.step(&mut port, &mut server) {
             break;
         }
     }
     server.into_device().into_parts().1
+}
+
+/// Lets `seconds` pass in steps short enough for a ramp of the surroundings to stay smooth.
+fn soak(sensor: &mut SimMpu6050, seconds: f32) {
+    const STEP_S: f32 = 5.0;
+    let mut left = seconds;
+    while left > 0.0 {
+        sensor.elapse_seconds(left.min(STEP_S));
+        left -= STEP_S;
+    }
 }
 
 /// Reboots the board on its own sensor, flash and serial number (RAM state is lost).
@@ -68,6 +82,8 @@ impl Service {
                 self.motion_ends_us = Some(sensor.now_us() + (f64::from(seconds) * 1e6) as u64);
             }
             SimCommand::Connect(connected) => sensor.set_connected(connected),
+            SimCommand::Ambient { target_c, c_per_s } => sensor.physics.environment.ramp_to(target_c, c_per_s),
+            SimCommand::Elapse(seconds) => soak(sensor, seconds),
             SimCommand::LoseSamples(count) => self.outgoing.lose_samples(count),
             SimCommand::Restart | SimCommand::Stop => {}
         }

@@ -8,6 +8,7 @@ mod validate;
 use serde::{Deserialize, Serialize};
 
 use crate::linalg::{self, Mat3, Vec3};
+use crate::protocol::LowPassFilter;
 
 pub use origin::{ModelTag, Origin, Procedure, MODEL_TAG_LEN};
 pub use temperature::{drift, TempCoefficients, TemperatureModel, MAX_TEMP_ORDER};
@@ -83,6 +84,9 @@ pub struct Calibration {
     pub origin: Origin,
     /// The accelerometer range the calibration belongs to.
     pub range: AccelRange,
+    /// The low-pass filter the captures were taken through (it shapes the noise the residual and
+    /// the still checks saw, and the group delay of corrected samples).
+    pub filter: LowPassFilter,
     /// Correction matrix M (row-major, dimensionless).
     pub matrix: Mat3<f32>,
     /// Offset o in g, subtracted before M is applied.
@@ -103,6 +107,7 @@ impl Calibration {
         Calibration {
             origin: Origin::IDENTITY,
             range,
+            filter: LowPassFilter::default(),
             matrix: linalg::identity(),
             offset_g: [0.0; 3],
             gyro: GyroCalibration::default(),

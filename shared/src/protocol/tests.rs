@@ -16,6 +16,7 @@ fn calibration() -> Calibration {
     Calibration {
         origin: Origin { procedure: Procedure::Uploaded, model: ModelTag::new("reference-norm12").unwrap() },
         range: AccelRange::G16,
+        filter: LowPassFilter::Hz5,
         matrix: [[1.0006, 3.58e-4, -7.29e-3], [0.0, 1.003, 4.62e-4], [0.0, 0.0, 0.9834]],
         offset_g: [0.0276, -0.0057, -0.0783],
         gyro: GyroCalibration {

@@ -3,10 +3,13 @@
 #![cfg_attr(not(test), no_std)]
 
 use embassy_futures::block_on;
+use firmware::device::sample_message;
 use firmware::device::Device;
+use firmware::sensor::RawSample;
 use firmware::sim::{sim_serial_number, SimFlash, SimMpu6050, SIM_FLASH_RANGE};
-use shared::protocol::{Request, Response, StreamKind};
-use shared::{Position, PositionMap};
+use shared::calibration::{GyroCalibration, TemperatureModel};
+use shared::protocol::{Request, Response, SensorConfig, StreamKind};
+use shared::{AccelRange, Calibration, Position, PositionMap};
 
 /// The published phone readings in m/s^2 (Georgieva and Hofreither), the six faces in their order.
 const PHONE: [(Position, [f32; 3]); 6] = [
@@ -28,7 +31,49 @@ pub struct Result<'a> {
 
 /// Runs every computation and hands each result to `report`; `false` when one could not run.
 pub fn run(report: &mut impl FnMut(Result<'_>)) -> bool {
-    phone_six_position(report) && device_calibration(report)
+    phone_six_position(report) && device_calibration(report) && thermal_correction(report)
+}
+
+/// A calibration with a temperature model (the simulated sensor's typical drift, third order
+/// included, around 25 degC), for the chip's temperature correction.
+pub fn thermal_calibration() -> Calibration {
+    let mut model = TemperatureModel::flat(25.0);
+    model.offset_g = [[0.75e-3, -0.7e-3, 1.4e-3], [4e-6, 3e-6, -6e-6], [1e-8, -2e-8, 3e-8]];
+    model.scale = [[1.2e-4, -0.8e-4, 1.6e-4], [5e-7, 0.0, -5e-7], [0.0; 3]];
+    model.gyro_bias_dps = [[0.05, -0.07, 0.04], [4e-4, -3e-4, 5e-4], [0.0; 3]];
+    Calibration {
+        matrix: [[1.0006, 3.6e-4, -7.2e-3], [0.0, 1.003, 4.5e-4], [0.0, 0.0, 0.9834]],
+        offset_g: [27.6e-3, -5.7e-3, -78.3e-3],
+        gyro: GyroCalibration {
+            matrix: [[0.98, 0.004, 0.0], [-0.005, 1.016, 0.006], [0.0, -0.004, 0.988]],
+            bias_dps: [-1.2, 0.8, 0.35],
+        },
+        temperature: Some(model),
+        ..Calibration::identity(AccelRange::G2)
+    }
+}
+
+/// Raw samples at die temperatures of about 15, 25, 35 and 45 degC (TEMP_OUT = (T - 36.53) x 340).
+pub const THERMAL_RAW: [RawSample; 4] = [
+    RawSample { accel: [1200, -300, 15100], temp: -7320, gyro: [-160, 110, 40] },
+    RawSample { accel: [-16050, 420, -1300], temp: -3920, gyro: [-150, 100, 50] },
+    RawSample { accel: [9000, 11000, 7500], temp: -520, gyro: [-140, 90, 60] },
+    RawSample { accel: [-700, -16200, -2100], temp: 2880, gyro: [-130, 80, 70] },
+];
+
+/// The firmware's one raw-sample-to-message conversion with the temperature model: every sample
+/// corrected at its own die temperature.
+fn thermal_correction(report: &mut impl FnMut(Result<'_>)) -> bool {
+    let calibration = thermal_calibration();
+    let mut values = [0.0f32; 28];
+    for (i, raw) in THERMAL_RAW.iter().enumerate() {
+        let sample = sample_message(raw, i as u32, 0, SensorConfig::default(), Some(&calibration));
+        values[7 * i] = sample.temp_c;
+        values[7 * i + 1..7 * i + 4].copy_from_slice(&sample.accel_g);
+        values[7 * i + 4..7 * i + 7].copy_from_slice(&sample.gyro_dps);
+    }
+    report(Result { name: "thermal-corrected-samples", values: &values });
+    true
 }
 
 /// shared's six-position closed form on the published phone readings, in f32.

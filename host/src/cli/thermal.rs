@@ -1,0 +1,242 @@
+//! `accelcal thermal`: learns how the sensor drifts with temperature, fits the temperature model
+//! around the static calibration and makes it active on the chip. With `--sim` it runs the whole
+//! simulated story: a static calibration at 25 degC, learning while the board warms from 13 to 47
+//! degC, and verification at fresh orientations at 15, 25, 35 and 45 degC against the truth.
+
+use std::sync::mpsc::Sender;
+use std::time::Duration;
+
+use rand_xoshiro::rand_core::SeedableRng;
+use rand_xoshiro::Xoshiro256PlusPlus;
+use shared::linalg::{self, Vec3};
+use shared::protocol::CalibrationSlot;
+use shared::Calibration;
+
+use super::args::ThermalArgs;
+use crate::calibration::{self as record, CalibrationJson};
+use crate::error::Error;
+use crate::fit::thermal::{fit_temperature, ThermalFit};
+use crate::link::{Connection, LinkError};
+use crate::procedure::thermal::{capture_now, learn, LearnEnd, LearnOptions, LearnStatus, ThermalBins, ThermalBoard};
+use crate::procedure::{corners, faces, ProcedureError};
+use crate::report::thermal::{ThermalFitJson, ThermalReport, ThermalRow};
+use crate::sim::{random, SimBoard, SimCommand};
+
+/// The reported temperatures the simulated story verifies at, in degC.
+const VERIFY_TEMPS_C: [f32; 4] = [15.0, 25.0, 35.0, 45.0];
+/// The reported temperature of the simulated static calibration, in degC.
+const STATIC_TEMP_C: f32 = 25.0;
+/// The simulated learning run: from this reported temperature ...
+const LEARN_FROM_C: f32 = 13.0;
+/// ... while the surroundings warm to this, in degC ...
+const LEARN_AMBIENT_TO_C: f32 = 44.0;
+/// ... at 1 degC a minute, in degC/s.
+const LEARN_RAMP_C_PER_S: f32 = 1.0 / 60.0;
+/// Long enough for the die to settle: ten time constants of the simulated board, in seconds.
+const SOAK_S: f32 = 2400.0;
+/// Capture length while learning and verifying, in seconds.
+const CAPTURE_S: u8 = 5;
+
+/// Runs `accelcal thermal`.
+pub(super) fn thermal(args: &ThermalArgs) -> Result<(), Error> {
+    let mut opened = args.device.open()?;
+    opened.connection.info.sensor.map_err(LinkError::from)?;
+    let report = match opened.sim.take() {
+        Some(board) => sim_story(&mut opened.connection, &board, args)?,
+        None => person_run(&mut opened.connection, args)?,
+    };
+    if args.json {
+        println!("{}", report.json());
+    } else {
+        print!("{}", report.text());
+    }
+    Ok(())
+}
+
+/// The simulated board, turned and soaked by the tool.
+struct SimThermal<'a> {
+    board: &'a SimBoard,
+    controls: Sender<SimCommand>,
+}
+
+impl SimThermal<'_> {
+    fn send(&self, command: SimCommand) -> Result<(), ProcedureError> {
+        self.controls.send(command).map_err(|_| ProcedureError::SimulatedBoardStopped)
+    }
+
+    /// Soaks the board until its sensor reports `reading_c`.
+    fn settle_at(&mut self, reading_c: f32) -> Result<(), ProcedureError> {
+        let target_c = self.board.ambient_for(reading_c);
+        self.send(SimCommand::Ambient { target_c, c_per_s: f32::INFINITY })?;
+        self.send(SimCommand::Elapse(SOAK_S))
+    }
+}
+
+impl ThermalBoard for SimThermal<'_> {
+    fn place(&mut self, force_g: Vec3<f64>) -> Result<(), ProcedureError> {
+        self.send(SimCommand::Place(force_g.map(|v| v as f32)))
+    }
+
+    fn rest(&mut self, seconds: f64) -> Result<(), ProcedureError> {
+        self.send(SimCommand::Elapse(seconds as f32))
+    }
+}
+
+/// A person's board: it rests where it is while real time passes.
+struct RestingBoard;
+
+impl ThermalBoard for RestingBoard {
+    fn place(&mut self, _force_g: Vec3<f64>) -> Result<(), ProcedureError> {
+        Ok(())
+    }
+
+    fn rest(&mut self, seconds: f64) -> Result<(), ProcedureError> {
+        std::thread::sleep(Duration::from_secs_f64(seconds));
+        Ok(())
+    }
+}
+
+fn sim_story(connection: &mut Connection, board: &SimBoard, args: &ThermalArgs) -> Result<ThermalReport, Error> {
+    let mut sim = SimThermal { board, controls: board.controls() };
+    sim.settle_at(STATIC_TEMP_C)?;
+    let static_calibration = six_faces_on_chip(connection, &mut sim)?;
+    sim.settle_at(LEARN_FROM_C)?;
+    sim.send(SimCommand::Ambient { target_c: LEARN_AMBIENT_TO_C, c_per_s: LEARN_RAMP_C_PER_S })?;
+    let face_forces: Vec<Vec3<f64>> = faces().iter().map(|f| f.up).collect();
+    let options = learn_options(face_forces, args.target_span_c, 20.0);
+    let (calibration, fit_json) = learn_and_fit(connection, &mut sim, &options, &static_calibration, args.json)?;
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(args.device.seed);
+    let mut verification = Vec::new();
+    for temp_c in VERIFY_TEMPS_C {
+        sim.settle_at(temp_c)?;
+        verification.push(verify_row(connection, &mut sim, &calibration, usize::from(args.verify), &mut rng)?);
+    }
+    Ok(ThermalReport { calibration: CalibrationJson::from_device(&calibration), fit: fit_json, verification })
+}
+
+/// The six faces captured and fitted on the chip: the static calibration.
+fn six_faces_on_chip(connection: &mut Connection, sim: &mut SimThermal) -> Result<Calibration, Error> {
+    connection.client.clear_positions()?;
+    for face in faces() {
+        sim.place(face.up)?;
+        capture_now(connection, CAPTURE_S)?;
+    }
+    Ok(connection.client.fit_six_position()?)
+}
+
+fn learn_options(faces: Vec<Vec3<f64>>, target_span_c: f64, rest_seconds: f64) -> LearnOptions {
+    LearnOptions { faces, capture_seconds: CAPTURE_S, rest_seconds, target_span_c, max_rounds: 10_000 }
+}
+
+/// Learns (keeping the bins if interrupted), fits, and makes the combined calibration active.
+fn learn_and_fit(
+    connection: &mut Connection,
+    board: &mut dyn ThermalBoard,
+    options: &LearnOptions,
+    static_calibration: &Calibration,
+    quiet: bool,
+) -> Result<(Calibration, ThermalFitJson), Error> {
+    let mut bins = ThermalBins::default();
+    let mut show = |s: LearnStatus| {
+        if !quiet {
+            eprint!("\rtemperature {:5.1} degC, span {:4.1} degC, {:3} bins", s.temp_c, s.span_c, s.bins);
+        }
+    };
+    let learned = learn(connection, board, options, &mut bins, &mut show);
+    if !quiet {
+        eprintln!();
+    }
+    let stopped = match learned {
+        Ok(end) => end_text(end).to_owned(),
+        Err(error) if bins.check_span().is_ok() => format!("interrupted ({error}); fitted what was learned"),
+        Err(error) => return Err(error.into()),
+    };
+    let fit = fit_temperature(&record::thermal_reference(static_calibration), &bins.check_span()?.points())?;
+    let calibration = record::with_temperature(static_calibration, fit.model)?;
+    connection.client.set_calibration(calibration)?;
+    let learned = bins.range_c().unwrap_or_default();
+    Ok((calibration, fit_summary(&fit, &bins, learned, stopped)))
+}
+
+fn fit_summary(fit: &ThermalFit, bins: &ThermalBins, learned: (f64, f64), stopped: String) -> ThermalFitJson {
+    ThermalFitJson::new(fit, bins.len(), learned, stopped)
+}
+
+fn end_text(end: LearnEnd) -> &'static str {
+    match end {
+        LearnEnd::SpanReached => "the span was reached",
+        LearnEnd::Stalled => "the temperature stalled",
+        LearnEnd::RoundLimit => "the round limit was reached",
+    }
+}
+
+/// Fresh orientations at one temperature: the |a| error with and without the temperature model.
+fn verify_row(
+    connection: &mut Connection,
+    sim: &mut SimThermal,
+    calibration: &Calibration,
+    positions: usize,
+    rng: &mut Xoshiro256PlusPlus,
+) -> Result<ThermalRow, Error> {
+    let (mut static_sq, mut compensated_sq, mut temp_sum) = (0.0, 0.0, 0.0);
+    for up in fresh_orientations(rng).into_iter().take(positions) {
+        sim.place(up)?;
+        let stats = capture_now(connection, CAPTURE_S)?;
+        let norm_error = |a: Vec3<f32>| f64::from(linalg::norm(a)) - 1.0;
+        static_sq += norm_error(calibration.apply(stats.mean_g)).powi(2);
+        compensated_sq += norm_error(calibration.apply_at(stats.mean_g, stats.temp_c)).powi(2);
+        temp_sum += f64::from(stats.temp_c);
+    }
+    let n = positions.max(1) as f64;
+    let temp_c = temp_sum / n;
+    let mut row = truth_row(sim.board, calibration, temp_c as f32);
+    row.uncompensated_rms_mg = (static_sq / n).sqrt() * 1000.0;
+    row.compensated_rms_mg = (compensated_sq / n).sqrt() * 1000.0;
+    row.positions = positions;
+    Ok(row)
+}
+
+/// The eight corners of a cube turned about a random axis by a random angle: fresh orientations,
+/// spread evenly, so the rms |a| error they show does not hinge on where a few random draws fell
+/// (an offset error e shows as |e| / sqrt(3) rms over them, in any direction).
+fn fresh_orientations(rng: &mut Xoshiro256PlusPlus) -> Vec<Vec3<f64>> {
+    let axis = random::random_unit(rng);
+    let angle = random::gaussian(rng).atan2(random::gaussian(rng));
+    let (sin, cos) = angle.sin_cos();
+    let turn = |v: Vec3<f64>| {
+        let along = linalg::scale(axis, linalg::dot(axis, v) * (1.0 - cos));
+        linalg::add(linalg::add(linalg::scale(v, cos), linalg::scale(linalg::cross(axis, v), sin)), along)
+    };
+    corners().iter().map(|corner| turn(corner.up)).collect()
+}
+
+/// The truth, the applied and the static correction at `temp_c`, and the gyro bias error.
+fn truth_row(board: &SimBoard, calibration: &Calibration, temp_c: f32) -> ThermalRow {
+    let truth = board.truth_at(temp_c);
+    let (applied_matrix, applied_offset) = record::applied_at(calibration, temp_c);
+    let (static_matrix, static_offset) = record::static_part(calibration);
+    let bias = record::gyro_bias_at(calibration, temp_c);
+    let gyro_error = (0..3).map(|k| (bias[k] - f64::from(truth.gyro_bias_dps[k])).abs()).fold(0.0, f64::max);
+    ThermalRow {
+        temp_c: f64::from(temp_c),
+        matrix: truth.matrix.map(|row| row.map(f64::from)),
+        offset: truth.offset_g.map(f64::from),
+        applied_matrix,
+        applied_offset,
+        static_matrix,
+        static_offset,
+        uncompensated_rms_mg: 0.0,
+        compensated_rms_mg: 0.0,
+        gyro_bias_error_dps: gyro_error,
+        positions: 0,
+    }
+}
+
+/// A real board: it rests in one orientation while its temperature changes (offset drift only),
+/// around the calibration active on it.
+fn person_run(connection: &mut Connection, args: &ThermalArgs) -> Result<ThermalReport, Error> {
+    let active = connection.client.calibration(CalibrationSlot::Active)?.ok_or(ProcedureError::NoActiveCalibration)?;
+    let options = learn_options(vec![[0.0, 0.0, 1.0]], args.target_span_c, 30.0);
+    let (calibration, fit) = learn_and_fit(connection, &mut RestingBoard, &options, &active, args.json)?;
+    Ok(ThermalReport { calibration: CalibrationJson::from_device(&calibration), fit, verification: Vec::new() })
+}

@@ -1,0 +1,83 @@
+//! The temperature fit on synthetic readings from a known model.
+
+use shared::calibration::TemperatureModel;
+use shared::{AccelRange, Calibration};
+
+use super::{fit_temperature, ThermalFitError, ThermalPoint, ThermalReference};
+
+fn reference(calibration: &Calibration) -> ThermalReference {
+    ThermalReference { ref_temp_c: calibration.mean_temp_c, matrix: calibration.matrix }
+}
+
+const FACES: [[f64; 3]; 6] =
+    [[1.0, 0.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, -1.0, 0.0], [0.0, 0.0, 1.0], [0.0, 0.0, -1.0]];
+
+/// The static calibration at 25 degC and a true model with curvature.
+fn truth() -> (Calibration, TemperatureModel) {
+    let calibration = Calibration {
+        matrix: [[1.0, 0.0, 0.0], [0.0, 0.99, 0.0], [0.0, 0.0, 1.02]],
+        offset_g: [0.02, -0.01, 0.05],
+        gyro: shared::calibration::GyroCalibration { bias_dps: [1.0, -0.5, 0.2], ..Default::default() },
+        mean_temp_c: 25.0,
+        ..Calibration::identity(AccelRange::G2)
+    };
+    let mut model = TemperatureModel::flat(25.0);
+    model.offset_g = [[0.75e-3, -0.7e-3, 1.4e-3], [4e-6, 3e-6, -6e-6], [0.0; 3]];
+    model.scale = [[1.2e-4, -0.8e-4, 1.6e-4], [0.0; 3], [0.0; 3]];
+    model.gyro_bias_dps = [[0.05, -0.07, 0.04], [4e-4, -3e-4, 5e-4], [0.0; 3]];
+    (calibration, model)
+}
+
+/// What the sensor reads at `temp_c` resting on `force`: m = (1 + d) M^-1 f + o(T), b(T) + 0.1 f.
+fn reading(calibration: &Calibration, model: &TemperatureModel, temp_c: f64, force: [f64; 3]) -> ThermalPoint {
+    let dt = temp_c - 25.0;
+    let poly = |c: &[[f32; 3]; 3], k: usize| (0..3).map(|j| f64::from(c[j][k]) * dt.powi(j as i32 + 1)).sum::<f64>();
+    let accel = [0, 1, 2].map(|k| {
+        let explained = force[k] / f64::from(calibration.matrix[k][k]);
+        (1.0 + poly(&model.scale, k)) * explained + f64::from(calibration.offset_g[k]) + poly(&model.offset_g, k)
+    });
+    let gyro =
+        [0, 1, 2].map(|k| f64::from(calibration.gyro.bias_dps[k]) + poly(&model.gyro_bias_dps, k) + 0.1 * force[k]);
+    ThermalPoint { temp_c, force_g: force, accel_g: accel, gyro_dps: gyro }
+}
+
+#[test]
+fn six_faces_across_15_to_45_degc_recover_offset_scale_and_gyro_drift() {
+    let (calibration, model) = truth();
+    let points: Vec<ThermalPoint> =
+        (0..31).flat_map(|t| FACES.map(|f| reading(&calibration, &model, 15.0 + f64::from(t) + 0.3, f))).collect();
+    let fit = fit_temperature(&reference(&calibration), &points).unwrap();
+    assert!(fit.scale_fitted);
+    for axis in 0..3 {
+        for k in 0..2 {
+            let offset = fit.model.offset_g[k][axis] - model.offset_g[k][axis];
+            assert!(offset.abs() < 1e-7, "c{} axis {axis}: off by {offset:e}", k + 1);
+            let gyro = fit.model.gyro_bias_dps[k][axis] - model.gyro_bias_dps[k][axis];
+            assert!(gyro.abs() < 1e-5, "e{} axis {axis}: off by {gyro:e}", k + 1);
+        }
+        let scale = fit.model.scale[0][axis] - model.scale[0][axis];
+        assert!(scale.abs() < 1e-7, "d1 axis {axis}: off by {scale:e}");
+    }
+    assert!(fit.held_out_mg < 1e-3, "{}", fit.held_out_mg);
+}
+
+#[test]
+fn one_orientation_gives_the_offset_drift_but_not_the_sensitivity() {
+    let (calibration, model) = truth();
+    let points: Vec<ThermalPoint> =
+        (0..31).map(|t| reading(&calibration, &model, 15.0 + f64::from(t), [0.0, 0.0, 1.0])).collect();
+    let fit = fit_temperature(&reference(&calibration), &points).unwrap();
+    assert!(!fit.scale_fitted);
+    assert_eq!(fit.model.scale, [[0.0; 3]; 3]);
+    // x and y see no force: their offset drift is exact; z's absorbs its sensitivity drift (1.6e-4/degC x 1/1.02 g).
+    assert!((fit.model.offset_g[0][0] - 0.75e-3).abs() < 1e-7, "{:?}", fit.model.offset_g);
+    assert!((fit.model.offset_g[0][2] - (1.4e-3 + 1.6e-4 / 1.02)).abs() < 1e-6, "{:?}", fit.model.offset_g);
+}
+
+#[test]
+fn fewer_than_six_temperature_bins_are_refused() {
+    let (calibration, model) = truth();
+    let points: Vec<ThermalPoint> =
+        (0..5).map(|t| reading(&calibration, &model, 20.0 + f64::from(t), FACES[0])).collect();
+    assert_eq!(fit_temperature(&reference(&calibration), &points), Err(ThermalFitError::TooFewBins { bins: 5 }));
+}
