@@ -17,6 +17,7 @@ pub(super) const COMMANDS: &[(&str, &str)] = &[
     ("unplug", "disconnect the sensor from the bus, as a loose wire (also: disconnect)"),
     ("replug", "connect the sensor again (also: connect)"),
     ("lose N", "the link loses the next N streamed samples, as a flaky cable"),
+    ("ambient C [C_PER_S]", "move the surroundings to C degC (at once, or at C_PER_S degC per second)"),
 ];
 
 /// Turn rate of `turn` without a rate, in deg/s.
@@ -52,6 +53,8 @@ pub(super) fn parse(line: &str) -> Option<Line> {
         ["unplug" | "disconnect"] => SimCommand::Connect(false),
         ["replug" | "connect"] => SimCommand::Connect(true),
         ["lose", count] => SimCommand::LoseSamples(count.parse().ok()?),
+        ["ambient", target] => ambient(target, "inf")?,
+        ["ambient", target, rate] => ambient(target, rate)?,
         _ => return None,
     };
     Some(Line::Board(command))
@@ -73,6 +76,13 @@ fn rotation(rate_dps: f32) -> Motion {
 
 fn shaking(amplitude_g: f32) -> Motion {
     Motion::Vibrating { amplitude_g, frequency_hz: SHAKE_HZ }
+}
+
+/// The surroundings moving to `target` degC at `rate` degC/s (a positive number, or `inf`: at once).
+fn ambient(target: &str, rate: &str) -> Option<SimCommand> {
+    let target_c: f32 = target.parse().ok().filter(|t: &f32| t.is_finite())?;
+    let c_per_s: f32 = rate.parse().ok().filter(|r: &f32| *r > 0.0)?;
+    Some(SimCommand::Ambient { target_c, c_per_s })
 }
 
 /// `motion` for `seconds` (a positive number), then rest.
@@ -103,6 +113,9 @@ mod tests {
         assert_eq!(board("replug"), Some(SimCommand::Connect(true)));
         assert_eq!(board("restart"), Some(SimCommand::Restart));
         assert_eq!(board("lose 7"), Some(SimCommand::LoseSamples(7)));
+        assert_eq!(board("ambient 40"), Some(SimCommand::Ambient { target_c: 40.0, c_per_s: f32::INFINITY }));
+        assert_eq!(board("ambient 5 0.1"), Some(SimCommand::Ambient { target_c: 5.0, c_per_s: 0.1 }));
+        assert_eq!(parse("ambient 5 -1"), None);
         assert_eq!(parse("help"), Some(Line::Help));
         assert_eq!(parse("place sideways"), None);
         assert_eq!(parse("turn -3"), None);
@@ -111,7 +124,7 @@ mod tests {
     #[test]
     fn help_lists_every_command_the_parser_takes() {
         let text = help();
-        for word in ["help", "place", "tilt", "turn", "shake", "restart", "unplug", "replug", "lose"] {
+        for word in ["help", "place", "tilt", "turn", "shake", "restart", "unplug", "replug", "lose", "ambient"] {
             assert!(text.lines().any(|l| l.trim_start().starts_with(word)), "{word} missing from\n{text}");
             assert!(parse(word).is_some() || parse(&format!("{word} 1")).is_some() || word == "place", "{word}");
         }
