@@ -32,6 +32,8 @@ pub enum Error {
     Fit(#[from] FitError),
     #[error("--g must be a positive number, got {g}")]
     BadGravity { g: f64 },
+    #[error("--json cannot ask whether to upload the calibration: add --yes to upload and save it, or leave out --json to be asked")]
+    JsonCannotAsk,
     #[error("which device? give --port PATH (see `accelcal ports`) or --sim")]
     WhichDevice,
     #[error("the device has no calibration to download: calibrate or upload one first")]

@@ -265,3 +265,23 @@ fn an_absurd_upload_is_refused_with_the_reason_before_it_reaches_the_board() {
     let output = accelcal(&["upload", "--sim", fit_in_si.to_str().unwrap()]);
     assert!(String::from_utf8(output.stderr).unwrap().contains("this fit is not in g: fit data in g with --g 1"));
 }
+
+#[test]
+fn calibrate_json_on_a_port_without_yes_is_refused_at_once_naming_the_missing_flag() {
+    let sim = SimPty::start("6");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_accelcal"))
+        .args(["calibrate", "--port", &sim.path, "--json"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // NOTE: without the refusal it waits for a person who never turns the board: give it 2 s.
+    std::thread::sleep(std::time::Duration::from_secs(2));
+    let finished = child.try_wait().unwrap();
+    let _ = child.kill();
+    let output = child.wait_with_output().unwrap();
+    assert!(finished.is_some_and(|status| !status.success()), "still running or exit 0 after 2 s: {finished:?}");
+    assert!(output.stdout.is_empty());
+    let stderr = String::from_utf8(output.stderr).unwrap();
+    assert!(stderr.starts_with("accelcal: --json cannot ask") && stderr.contains("add --yes"), "{stderr}");
+}

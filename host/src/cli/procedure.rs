@@ -27,6 +27,11 @@ struct Fitted {
 
 /// `accelcal calibrate`: captures, fit, upload, save, verification.
 pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
+    // NOTE: refused before anything happens: a run that could only end without the upload it was
+    // asked for must not start (the simulated board, turned by the tool itself, needs no answer).
+    if args.json && !args.yes && !args.device.sim {
+        return Err(Error::JsonCannotAsk);
+    }
     let mut opened = args.device.open()?;
     opened.connection.info.sensor.map_err(LinkError::from)?;
     let yes = args.yes || (args.json && opened.sim.is_some());
