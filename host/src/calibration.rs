@@ -9,6 +9,7 @@ use shared::{AccelRange, Calibration, CalibrationError};
 
 use crate::fit::{self, Fit};
 use crate::link::calibration_reason;
+use crate::report::shown;
 use crate::session::Session;
 
 /// A calibration as JSON, under the convention a = matrix (m - offset).
@@ -178,7 +179,7 @@ pub fn from_fit(fit: &Fit, session: &Session, range: AccelRange) -> Result<Calib
 /// One line: model, scales, offset in mg and residual.
 pub fn describe(calibration: &Calibration) -> String {
     let m = calibration.matrix;
-    let o = calibration.offset_g.map(|v| v * 1000.0);
+    let o = calibration.offset_g.map(|v| shown(f64::from(v) * 1000.0, 2));
     format!(
         "{}: scale {:.5} {:.5} {:.5}, offset {:+.2} {:+.2} {:+.2} mg, residual {:.3} mg",
         calibration.origin.model.as_str(),
@@ -206,5 +207,13 @@ mod tests {
         assert_eq!(json.matrix[0][1], f64::from(0.0023f32));
         let text = serde_json::to_string(&json).unwrap();
         assert_eq!(CalibrationJson::from_text(&text).unwrap().to_device(AccelRange::G2).unwrap(), calibration);
+    }
+
+    #[test]
+    fn an_offset_that_rounds_to_zero_is_described_without_a_minus() {
+        let calibration =
+            Calibration { offset_g: [-0.000_004, 0.012_34, -0.000_001], ..Calibration::identity(AccelRange::G2) };
+        let line = describe(&calibration);
+        assert!(line.contains("offset +0.00 +12.34 +0.00 mg"), "{line}");
     }
 }

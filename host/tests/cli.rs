@@ -285,3 +285,28 @@ fn calibrate_json_on_a_port_without_yes_is_refused_at_once_naming_the_missing_fl
     let stderr = String::from_utf8(output.stderr).unwrap();
     assert!(stderr.starts_with("accelcal: --json cannot ask") && stderr.contains("add --yes"), "{stderr}");
 }
+
+#[test]
+fn every_out_of_range_argument_is_refused_when_parsed_naming_the_allowed_range() {
+    let cases: [(&[&str], &str); 8] = [
+        (&["calibrate", "--sim", "--seconds", "4"], "5..=20"),
+        (&["calibrate", "--sim", "--seconds", "21"], "5..=20"),
+        (&["capture", "--sim", "--session", "s", "--seconds", "0"], "5..=20"),
+        (&["calibrate", "--sim", "--verify", "0"], "1..=20"),
+        (&["verify", "--sim", "--positions", "21"], "1..=20"),
+        (&["calibrate", "--sim", "--sim-placement-deg", "11"], "not in 0-10 degrees"),
+        (&["stream", "--sim", "--rate", "30"], "does not divide the 100 Hz sample rate"),
+        (&["stream", "--sim", "--rate", "0"], "does not divide the 100 Hz sample rate"),
+    ];
+    for (args, allowed) in cases {
+        let started = std::time::Instant::now();
+        let output = accelcal(args);
+        let stderr = String::from_utf8(output.stderr).unwrap();
+        assert_eq!(output.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(stderr.contains(allowed), "{args:?}: {stderr}");
+        assert!(started.elapsed() < std::time::Duration::from_secs(2), "{args:?} refused only after it started");
+    }
+    let help = String::from_utf8(accelcal(&["calibrate", "--help"]).stdout).unwrap();
+    assert!(help.contains("Seconds to average each position (5-20)") && help.contains("(1-20)"), "{help}");
+    assert!(help.contains("(0-10)"), "{help}");
+}

@@ -66,11 +66,12 @@ pub struct CalibrateArgs {
     /// Only the six faces, fitted on the chip.
     #[arg(long)]
     pub quick: bool,
-    #[arg(long, default_value_t = DEFAULT_CAPTURE_SECONDS, help = seconds_help("Seconds to average each position"))]
+    #[arg(long, default_value_t = DEFAULT_CAPTURE_SECONDS, value_parser = seconds(),
+          help = seconds_help("Seconds to average each position"))]
     pub seconds: u8,
-    /// Fresh orientations to verify at.
-    #[arg(long, default_value_t = 6)]
-    pub verify: usize,
+    /// Fresh orientations to verify at (1-20).
+    #[arg(long, default_value_t = 6, value_parser = clap::value_parser!(u8).range(1..=MAX_VERIFY_POSITIONS))]
+    pub verify: u8,
     /// Upload and save without asking.
     #[arg(long)]
     pub yes: bool,
@@ -80,8 +81,8 @@ pub struct CalibrateArgs {
     /// Keep the session as PATH.json and PATH.csv.
     #[arg(long)]
     pub session: Option<PathBuf>,
-    /// With --sim: how many degrees off the tool places the board, as a hand would.
-    #[arg(long, default_value_t = 3.0)]
+    /// With --sim: how many degrees off the tool places the board, as a hand would (0-10).
+    #[arg(long, default_value_t = 3.0, value_parser = placement_deg)]
     pub sim_placement_deg: f64,
 }
 
@@ -96,7 +97,7 @@ pub struct CaptureArgs {
     /// A name for the position (a face or corner name such as +X or +X+Y+Z records that orientation).
     #[arg(long, default_value = "position")]
     pub name: String,
-    #[arg(long, default_value_t = DEFAULT_CAPTURE_SECONDS, help = seconds_help("Seconds to average"))]
+    #[arg(long, default_value_t = DEFAULT_CAPTURE_SECONDS, value_parser = seconds(), help = seconds_help("Seconds to average"))]
     pub seconds: u8,
 }
 
@@ -111,7 +112,7 @@ pub struct StreamArgs {
     /// Samples to stream.
     #[arg(long, default_value_t = 100)]
     pub count: u32,
-    #[arg(long, default_value_t = 10, help = rate_help())]
+    #[arg(long, default_value_t = 10, value_parser = stream_rate, help = rate_help())]
     pub rate: u16,
 }
 
@@ -166,9 +167,9 @@ pub enum Command {
     Verify {
         #[command(flatten)]
         device: Device,
-        /// Orientations to check.
-        #[arg(long, default_value_t = 4)]
-        positions: usize,
+        /// Orientations to check (1-20).
+        #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u8).range(1..=MAX_VERIFY_POSITIONS))]
+        positions: u8,
     },
     /// Streams samples as CSV on stdout.
     Stream(StreamArgs),
@@ -181,6 +182,43 @@ pub enum Command {
         #[arg(long, default_value_t = 1)]
         seed: u64,
     },
+}
+
+/// Most fresh orientations a verification asks for.
+///
+/// NOTE: the simulated hand keeps its orientations 30 degrees apart, and about 20 such fit on the
+/// sphere with room to spare; a person would not turn the board more often than that anyway.
+const MAX_VERIFY_POSITIONS: i64 = 20;
+/// Largest placement error of the simulated hand, in degrees.
+///
+/// NOTE: beyond 10 degrees a face is no longer reliably within the face tolerance's reach after
+/// the sensor's own offset tilts it, and the run would wait for a face it never reaches.
+const MAX_PLACEMENT_DEG: f64 = 10.0;
+
+/// The capture lengths the device accepts, refused when parsed.
+fn seconds() -> clap::builder::RangedI64ValueParser<u8> {
+    clap::value_parser!(u8).range(i64::from(MIN_CAPTURE_SECONDS)..=i64::from(MAX_CAPTURE_SECONDS))
+}
+
+/// A placement error in degrees within 0-[`MAX_PLACEMENT_DEG`].
+fn placement_deg(text: &str) -> Result<f64, String> {
+    let deg: f64 = text.parse().map_err(|_| format!("{text:?} is not a number of degrees"))?;
+    if (0.0..=MAX_PLACEMENT_DEG).contains(&deg) {
+        Ok(deg)
+    } else {
+        Err(format!("{deg} is not in 0-{MAX_PLACEMENT_DEG} degrees"))
+    }
+}
+
+/// A stream rate that divides the sensor's sample rate.
+fn stream_rate(text: &str) -> Result<u16, String> {
+    let sample_rate_hz = SensorConfig::default().sample_rate_hz;
+    let rate: u16 = text.parse().map_err(|_| format!("{text:?} is not a whole number of samples per second"))?;
+    if rate > 0 && sample_rate_hz % rate == 0 {
+        Ok(rate)
+    } else {
+        Err(format!("{rate} does not divide the {sample_rate_hz} Hz sample rate (for example 1, 10, 50 or 100)"))
+    }
 }
 
 /// Help for a capture length, with the limits the device accepts.

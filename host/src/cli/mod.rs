@@ -38,7 +38,7 @@ pub fn run(cli: Cli) -> Result<(), Error> {
         Command::Info { device, json } => board::info(&device, json),
         Command::Calibrate(args) => procedure::calibrate(&args),
         Command::Capture(args) => procedure::capture(&args),
-        Command::Verify { device, positions } => procedure::verify(&device, positions),
+        Command::Verify { device, positions } => procedure::verify(&device, usize::from(positions)),
         Command::Upload { device, file, save } => transfer::upload(&device, &file, save),
         Command::Save { device } => transfer::save(&device),
         Command::Download { device, stored } => transfer::download(&device, stored),

@@ -50,7 +50,8 @@ pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
     if !upload_if_confirmed(client, &fitted.chosen, feedback.as_mut())? {
         return Ok(());
     }
-    let verification = procedure::verify(client, hand.as_mut(), args.verify, wait_limit, feedback.as_mut())?;
+    let verification =
+        procedure::verify(client, hand.as_mut(), usize::from(args.verify), wait_limit, feedback.as_mut())?;
     let truth = opened.sim.as_ref().map(|board| board.truth());
     let captures = fitted.session.captures.len();
     let report =
@@ -92,7 +93,7 @@ fn show_choice(feedback: &mut dyn Feedback, fitted: &Fitted) {
     if let Some(fit) = &fitted.host {
         for p in &fit.parameters {
             let error = p.std_error.map_or(String::new(), |e| format!(" +- {e:.1e}"));
-            feedback.say(&format!("  {:<5} {:+.6}{error}", p.name, p.value));
+            feedback.say(&format!("  {:<5} {:+.6}{error}", p.name, crate::report::shown(p.value, 6)));
         }
         feedback.say(&format!("on-chip six-position fit for comparison: {}", describe(&fitted.chip)));
     }
