@@ -310,3 +310,18 @@ fn every_out_of_range_argument_is_refused_when_parsed_naming_the_allowed_range()
     assert!(help.contains("Seconds to average each position (5-20)") && help.contains("(1-20)"), "{help}");
     assert!(help.contains("(0-10)"), "{help}");
 }
+
+#[test]
+fn calibrate_sim_with_one_seed_gives_the_same_calibration_every_run() {
+    let run = || {
+        let output = accelcal(&["calibrate", "--sim", "--seed", "9", "--json"]);
+        assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+        String::from_utf8(output.stdout).unwrap()
+    };
+    let first = run();
+    for _ in 0..4 {
+        assert_eq!(run(), first, "another result from the same seed");
+    }
+    let other = String::from_utf8(accelcal(&["calibrate", "--sim", "--seed", "10", "--json"]).stdout).unwrap();
+    assert_ne!(other, first, "the seed makes no difference");
+}

@@ -9,7 +9,7 @@ use firmware::server::Server;
 use firmware::sim::physics::{Motion, TrueErrors};
 use firmware::sim::{sim_serial_number, SimFlash, SimMpu6050, SIM_FLASH_RANGE};
 
-use super::serve::serve;
+use super::serve::{serve, Clock};
 use super::Port;
 use crate::link::{pipe, Connection, LinkError};
 
@@ -39,6 +39,11 @@ impl SimBoard {
     /// Boots a board on `flash` (keep it across `stop` and `spawn` to simulate a restart), with the
     /// published error model and noise seeded by `seed`, and serves `port` until stopped.
     pub fn spawn<P: Port + 'static>(port: P, flash: SimFlash, seed: u64) -> Self {
+        Self::spawn_with_clock(port, flash, seed, Clock::RealTime)
+    }
+
+    /// [`SimBoard::spawn`], with simulated time passing while idle as `clock` says.
+    fn spawn_with_clock<P: Port + 'static>(port: P, flash: SimFlash, seed: u64, clock: Clock) -> Self {
         let sensor = SimMpu6050::new(seed);
         let truth = sensor.physics.truth;
         let (commands, inbox) = channel();
@@ -46,17 +51,18 @@ impl SimBoard {
             // NOTE: boot fails only for a flash range that does not fit the flash, and
             // SIM_FLASH_RANGE is the whole of SimFlash; the board then simply never answers.
             match block_on(Device::boot(sensor, flash, SIM_FLASH_RANGE, sim_serial_number(seed))) {
-                Ok(device) => serve(port, Server::new(device), inbox),
+                Ok(device) => serve(port, Server::new(device), inbox, clock),
                 Err(_) => SimFlash::default(),
             }
         });
         SimBoard { commands, thread: Some(thread), truth }
     }
 
-    /// A fresh simulated board in this process, behind an in-memory pipe, and a session with it.
+    /// A fresh simulated board in this process, behind an in-memory pipe, and a session with it; its
+    /// clock runs in lockstep with the requests, so a run is repeatable by its seed.
     pub fn in_process(seed: u64) -> Result<(Connection, SimBoard), LinkError> {
         let (host_end, device_end) = pipe();
-        let board = SimBoard::spawn(device_end, SimFlash::new(), seed);
+        let board = SimBoard::spawn_with_clock(device_end, SimFlash::new(), seed, Clock::Lockstep);
         Ok((Connection::over(Box::new(host_end))?, board))
     }
 

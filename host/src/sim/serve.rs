@@ -1,8 +1,9 @@
 //! The simulated board's service loop: commands from its owner, then one step of the board's own
 //! serve cycle (read, hand to the link, poll, drain responses, encode, write).
 //!
-//! Simulated time advances 10 ms per service loop: at the pace of real time while idle, as fast as
-//! the loop runs while a capture or stream is under way, so a 10 s capture takes a fraction of that.
+//! Simulated time advances 10 ms per service loop while a capture or stream is under way, as fast as
+//! the loop runs, so a 10 s capture takes a fraction of that. While idle it follows the [`Clock`]:
+//! about real speed, or not at all (lockstep), which makes a run depend on its seed alone.
 
 use std::io::ErrorKind;
 use std::sync::mpsc::{Receiver, TryRecvError};
@@ -23,23 +24,65 @@ const IDLE_WAIT: Duration = Duration::from_millis(10);
 
 type SimServer = Server<SimMpu6050, SimFlash>;
 
+/// How simulated time passes while the board is idle.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Clock {
+    /// At about real speed: the sensor keeps sampling between requests, as a real one does.
+    RealTime,
+    /// Not at all: time passes only while the board works, so the samples a run sees depend on
+    /// the seed and the requests alone, never on how fast the host happens to be.
+    Lockstep,
+}
+
 /// Serves `port` until told to stop or the host end goes away; returns the flash.
-pub(super) fn serve<P: Port>(mut port: P, mut server: SimServer, inbox: Receiver<SimCommand>) -> SimFlash {
+pub(super) fn serve<P: Port>(
+    mut port: P,
+    mut server: SimServer,
+    inbox: Receiver<SimCommand>,
+    clock: Clock,
+) -> SimFlash {
+    let mut buffer = [0u8; 256];
     loop {
-        match inbox.try_recv() {
-            Ok(SimCommand::Stop) | Err(TryRecvError::Disconnected) => break,
-            Ok(SimCommand::Restart) => match restart(server) {
-                Some(rebooted) => server = rebooted,
-                None => return SimFlash::default(),
-            },
-            Ok(command) => turn(&mut server, command),
-            Err(TryRecvError::Empty) => {}
+        let Some(received) = read(&mut port, &server, &mut buffer) else { break };
+        // NOTE: commands after the read: a command sent before a request is applied before the
+        // request is handled, however the two race to this thread.
+        server = match obey(&inbox, server) {
+            Obeyed::Serve(server) => server,
+            Obeyed::Stopped(flash) => return flash,
+        };
+        block_on(server.receive(&buffer[..received]));
+        if clock == Clock::RealTime || server.device().is_busy() {
+            server.device_mut().bus_mut().advance_us(TICK_US);
         }
-        if !step(&mut port, &mut server) {
-            break;
-        }
+        server.poll();
+        let mut writing = true;
+        server.drain(|frame| writing = writing && port.write_all(frame).is_ok());
+        let _ = port.flush();
     }
     server.into_device().into_parts().1
+}
+
+/// The server after its owner's commands, or its flash once told to stop.
+enum Obeyed {
+    Serve(SimServer),
+    Stopped(SimFlash),
+}
+
+/// Carries out every command waiting in `inbox`.
+fn obey(inbox: &Receiver<SimCommand>, mut server: SimServer) -> Obeyed {
+    loop {
+        match inbox.try_recv() {
+            Ok(SimCommand::Stop) | Err(TryRecvError::Disconnected) => {
+                return Obeyed::Stopped(server.into_device().into_parts().1)
+            }
+            Ok(SimCommand::Restart) => match restart(server) {
+                Some(rebooted) => server = rebooted,
+                None => return Obeyed::Stopped(SimFlash::default()),
+            },
+            Ok(command) => turn(&mut server, command),
+            Err(TryRecvError::Empty) => return Obeyed::Serve(server),
+        }
+    }
 }
 
 /// Applies a command to the simulated sensor.
@@ -60,21 +103,17 @@ fn restart(server: SimServer) -> Option<SimServer> {
     block_on(Device::boot(sensor, flash, SIM_FLASH_RANGE, serial)).ok().map(Server::new)
 }
 
-/// One service cycle; `false` when the host end is gone.
-fn step<P: Port>(port: &mut P, server: &mut SimServer) -> bool {
-    let mut buffer = [0u8; 256];
+/// Reads what the host sent (waiting a little while idle); `None` when the host end is gone.
+fn read<P: Port>(port: &mut P, server: &SimServer, buffer: &mut [u8]) -> Option<usize> {
     let wait = if server.device().is_busy() { Duration::ZERO } else { IDLE_WAIT };
     let _ = port.set_read_timeout(wait);
-    match port.read(&mut buffer) {
-        Ok(n) => block_on(server.receive(&buffer[..n])),
-        Err(e) if matches!(e.kind(), ErrorKind::TimedOut | ErrorKind::WouldBlock | ErrorKind::Interrupted) => {}
-        Err(e) if e.kind() == ErrorKind::BrokenPipe => return false, // the in-process host is gone
-        Err(_) => std::thread::sleep(IDLE_WAIT),                     // a pty with no one on the other side yet
+    match port.read(buffer) {
+        Ok(n) => Some(n),
+        Err(e) if matches!(e.kind(), ErrorKind::TimedOut | ErrorKind::WouldBlock | ErrorKind::Interrupted) => Some(0),
+        Err(e) if e.kind() == ErrorKind::BrokenPipe => None, // the in-process host is gone
+        Err(_) => {
+            std::thread::sleep(IDLE_WAIT); // a pty with no one on the other side yet
+            Some(0)
+        }
     }
-    server.device_mut().bus_mut().advance_us(TICK_US);
-    server.poll();
-    let mut writing = true;
-    server.drain(|frame| writing = writing && port.write_all(frame).is_ok());
-    let _ = port.flush();
-    true
 }
