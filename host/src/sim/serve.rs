@@ -42,14 +42,17 @@ pub(super) fn serve<P: Port>(
     clock: Clock,
 ) -> SimFlash {
     let mut buffer = [0u8; 256];
-    loop {
-        let Some(received) = read(&mut port, &server, &mut buffer) else { break };
+    while let Some(received) = read(&mut port, &server, &mut buffer) {
         // NOTE: commands after the read: a command sent before a request is applied before the
         // request is handled, however the two race to this thread.
-        server = match obey(&inbox, server) {
-            Obeyed::Serve(server) => server,
-            Obeyed::Stopped(flash) => return flash,
-        };
+        match obey(&inbox, &mut server) {
+            Next::Serve => {}
+            Next::Stop => break,
+            Next::Restart => match restart(server) {
+                Some(rebooted) => server = rebooted,
+                None => return SimFlash::default(),
+            },
+        }
         block_on(server.receive(&buffer[..received]));
         if clock == Clock::RealTime || server.device().is_busy() {
             server.device_mut().bus_mut().advance_us(TICK_US);
@@ -62,25 +65,21 @@ pub(super) fn serve<P: Port>(
     server.into_device().into_parts().1
 }
 
-/// The server after its owner's commands, or its flash once told to stop.
-enum Obeyed {
-    Serve(SimServer),
-    Stopped(SimFlash),
+/// What the owner's commands leave to do.
+enum Next {
+    Serve,
+    Restart,
+    Stop,
 }
 
-/// Carries out every command waiting in `inbox`.
-fn obey(inbox: &Receiver<SimCommand>, mut server: SimServer) -> Obeyed {
+/// Carries out the commands waiting in `inbox`, up to a restart or a stop.
+fn obey(inbox: &Receiver<SimCommand>, server: &mut SimServer) -> Next {
     loop {
         match inbox.try_recv() {
-            Ok(SimCommand::Stop) | Err(TryRecvError::Disconnected) => {
-                return Obeyed::Stopped(server.into_device().into_parts().1)
-            }
-            Ok(SimCommand::Restart) => match restart(server) {
-                Some(rebooted) => server = rebooted,
-                None => return Obeyed::Stopped(SimFlash::default()),
-            },
-            Ok(command) => turn(&mut server, command),
-            Err(TryRecvError::Empty) => return Obeyed::Serve(server),
+            Ok(SimCommand::Stop) | Err(TryRecvError::Disconnected) => return Next::Stop,
+            Ok(SimCommand::Restart) => return Next::Restart,
+            Ok(command) => turn(server, command),
+            Err(TryRecvError::Empty) => return Next::Serve,
         }
     }
 }
