@@ -78,9 +78,13 @@ pub struct CalibrateArgs {
     /// Print one JSON object (non-interactive with --sim).
     #[arg(long)]
     pub json: bool,
-    /// Keep the session as PATH.json and PATH.csv.
-    #[arg(long)]
+    /// Keep the session as PATH.json and PATH.csv, written after every capture (with --port the
+    /// default is accelcal-session-TIME in the current directory).
+    #[arg(long, conflicts_with = "resume")]
     pub session: Option<PathBuf>,
+    /// Continue the session SESSION.json (same board, range and filter) with the positions it lacks.
+    #[arg(long, value_name = "SESSION")]
+    pub resume: Option<PathBuf>,
     /// With --sim: how many degrees off the tool places the board, as a hand would (0-10).
     #[arg(long, default_value_t = 3.0, value_parser = placement_deg)]
     pub sim_placement_deg: f64,

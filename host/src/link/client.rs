@@ -2,6 +2,8 @@
 
 use std::collections::VecDeque;
 use std::io::ErrorKind;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use shared::protocol::{self, DeviceInfo, Feed, FrameAccumulator, Request, Response, MAX_FRAME_LEN};
@@ -20,17 +22,34 @@ pub struct Client<P: Port> {
     accumulator: FrameAccumulator,
     decoded: VecDeque<Result<(u16, Response), LinkError>>,
     next_id: u16,
+    interrupt: Option<Arc<AtomicBool>>,
 }
 
 impl<P: Port> Client<P> {
     /// Opens a session: says hello and checks the protocol version.
     pub fn connect(mut port: P) -> Result<(Self, DeviceInfo), LinkError> {
         port.set_read_timeout(READ_SLICE).map_err(LinkError::Timeout)?;
-        let mut client = Client { port, accumulator: FrameAccumulator::new(), decoded: VecDeque::new(), next_id: 1 };
+        let mut client = Client {
+            port,
+            accumulator: FrameAccumulator::new(),
+            decoded: VecDeque::new(),
+            next_id: 1,
+            interrupt: None,
+        };
         // A leading delimiter ends any half frame left in the device's buffer by an earlier session.
         client.port.write_all(&[0]).map_err(LinkError::disconnected)?;
         let info = client.hello()?;
         Ok((client, info))
+    }
+
+    /// Once `flag` is set (by Ctrl-C), the running capture or stream is cancelled on the device and
+    /// every request ends with [`LinkError::Interrupted`].
+    pub fn interrupt_on(&mut self, flag: Arc<AtomicBool>) {
+        self.interrupt = Some(flag);
+    }
+
+    fn interrupted(&self) -> bool {
+        self.interrupt.as_ref().is_some_and(|flag| flag.load(Ordering::SeqCst))
     }
 
     /// A request that completes at once: its final response; a device error becomes `Err`.
@@ -41,10 +60,13 @@ impl<P: Port> Client<P> {
     /// A request with progress (capture) or samples (stream): each goes to `on_update`; returns the
     /// final response. Fails when the device is silent for [`SILENCE_LIMIT`].
     pub fn run(&mut self, request: Request, mut on_update: impl FnMut(&Response)) -> Result<Response, LinkError> {
+        if self.interrupted() {
+            return Err(LinkError::Interrupted);
+        }
         let id = self.send(&request)?;
-        let mut last_heard = Instant::now();
-        let mut updates = 0usize;
+        let (mut last_heard, mut updates, mut cancelled) = (Instant::now(), 0usize, false);
         loop {
+            cancelled = cancelled || self.cancel_if_interrupted()?;
             let (answer_id, response) = match self.receive(&mut last_heard) {
                 // Silence after progress: the device was there and no longer is.
                 Err(LinkError::Silent { .. }) if updates > 0 => return Err(LinkError::StoppedAnswering),
@@ -54,6 +76,9 @@ impl<P: Port> Client<P> {
                 continue;
             }
             match response {
+                _ if cancelled && !matches!(response, Response::Progress(_) | Response::Sample(_)) => {
+                    return Err(LinkError::Interrupted)
+                }
                 Response::Error(error) => return Err(error.into()),
                 Response::Progress(_) | Response::Sample(_) => {
                     updates += 1;
@@ -62,6 +87,17 @@ impl<P: Port> Client<P> {
                 last => return Ok(last),
             }
         }
+    }
+
+    /// Cancels the running operation once the interrupt flag is set; whether it did.
+    ///
+    /// NOTE: the device ends the cancelled operation with its final response, which `run` awaits.
+    fn cancel_if_interrupted(&mut self) -> Result<bool, LinkError> {
+        if self.interrupted() {
+            self.cancel()?;
+            return Ok(true);
+        }
+        Ok(false)
     }
 
     /// Asks the device to stop its capture or stream (the running `run` then ends).
