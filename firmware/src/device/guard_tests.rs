@@ -65,3 +65,20 @@ fn an_absurd_six_position_fit_is_refused_with_the_reason_and_the_active_calibrat
     assert!((value - 2.5).abs() < 0.01, "fitted x scale {value}");
     assert_eq!(device.active_calibration(), Some(kept));
 }
+
+#[test]
+fn a_reading_far_from_1_g_is_no_face_however_it_points() {
+    // A sensor returning (nearly) zeros, or at a wrong range, points along some axis all the same.
+    for (mean_g, face) in [
+        ([0.0, 0.0, 0.002], None),
+        ([0.001, -0.0005, 0.0], None),
+        ([0.0, 0.0, 0.5], None),
+        ([0.0, 0.0, 2.0], None),
+        ([0.0, 0.0, 0.76], Some(Position::PosZ)),
+        ([0.0, -1.2, 0.0], Some(Position::NegY)),
+    ] {
+        assert_eq!(super::jobs::face_of(mean_g), face, "{mean_g:?}");
+    }
+    assert!(shared::protocol::reads_gravity(1.0 - shared::protocol::MAX_GRAVITY_ERROR_G));
+    assert!(!shared::protocol::reads_gravity(1.0 - 1.01 * shared::protocol::MAX_GRAVITY_ERROR_G));
+}

@@ -7,7 +7,7 @@ use shared::orientation::angle_between_deg;
 use shared::protocol::StreamKind;
 
 use super::{Feedback, Orientation, ProcedureError};
-use crate::limits::{FRESH_DEG, STILL_ACCEL_STD_G};
+use crate::limits::{FRESH_DEG, MAX_GRAVITY_ERROR_G, STILL_ACCEL_STD_G, ZERO_READING_G};
 use crate::link::{Client, Port, StreamRequest};
 
 /// The live window: half a second of raw samples.
@@ -92,12 +92,33 @@ fn wait_for_rest<P: Port, R>(
         if limit.is_some_and(|l| started.elapsed() > l) {
             return Err(gave_up());
         }
-        let (line, verdict) = judge(live_window(client)?);
+        let window = live_window(client)?;
+        let (line, verdict) = match not_gravity(&window) {
+            Some(line) => (line, None),
+            None => judge(window),
+        };
         feedback.live(&line);
         if let Some(value) = streak.settled(verdict) {
             return Ok(value);
         }
     }
+}
+
+/// What the sensor reads when its magnitude cannot be gravity at rest (then it is no position at
+/// all), and what that usually means.
+fn not_gravity(window: &Window) -> Option<String> {
+    let magnitude_g = shared::linalg::norm(window.mean);
+    if (magnitude_g - 1.0).abs() <= MAX_GRAVITY_ERROR_G {
+        return None;
+    }
+    let meaning = if magnitude_g < ZERO_READING_G {
+        "it returns zeros: it is asleep, or not an MPU-6050; check `accelcal info` and the wiring"
+    } else if window.still {
+        "not the 1 g of gravity: the range setting or the sensor is wrong; check `accelcal info`"
+    } else {
+        "not the 1 g of gravity at rest: hold the board still"
+    };
+    Some(format!("the sensor reads {magnitude_g:.2} g, {meaning}"))
 }
 
 /// Windows accepted in a row: a board counts as at rest only when two windows in a row are
@@ -158,6 +179,18 @@ mod tests {
         assert_eq!(streak.settled(None::<i32>), None);
         assert_eq!(streak.settled(Some(2)), None);
         assert_eq!(streak.settled(Some(3)), Some(3));
+    }
+
+    #[test]
+    fn a_reading_far_from_1_g_is_no_position_and_says_what_the_sensor_reads() {
+        let zeros = Window { mean: [0.0, 0.0, 0.001], still: true };
+        let line = not_gravity(&zeros).unwrap();
+        assert_eq!(line, "the sensor reads 0.00 g, it returns zeros: it is asleep, or not an MPU-6050; check `accelcal info` and the wiring");
+        let half = Window { mean: [0.0, 0.0, 0.5], still: true };
+        assert!(not_gravity(&half).unwrap().starts_with("the sensor reads 0.50 g, not the 1 g"));
+        let limit = 1.0 - MAX_GRAVITY_ERROR_G;
+        assert_eq!(not_gravity(&Window { mean: [0.0, 0.0, limit + 1e-6], still: true }), None);
+        assert!(not_gravity(&Window { mean: [0.0, 0.0, limit - 1e-3], still: true }).is_some());
     }
 
     #[test]
