@@ -21,7 +21,8 @@ pub struct Cli {
 /// Which device to talk to.
 #[derive(Args, Clone)]
 pub struct Device {
-    /// Serial port of the board (see `accelcal ports`), or of `accelcal sim --pty`.
+    /// Serial port of the board (see `accelcal ports`), or of `accelcal sim --pty`; or the board's
+    /// serial number as `accelcal ports` shows it.
     #[arg(long, conflicts_with = "sim")]
     pub port: Option<String>,
     /// A simulated board in this process (its flash lasts as long as the command).

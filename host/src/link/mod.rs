@@ -11,7 +11,7 @@ mod requests;
 
 pub use client::{Client, SILENCE_LIMIT};
 pub use connect::{open_port, Connection};
-pub use discovery::{serial_ports, SerialPortEntry};
+pub use discovery::{resolve_port, serial_ports, SerialPortEntry};
 pub use error::LinkError;
 pub use explain::{calibration_reason, explain};
 pub use port::{open_serial, pipe, PipeEnd, Port};
