@@ -94,7 +94,9 @@ fn finish(
 ) -> Result<(), Error> {
     let (mut hand, wait_limit) = opened.hand(args.sim_placement_deg, args.device.seed);
     let client = &mut opened.connection.client;
-    let verification = procedure::verify(client, hand.as_mut(), usize::from(args.verify), wait_limit, feedback)?;
+    let calibrated: Vec<[f64; 3]> = fitted.session.captures.iter().map(|c| c.stats.mean_g.map(f64::from)).collect();
+    let positions = usize::from(args.verify);
+    let verification = procedure::verify_clear_of(client, hand.as_mut(), positions, wait_limit, feedback, &calibrated)?;
     let truth = opened.sim.as_ref().map(|board| board.truth());
     let captures = fitted.session.captures.len();
     let report =

@@ -16,7 +16,7 @@ pub use collect::{collect, collect_into};
 pub use feedback::{Feedback, Silent};
 pub use hand::{Hand, PersonHand};
 pub use simulated_hand::SimulatedHand;
-pub use verify::{verify, Verification, VERIFY_SECONDS};
+pub use verify::{verify, verify_clear_of, Verification, VERIFY_SECONDS};
 
 use crate::fit::{self, Fit, FitError, FitOptions, ModelChoice};
 use crate::link::LinkError;
