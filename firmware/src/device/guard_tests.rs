@@ -48,8 +48,9 @@ fn a_decimated_stream_sends_exactly_count_samples_every_nth_of_the_sensor_s() {
 #[test]
 fn an_absurd_six_position_fit_is_refused_with_the_reason_and_the_active_calibration_is_kept() {
     let mut sim = SimMpu6050::new(23);
-    // A sensor reading 0.4 g for 1 g on x: its correction scale would be 2.5, beyond the limit.
-    sim.physics.truth.matrix[0][0] = 2.5;
+    // A sensor whose x axis picks up 0.3 of y: the correction's cross-axis term would be 0.3, beyond
+    // the limit. (An absurd scale cannot reach the fit: a reading that far from 1 g is no face.)
+    sim.physics.truth.matrix[0][1] = 0.3;
     let mut device = boot(sim, Flash::new());
     let kept = Calibration { offset_g: [0.01, 0.0, 0.0], ..Calibration::identity(AccelRange::G2) };
     assert_eq!(ask(&mut device, 1, Request::SetCalibration(kept)), Response::Done);
@@ -58,11 +59,15 @@ fn an_absurd_six_position_fit_is_refused_with_the_reason_and_the_active_calibrat
         assert!(matches!(answer, Response::Captured { position: Some(p), .. } if p == position), "{answer:?}");
     }
     let answer = ask(&mut device, 8, Request::FitSixPosition);
-    let Response::Error(DeviceError::InvalidCalibration(CalibrationError::ScaleOutOfRange { axis: 0, value })) = answer
+    let Response::Error(DeviceError::InvalidCalibration(CalibrationError::CrossAxisOutOfRange {
+        row: 0,
+        col: 1,
+        value,
+    })) = answer
     else {
-        panic!("expected the x scale refused, got {answer:?}")
+        panic!("expected the xy cross-axis term refused, got {answer:?}")
     };
-    assert!((value - 2.5).abs() < 0.01, "fitted x scale {value}");
+    assert!((value - 0.3).abs() < 0.01, "fitted xy term {value}");
     assert_eq!(device.active_calibration(), Some(kept));
 }
 
