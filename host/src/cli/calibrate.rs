@@ -52,7 +52,10 @@ pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
     let fitted = choose(&mut opened.connection.client, &kept, opened.connection.info.config.range)?;
     show_choice(feedback.as_mut(), &fitted);
     let client = &mut opened.connection.client;
-    if interrupt.load(Ordering::SeqCst) || !upload_if_confirmed(client, &fitted.chosen, feedback.as_mut())? {
+    if interrupt.load(Ordering::SeqCst) {
+        return Err(LinkError::Interrupted.into());
+    }
+    if !upload_if_confirmed(client, &fitted.chosen, feedback.as_mut())? {
         return Ok(());
     }
     finish(args, &mut opened, &fitted, feedback.as_mut())
