@@ -194,7 +194,7 @@ fn a_port_that_vanishes_mid_capture_is_an_error_within_2_s_and_the_session_file_
     };
     let target = Orientation::named("+Z");
     let record = CaptureRecord { name: "+Z".into(), target, face: None, unix_time_s: 0.0, stats };
-    let session = Session { captures: vec![record] };
+    let session = Session { captures: vec![record], ..Session::default() };
     let stem = std::env::temp_dir().join(format!("accelcal-vanish-{}", std::process::id()));
     session.save(&stem).unwrap();
     let before = std::fs::read(stem.with_extension("json")).unwrap();
@@ -259,7 +259,10 @@ fn verification_waits_for_a_new_orientation_instead_of_counting_one_twice() {
         procedure::verify(&mut client, &mut Stubborn(board.controls()), 2, Some(Duration::from_secs(2)), &mut recorder)
             .unwrap_err()
             .to_string();
-    assert!(recorder.live.iter().any(|l| l == "this orientation was already verified: turn the board to a new one"));
+    assert!(recorder
+        .live
+        .iter()
+        .any(|l| l == "this orientation was used already (to calibrate or verify): turn the board to a new one"));
     assert_eq!(
         error,
         "the board never came to rest at a new orientation; turn it and hold it still, then run the command again"

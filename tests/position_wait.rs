@@ -1,6 +1,7 @@
-//! The position wait of the guided calibration accepts a position only after two live windows in a
-//! row are still and at the target: one still window, or two with a moving one between them, is not
-//! enough; the same holds for the verification's wait for a fresh orientation. Driven by a scripted device that serves each live window from a script and logs every
+//! The position wait of the guided calibration accepts a position only after two seconds of live
+//! windows in a row (four of half a second) still and at the target, counted from the prompt: a board
+//! already lying there is not captured at once, and a moving window starts the count again; the same
+//! holds for the verification's wait for a fresh orientation. Driven by a scripted device that serves each live window from a script and logs every
 //! request, so the test sees exactly when the capture was asked for.
 
 use std::sync::{Arc, Mutex};
@@ -117,27 +118,28 @@ impl Feedback for LiveLines {
 }
 
 #[test]
-fn two_still_windows_in_a_row_start_the_capture() {
+fn a_board_already_at_the_target_is_captured_only_after_two_seconds_still_after_the_prompt() {
     let (requests, live) = wait_for_z(&[Window::Still]);
-    assert_eq!(requests, ["clear", "window", "window", "capture"]);
-    assert_eq!(live, ["0.0 degrees from +Z (still)", "0.0 degrees from +Z (still)"]);
+    assert_eq!(requests, ["clear", "window", "window", "window", "window", "capture"]);
+    assert_eq!(live, ["0.0 degrees from +Z (still)"; 4]);
 }
 
 #[test]
-fn one_still_window_is_not_enough_and_a_moving_one_starts_the_count_again() {
+fn fewer_still_windows_are_not_enough_and_a_moving_one_starts_the_count_again() {
     use Window::{Moving, Still};
-    let (requests, live) = wait_for_z(&[Still, Moving, Still, Moving, Moving, Still, Still]);
-    // Still, moving (count back to zero), still, moving, moving, still, still: accepted at the 7th.
+    let (requests, live) = wait_for_z(&[Still, Moving, Still, Still, Still, Moving, Still]);
+    // Still, moving (count back to zero), three still, moving, then still (repeating): accepted at
+    // the 4th still window after the last moving one, the 10th window.
     let mut expected = vec!["clear"];
-    expected.extend(["window"; 7]);
+    expected.extend(["window"; 10]);
     expected.push("capture");
     assert_eq!(requests, expected);
-    assert_eq!(live[1], "0.0 degrees from +Z (moving)", "{live:?}");
-    assert_eq!(live.len(), 7, "{live:?}");
+    assert_eq!((live[1].as_str(), live[5].as_str()), ("0.0 degrees from +Z (moving)", "0.0 degrees from +Z (moving)"));
+    assert_eq!(live.len(), 10, "{live:?}");
 }
 
 #[test]
-fn the_verification_waits_for_two_still_windows_in_a_row_too() {
+fn the_verification_waits_for_two_seconds_of_still_windows_too() {
     use Window::{Moving, Still};
     let (mut client, log) = scripted_client(&[Still, Moving, Still, Still]);
     let mut feedback = LiveLines::default();
@@ -145,6 +147,18 @@ fn the_verification_waits_for_two_still_windows_in_a_row_too() {
     let verification = calibrate::verify(&mut client, &mut PersonHand, 1, wait, &mut feedback).unwrap();
     assert_eq!(verification.positions, 1);
     let requests = log.lock().unwrap().clone();
-    assert_eq!(requests, ["get", "window", "window", "window", "window", "capture", "calibrated"]);
-    assert_eq!(feedback.0, ["still", "moving: hold the board still", "still", "still"]);
+    assert_eq!(requests, ["get", "window", "window", "window", "window", "window", "window", "capture", "calibrated"]);
+    assert_eq!(feedback.0, ["still", "moving: hold the board still", "still", "still", "still", "still"]);
+}
+
+#[test]
+fn the_verification_never_takes_an_orientation_the_calibration_was_captured_at() {
+    // The board stays at +Z, where the calibration's last capture was taken.
+    let (mut client, _) = scripted_client(&[Window::Still]);
+    let mut feedback = LiveLines::default();
+    let wait = Some(Duration::from_millis(500));
+    let result = calibrate::verify_clear_of(&mut client, &mut PersonHand, 1, wait, &mut feedback, &[[0.0, 0.01, 0.98]]);
+    assert!(matches!(result, Err(calibrate::ProcedureError::NeverFresh)), "{result:?}");
+    assert!(!feedback.0.is_empty());
+    assert!(feedback.0.iter().all(|line| line.starts_with("this orientation was used already")), "{:?}", feedback.0);
 }

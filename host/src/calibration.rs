@@ -11,6 +11,7 @@ use shared::{AccelRange, Calibration, CalibrationError};
 use crate::fit::thermal::ThermalReference;
 use crate::fit::{self, Fit};
 use crate::link::calibration_reason;
+use crate::report::shown;
 use crate::session::Session;
 
 /// A calibration as JSON, under the convention a = matrix (m - offset).
@@ -226,9 +227,10 @@ pub fn with_temperature(
 
 /// One line: model, scales, offset in mg, residual, and the temperature model when there is one.
 pub fn describe(calibration: &Calibration) -> String {
-    let (m, o) = (calibration.matrix, calibration.offset_g.map(|v| v * 1000.0));
+    let m = calibration.matrix;
+    let o = calibration.offset_g.map(|v| shown(f64::from(v) * 1000.0, 2));
     let temperature = calibration.temperature.map_or(String::new(), |model| {
-        let slope = model.offset_g[0].map(|v| v * 1000.0);
+        let slope = model.offset_g[0].map(|v| shown(f64::from(v) * 1000.0, 2));
         format!(
             "; temperature model around {:.1} degC (offset {:+.2} {:+.2} {:+.2} mg/degC)",
             model.ref_temp_c, slope[0], slope[1], slope[2]
@@ -273,5 +275,13 @@ mod tests {
         calibration.temperature = Some(model);
         let text = describe(&calibration);
         assert!(text.ends_with("; temperature model around 25.0 degC (offset +0.75 -0.70 +1.40 mg/degC)"), "{text}");
+    }
+
+    #[test]
+    fn an_offset_that_rounds_to_zero_is_described_without_a_minus() {
+        let calibration =
+            Calibration { offset_g: [-0.000_004, 0.012_34, -0.000_001], ..Calibration::identity(AccelRange::G2) };
+        let line = describe(&calibration);
+        assert!(line.contains("offset +0.00 +12.34 +0.00 mg"), "{line}");
     }
 }

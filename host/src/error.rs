@@ -34,6 +34,10 @@ pub enum Error {
     ThermalFit(#[from] crate::fit::thermal::ThermalFitError),
     #[error("--g must be a positive number, got {g}")]
     BadGravity { g: f64 },
+    #[error("{source}; the {captures} captures so far are kept in {}: continue with `accelcal calibrate {device} --resume {}`", .path.display(), .path.display())]
+    Stopped { source: Box<ProcedureError>, captures: usize, path: PathBuf, device: String },
+    #[error("--json cannot ask whether to upload the calibration: add --yes to upload and save it, or leave out --json to be asked")]
+    JsonCannotAsk,
     #[error("which device? give --port PATH (see `accelcal ports`) or --sim")]
     WhichDevice,
     #[error("the device has no calibration to download: calibrate or upload one first")]

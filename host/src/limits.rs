@@ -12,6 +12,18 @@ pub use shared::calibration::limits as calibration;
 /// still board is not refused for moving.
 pub const STILL_ACCEL_STD_G: f64 = shared::protocol::MAX_STILL_ACCEL_STD_G as f64;
 
+/// Largest difference, in g, between |m| at rest and 1 g for a reading to count as any position.
+///
+/// NOTE: the system's one plausibility limit (`shared::protocol::MAX_GRAVITY_ERROR_G`, whose note
+/// gives the reason): the chip's face detection and the host's live wait refuse the same readings.
+pub const MAX_GRAVITY_ERROR_G: f64 = shared::protocol::MAX_GRAVITY_ERROR_G as f64;
+
+/// Below this |m|, in g, the sensor is taken to return zeros rather than a wrong reading.
+///
+/// NOTE: a sleeping MPU-6050 holds its data registers at zero, and a chip that is not an MPU-6050
+/// answers zeros or a constant near it; any working sensor reads several hundred mg at least.
+pub const ZERO_READING_G: f64 = 0.05;
+
 /// Largest tilt, in degrees, of a reading from a face for it to count as that face: while the
 /// procedure waits for a face, and when a fit detects the faces in a data file.
 ///

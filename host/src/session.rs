@@ -5,7 +5,7 @@
 use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
-use shared::protocol::CaptureStats;
+use shared::protocol::{CaptureStats, DeviceInfo, FirmwareVersion, SensorConfig};
 use shared::Position;
 
 use crate::data::{Dataset, Row};
@@ -20,6 +20,49 @@ pub enum SessionError {
     Read { path: PathBuf, source: std::io::Error },
     #[error("{path} is not a session file ({reason}); give the .json file written by calibrate or capture")]
     NotASession { path: PathBuf, reason: String },
+    #[error("{path} records no board; only a session written by calibrate can be resumed")]
+    NoBoard { path: PathBuf },
+    #[error("{path} was captured on another board (serial {session}), this one is {board}: connect that board, or start a new calibration")]
+    OtherBoard { path: PathBuf, session: String, board: String },
+    #[error("{path} was captured at {session}, the board is set to {board}: captures at another setting do not fit together; start a new calibration")]
+    OtherSetting { path: PathBuf, session: String, board: String },
+}
+
+/// The board a session was captured on: a resumed session must continue on the same board, at the
+/// same range and filter.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct BoardRecord {
+    /// The board's serial number, 24 hexadecimal digits.
+    pub serial: String,
+    /// The firmware version that captured.
+    pub firmware: FirmwareVersion,
+    /// Range, sample rate and filter of the sensor.
+    pub config: SensorConfig,
+}
+
+impl BoardRecord {
+    /// The board that answered `info`.
+    pub fn of(info: &DeviceInfo) -> Self {
+        let serial = String::from_utf8_lossy(&info.serial.hex()).into_owned();
+        BoardRecord { serial, firmware: info.firmware, config: info.config }
+    }
+
+    /// Whether a session captured on `self` may continue on `board`; the reason when not.
+    pub fn check_same(&self, board: &BoardRecord, path: &Path) -> Result<(), SessionError> {
+        let path = path.to_owned();
+        if self.serial != board.serial {
+            return Err(SessionError::OtherBoard { path, session: self.serial.clone(), board: board.serial.clone() });
+        }
+        let setting = |c: &SensorConfig| format!("{:?} with the {:?} filter", c.range, c.filter);
+        if (self.config.range, self.config.filter) != (board.config.range, board.config.filter) {
+            return Err(SessionError::OtherSetting {
+                path,
+                session: setting(&self.config),
+                board: setting(&board.config),
+            });
+        }
+        Ok(())
+    }
 }
 
 /// One capture of a session.
@@ -61,6 +104,12 @@ impl CaptureRecord {
 /// Every capture of a calibration, in order.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct Session {
+    /// The board the captures were taken on (absent in sessions of `accelcal capture`).
+    #[serde(default)]
+    pub board: Option<BoardRecord>,
+    /// Whether the calibration asked for the six faces only (`--quick`).
+    #[serde(default)]
+    pub quick: bool,
     /// The captures used for fitting.
     pub captures: Vec<CaptureRecord>,
 }
@@ -145,7 +194,11 @@ mod tests {
 
     #[test]
     fn a_saved_session_reads_back_and_its_csv_reads_as_data() {
-        let session = Session { captures: vec![record(Position::PosZ, 1.0, 1.5), record(Position::NegZ, -1.0, 20.0)] };
+        let session = Session {
+            board: None,
+            quick: false,
+            captures: vec![record(Position::PosZ, 1.0, 1.5), record(Position::NegZ, -1.0, 20.0)],
+        };
         let stem = std::env::temp_dir().join(format!("accelcal-session-{}", std::process::id()));
         session.save(&stem).unwrap();
         assert_eq!(Session::load(&stem.with_extension("json")).unwrap(), session);

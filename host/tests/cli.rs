@@ -320,3 +320,63 @@ fn an_absurd_upload_is_refused_with_the_reason_before_it_reaches_the_board() {
     let output = accelcal(&["upload", "--sim", fit_in_si.to_str().unwrap()]);
     assert!(String::from_utf8(output.stderr).unwrap().contains("this fit is not in g: fit data in g with --g 1"));
 }
+
+#[test]
+fn calibrate_json_on_a_port_without_yes_is_refused_at_once_naming_the_missing_flag() {
+    let sim = SimPty::start("6");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_accelcal"))
+        .args(["calibrate", "--port", &sim.path, "--json"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // NOTE: without the refusal it waits for a person who never turns the board: give it 2 s.
+    std::thread::sleep(std::time::Duration::from_secs(2));
+    let finished = child.try_wait().unwrap();
+    let _ = child.kill();
+    let output = child.wait_with_output().unwrap();
+    assert!(finished.is_some_and(|status| !status.success()), "still running or exit 0 after 2 s: {finished:?}");
+    assert!(output.stdout.is_empty());
+    let stderr = String::from_utf8(output.stderr).unwrap();
+    assert!(stderr.starts_with("accelcal: --json cannot ask") && stderr.contains("add --yes"), "{stderr}");
+}
+
+#[test]
+fn every_out_of_range_argument_is_refused_when_parsed_naming_the_allowed_range() {
+    let cases: [(&[&str], &str); 8] = [
+        (&["calibrate", "--sim", "--seconds", "4"], "5..=20"),
+        (&["calibrate", "--sim", "--seconds", "21"], "5..=20"),
+        (&["capture", "--sim", "--session", "s", "--seconds", "0"], "5..=20"),
+        (&["calibrate", "--sim", "--verify", "0"], "1..=20"),
+        (&["verify", "--sim", "--positions", "21"], "1..=20"),
+        (&["calibrate", "--sim", "--sim-placement-deg", "11"], "not in 0-10 degrees"),
+        (&["stream", "--sim", "--rate", "30"], "does not divide the 100 Hz sample rate"),
+        (&["stream", "--sim", "--rate", "0"], "does not divide the 100 Hz sample rate"),
+    ];
+    for (args, allowed) in cases {
+        let started = std::time::Instant::now();
+        let output = accelcal(args);
+        let stderr = String::from_utf8(output.stderr).unwrap();
+        assert_eq!(output.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(stderr.contains(allowed), "{args:?}: {stderr}");
+        assert!(started.elapsed() < std::time::Duration::from_secs(2), "{args:?} refused only after it started");
+    }
+    let help = String::from_utf8(accelcal(&["calibrate", "--help"]).stdout).unwrap();
+    assert!(help.contains("Seconds to average each position (5-20)") && help.contains("(1-20)"), "{help}");
+    assert!(help.contains("(0-10)"), "{help}");
+}
+
+#[test]
+fn calibrate_sim_with_one_seed_gives_the_same_calibration_every_run() {
+    let run = || {
+        let output = accelcal(&["calibrate", "--sim", "--seed", "9", "--json"]);
+        assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+        String::from_utf8(output.stdout).unwrap()
+    };
+    let first = run();
+    for _ in 0..4 {
+        assert_eq!(run(), first, "another result from the same seed");
+    }
+    let other = String::from_utf8(accelcal(&["calibrate", "--sim", "--seed", "10", "--json"]).stdout).unwrap();
+    assert_ne!(other, first, "the seed makes no difference");
+}

@@ -48,8 +48,9 @@ fn a_decimated_stream_sends_exactly_count_samples_every_nth_of_the_sensor_s() {
 #[test]
 fn an_absurd_six_position_fit_is_refused_with_the_reason_and_the_active_calibration_is_kept() {
     let mut sim = SimMpu6050::new(23);
-    // A sensor reading 0.4 g for 1 g on x: its correction scale would be 2.5, beyond the limit.
-    sim.physics.truth.matrix[0][0] = 2.5;
+    // A sensor whose x axis picks up 0.3 of y: the correction's cross-axis term would be 0.3, beyond
+    // the limit. (An absurd scale cannot reach the fit: a reading that far from 1 g is no face.)
+    sim.physics.truth.matrix[0][1] = 0.3;
     let mut device = boot(sim, Flash::new());
     let kept = Calibration { offset_g: [0.01, 0.0, 0.0], ..Calibration::identity(AccelRange::G2) };
     assert_eq!(ask(&mut device, 1, Request::SetCalibration(kept)), Response::Done);
@@ -58,10 +59,31 @@ fn an_absurd_six_position_fit_is_refused_with_the_reason_and_the_active_calibrat
         assert!(matches!(answer, Response::Captured { position: Some(p), .. } if p == position), "{answer:?}");
     }
     let answer = ask(&mut device, 8, Request::FitSixPosition);
-    let Response::Error(DeviceError::InvalidCalibration(CalibrationError::ScaleOutOfRange { axis: 0, value })) = answer
+    let Response::Error(DeviceError::InvalidCalibration(CalibrationError::CrossAxisOutOfRange {
+        row: 0,
+        col: 1,
+        value,
+    })) = answer
     else {
-        panic!("expected the x scale refused, got {answer:?}")
+        panic!("expected the xy cross-axis term refused, got {answer:?}")
     };
-    assert!((value - 2.5).abs() < 0.01, "fitted x scale {value}");
+    assert!((value - 0.3).abs() < 0.01, "fitted xy term {value}");
     assert_eq!(device.active_calibration(), Some(kept));
+}
+
+#[test]
+fn a_reading_far_from_1_g_is_no_face_however_it_points() {
+    // A sensor returning (nearly) zeros, or at a wrong range, points along some axis all the same.
+    for (mean_g, face) in [
+        ([0.0, 0.0, 0.002], None),
+        ([0.001, -0.0005, 0.0], None),
+        ([0.0, 0.0, 0.5], None),
+        ([0.0, 0.0, 2.0], None),
+        ([0.0, 0.0, 0.76], Some(Position::PosZ)),
+        ([0.0, -1.2, 0.0], Some(Position::NegY)),
+    ] {
+        assert_eq!(super::jobs::face_of(mean_g), face, "{mean_g:?}");
+    }
+    assert!(shared::protocol::reads_gravity(1.0 - shared::protocol::MAX_GRAVITY_ERROR_G));
+    assert!(!shared::protocol::reads_gravity(1.0 - 1.01 * shared::protocol::MAX_GRAVITY_ERROR_G));
 }

@@ -94,7 +94,7 @@ where
 
     /// Keeps a finished capture for the six-position fit when it was taken at a face.
     fn keep(&mut self, stats: CaptureStats) -> Response {
-        let position = Position::detect(stats.mean_g, DEFAULT_FACE_TOLERANCE_DEG).ok().map(|(p, _)| p);
+        let position = face_of(stats.mean_g);
         if let Some(p) = position {
             self.positions.replace(p, stats);
         }
@@ -208,4 +208,13 @@ where
             None => false,
         }
     }
+}
+
+/// The face of an averaged reading in g: within the face tolerance, and of a magnitude that can be
+/// gravity (a sensor returning zeros, or nearly, points nowhere).
+pub(super) fn face_of(mean_g: shared::linalg::Vec3<f32>) -> Option<Position> {
+    if !shared::protocol::reads_gravity(shared::linalg::norm(mean_g)) {
+        return None;
+    }
+    Position::detect(mean_g, DEFAULT_FACE_TOLERANCE_DEG).ok().map(|(p, _)| p)
 }

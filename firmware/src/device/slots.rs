@@ -15,12 +15,13 @@ where
     I: Write<Error = E> + WriteRead<Error = E>,
     F: NorFlash,
 {
-    /// Fits the kept captures on the chip; the result becomes active only when it is plausible.
+    /// Fits the kept captures on the chip and returns the fit when it is plausible.
+    ///
+    /// NOTE: the fit does not become active: the host makes active only what it uploads, so a person
+    /// who declines the upload leaves the board exactly as it was.
     pub(super) fn fit_six_position(&mut self) -> Result<Response, DeviceError> {
         let calibration = six_position_calibration(&self.positions, self.config)?;
         calibration.validate().map_err(DeviceError::InvalidCalibration)?;
-        self.active = calibration;
-        self.source = ActiveCalibration::Unsaved;
         Ok(Response::Fitted(calibration))
     }
 

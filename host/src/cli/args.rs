@@ -22,7 +22,8 @@ pub struct Cli {
 /// Which device to talk to.
 #[derive(Args, Clone)]
 pub struct Device {
-    /// Serial port of the board (see `accelcal ports`), or of `accelcal sim --pty`.
+    /// Serial port of the board (see `accelcal ports`), or of `accelcal sim --pty`; or the board's
+    /// serial number as `accelcal ports` shows it.
     #[arg(long, conflicts_with = "sim")]
     pub port: Option<String>,
     /// A simulated board in this process (its flash lasts as long as the command).
@@ -70,22 +71,27 @@ pub struct CalibrateArgs {
     /// Only the six faces, fitted on the chip.
     #[arg(long)]
     pub quick: bool,
-    #[arg(long, default_value_t = DEFAULT_CAPTURE_SECONDS, help = seconds_help("Seconds to average each position"))]
+    #[arg(long, default_value_t = DEFAULT_CAPTURE_SECONDS, value_parser = seconds(),
+          help = seconds_help("Seconds to average each position"))]
     pub seconds: u8,
-    /// Fresh orientations to verify at.
-    #[arg(long, default_value_t = 6)]
-    pub verify: usize,
+    /// Fresh orientations to verify at (1-20).
+    #[arg(long, default_value_t = 6, value_parser = clap::value_parser!(u8).range(1..=MAX_VERIFY_POSITIONS))]
+    pub verify: u8,
     /// Upload and save without asking.
     #[arg(long)]
     pub yes: bool,
     /// Print one JSON object (non-interactive with --sim).
     #[arg(long)]
     pub json: bool,
-    /// Keep the session as PATH.json and PATH.csv.
-    #[arg(long)]
+    /// Keep the session as PATH.json and PATH.csv, written after every capture (with --port the
+    /// default is accelcal-session-TIME in the current directory).
+    #[arg(long, conflicts_with = "resume")]
     pub session: Option<PathBuf>,
-    /// With --sim: how many degrees off the tool places the board, as a hand would.
-    #[arg(long, default_value_t = 3.0)]
+    /// Continue the session SESSION.json (same board, range and filter) with the positions it lacks.
+    #[arg(long, value_name = "SESSION")]
+    pub resume: Option<PathBuf>,
+    /// With --sim: how many degrees off the tool places the board, as a hand would (0-10).
+    #[arg(long, default_value_t = 3.0, value_parser = placement_deg)]
     pub sim_placement_deg: f64,
 }
 
@@ -116,7 +122,7 @@ pub struct CaptureArgs {
     /// A name for the position (a face or corner name such as +X or +X+Y+Z records that orientation).
     #[arg(long, default_value = "position")]
     pub name: String,
-    #[arg(long, default_value_t = DEFAULT_CAPTURE_SECONDS, help = seconds_help("Seconds to average"))]
+    #[arg(long, default_value_t = DEFAULT_CAPTURE_SECONDS, value_parser = seconds(), help = seconds_help("Seconds to average"))]
     pub seconds: u8,
 }
 
@@ -131,7 +137,7 @@ pub struct StreamArgs {
     /// Samples to stream (1 or more; to stop early, close the output, e.g. `| head`).
     #[arg(long, default_value_t = 100, value_parser = clap::value_parser!(u32).range(1..))]
     pub count: u32,
-    #[arg(long, default_value_t = 10, help = rate_help())]
+    #[arg(long, default_value_t = 10, value_parser = stream_rate, help = rate_help())]
     pub rate: u16,
 }
 
@@ -186,9 +192,9 @@ pub enum Command {
     Verify {
         #[command(flatten)]
         device: Device,
-        /// Orientations to check.
-        #[arg(long, default_value_t = 4)]
-        positions: usize,
+        /// Orientations to check (1-20).
+        #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u8).range(1..=MAX_VERIFY_POSITIONS))]
+        positions: u8,
     },
     /// Streams samples as CSV on stdout.
     Stream(StreamArgs),
@@ -208,6 +214,43 @@ pub enum Command {
         #[arg(long)]
         fast: bool,
     },
+}
+
+/// Most fresh orientations a verification asks for.
+///
+/// NOTE: the simulated hand keeps its orientations 30 degrees apart, and about 20 such fit on the
+/// sphere with room to spare; a person would not turn the board more often than that anyway.
+const MAX_VERIFY_POSITIONS: i64 = 20;
+/// Largest placement error of the simulated hand, in degrees.
+///
+/// NOTE: beyond 10 degrees a face is no longer reliably within the face tolerance's reach after
+/// the sensor's own offset tilts it, and the run would wait for a face it never reaches.
+const MAX_PLACEMENT_DEG: f64 = 10.0;
+
+/// The capture lengths the device accepts, refused when parsed.
+fn seconds() -> clap::builder::RangedI64ValueParser<u8> {
+    clap::value_parser!(u8).range(i64::from(MIN_CAPTURE_SECONDS)..=i64::from(MAX_CAPTURE_SECONDS))
+}
+
+/// A placement error in degrees within 0-[`MAX_PLACEMENT_DEG`].
+fn placement_deg(text: &str) -> Result<f64, String> {
+    let deg: f64 = text.parse().map_err(|_| format!("{text:?} is not a number of degrees"))?;
+    if (0.0..=MAX_PLACEMENT_DEG).contains(&deg) {
+        Ok(deg)
+    } else {
+        Err(format!("{deg} is not in 0-{MAX_PLACEMENT_DEG} degrees"))
+    }
+}
+
+/// A stream rate that divides the sensor's sample rate.
+fn stream_rate(text: &str) -> Result<u16, String> {
+    let sample_rate_hz = SensorConfig::default().sample_rate_hz;
+    let rate: u16 = text.parse().map_err(|_| format!("{text:?} is not a whole number of samples per second"))?;
+    if rate > 0 && sample_rate_hz % rate == 0 {
+        Ok(rate)
+    } else {
+        Err(format!("{rate} does not divide the {sample_rate_hz} Hz sample rate (for example 1, 10, 50 or 100)"))
+    }
 }
 
 /// Help for a capture length, with the limits the device accepts.

@@ -18,7 +18,8 @@ pub(super) fn ports() -> Result<(), Error> {
         println!("no serial ports found; is the board plugged in?");
     }
     for port in ports {
-        println!("{}{}", port.path, if port.is_accelcal { "  <- accelcal board" } else { "" });
+        let serial = port.serial.map_or(String::new(), |s| format!("  serial {s}"));
+        println!("{}{serial}{}", port.path, if port.is_accelcal { "  <- accelcal board" } else { "" });
     }
     Ok(())
 }

@@ -5,7 +5,7 @@ use std::time::Duration;
 
 use super::args::Device;
 use crate::error::Error;
-use crate::link::{open_port, Connection};
+use crate::link::{open_port, resolve_port, serial_ports, Connection};
 use crate::procedure::{Hand, PersonHand, SimulatedHand};
 use crate::sim::SimBoard;
 
@@ -24,7 +24,7 @@ impl Device {
     /// Opens the device and says hello.
     pub(super) fn open(&self) -> Result<Opened, Error> {
         match (&self.port, self.sim) {
-            (Some(path), _) => Ok(Opened { connection: open_port(path)?, sim: None }),
+            (Some(name), _) => Ok(Opened { connection: open_port(&resolve_port(name, serial_ports)?)?, sim: None }),
             (None, true) => {
                 let (connection, board) = SimBoard::in_process(self.seed, self.sim_sensor)?;
                 Ok(Opened { connection, sim: Some(board) })

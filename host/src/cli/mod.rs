@@ -4,6 +4,7 @@
 
 pub mod args;
 mod board;
+mod calibrate;
 mod device;
 mod fit;
 mod procedure;
@@ -37,9 +38,9 @@ pub fn run(cli: Cli) -> Result<(), Error> {
         Command::Fit(args) => fit::fit(&args),
         Command::Ports => board::ports(),
         Command::Info { device, json } => board::info(&device, json),
-        Command::Calibrate(args) => procedure::calibrate(&args),
+        Command::Calibrate(args) => calibrate::calibrate(&args),
         Command::Capture(args) => procedure::capture(&args),
-        Command::Verify { device, positions } => procedure::verify(&device, positions),
+        Command::Verify { device, positions } => procedure::verify(&device, usize::from(positions)),
         Command::Upload { device, file, save } => transfer::upload(&device, &file, save),
         Command::Save { device } => transfer::save(&device),
         Command::Download { device, stored } => transfer::download(&device, stored),

@@ -1,111 +1,17 @@
-//! The guided procedure on the command line: `calibrate`, `capture`, `verify`.
+//! The single steps of the procedure on the command line: `capture`, `verify` (the whole of it,
+//! `calibrate`, is in [`super::calibrate`]).
 
-use shared::protocol::SensorConfig;
-use shared::Calibration;
-
-use super::args::{CalibrateArgs, CaptureArgs, Device};
+use super::args::{CaptureArgs, Device};
 use super::device::Opened;
-use super::terminal::{feedback, Terminal};
-use crate::calibration::{self, describe};
+use super::terminal::Terminal;
 use crate::error::Error;
-use crate::fit::Fit;
-use crate::link::{Client, LinkError, Port};
+use crate::link::LinkError;
 use crate::orientation::Orientation;
-use crate::procedure::{self, CollectOptions, Feedback};
-use crate::report::{self, CalibrateReport};
+use crate::procedure::{self, Feedback};
 use crate::session::{CaptureRecord, Session};
 
 /// How far off, in degrees, the tool's hand places the simulated board for `verify --sim`.
 const VERIFY_PLACEMENT_DEG: f64 = 3.0;
-
-/// The calibrations a calibration chooses between.
-struct Fitted {
-    session: Session,
-    chip: Calibration,
-    host: Option<Fit>,
-    chosen: Calibration,
-}
-
-/// `accelcal calibrate`: captures, fit, upload, save, verification.
-pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
-    let mut opened = args.device.open()?;
-    opened.connection.info.sensor.map_err(LinkError::from)?;
-    let yes = args.yes || (args.json && opened.sim.is_some());
-    let mut feedback = feedback(args.json, yes);
-    let (mut hand, wait_limit) = opened.hand(args.sim_placement_deg, args.device.seed);
-    let options = CollectOptions { seconds: args.seconds, wait_limit };
-    let config = opened.connection.info.config;
-    let client = &mut opened.connection.client;
-    let session =
-        procedure::collect(client, hand.as_mut(), &procedure::targets(args.quick), &options, feedback.as_mut())?;
-    if let Some(path) = &args.session {
-        session.save(path)?;
-    }
-    let fitted = choose(client, session, config, args.quick)?;
-    show_choice(feedback.as_mut(), &fitted);
-    if !upload_if_confirmed(client, &fitted.chosen, feedback.as_mut())? {
-        return Ok(());
-    }
-    let verification = procedure::verify(client, hand.as_mut(), args.verify, wait_limit, feedback.as_mut())?;
-    let truth = opened.sim.as_ref().map(|board| board.truth());
-    let captures = fitted.session.captures.len();
-    let report =
-        CalibrateReport::new(&fitted.chosen, &fitted.chip, fitted.host.as_ref(), truth, verification, captures);
-    print_report(&report, args.json);
-    Ok(())
-}
-
-/// Uploads and saves the calibration if the user agrees; whether it did.
-fn upload_if_confirmed<P: Port>(
-    client: &mut Client<P>,
-    calibration: &Calibration,
-    feedback: &mut dyn Feedback,
-) -> Result<bool, Error> {
-    if !feedback.confirm("Upload this calibration to the board and save it in flash?") {
-        feedback.say("not uploaded; the board keeps its previous calibration");
-        return Ok(false);
-    }
-    client.set_calibration(*calibration)?;
-    client.save_calibration()?;
-    feedback.say("uploaded and saved; now checking it at fresh orientations");
-    Ok(true)
-}
-
-/// The on-chip fit, and for a full calibration the host's fit, which is then the one chosen.
-fn choose<P: Port>(
-    client: &mut Client<P>,
-    session: Session,
-    config: SensorConfig,
-    quick: bool,
-) -> Result<Fitted, Error> {
-    let chip = client.fit_six_position()?;
-    if quick {
-        return Ok(Fitted { session, chip, host: None, chosen: chip });
-    }
-    let fit = procedure::host_fit(&session)?;
-    let chosen = calibration::from_fit(&fit, &session, config)?;
-    Ok(Fitted { session, chip, host: Some(fit), chosen })
-}
-
-/// The chosen calibration, the host fit's parameters, and the chip's fit beside them.
-fn show_choice(feedback: &mut dyn Feedback, fitted: &Fitted) {
-    feedback.say(&describe(&fitted.chosen));
-    if let Some(fit) = &fitted.host {
-        for p in &fit.parameters {
-            let error = p.std_error.map_or(String::new(), |e| format!(" +- {e:.1e}"));
-            feedback.say(&format!("  {:<5} {:+.6}{error}", p.name, p.value));
-        }
-        feedback.say(&format!("on-chip six-position fit for comparison: {}", describe(&fitted.chip)));
-    }
-}
-
-fn print_report(report: &CalibrateReport, json: bool) {
-    if json {
-        println!("{}", report::json::calibrate_report(report));
-    } else {
-        print!("{}", report::text::calibrate_report(report));
-    }
-}
 
 /// `accelcal capture`: one position, appended to a session file.
 pub(super) fn capture(args: &CaptureArgs) -> Result<(), Error> {

@@ -37,6 +37,9 @@ impl Dataset {
 
     /// Reads CSV text from any reader; `g` as in [`Dataset::from_path`].
     pub fn from_reader(reader: impl Read, g: f64) -> Result<Self, DataError> {
+        // NOTE: the csv crate counts a `\r\n` line end as no line at all and so names every line one
+        // too low; without the `\r` every line ends at `\n` and is counted as a person counts it.
+        let reader = WithoutCarriageReturns(reader);
         let mut csv = csv::ReaderBuilder::new().trim(csv::Trim::All).from_reader(reader);
         let header: Vec<String> = csv.headers().map_err(|e| csv_error(e, 1))?.iter().map(str::to_owned).collect();
         let layout = Layout::from_header(&header)?;
@@ -161,6 +164,26 @@ impl Cells<'_> {
     }
 }
 
+/// A reader that drops every `\r`, so that CRLF and LF files read alike.
+struct WithoutCarriageReturns<R>(R);
+
+impl<R: Read> Read for WithoutCarriageReturns<R> {
+    fn read(&mut self, buffer: &mut [u8]) -> std::io::Result<usize> {
+        loop {
+            let n = self.0.read(buffer)?;
+            let mut kept = 0;
+            for i in 0..n {
+                buffer[kept] = buffer[i];
+                kept += usize::from(buffer[i] != b'\r');
+            }
+            // A read of nothing but `\r` is not the end of the input: read on.
+            if kept > 0 || n == 0 {
+                return Ok(kept);
+            }
+        }
+    }
+}
+
 fn column(header: &[String], name: &str) -> Option<usize> {
     header.iter().position(|h| h == name)
 }
@@ -249,6 +272,15 @@ mod tests {
         assert_eq!(error, "line 2, column y: \"NaN\" is not a number");
         let error = read("x,y,z,count\n1,2,3,12.5\n").unwrap_err().to_string();
         assert_eq!(error, "line 2, column count: \"12.5\" is not a sample count");
+    }
+
+    #[test]
+    fn crlf_line_endings_count_lines_as_a_person_does() {
+        let data = read("x,y,z\r\n1,2,3\r\n4,5,6\r\n").unwrap();
+        assert_eq!((data.rows[0].line, data.rows[1].line, data.rows[1].reading), (2, 3, [4.0, 5.0, 6.0]));
+        let error = read("x,y,z\r\n1,2,3\r\n1,two,3\r\n").unwrap_err().to_string();
+        assert_eq!(error, "line 3, column y: \"two\" is not a number");
+        assert_eq!(read("x,y,z\r\n1,2\r\n").unwrap_err().to_string(), "line 2: 2 cells where the header has 3");
     }
 
     #[test]

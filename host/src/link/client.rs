@@ -2,6 +2,8 @@
 
 use std::collections::VecDeque;
 use std::io::ErrorKind;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 use std::time::Duration;
 
 use shared::protocol::{self, DeviceInfo, Feed, FrameAccumulator, Request, Response, MAX_FRAME_LEN};
@@ -21,17 +23,34 @@ pub struct Client<P: Port> {
     accumulator: FrameAccumulator,
     decoded: VecDeque<Result<(u16, Response), LinkError>>,
     next_id: u16,
+    interrupt: Option<Arc<AtomicBool>>,
 }
 
 impl<P: Port> Client<P> {
     /// Opens a session: says hello and checks the protocol version.
     pub fn connect(mut port: P) -> Result<(Self, DeviceInfo), LinkError> {
         port.set_read_timeout(READ_SLICE).map_err(LinkError::Timeout)?;
-        let mut client = Client { port, accumulator: FrameAccumulator::new(), decoded: VecDeque::new(), next_id: 1 };
+        let mut client = Client {
+            port,
+            accumulator: FrameAccumulator::new(),
+            decoded: VecDeque::new(),
+            next_id: 1,
+            interrupt: None,
+        };
         // A leading delimiter ends any half frame left in the device's buffer by an earlier session.
         client.port.write_all(&[0]).map_err(LinkError::disconnected)?;
         let info = client.hello()?;
         Ok((client, info))
+    }
+
+    /// Once `flag` is set (by Ctrl-C), the running capture or stream is cancelled on the device and
+    /// every request ends with [`LinkError::Interrupted`].
+    pub fn interrupt_on(&mut self, flag: Arc<AtomicBool>) {
+        self.interrupt = Some(flag);
+    }
+
+    fn interrupted(&self) -> bool {
+        self.interrupt.as_ref().is_some_and(|flag| flag.load(Ordering::SeqCst))
     }
 
     /// A request that completes at once: its final response; a device error becomes `Err`.
@@ -55,10 +74,18 @@ impl<P: Port> Client<P> {
         request: Request,
         mut on_update: impl FnMut(&Response) -> bool,
     ) -> Result<Response, LinkError> {
+        if self.interrupted() {
+            return Err(LinkError::Interrupted);
+        }
         let id = self.send(&request)?;
         let mut listening = Listening::new();
-        let (mut updates, mut cancelled) = (0usize, false);
+        let (mut updates, mut cancelled, mut interrupted) = (0usize, false, false);
         loop {
+            if !interrupted && self.interrupted() {
+                // NOTE: the device ends the cancelled operation with its final response, awaited below.
+                self.cancel()?;
+                (cancelled, interrupted) = (true, true);
+            }
             let (answer_id, response) = match self.receive(&mut listening) {
                 // Silence after progress: the device was there and no longer is.
                 Err(LinkError::Silent { .. }) if updates > 0 => return Err(LinkError::StoppedAnswering),
@@ -68,7 +95,6 @@ impl<P: Port> Client<P> {
                 continue;
             }
             match response {
-                Response::Error(error) => return Err(error.into()),
                 Response::Progress(_) | Response::Sample(_) => {
                     updates += 1;
                     if !on_update(&response) && !cancelled {
@@ -76,6 +102,8 @@ impl<P: Port> Client<P> {
                         cancelled = true;
                     }
                 }
+                _ if interrupted => return Err(LinkError::Interrupted),
+                Response::Error(error) => return Err(error.into()),
                 last => return Ok(last),
             }
         }

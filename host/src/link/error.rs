@@ -31,6 +31,10 @@ pub enum LinkError {
     Encode { request: &'static str, reason: String },
     #[error("cannot set the read timeout of the port: {0}; unplug and replug the board")]
     Timeout(std::io::Error),
+    #[error("interrupted (Ctrl-C); the board's capture or stream was cancelled")]
+    Interrupted,
+    #[error("no serial port has the serial number {serial} ({found}): give the serial number `accelcal ports` shows, or the port's path")]
+    NoSuchSerial { serial: String, found: String },
     #[error("cannot list serial ports: {reason}; give the port path with --port")]
     ListPorts { reason: String },
 }

@@ -13,7 +13,7 @@ mod tally;
 
 pub use client::{Client, SILENCE_LIMIT};
 pub use connect::{open_port, Connection};
-pub use discovery::{serial_ports, SerialPortEntry};
+pub use discovery::{resolve_port, serial_ports, SerialPortEntry};
 pub use error::LinkError;
 pub use explain::{calibration_reason, explain};
 pub use port::{open_serial, pipe, PipeEnd, Port};

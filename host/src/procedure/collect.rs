@@ -7,7 +7,7 @@ use shared::Position;
 use super::wait::wait_for_target;
 use super::{CollectOptions, Feedback, Hand, Orientation, ProcedureError};
 use crate::link::{explain, Client, LinkError, Port};
-use crate::session::{CaptureRecord, Session};
+use crate::session::{CaptureRecord, Session, SessionError};
 
 /// Captures of a position tried before giving up on a board that keeps moving.
 const CAPTURE_ATTEMPTS: usize = 5;
@@ -20,10 +20,25 @@ pub fn collect<P: Port>(
     options: &CollectOptions,
     feedback: &mut dyn Feedback,
 ) -> Result<Session, ProcedureError> {
-    client.clear_positions()?;
-    let mut remaining: Vec<Orientation> = targets.to_vec();
-    let mut done: Vec<Orientation> = Vec::new();
     let mut session = Session::default();
+    collect_into(client, hand, targets, options, feedback, &mut session, &mut |_| Ok(()))?;
+    Ok(session)
+}
+
+/// Captures the targets `session` lacks into it, handing it to `keep` after every capture, so that
+/// an interruption loses nothing captured.
+pub fn collect_into<P: Port>(
+    client: &mut Client<P>,
+    hand: &mut dyn Hand,
+    targets: &[Orientation],
+    options: &CollectOptions,
+    feedback: &mut dyn Feedback,
+    session: &mut Session,
+    keep: &mut dyn FnMut(&Session) -> Result<(), SessionError>,
+) -> Result<(), ProcedureError> {
+    client.clear_positions()?;
+    let captured = |t: &Orientation| session.captures.iter().any(|c| c.name == t.name);
+    let (mut done, mut remaining): (Vec<Orientation>, Vec<Orientation>) = targets.iter().cloned().partition(captured);
     while !remaining.is_empty() {
         hand.present(&remaining[0], feedback)?;
         let index = wait_for_target(client, &remaining, &done, options.wait_limit, feedback)?;
@@ -31,10 +46,11 @@ pub fn collect<P: Port>(
         feedback.say(&format!("{} found; averaging for {} s", target.name, options.seconds));
         let (stats, face) = capture(client, options.seconds, feedback)?;
         session.captures.push(CaptureRecord::now(&target.name, Some(target.clone()), face, stats));
+        keep(session)?;
         done.push(target);
         feedback.say(&format!("captured {} of {}", done.len(), targets.len()));
     }
-    Ok(session)
+    Ok(())
 }
 
 /// One capture with its progress shown, retried while the board moves.

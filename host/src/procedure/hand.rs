@@ -9,6 +9,9 @@ pub trait Hand {
     fn present(&mut self, target: &Orientation, feedback: &mut dyn Feedback) -> Result<(), ProcedureError>;
     /// Turns (or asks to turn) the board to a fresh orientation for verification.
     fn fresh(&mut self, index: usize, feedback: &mut dyn Feedback) -> Result<(), ProcedureError>;
+    /// Orientations (directions of up, any length) the fresh ones must keep away from; a person
+    /// is told by the live line instead.
+    fn avoid(&mut self, _orientations: &[[f64; 3]]) {}
 }
 
 /// A person holding the board: instructions only.
@@ -26,7 +29,7 @@ impl Hand for PersonHand {
 
     fn fresh(&mut self, index: usize, feedback: &mut dyn Feedback) -> Result<(), ProcedureError> {
         feedback.say(&format!(
-            "Verification {}: rest the board in a new orientation, unlike the calibration positions, and hold it still.",
+            "Verification {}: rest the board in a new orientation, unlike the calibration positions and the ones verified, and hold it still.",
             index + 1
         ));
         Ok(())

@@ -13,11 +13,11 @@ mod wait;
 use std::time::Duration;
 
 pub use crate::orientation::{corners, faces, Orientation};
-pub use collect::collect;
+pub use collect::{collect, collect_into};
 pub use feedback::{Feedback, Silent};
 pub use hand::{Hand, PersonHand};
 pub use simulated_hand::SimulatedHand;
-pub use verify::{verify, Verification, VERIFY_SECONDS};
+pub use verify::{verify, verify_clear_of, Verification, VERIFY_SECONDS};
 
 use crate::fit::{self, Fit, FitError, FitOptions, ModelChoice};
 use crate::link::LinkError;
@@ -46,6 +46,8 @@ pub enum ProcedureError {
     SimulatedBoardStopped,
     #[error(transparent)]
     Fit(#[from] FitError),
+    #[error(transparent)]
+    Session(#[from] crate::session::SessionError),
 }
 
 /// How the captures of [`collect`] run.
@@ -70,4 +72,10 @@ pub fn targets(quick: bool) -> Vec<Orientation> {
 /// orientations), or an error naming what the captures lack.
 pub fn host_fit(session: &Session) -> Result<Fit, FitError> {
     fit::fit(&session.dataset(), ModelChoice::Auto, &FitOptions::default())
+}
+
+/// The six-position closed form on the host: for a resumed `--quick` session, whose first captures
+/// the chip no longer holds.
+pub fn host_six_position_fit(session: &Session) -> Result<Fit, FitError> {
+    fit::fit(&session.dataset(), ModelChoice::Only(fit::Model::SixPosition), &FitOptions::default())
 }

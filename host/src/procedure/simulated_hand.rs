@@ -76,4 +76,8 @@ impl Hand for SimulatedHand {
         self.verified.push(up);
         self.place(up)
     }
+
+    fn avoid(&mut self, orientations: &[[f64; 3]]) {
+        self.verified.extend(orientations.iter().map(|&up| scale(up, 1.0 / norm(up))));
+    }
 }

@@ -49,11 +49,26 @@ pub fn verify<P: Port>(
     wait_limit: Option<Duration>,
     feedback: &mut dyn Feedback,
 ) -> Result<Verification, ProcedureError> {
+    verify_clear_of(client, hand, positions, wait_limit, feedback, &[])
+}
+
+/// [`verify`] at orientations that are also new against `calibrated`, the directions (any length)
+/// the calibration was captured at: a check where the fit was made proves nothing new.
+pub fn verify_clear_of<P: Port>(
+    client: &mut Client<P>,
+    hand: &mut dyn Hand,
+    positions: usize,
+    wait_limit: Option<Duration>,
+    feedback: &mut dyn Feedback,
+    calibrated: &[[f64; 3]],
+) -> Result<Verification, ProcedureError> {
     let calibration = client.calibration(CalibrationSlot::Active)?.ok_or(ProcedureError::NoActiveCalibration)?;
+    hand.avoid(calibrated);
     let mut checks = Vec::with_capacity(positions);
-    let mut used = Vec::with_capacity(positions);
+    let mut used = calibrated.to_vec();
     for index in 0..positions {
         hand.fresh(index, feedback)?;
+        // NOTE: `used` holds the calibration's directions first, then each one verified.
         used.push(wait_for_fresh(client, &used, wait_limit, feedback)?);
         let check = check(client, &calibration, feedback)?;
         feedback.say(&format!(

@@ -7,7 +7,7 @@ use shared::orientation::angle_between_deg;
 use shared::protocol::StreamKind;
 
 use super::{Feedback, Orientation, ProcedureError};
-use crate::limits::{FRESH_DEG, STILL_ACCEL_STD_G};
+use crate::limits::{FRESH_DEG, MAX_GRAVITY_ERROR_G, STILL_ACCEL_STD_G, ZERO_READING_G};
 use crate::link::{Client, Port, StreamRequest};
 
 /// The live window: half a second of raw samples.
@@ -37,18 +37,33 @@ pub(super) fn wait_for_target<P: Port>(
 }
 
 /// What a window says about the remaining targets: a line for the user, and the index of the
-/// target reached when the board is still within its tolerance.
+/// target reached when the board is still within its tolerance. The line measures to the target
+/// the instruction asked for (`remaining[0]`), unless the board is already at another wanted one,
+/// which it then names as taken instead.
 fn judge_target(window: Window, remaining: &[Orientation], done: &[Orientation]) -> (String, Option<usize>) {
     let tilt = |t: &Orientation| t.tilt_deg(window.mean);
     let Some((index, nearest)) = remaining.iter().enumerate().min_by(|a, b| tilt(a.1).total_cmp(&tilt(b.1))) else {
         return ("no position left to capture".into(), None);
     };
+    let asked = &remaining[0];
     if let Some(repeat) = done.iter().find(|t| tilt(t) < t.tolerance_deg.min(tilt(nearest))) {
-        return (format!("{} is already captured: turn the board to {}", repeat.name, nearest.name), None);
+        return (format!("{} is already captured: turn the board to {}", repeat.name, asked.name), None);
     }
     let motion = if window.still { "still" } else { "moving" };
-    let line = format!("{:.1} degrees from {} ({motion})", tilt(nearest), nearest.name);
-    (line, (window.still && tilt(nearest) <= nearest.tolerance_deg).then_some(index))
+    let (target, index) = match tilt(nearest) <= nearest.tolerance_deg {
+        true => (nearest, index),
+        false => (asked, 0),
+    };
+    let line = match target.name == asked.name {
+        true => format!("{:.1} degrees from {} ({motion})", tilt(asked), asked.name),
+        false => format!(
+            "at {} ({:.1} degrees, {motion}), also wanted: taking it before {}",
+            target.name,
+            tilt(target),
+            asked.name
+        ),
+    };
+    (line, (window.still && tilt(target) <= target.tolerance_deg).then_some(index))
 }
 
 /// Waits until the board rests at an orientation at least [`FRESH_DEG`] from every one in `used`;
@@ -67,7 +82,7 @@ pub(super) fn wait_for_fresh<P: Port>(
         |window| {
             let fresh = used.iter().all(|u| angle_between_deg(window.mean, *u) >= FRESH_DEG);
             let line = match (window.still, fresh) {
-                (_, false) => "this orientation was already verified: turn the board to a new one",
+                (_, false) => "this orientation was used already (to calibrate or verify): turn the board to a new one",
                 (false, true) => "moving: hold the board still",
                 (true, true) => "still",
             };
@@ -92,7 +107,11 @@ fn wait_for_rest<P: Port, R>(
         if limit.is_some_and(|l| started.elapsed() > l) {
             return Err(gave_up());
         }
-        let (line, verdict) = judge(live_window(client)?);
+        let window = live_window(client)?;
+        let (line, verdict) = match not_gravity(&window) {
+            Some(line) => (line, None),
+            None => judge(window),
+        };
         feedback.live(&line);
         if let Some(value) = streak.settled(verdict) {
             return Ok(value);
@@ -100,18 +119,47 @@ fn wait_for_rest<P: Port, R>(
     }
 }
 
-/// Windows accepted in a row: a board counts as at rest only when two windows in a row are
-/// accepted, so that one lucky half second while it is still being turned does not count.
+/// What the sensor reads when its magnitude cannot be gravity at rest (then it is no position at
+/// all), and what that usually means.
+fn not_gravity(window: &Window) -> Option<String> {
+    let magnitude_g = shared::linalg::norm(window.mean);
+    if (magnitude_g - 1.0).abs() <= MAX_GRAVITY_ERROR_G {
+        return None;
+    }
+    let meaning = if magnitude_g < ZERO_READING_G {
+        "it returns zeros: it is asleep, or not an MPU-6050; check `accelcal info` and the wiring"
+    } else if window.still {
+        "not the 1 g of gravity: the range setting or the sensor is wrong; check `accelcal info`"
+    } else {
+        "not the 1 g of gravity at rest: hold the board still"
+    };
+    Some(format!("the sensor reads {magnitude_g:.2} g, {meaning}"))
+}
+
+/// How long, in seconds, the board must rest where it should after the prompt before it counts.
+///
+/// NOTE: a person needs a moment to read the instruction, and a board already lying on a face (or
+/// put down and still settling) must not be captured at once: two seconds of accepted windows in a
+/// row, after the prompt, since the windows start only then.
+pub const SETTLE_SECONDS: f64 = 2.0;
+
+/// Accepted live windows in a row that make [`SETTLE_SECONDS`].
+pub(super) fn settle_windows() -> usize {
+    (SETTLE_SECONDS * f64::from(LIVE_WINDOW.rate_hz) / f64::from(LIVE_WINDOW.count)).ceil() as usize
+}
+
+/// Windows accepted in a row: a board counts as at rest only after [`settle_windows`] accepted
+/// windows in a row, so that one lucky half second while it is being turned does not count.
 #[derive(Debug, Default)]
 struct Streak {
     accepted_in_a_row: usize,
 }
 
 impl Streak {
-    /// Counts one window's verdict; the value once it is the second accepted window in a row.
+    /// Counts one window's verdict; the value once it completes the run of accepted windows.
     fn settled<R>(&mut self, verdict: Option<R>) -> Option<R> {
         match verdict {
-            Some(value) if self.accepted_in_a_row >= 1 => return Some(value),
+            Some(value) if self.accepted_in_a_row + 1 >= settle_windows() => return Some(value),
             Some(_) => self.accepted_in_a_row += 1,
             None => self.accepted_in_a_row = 0,
         }
@@ -152,12 +200,36 @@ mod tests {
     }
 
     #[test]
-    fn the_board_is_at_rest_only_after_two_accepted_windows_in_a_row() {
+    fn the_board_is_at_rest_only_after_two_seconds_of_accepted_windows_in_a_row() {
+        assert_eq!(settle_windows(), 4, "2 s of half-second windows");
         let mut streak = Streak::default();
         assert_eq!(streak.settled(Some(1)), None);
         assert_eq!(streak.settled(None::<i32>), None);
-        assert_eq!(streak.settled(Some(2)), None);
-        assert_eq!(streak.settled(Some(3)), Some(3));
+        assert_eq!([2, 3, 4].map(|v| streak.settled(Some(v))), [None; 3]);
+        assert_eq!(streak.settled(Some(5)), Some(5));
+    }
+
+    #[test]
+    fn the_live_line_measures_to_the_instructed_target_unless_the_board_is_at_another_wanted_one() {
+        let (plus_z, minus_z) = (Orientation::face(Position::PosZ), Orientation::face(Position::NegZ));
+        let tilted = |deg: f64| [deg.to_radians().sin(), 0.0, deg.to_radians().cos()];
+        let remaining = [minus_z.clone(), plus_z.clone()];
+        let (line, verdict) = judge_target(Window { mean: tilted(40.0), still: true }, &remaining, &[]);
+        assert_eq!((line.as_str(), verdict), ("140.0 degrees from -Z (still)", None));
+        let (line, verdict) = judge_target(Window { mean: tilted(1.0), still: true }, &remaining, &[]);
+        assert_eq!((line.as_str(), verdict), ("at +Z (1.0 degrees, still), also wanted: taking it before -Z", Some(1)));
+    }
+
+    #[test]
+    fn a_reading_far_from_1_g_is_no_position_and_says_what_the_sensor_reads() {
+        let zeros = Window { mean: [0.0, 0.0, 0.001], still: true };
+        let line = not_gravity(&zeros).unwrap();
+        assert_eq!(line, "the sensor reads 0.00 g, it returns zeros: it is asleep, or not an MPU-6050; check `accelcal info` and the wiring");
+        let half = Window { mean: [0.0, 0.0, 0.5], still: true };
+        assert!(not_gravity(&half).unwrap().starts_with("the sensor reads 0.50 g, not the 1 g"));
+        let limit = 1.0 - MAX_GRAVITY_ERROR_G;
+        assert_eq!(not_gravity(&Window { mean: [0.0, 0.0, limit + 1e-6], still: true }), None);
+        assert!(not_gravity(&Window { mean: [0.0, 0.0, limit - 1e-3], still: true }).is_some());
     }
 
     #[test]

@@ -2,7 +2,7 @@
 
 use std::fmt::Write;
 
-use super::{CalibrateReport, Comparison, FitReport};
+use super::{shown, CalibrateReport, Comparison, FitReport};
 use crate::fit::{Evaluation, Fit};
 
 /// The fit: parameters with standard errors, then errors before and after in mg, then (for `auto`)
@@ -39,7 +39,7 @@ fn write_fit(out: &mut String, fit: &Fit, rows: usize, g: f64) {
 }
 
 fn write_rows(out: &mut String, evaluation: &Evaluation, g: f64) {
-    let mg = |value: f64| value / g * 1000.0;
+    let mg = |value: f64| shown(value / g * 1000.0, 2);
     let angles = evaluation.rows.iter().any(|r| r.inclination_error_deg.is_some());
     let _ = write!(out, "line  set    ||a|-g| mg before   after   |a-ref| mg before   after");
     let _ = writeln!(out, "{}", if angles { "  incl err deg  tf err deg" } else { "" });
@@ -63,7 +63,7 @@ fn write_rows(out: &mut String, evaluation: &Evaluation, g: f64) {
 }
 
 fn write_worst(out: &mut String, evaluation: &Evaluation, g: f64) {
-    let mg = |value: f64| value / g * 1000.0;
+    let mg = |value: f64| shown(value / g * 1000.0, 2);
     let (before, after) = evaluation.worst_norm_error();
     let _ = writeln!(out, "worst ||a|-g|: {:.2} mg before, {:.2} mg after", mg(before), mg(after));
     if let Some((before, after)) = evaluation.worst_reference_error() {
@@ -101,7 +101,7 @@ pub fn calibrate_report(report: &CalibrateReport) -> String {
 
 /// A number right-aligned in `width` with `digits` decimals, or `-`.
 fn cell(value: Option<f64>, width: usize, digits: usize) -> String {
-    value.map_or(format!("{:>width$}", "-"), |v| format!("{v:>width$.digits$}"))
+    value.map_or(format!("{:>width$}", "-"), |v| format!("{:>width$.digits$}", shown(v, digits)))
 }
 
 /// A parameter value in plain notation where that stays readable, else in scientific notation.

@@ -82,10 +82,11 @@ impl SimBoard {
         SimBoard { commands, thread: Some(thread), truth, kind }
     }
 
-    /// A fresh simulated board in this process, behind an in-memory pipe, and a session with it.
+    /// A fresh simulated board in this process, behind an in-memory pipe, and a session with it; its
+    /// clock runs in lockstep with the requests, so a run is repeatable by its seed.
     pub fn in_process(seed: u64, kind: SimSensor) -> Result<(Connection, SimBoard), LinkError> {
         let (host_end, device_end) = pipe();
-        let board = SimBoard::spawn_with(device_end, SimFlash::new(), seed, kind, Pace::Fast);
+        let board = SimBoard::spawn_with(device_end, SimFlash::new(), seed, kind, Pace::Lockstep);
         Ok((Connection::over(Box::new(host_end))?, board))
     }
 

@@ -12,8 +12,12 @@ const MAX_REAL_STEP_US: u64 = 100_000;
 /// The pace of simulated time.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Pace {
-    /// 10 ms of simulated time per service loop: as fast as the loop runs while the board works.
+    /// 10 ms of simulated time per service loop: as fast as the loop runs while the board works,
+    /// about real speed while it is idle.
     Fast,
+    /// As `Fast` while the board works; while it is idle, time stands still, so the samples a run
+    /// sees depend on its seed and its requests alone, never on how fast the host happens to be.
+    Lockstep,
     /// Simulated time follows the wall clock.
     RealTime,
 }
@@ -30,10 +34,12 @@ impl Clock {
         Clock { pace, last: Instant::now() }
     }
 
-    /// Microseconds of simulated time to let pass now.
-    pub(super) fn step_us(&mut self) -> u64 {
+    /// Microseconds of simulated time to let pass now, the board `busy` or not.
+    pub(super) fn step_us(&mut self, busy: bool) -> u64 {
         match self.pace {
             Pace::Fast => FAST_TICK_US,
+            Pace::Lockstep if busy => FAST_TICK_US,
+            Pace::Lockstep => 0,
             Pace::RealTime => {
                 let now = Instant::now();
                 let elapsed = now.duration_since(self.last).as_micros();
@@ -51,7 +57,7 @@ impl Clock {
     /// How long a read waits for the host: no wait while the board works and time is fast-forwarded.
     pub(super) fn read_wait(&self, busy: bool) -> Duration {
         match (self.pace, busy) {
-            (Pace::Fast, true) => Duration::ZERO,
+            (Pace::Fast | Pace::Lockstep, true) => Duration::ZERO,
             _ => Duration::from_micros(FAST_TICK_US),
         }
     }
@@ -65,11 +71,19 @@ mod tests {
     fn real_time_follows_the_wall_clock_and_stands_still_while_held() {
         let mut clock = Clock::new(Pace::RealTime);
         std::thread::sleep(Duration::from_millis(30));
-        let step = clock.step_us();
+        let step = clock.step_us(false);
         assert!((30_000..MAX_REAL_STEP_US).contains(&step), "{step} us");
         std::thread::sleep(Duration::from_millis(30));
         clock.hold();
-        assert!(clock.step_us() < 10_000, "time held still must not be made up");
-        assert_eq!(Clock::new(Pace::Fast).step_us(), FAST_TICK_US);
+        assert!(clock.step_us(true) < 10_000, "time held still must not be made up");
+        assert_eq!(Clock::new(Pace::Fast).step_us(false), FAST_TICK_US);
+    }
+
+    #[test]
+    fn lockstep_time_passes_only_while_the_board_works() {
+        let mut clock = Clock::new(Pace::Lockstep);
+        std::thread::sleep(Duration::from_millis(20));
+        assert_eq!(clock.step_us(false), 0);
+        assert_eq!(clock.step_us(true), FAST_TICK_US);
     }
 }

@@ -29,6 +29,7 @@ pub fn serve_pty(seed: u64, pace: Pace) -> Result<(), SimError> {
     let time = match pace {
         Pace::RealTime => "in real time",
         Pace::Fast => "fast-forwarded while it works",
+        Pace::Lockstep => "fast-forwarded while it works, standing still while idle",
     };
     eprintln!("simulated board on {path}, {time}; type help for the commands that move it");
     obey_stdin(&board.controls());

@@ -20,6 +20,9 @@ use super::Port;
 
 type SimServer = Server<SimMpu6050, SimFlash>;
 
+/// How long to wait before reading a pseudo-terminal again that has no one on the other side yet.
+const PTY_RETRY: std::time::Duration = std::time::Duration::from_millis(10);
+
 /// The serve loop's own state beside the board: time, unwritten frames, a motion's end.
 struct Service {
     clock: Clock,
@@ -31,9 +34,11 @@ struct Service {
 /// Serves `port` until told to stop or the host end goes away; returns the flash.
 pub(super) fn serve<P: Port>(mut port: P, mut server: SimServer, inbox: Receiver<SimCommand>, pace: Pace) -> SimFlash {
     let mut service = Service { clock: Clock::new(pace), outgoing: Outgoing::default(), motion_ends_us: None };
-    'serving: loop {
-        // NOTE: every waiting command is applied before the port is read, so a command sent before
-        // a request is in force when the device answers a request sent after it.
+    let mut buffer = [0u8; 256];
+    'serving: while let Some(received) = service.read(&mut port, &server, &mut buffer) {
+        // NOTE: the owner's commands are applied after the read and before the bytes are handled, so
+        // a command sent before a request is in force when that request is answered, however the two
+        // race to this thread.
         loop {
             match inbox.try_recv() {
                 Ok(SimCommand::Stop) | Err(TryRecvError::Disconnected) => break 'serving,
@@ -45,6 +50,7 @@ pub(super) fn serve<P: Port>(mut port: P, mut server: SimServer, inbox: Receiver
                 Err(TryRecvError::Empty) => break,
             }
         }
+        block_on(server.receive(&buffer[..received]));
         if !service.step(&mut port, &mut server) {
             break;
         }
@@ -89,11 +95,28 @@ impl Service {
         }
     }
 
-    /// One service cycle; `false` when the host end is gone.
-    fn step<P: Port>(&mut self, port: &mut P, server: &mut SimServer) -> bool {
+    /// Reads what the host sent (waiting a little unless the board works); `None` when the host
+    /// end is gone.
+    fn read<P: Port>(&self, port: &mut P, server: &SimServer, buffer: &mut [u8]) -> Option<usize> {
         let working = server.device().is_busy() && self.outgoing.is_empty();
         let _ = port.set_read_timeout(self.clock.read_wait(working));
-        if !receive(port, server) || !self.outgoing.write(port) {
+        match port.read(buffer) {
+            Ok(n) => Some(n),
+            Err(e) if matches!(e.kind(), ErrorKind::TimedOut | ErrorKind::WouldBlock | ErrorKind::Interrupted) => {
+                Some(0)
+            }
+            Err(e) if e.kind() == ErrorKind::BrokenPipe => None, // the in-process host is gone
+            Err(_) => {
+                std::thread::sleep(PTY_RETRY); // a pty with no one on the other side yet
+                Some(0)
+            }
+        }
+    }
+
+    /// The rest of one service cycle after the read: write, let time pass, poll, drain; `false`
+    /// when the host end is gone.
+    fn step<P: Port>(&mut self, port: &mut P, server: &mut SimServer) -> bool {
+        if !self.outgoing.write(port) {
             return false;
         }
         if !self.outgoing.is_empty() {
@@ -109,23 +132,12 @@ impl Service {
 
     /// Advances the sensor's time, ending a timed motion when it is due.
     fn let_time_pass(&mut self, server: &mut SimServer) {
+        let busy = server.device().is_busy();
         let sensor = server.device_mut().bus_mut();
-        sensor.advance_us(self.clock.step_us());
+        sensor.advance_us(self.clock.step_us(busy));
         if self.motion_ends_us.is_some_and(|end| sensor.now_us() >= end) {
             self.motion_ends_us = None;
             sensor.stop_motion();
         }
     }
-}
-
-/// Reads what the host sent and hands it to the board; `false` when the host end is gone.
-fn receive<P: Port>(port: &mut P, server: &mut SimServer) -> bool {
-    let mut buffer = [0u8; 256];
-    match port.read(&mut buffer) {
-        Ok(n) => block_on(server.receive(&buffer[..n])),
-        Err(e) if matches!(e.kind(), ErrorKind::TimedOut | ErrorKind::WouldBlock | ErrorKind::Interrupted) => {}
-        Err(e) if e.kind() == ErrorKind::BrokenPipe => return false, // the in-process host is gone
-        Err(_) => std::thread::sleep(std::time::Duration::from_millis(10)), // a pty with no one on the other side yet
-    }
-    true
 }

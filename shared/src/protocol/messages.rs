@@ -25,7 +25,8 @@ pub enum Request {
     Cancel,
     /// Forgets the captures kept for the six-position fit.
     ClearPositions,
-    /// Fits the six-position closed form on the chip from the kept captures; it becomes active at once.
+    /// Fits the six-position closed form on the chip from the kept captures and returns it; the active
+    /// calibration is untouched (send [`Request::SetCalibration`] to make the fit active).
     FitSixPosition,
     /// Reads the active (RAM) or the stored (flash) calibration.
     GetCalibration(CalibrationSlot),

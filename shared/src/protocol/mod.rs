@@ -48,6 +48,20 @@ pub const DEFAULT_CAPTURE_SECONDS: u8 = 10;
 /// default 100 Hz / 44 Hz filter and 9 mg with the filter off at 1 kHz; 15 mg keeps clear of both
 /// while a hand's tremor or a turn of a few degrees exceeds it.
 pub const MAX_STILL_ACCEL_STD_G: f32 = 0.015;
+/// Largest difference, in g, between |m| of a board at rest and the 1 g of gravity for the reading to
+/// count as a position at all (a face on the chip, any wanted orientation on the host).
+///
+/// NOTE: the sensitivity tolerance of +-3 % and zero-g offsets of +-50 mg (x, y) and +-80 mg (z)
+/// (Product Specification 6.2) move |m| at rest by at most about 0.15 g; 0.25 g keeps clear of that
+/// while a sensor returning zeros (0 g), a wrong range setting (0.5 g or 2 g) or a board being
+/// swung is never taken for a position.
+pub const MAX_GRAVITY_ERROR_G: f32 = 0.25;
+
+/// Whether an averaged reading of magnitude `magnitude_g` can be gravity on a board at rest.
+pub fn reads_gravity(magnitude_g: f32) -> bool {
+    (magnitude_g - 1.0).abs() <= MAX_GRAVITY_ERROR_G
+}
+
 /// Largest gyro standard deviation of a still board, in deg/s: the rate noise is 0.05 deg/s rms
 /// (Product Specification 6.1), and a turn of a degree a second exceeds 0.5.
 pub const MAX_STILL_GYRO_STD_DPS: f32 = 0.5;

@@ -121,6 +121,9 @@ fn device_calibration(report: &mut impl FnMut(Result<'_>)) -> bool {
         values: &[m[0][0], m[0][1], m[0][2], m[1][0], m[1][1], m[1][2], m[2][0], m[2][1], m[2][2]],
     });
     report(Result { name: "device-fit-offset", values: &calibration.offset_g });
+    if !matches!(run_to_end(&mut device, Request::SetCalibration(calibration), |_| {}), Some(Response::Done)) {
+        return false;
+    }
     device.bus_mut().place([0.3, -0.4, 0.866]);
     let mut corrected = [0.0f32; 30];
     let mut count = 0;

@@ -1,0 +1,219 @@
+//! `accelcal calibrate`: captures (kept in a session after each one, resumable), fit, upload, save,
+//! verification.
+
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+
+use shared::protocol::{DeviceInfo, SensorConfig};
+use shared::Calibration;
+
+use super::args::CalibrateArgs;
+use super::device::Opened;
+use super::terminal::feedback;
+use crate::calibration::{self, describe};
+use crate::error::Error;
+use crate::fit::Fit;
+use crate::link::{Client, LinkError, Port};
+use crate::procedure::{self, CollectOptions, Feedback};
+use crate::report::{self, CalibrateReport};
+use crate::session::{unix_time_s, BoardRecord, Session};
+
+/// The calibrations a calibration chooses between.
+struct Fitted {
+    session: Session,
+    chip: Option<Calibration>,
+    host: Option<Fit>,
+    chosen: Calibration,
+}
+
+/// The session of this run and where it is kept.
+struct Kept {
+    session: Session,
+    path: Option<PathBuf>,
+    /// Whether it continues a session begun in an earlier run.
+    resumed: bool,
+}
+
+/// `accelcal calibrate`: captures, fit, upload, save, verification.
+pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
+    // NOTE: refused before anything happens: a run that could only end without the upload it was
+    // asked for must not start (the simulated board, turned by the tool itself, needs no answer).
+    if args.json && !args.yes && !args.device.sim {
+        return Err(Error::JsonCannotAsk);
+    }
+    let mut opened = args.device.open()?;
+    opened.connection.info.sensor.map_err(LinkError::from)?;
+    let mut feedback = feedback(args.json, args.yes || (args.json && opened.sim.is_some()));
+    let mut kept = start_session(args, &opened.connection.info, feedback.as_mut())?;
+    let interrupt = interrupt_on_ctrl_c();
+    opened.connection.client.interrupt_on(interrupt.clone());
+    collect(args, &mut opened, &mut kept, feedback.as_mut())?;
+    let fitted = choose(&mut opened.connection.client, &kept, opened.connection.info.config)?;
+    show_choice(feedback.as_mut(), &fitted);
+    let client = &mut opened.connection.client;
+    if interrupt.load(Ordering::SeqCst) {
+        return Err(LinkError::Interrupted.into());
+    }
+    if !upload_if_confirmed(client, &fitted.chosen, feedback.as_mut())? {
+        return Ok(());
+    }
+    finish(args, &mut opened, &fitted, feedback.as_mut())
+}
+
+/// The captures the session lacks, written after each one; an error names where they are kept.
+fn collect(
+    args: &CalibrateArgs,
+    opened: &mut Opened,
+    kept: &mut Kept,
+    feedback: &mut dyn Feedback,
+) -> Result<(), Error> {
+    let (mut hand, wait_limit) = opened.hand(args.sim_placement_deg, args.device.seed);
+    let options = CollectOptions { seconds: args.seconds, wait_limit };
+    let targets = procedure::targets(kept.session.quick);
+    let path = kept.path.clone();
+    let mut keep = |session: &Session| path.as_deref().map_or(Ok(()), |p| session.save(p));
+    let client = &mut opened.connection.client;
+    let result =
+        procedure::collect_into(client, hand.as_mut(), &targets, &options, feedback, &mut kept.session, &mut keep);
+    match (result, &kept.path) {
+        (Ok(()), _) => Ok(()),
+        (Err(source), Some(path)) if !kept.session.captures.is_empty() => Err(Error::Stopped {
+            source: Box::new(source),
+            captures: kept.session.captures.len(),
+            path: path.with_extension("json"),
+            device: device_flags(args),
+        }),
+        (Err(source), _) => Err(source.into()),
+    }
+}
+
+/// The verification, then the report.
+fn finish(
+    args: &CalibrateArgs,
+    opened: &mut Opened,
+    fitted: &Fitted,
+    feedback: &mut dyn Feedback,
+) -> Result<(), Error> {
+    let (mut hand, wait_limit) = opened.hand(args.sim_placement_deg, args.device.seed);
+    let client = &mut opened.connection.client;
+    let calibrated: Vec<[f64; 3]> = fitted.session.captures.iter().map(|c| c.stats.mean_g.map(f64::from)).collect();
+    let positions = usize::from(args.verify);
+    let verification = procedure::verify_clear_of(client, hand.as_mut(), positions, wait_limit, feedback, &calibrated)?;
+    let truth = opened.sim.as_ref().map(|board| board.truth());
+    let captures = fitted.session.captures.len();
+    let report =
+        CalibrateReport::new(&fitted.chosen, fitted.chip.as_ref(), fitted.host.as_ref(), truth, verification, captures);
+    print_report(&report, args.json);
+    Ok(())
+}
+
+/// A flag that Ctrl-C sets (instead of ending the process), so that the capture is cancelled on
+/// the board and the session stays as written.
+fn interrupt_on_ctrl_c() -> Arc<AtomicBool> {
+    let flag = Arc::new(AtomicBool::new(false));
+    let set = flag.clone();
+    // NOTE: fails only when a handler is already set; without one, Ctrl-C ends the process and the
+    // session still holds every capture written so far.
+    let _ = ctrlc::set_handler(move || set.store(true, Ordering::SeqCst));
+    flag
+}
+
+/// The session to continue (`--resume`, checked against the board) or a new one, written at once
+/// so that an unwritable path fails before the first capture.
+fn start_session(args: &CalibrateArgs, info: &DeviceInfo, feedback: &mut dyn Feedback) -> Result<Kept, Error> {
+    let board = BoardRecord::of(info);
+    let kept = match &args.resume {
+        Some(path) => resumed(path, &board, feedback)?,
+        None => Kept {
+            session: Session { board: Some(board), quick: args.quick, captures: Vec::new() },
+            path: args.session.clone().or_else(|| default_session_path(args)),
+            resumed: false,
+        },
+    };
+    if let Some(path) = &kept.path {
+        kept.session.save(path)?;
+        feedback.say(&format!("the captures are kept in {} as they are taken", path.with_extension("json").display()));
+    }
+    Ok(kept)
+}
+
+/// A session from an earlier run, on this board at this setting.
+fn resumed(path: &Path, board: &BoardRecord, feedback: &mut dyn Feedback) -> Result<Kept, Error> {
+    let stem = path.with_extension("");
+    let json = stem.with_extension("json");
+    let session = Session::load(&json)?;
+    let recorded = session.board.as_ref().ok_or(crate::session::SessionError::NoBoard { path: json.clone() })?;
+    recorded.check_same(board, &json)?;
+    let total = procedure::targets(session.quick).len();
+    feedback.say(&format!("resuming {}: {} of {total} positions captured", json.display(), session.captures.len()));
+    Ok(Kept { session, path: Some(stem), resumed: true })
+}
+
+/// Where a calibration on a real board keeps its session when `--session` is not given: the
+/// current directory, named by the time (a simulated board in this process is gone after the run).
+fn default_session_path(args: &CalibrateArgs) -> Option<PathBuf> {
+    args.device.port.as_ref().map(|_| PathBuf::from(format!("accelcal-session-{}", unix_time_s() as u64)))
+}
+
+/// The device flags that reach the same board again, for the resume hint.
+fn device_flags(args: &CalibrateArgs) -> String {
+    match &args.device.port {
+        Some(port) => format!("--port {port}"),
+        None => format!("--sim --seed {}", args.device.seed),
+    }
+}
+
+/// Uploads and saves the calibration if the user agrees; whether it did.
+fn upload_if_confirmed<P: Port>(
+    client: &mut Client<P>,
+    calibration: &Calibration,
+    feedback: &mut dyn Feedback,
+) -> Result<bool, Error> {
+    if !feedback.confirm("Upload this calibration to the board and save it in flash?") {
+        feedback.say("not uploaded; the board keeps its previous calibration");
+        return Ok(false);
+    }
+    client.set_calibration(*calibration)?;
+    client.save_calibration()?;
+    feedback.say("uploaded and saved; now checking it at fresh orientations");
+    Ok(true)
+}
+
+/// The on-chip fit (of captures all taken in this run), and for a full calibration the host's fit,
+/// which is then the one chosen; a resumed `--quick` session is fitted by the same closed form on
+/// the host.
+fn choose<P: Port>(client: &mut Client<P>, kept: &Kept, config: SensorConfig) -> Result<Fitted, Error> {
+    let session = kept.session.clone();
+    let chip = if kept.resumed { None } else { Some(client.fit_six_position()?) };
+    match (session.quick, chip) {
+        (true, Some(chip)) => Ok(Fitted { session, chip: Some(chip), host: None, chosen: chip }),
+        (quick, chip) => {
+            let fit = if quick { procedure::host_six_position_fit(&session)? } else { procedure::host_fit(&session)? };
+            let chosen = calibration::from_fit(&fit, &session, config)?;
+            Ok(Fitted { session, chip, host: Some(fit), chosen })
+        }
+    }
+}
+
+/// The chosen calibration, the host fit's parameters, and the chip's fit beside them.
+fn show_choice(feedback: &mut dyn Feedback, fitted: &Fitted) {
+    feedback.say(&describe(&fitted.chosen));
+    if let Some(fit) = &fitted.host {
+        for p in &fit.parameters {
+            let error = p.std_error.map_or(String::new(), |e| format!(" +- {e:.1e}"));
+            feedback.say(&format!("  {:<5} {:+.6}{error}", p.name, crate::report::shown(p.value, 6)));
+        }
+    }
+    if let (Some(chip), Some(_)) = (&fitted.chip, &fitted.host) {
+        feedback.say(&format!("on-chip six-position fit for comparison: {}", describe(chip)));
+    }
+}
+
+fn print_report(report: &CalibrateReport, json: bool) {
+    if json {
+        println!("{}", report::json::calibrate_report(report));
+    } else {
+        print!("{}", report::text::calibrate_report(report));
+    }
+}

@@ -1,0 +1,194 @@
+//! A person at the board, played over `accelcal sim --pty`: the test reads what `calibrate` tells
+//! the person on stderr and turns the simulated board through the simulator's stdin, as a person
+//! would; it declines, presses Ctrl-C, pulls the cable and resumes.
+
+use std::io::{BufRead, BufReader, Write};
+use std::process::{Child, ChildStdin, Command, Output, Stdio};
+use std::sync::mpsc::{channel, Receiver};
+use std::time::Duration;
+
+fn accelcal(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_accelcal")).args(args).output().expect("accelcal runs")
+}
+
+/// `accelcal sim --pty` in the background, turned through its stdin, killed when dropped.
+struct SimPty {
+    child: Child,
+    stdin: ChildStdin,
+    path: String,
+}
+
+impl SimPty {
+    fn start(seed: &str) -> Self {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_accelcal"))
+            .args(["sim", "--pty", "--seed", seed])
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let mut first_line = String::new();
+        BufReader::new(child.stdout.take().unwrap()).read_line(&mut first_line).unwrap();
+        let stdin = child.stdin.take().unwrap();
+        let mut sim = SimPty { child, stdin, path: first_line.trim().to_owned() };
+        // On the desk, at no wanted orientation: only the person's turns bring it to one.
+        sim.tell("place 0.3 0.4 0.866");
+        sim
+    }
+
+    fn tell(&mut self, line: &str) {
+        writeln!(self.stdin, "{line}").unwrap();
+        self.stdin.flush().unwrap();
+    }
+
+    /// The board's active and stored calibration, as `download` prints them.
+    fn calibrations(&self) -> (String, String) {
+        let active = accelcal(&["download", "--port", &self.path]);
+        let stored = accelcal(&["download", "--port", &self.path, "--stored"]);
+        (String::from_utf8(active.stdout).unwrap(), String::from_utf8(stored.stdout).unwrap())
+    }
+}
+
+impl Drop for SimPty {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// `accelcal calibrate` against the simulated board, with its stderr lines on a channel.
+struct Run {
+    child: Child,
+    lines: Receiver<String>,
+    seen: Vec<String>,
+}
+
+impl Run {
+    fn start(port: &str, extra: &[&str]) -> Self {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_accelcal"))
+            .args(["calibrate", "--port", port, "--quick", "--seconds", "5", "--verify", "2"])
+            .args(extra)
+            .stdin(Stdio::null())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let (send, lines) = channel();
+        let stderr = BufReader::new(child.stderr.take().unwrap());
+        std::thread::spawn(move || stderr.lines().map_while(Result::ok).for_each(|line| drop(send.send(line))));
+        Run { child, lines, seen: Vec::new() }
+    }
+
+    /// Plays the person: turns the board as each instruction says, until a line contains `until`
+    /// (or the run ends: `None`).
+    fn follow(&mut self, sim: &mut SimPty, until: &str) -> Option<String> {
+        let fresh = ["place 0.5 0.5 0.707", "place -0.6 0.3 -0.742", "place 0.1 -0.8 0.59"];
+        while let Ok(line) = self.lines.recv_timeout(Duration::from_secs(60)) {
+            self.seen.push(line.clone());
+            if let Some(rest) = line.strip_prefix("Rest the board with ") {
+                sim.tell(&format!("place {}", rest.split_whitespace().next().unwrap()));
+            } else if let Some(rest) = line.strip_prefix("Verification ") {
+                let k: usize = rest.split(':').next().unwrap().parse().unwrap();
+                sim.tell(fresh[k - 1]);
+            }
+            if line.contains(until) {
+                return Some(line);
+            }
+        }
+        None
+    }
+
+    fn interrupt(&self) {
+        let status = Command::new("kill").args(["-INT", &self.child.id().to_string()]).status().unwrap();
+        assert!(status.success());
+    }
+
+    /// Waits for the end; the exit status, stdout and every stderr line.
+    fn finish(mut self, sim: &mut SimPty) -> (std::process::ExitStatus, String, String) {
+        self.follow(sim, "\u{0}never");
+        let output = self.child.wait_with_output().unwrap();
+        (output.status, String::from_utf8(output.stdout).unwrap(), self.seen.join("\n"))
+    }
+}
+
+fn session_captures(stem: &std::path::Path) -> usize {
+    let text = std::fs::read_to_string(stem.with_extension("json")).unwrap();
+    let json: serde_json::Value = serde_json::from_str(&text).unwrap();
+    json["captures"].as_array().unwrap().len()
+}
+
+fn temp_stem(name: &str) -> std::path::PathBuf {
+    std::env::temp_dir().join(format!("accelcal-person-{}-{name}", std::process::id()))
+}
+
+#[test]
+fn declining_the_upload_leaves_the_active_and_stored_calibration_as_they_were() {
+    let mut sim = SimPty::start("11");
+    let kept = r#"{"model": "six-position", "matrix": [[1.01,0,0],[0,0.99,0],[0,0,1]], "offset": [0.02, -0.01, 0.03]}"#;
+    let file = temp_stem("kept.json");
+    std::fs::write(&file, kept).unwrap();
+    assert!(accelcal(&["upload", "--port", &sim.path, file.to_str().unwrap(), "--save"]).status.success());
+    let before = sim.calibrations();
+    assert!(before.0.contains("0.0299999") && before.1.contains("0.0299999"), "{before:?}");
+    let session = temp_stem("declined");
+    let run = Run::start(&sim.path.clone(), &["--session", session.to_str().unwrap()]);
+    let (status, _, stderr) = run.finish(&mut sim);
+    assert!(status.success(), "{stderr}");
+    assert!(stderr.contains("not uploaded; the board keeps its previous calibration"), "{stderr}");
+    assert_eq!(sim.calibrations(), before, "declining changed the board");
+}
+
+#[test]
+fn ctrl_c_keeps_the_captures_so_far_and_resume_completes_them_to_a_verified_calibration() {
+    let mut sim = SimPty::start("12");
+    let session = temp_stem("interrupted");
+    let mut run = Run::start(&sim.path.clone(), &["--session", session.to_str().unwrap()]);
+    assert!(run.follow(&mut sim, "captured 2 of 6").is_some(), "{:?}", run.seen);
+    // The person stops instead of turning the board to the third face.
+    std::thread::sleep(Duration::from_millis(300));
+    run.interrupt();
+    let (status, _, stderr) = run.finish(&mut sim);
+    assert!(!status.success(), "exit 0 after Ctrl-C: {stderr}");
+    let last = stderr.lines().last().unwrap();
+    assert!(last.contains("interrupted (Ctrl-C)") && last.contains("the 2 captures so far are kept in"), "{last}");
+    assert!(last.contains(&format!("--resume {}", session.with_extension("json").display())), "{last}");
+    assert_eq!(session_captures(&session), 2);
+
+    let json = session.with_extension("json");
+    let run = Run::start(&sim.path.clone(), &["--resume", json.to_str().unwrap(), "--yes"]);
+    let (status, stdout, stderr) = run.finish(&mut sim);
+    assert!(status.success(), "{stderr}");
+    assert!(stderr.contains("2 of 6 positions captured"), "{stderr}");
+    assert!(stdout.starts_with("verified at 2 fresh orientations"), "{stdout}");
+    assert_eq!(session_captures(&session), 6);
+}
+
+#[test]
+fn a_pulled_cable_keeps_the_captures_so_far_and_resume_on_another_board_is_refused_by_serial() {
+    let mut sim = SimPty::start("13");
+    let session = temp_stem("pulled");
+    let mut run = Run::start(&sim.path.clone(), &["--session", session.to_str().unwrap()]);
+    assert!(run.follow(&mut sim, "captured 3 of 6").is_some(), "{:?}", run.seen);
+    drop(sim); // the cable is pulled
+    let mut other = SimPty::start("14");
+    let (status, _, stderr) = run.finish(&mut other);
+    assert!(!status.success());
+    assert!(stderr.lines().last().unwrap().contains("the 3 captures so far are kept in"), "{stderr}");
+    assert_eq!(session_captures(&session), 3);
+
+    let json = session.with_extension("json");
+    let output = accelcal(&["calibrate", "--port", &other.path, "--resume", json.to_str().unwrap(), "--yes"]);
+    assert!(!output.status.success());
+    let stderr = String::from_utf8(output.stderr).unwrap();
+    assert!(stderr.contains("was captured on another board (serial "), "{stderr}");
+    assert_eq!(session_captures(&session), 3, "the refused resume changed the session");
+}
+
+#[test]
+fn a_session_in_a_missing_directory_is_refused_before_the_first_capture() {
+    let sim = SimPty::start("15");
+    let output = accelcal(&["calibrate", "--port", &sim.path, "--session", "/nonexistent-dir/s", "--yes"]);
+    assert!(!output.status.success());
+    let stderr = String::from_utf8(output.stderr).unwrap();
+    assert!(stderr.contains("cannot write /nonexistent-dir/s.json"), "{stderr}");
+    assert!(!stderr.contains("found; averaging"), "{stderr}");
+}
