@@ -8,6 +8,7 @@ use crate::data::DataError;
 use crate::fit::{FitError, ModelChoice};
 use crate::link::LinkError;
 use crate::procedure::ProcedureError;
+use crate::report::PlotError;
 use crate::session::SessionError;
 use crate::sim::SimError;
 
@@ -30,6 +31,10 @@ pub enum Error {
     CannotFit { path: PathBuf, model: ModelChoice, source: FitError },
     #[error(transparent)]
     Fit(#[from] FitError),
+    #[error("{}: cannot report this session: {source}", .path.display())]
+    CannotReport { path: PathBuf, source: FitError },
+    #[error(transparent)]
+    Plot(#[from] PlotError),
     #[error("--g must be a positive number, got {g}")]
     BadGravity { g: f64 },
     #[error("which device? give --port PATH (see `accelcal ports`) or --sim")]

@@ -10,6 +10,7 @@ use shared::Position;
 
 use crate::data::{Dataset, Row};
 use crate::orientation::Orientation;
+use crate::procedure::Verification;
 
 /// Why a session file could not be written or read.
 #[derive(Debug, thiserror::Error)]
@@ -63,6 +64,9 @@ impl CaptureRecord {
 pub struct Session {
     /// The captures used for fitting.
     pub captures: Vec<CaptureRecord>,
+    /// The check of the calibration at fresh orientations, when one was made.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub verification: Option<Verification>,
 }
 
 impl Session {
@@ -145,7 +149,8 @@ mod tests {
 
     #[test]
     fn a_saved_session_reads_back_and_its_csv_reads_as_data() {
-        let session = Session { captures: vec![record(Position::PosZ, 1.0, 1.5), record(Position::NegZ, -1.0, 20.0)] };
+        let captures = vec![record(Position::PosZ, 1.0, 1.5), record(Position::NegZ, -1.0, 20.0)];
+        let session = Session { captures, verification: None };
         let stem = std::env::temp_dir().join(format!("accelcal-session-{}", std::process::id()));
         session.save(&stem).unwrap();
         assert_eq!(Session::load(&stem.with_extension("json")).unwrap(), session);

@@ -77,7 +77,7 @@ pub struct CalibrateArgs {
     /// Print one JSON object (non-interactive with --sim).
     #[arg(long)]
     pub json: bool,
-    /// Keep the session as PATH.json and PATH.csv.
+    /// Keep the session as PATH.json and PATH.csv, and its report as PATH.html (see `report`).
     #[arg(long)]
     pub session: Option<PathBuf>,
     /// With --sim: how many degrees off the tool places the board, as a hand would.
@@ -98,6 +98,19 @@ pub struct CaptureArgs {
     pub name: String,
     #[arg(long, default_value_t = DEFAULT_CAPTURE_SECONDS, help = seconds_help("Seconds to average"))]
     pub seconds: u8,
+}
+
+/// `accelcal report`.
+#[derive(Args)]
+pub struct ReportArgs {
+    /// The session file (PATH.json written by calibrate --session or capture).
+    pub session: PathBuf,
+    /// Where to write the HTML page (default: beside the session, PATH.html).
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+    /// Print the report as one JSON object instead of text (the page is written only with -o).
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// `accelcal stream`.
@@ -132,6 +145,8 @@ pub enum Command {
     },
     /// The guided calibration: positions, captures, fit, upload, save, verification.
     Calibrate(CalibrateArgs),
+    /// Writes a session's report: one self-contained HTML page with plots (and text or JSON on stdout).
+    Report(ReportArgs),
     /// Captures one position into a session file.
     Capture(CaptureArgs),
     /// Uploads a calibration (from `download`, `calibrate --json`, or `fit --json` on data in g) and makes it active.

@@ -7,6 +7,7 @@ mod board;
 mod device;
 mod fit;
 mod procedure;
+mod report;
 mod terminal;
 mod transfer;
 
@@ -38,6 +39,7 @@ pub fn run(cli: Cli) -> Result<(), Error> {
         Command::Info { device, json } => board::info(&device, json),
         Command::Calibrate(args) => procedure::calibrate(&args),
         Command::Capture(args) => procedure::capture(&args),
+        Command::Report(args) => report::report(&args),
         Command::Verify { device, positions } => procedure::verify(&device, positions),
         Command::Upload { device, file, save } => transfer::upload(&device, &file, save),
         Command::Save { device } => transfer::save(&device),

@@ -1,5 +1,7 @@
 //! The guided procedure on the command line: `calibrate`, `capture`, `verify`.
 
+use std::path::Path;
+
 use shared::{AccelRange, Calibration};
 
 use super::args::{CalibrateArgs, CaptureArgs, Device};
@@ -10,7 +12,7 @@ use crate::error::Error;
 use crate::fit::Fit;
 use crate::link::{Client, LinkError, Port};
 use crate::orientation::Orientation;
-use crate::procedure::{self, CollectOptions, Feedback};
+use crate::procedure::{self, CollectOptions, Feedback, Verification};
 use crate::report::{self, CalibrateReport};
 use crate::session::{CaptureRecord, Session};
 
@@ -46,11 +48,30 @@ pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
         return Ok(());
     }
     let verification = procedure::verify(client, hand.as_mut(), args.verify, wait_limit, feedback.as_mut())?;
+    if let Some(path) = &args.session {
+        keep_with_report(&fitted.session, &verification, path, feedback.as_mut())?;
+    }
     let truth = opened.sim.as_ref().map(|board| board.truth());
     let captures = fitted.session.captures.len();
     let report =
         CalibrateReport::new(&fitted.chosen, &fitted.chip, fitted.host.as_ref(), truth, verification, captures);
     print_report(&report, args.json);
+    Ok(())
+}
+
+/// Saves the session again with its verification, writes its report beside it, and says where.
+fn keep_with_report(
+    session: &Session,
+    verification: &Verification,
+    stem: &Path,
+    feedback: &mut dyn Feedback,
+) -> Result<(), Error> {
+    let session = Session { verification: Some(verification.clone()), ..session.clone() };
+    session.save(stem)?;
+    let json = stem.with_extension("json");
+    let page = super::report::beside(&json);
+    super::report::write_page(&super::report::build(&session, &json)?, &page)?;
+    feedback.say(&format!("session kept in {}; report written to {}", json.display(), page.display()));
     Ok(())
 }
 

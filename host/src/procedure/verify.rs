@@ -3,9 +3,9 @@
 
 use std::time::Duration;
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use shared::linalg;
-use shared::protocol::{CalibrationSlot, StreamKind};
+use shared::protocol::{CalibrationSlot, CaptureStats, StreamKind};
 use shared::Calibration;
 
 use super::collect::capture;
@@ -19,7 +19,7 @@ pub const VERIFY_SECONDS: u8 = 5;
 const CHIP_SAMPLES: u32 = 20;
 
 /// The errors at the verification orientations, in mg.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Verification {
     /// Orientations checked.
     pub positions: usize,
@@ -32,6 +32,16 @@ pub struct Verification {
     /// Largest difference between the chip's own corrected samples and the calibration applied to
     /// the raw capture, in mg: proof the chip applies what was verified (noise of 20 samples).
     pub on_chip_difference_mg: f64,
+    /// RMS over the orientations of the noise of each capture's |m| (its scatter over the square
+    /// root of its samples), in mg: errors below this are not resolved.
+    #[serde(default)]
+    pub noise_floor_mg: f64,
+    /// |m| - 1 g at each orientation with the raw readings, in mg.
+    #[serde(default)]
+    pub before_mg: Vec<f64>,
+    /// |a| - 1 g at each orientation with the calibration, in mg.
+    #[serde(default)]
+    pub after_mg: Vec<f64>,
 }
 
 /// The errors at one orientation, in mg.
@@ -39,6 +49,7 @@ struct Check {
     before_mg: f64,
     after_mg: f64,
     on_chip_mg: f64,
+    noise_mg: f64,
 }
 
 /// Checks the active calibration at `positions` fresh orientations.
@@ -80,6 +91,7 @@ fn check<P: Port>(
         before_mg: (f64::from(linalg::norm(stats.mean_g)) - 1.0) * 1000.0,
         after_mg: (f64::from(linalg::norm(corrected)) - 1.0) * 1000.0,
         on_chip_mg: f64::from(linalg::norm(linalg::sub(chip_mean, corrected))) * 1000.0,
+        noise_mg: norm_noise_g(&stats) * 1000.0,
     })
 }
 
@@ -93,7 +105,19 @@ fn summary(checks: &[Check]) -> Verification {
         after_rms_mg: rms(|c| c.after_mg),
         after_max_mg: checks.iter().fold(0.0, |m, c| m.max(c.after_mg.abs())),
         on_chip_difference_mg: checks.iter().fold(0.0, |m, c| m.max(c.on_chip_mg)),
+        noise_floor_mg: rms(|c| c.noise_mg),
+        before_mg: checks.iter().map(|c| c.before_mg).collect(),
+        after_mg: checks.iter().map(|c| c.after_mg).collect(),
     }
+}
+
+/// The standard deviation of a capture's mean |m|, in g: each axis's scatter weighted by its share
+/// of |m| (the gradient of |m|), over the square root of the samples averaged.
+fn norm_noise_g(stats: &CaptureStats) -> f64 {
+    let mean = stats.mean_g.map(f64::from);
+    let norm = linalg::norm(mean).max(f64::EPSILON);
+    let variance: f64 = (0..3).map(|k| (mean[k] / norm * f64::from(stats.std_g[k])).powi(2)).sum();
+    (variance / f64::from(stats.samples.max(1))).sqrt()
 }
 
 /// Mean of samples corrected by the chip itself.
