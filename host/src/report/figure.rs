@@ -110,45 +110,55 @@ pub fn sphere_view(positions: &[PositionResult], fit: (&Mat3<f64>, &Vec3<f64>), 
     }
 }
 
-/// Each position's | |v| - 1 g |, raw and calibrated, against its number.
-pub fn residuals(positions: &[PositionResult]) -> Figure {
-    let numbered = |pick: fn(&PositionResult) -> f64| {
-        positions.iter().enumerate().map(|(i, p)| [(i + 1) as f64, pick(p)]).collect()
-    };
-    Figure {
-        id: "residuals",
-        title: "each position's |v| - 1 g".into(),
-        x_label: "position".into(),
-        y_label: "|v| - 1 g (mg)".into(),
-        equal_axes: false,
-        series: vec![
-            Series::new("raw", Role::Raw, SeriesStyle::Points, numbered(|p| p.residual_before_mg)),
-            Series::new("calibrated", Role::Calibrated, SeriesStyle::Points, numbered(|p| p.residual_after_mg)),
-        ],
-    }
+/// Each position's |v| - 1 g, raw and calibrated, each on its own scale (the calibrated ones are
+/// hundreds of times smaller).
+pub fn residuals(positions: &[PositionResult]) -> [Figure; 2] {
+    let before: Vec<f64> = positions.iter().map(|p| p.residual_before_mg).collect();
+    let after: Vec<f64> = positions.iter().map(|p| p.residual_after_mg).collect();
+    [
+        numbered("residuals-raw", "raw: each position's |m| - 1 g", "position", Role::Raw, &before, None),
+        numbered(
+            "residuals-calibrated",
+            "calibrated: each position's |a| - 1 g",
+            "position",
+            Role::Calibrated,
+            &after,
+            None,
+        ),
+    ]
 }
 
-/// The verification's orientations, raw and calibrated, between plus and minus the noise floor.
-pub fn verification(v: &Verification) -> Option<Figure> {
+/// The verification's orientations, raw and calibrated, the calibrated ones within the band of
+/// plus and minus the noise floor.
+pub fn verification(v: &Verification) -> Option<[Figure; 2]> {
     if v.after_mg.is_empty() {
         return None;
     }
-    let numbered = |values: &[f64]| values.iter().enumerate().map(|(i, e)| [(i + 1) as f64, *e]).collect();
-    let floor =
-        |sign: f64| vec![[0.5, sign * v.noise_floor_mg], [v.after_mg.len() as f64 + 0.5, sign * v.noise_floor_mg]];
-    Some(Figure {
-        id: "verification",
-        title: "fresh orientations: |a| - 1 g".into(),
-        x_label: "orientation".into(),
-        y_label: "|a| - 1 g (mg)".into(),
-        equal_axes: false,
-        series: vec![
-            Series::new("raw", Role::Raw, SeriesStyle::Points, numbered(&v.before_mg)),
-            Series::new("calibrated", Role::Calibrated, SeriesStyle::Points, numbered(&v.after_mg)),
-            Series::new("+ noise floor", Role::Reference, SeriesStyle::Line, floor(1.0)),
-            Series::new("- noise floor", Role::Reference, SeriesStyle::Line, floor(-1.0)),
-        ],
-    })
+    let (title_raw, title_calibrated) =
+        ("raw: |m| - 1 g at fresh orientations", "calibrated: |a| - 1 g at fresh orientations");
+    Some([
+        numbered("verification-raw", title_raw, "orientation", Role::Raw, &v.before_mg, None),
+        numbered(
+            "verification-calibrated",
+            title_calibrated,
+            "orientation",
+            Role::Calibrated,
+            &v.after_mg,
+            Some(v.noise_floor_mg),
+        ),
+    ])
+}
+
+/// `values` against their number from 1, with a band of plus and minus `floor` when given.
+fn numbered(id: &'static str, title: &str, x_label: &str, role: Role, values: &[f64], floor: Option<f64>) -> Figure {
+    let points = values.iter().enumerate().map(|(i, v)| [(i + 1) as f64, *v]).collect();
+    let mut series = vec![Series::new(title.split(':').next().unwrap_or(title), role, SeriesStyle::Points, points)];
+    if let Some(floor) = floor {
+        let (left, right) = (0.5, values.len() as f64 + 0.5);
+        let band = vec![[left, floor], [right, floor], [right, -floor], [left, -floor], [left, floor]];
+        series.push(Series::new("noise floor (+-)", Role::Reference, SeriesStyle::Line, band));
+    }
+    Figure { id, title: title.to_owned(), x_label: x_label.to_owned(), y_label: "mg".into(), equal_axes: false, series }
 }
 
 /// The unit circle in the plane of `axes` (a great circle of the 1 g sphere).

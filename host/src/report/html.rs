@@ -4,7 +4,7 @@
 
 use std::fmt::Write;
 
-use super::figure::Figure;
+use super::figure::{Figure, SeriesStyle};
 use super::plot::{self, PlotError};
 use super::session::{Board, PositionResult, SessionReport, NOT_RECORDED};
 use super::Comparison;
@@ -62,7 +62,7 @@ fn sphere(out: &mut String, report: &SessionReport) -> Result<(), PlotError> {
     figure(out, &report.figures.sphere_xy)?;
     figure(out, &report.figures.sphere_xz)?;
     out.push_str("</div>");
-    figure(out, &report.figures.residuals)?;
+    pair(out, &report.figures.residuals)?;
     out.push_str("<div class=\"table-wrap\"><table><tr><th>position</th><th>raw x, y, z (g)</th>");
     out.push_str("<th>calibrated x, y, z (g)</th><th>|v| &minus; 1 g raw (mg)</th><th>calibrated (mg)</th></tr>");
     for (i, p) in report.positions.iter().enumerate() {
@@ -76,7 +76,7 @@ fn position_row(out: &mut String, i: usize, p: &PositionResult) {
     let _ = write!(out, "<tr><td>{}</td>", escape(&p.name));
     let vector = |key: &str, v: &[f64; 3]| {
         let cells: Vec<String> = (0..3).map(|k| span(&format!("/positions/{i}/{key}/{k}"), v[k], 4)).collect();
-        format!("<td class=\"num\">{}</td>", cells.join(" "))
+        format!("<td class=\"num vec\">{}</td>", cells.join(" "))
     };
     out.push_str(&vector("raw_g", &p.raw_g));
     out.push_str(&vector("calibrated_g", &p.calibrated_g));
@@ -141,8 +141,8 @@ fn verification(out: &mut String, report: &SessionReport) -> Result<(), PlotErro
         let _ = write!(out, "{}</section>", absent(ABSENT));
         return Ok(());
     };
-    if let Some(figure) = &report.figures.verification {
-        self::figure(out, figure)?;
+    if let Some(figures) = &report.figures.verification {
+        pair(out, figures)?;
     }
     verification_table(out, v);
     out.push_str("</section>");
@@ -174,18 +174,36 @@ fn optional(out: &mut String, title: &str, figure: Option<&Figure>) -> Result<()
     Ok(())
 }
 
+/// Two figures side by side where the page is wide enough.
+fn pair(out: &mut String, figures: &[Figure; 2]) -> Result<(), PlotError> {
+    out.push_str("<div class=\"plots\">");
+    figure(out, &figures[0])?;
+    figure(out, &figures[1])?;
+    out.push_str("</div>");
+    Ok(())
+}
+
 fn figure(out: &mut String, figure: &Figure) -> Result<(), PlotError> {
     let _ = write!(out, "<figure id=\"{}\">{}<figcaption>{}", figure.id, plot::svg(figure)?, escape(&figure.title));
     for series in &figure.series {
         let _ = write!(
             out,
-            "<span class=\"key\"><span class=\"swatch\" style=\"background:{}\"></span>{}</span>",
+            "<span class=\"key\"><span class=\"swatch {}\" style=\"background:{}\"></span>{}</span>",
+            style_class(series.style),
             plot::colour(series.role),
             escape(&series.name)
         );
     }
     out.push_str("</figcaption></figure>");
     Ok(())
+}
+
+/// The legend swatch's shape: a dot for markers, a bar for a line.
+fn style_class(style: SeriesStyle) -> &'static str {
+    match style {
+        SeriesStyle::Points => "dot",
+        SeriesStyle::Line => "bar",
+    }
 }
 
 /// A table cell holding `value` rounded to `digits`, or a dash.

@@ -57,16 +57,16 @@ fn draw(figure: &Figure, area: DrawingArea<SVGBackend, Shift>) -> Result<(), Str
     let (x, y) = ranges(figure);
     let mut chart = ChartBuilder::on(&area)
         .margin(12)
-        .x_label_area_size(40)
-        .y_label_area_size(56)
+        .x_label_area_size(52)
+        .y_label_area_size(72)
         .build_cartesian_2d(x, y)
         .map_err(|e| e.to_string())?;
     chart
         .configure_mesh()
         .disable_mesh()
         .axis_style(INK)
-        .label_style(("sans-serif", 16).into_font().color(&INK))
-        .axis_desc_style(("sans-serif", 17).into_font().color(&INK))
+        .label_style(("sans-serif", 20).into_font().color(&INK))
+        .axis_desc_style(("sans-serif", 20).into_font().color(&INK))
         .x_label_formatter(&short)
         .y_label_formatter(&short)
         .x_desc(figure.x_label.as_str())
@@ -117,7 +117,8 @@ fn ranges(figure: &Figure) -> (std::ops::Range<f64>, std::ops::Range<f64>) {
 
 /// A tick label: the shortest form that reads back as the tick (2, 0.5, -60).
 fn short(value: &f64) -> String {
-    format!("{}", (value * 1e6).round() / 1e6)
+    // NOTE: adding 0.0 turns -0 into 0.
+    format!("{}", (value * 1e6).round() / 1e6 + 0.0)
 }
 
 /// A range with a tenth of its width (at least 0.5) added on each side.

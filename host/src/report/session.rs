@@ -94,10 +94,10 @@ pub struct Figures {
     pub sphere_xy: Figure,
     /// The positions seen along the y axis.
     pub sphere_xz: Figure,
-    /// Each position's residual before and after.
-    pub residuals: Figure,
-    /// The verification's orientations before and after, with the noise floor.
-    pub verification: Option<Figure>,
+    /// Each position's residual, raw and calibrated.
+    pub residuals: [Figure; 2],
+    /// The verification's orientations, raw and calibrated with the noise floor.
+    pub verification: Option<[Figure; 2]>,
     /// The temperature model and the bins it came from.
     pub temperature: Option<Figure>,
     /// The Allan deviation.
