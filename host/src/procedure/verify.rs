@@ -130,3 +130,27 @@ fn chip_corrected_mean<P: Port>(client: &mut Client<P>) -> Result<[f32; 3], Proc
     })?;
     Ok(linalg::scale(sum, 1.0 / count.max(1) as f32))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use shared::AccelRange;
+
+    fn capture(mean_g: [f32; 3], std_g: [f32; 3], samples: u32) -> CaptureStats {
+        let (gyro_mean_dps, gyro_std_dps) = ([0.0; 3], [0.0; 3]);
+        let (seconds, temp_c, clipped, range) = (5.0, 25.0, 0, AccelRange::G2);
+        CaptureStats { samples, seconds, mean_g, std_g, gyro_mean_dps, gyro_std_dps, temp_c, clipped, range }
+    }
+
+    #[test]
+    fn the_noise_of_the_norm_is_the_scatter_along_gravity_over_root_n() {
+        // z up: only z's scatter moves |m|; 400 samples divide it by 20.
+        let z_up = capture([0.0, 0.0, 1.0], [0.009, 0.009, 0.003], 400);
+        assert!((norm_noise_g(&z_up) - 0.003 / 20.0).abs() < 1e-9);
+        // Tilted half-way between x and y: each contributes half its variance.
+        let r = std::f32::consts::FRAC_1_SQRT_2;
+        let tilted = capture([r, r, 0.0], [0.004, 0.002, 0.05], 100);
+        let expected = ((0.5 * 0.004f64.powi(2) + 0.5 * 0.002f64.powi(2)) / 100.0).sqrt();
+        assert!((norm_noise_g(&tilted) - expected).abs() < 1e-8, "{} vs {expected}", norm_noise_g(&tilted));
+    }
+}
