@@ -121,8 +121,8 @@ fn short(value: &f64) -> String {
     format!("{}", (value * 1e6).round() / 1e6 + 0.0)
 }
 
-/// A range with a tenth of its width (at least 0.5) added on each side.
+/// A range with a tenth of its width added on each side (half a unit around a single value).
 fn padded((low, high): (f64, f64)) -> std::ops::Range<f64> {
-    let pad = ((high - low) * 0.1).max(0.5);
+    let pad = if high > low { (high - low) * 0.1 } else { 0.5 };
     (low - pad)..(high + pad)
 }
