@@ -8,6 +8,7 @@ use crate::data::DataError;
 use crate::fit::{FitError, ModelChoice};
 use crate::link::LinkError;
 use crate::procedure::ProcedureError;
+use crate::report::PlotError;
 use crate::session::SessionError;
 use crate::sim::SimError;
 
@@ -32,6 +33,10 @@ pub enum Error {
     Fit(#[from] FitError),
     #[error("cannot fit the temperature model: {0}; learn over a wider span and run again")]
     ThermalFit(#[from] crate::fit::thermal::ThermalFitError),
+    #[error("{}: cannot report this session: {source}", .path.display())]
+    CannotReport { path: PathBuf, source: FitError },
+    #[error(transparent)]
+    Plot(#[from] PlotError),
     #[error("--g must be a positive number, got {g}")]
     BadGravity { g: f64 },
     #[error("{source}; the {captures} captures so far are kept in {}: continue with `accelcal calibrate {device} --resume {}`", .path.display(), .path.display())]

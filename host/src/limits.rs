@@ -61,6 +61,13 @@ pub const AXIS_SPREAD: f64 = 0.3;
 /// this are one direction held twice.
 pub const INDEPENDENT_REFERENCES_DEG: f64 = 10.0;
 
+/// Largest calibrated verification error, as a multiple of the verification's noise floor, for a
+/// report to call the calibration trusted.
+///
+/// NOTE: with Gaussian noise the RMS over a few orientations stays below 3 noise floors with
+/// near certainty; more than that is an error the calibration left that the verification resolves.
+pub const TRUSTED_AFTER_NOISE_FLOOR: f64 = 3.0;
+
 /// [`AXIS_SPREAD`] as the largest angle from an axis, in whole degrees, for messages.
 pub fn axis_spread_deg() -> f64 {
     AXIS_SPREAD.acos().to_degrees().round()

@@ -10,6 +10,7 @@ use shared::Position;
 
 use crate::data::{Dataset, Row};
 use crate::orientation::Orientation;
+use crate::procedure::Verification;
 
 /// Why a session file could not be written or read.
 #[derive(Debug, thiserror::Error)]
@@ -112,6 +113,9 @@ pub struct Session {
     pub quick: bool,
     /// The captures used for fitting.
     pub captures: Vec<CaptureRecord>,
+    /// The check of the calibration at fresh orientations, when one was made.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub verification: Option<Verification>,
 }
 
 impl Session {
@@ -198,6 +202,7 @@ mod tests {
             board: None,
             quick: false,
             captures: vec![record(Position::PosZ, 1.0, 1.5), record(Position::NegZ, -1.0, 20.0)],
+            verification: None,
         };
         let stem = std::env::temp_dir().join(format!("accelcal-session-{}", std::process::id()));
         session.save(&stem).unwrap();

@@ -84,7 +84,7 @@ pub struct CalibrateArgs {
     #[arg(long)]
     pub json: bool,
     /// Keep the session as PATH.json and PATH.csv, written after every capture (with --port the
-    /// default is accelcal-session-TIME in the current directory).
+    /// default is accelcal-session-TIME in the current directory), and its report as PATH.html.
     #[arg(long, conflicts_with = "resume")]
     pub session: Option<PathBuf>,
     /// Continue the session SESSION.json (same board, range and filter) with the positions it lacks.
@@ -126,6 +126,19 @@ pub struct CaptureArgs {
     pub seconds: u8,
 }
 
+/// `accelcal report`.
+#[derive(Args)]
+pub struct ReportArgs {
+    /// The session file (PATH.json written by calibrate --session or capture).
+    pub session: PathBuf,
+    /// Where to write the HTML page (default: beside the session, PATH.html).
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+    /// Print the report as one JSON object instead of text (the page is written only with -o).
+    #[arg(long)]
+    pub json: bool,
+}
+
 /// `accelcal stream`.
 #[derive(Args)]
 pub struct StreamArgs {
@@ -158,6 +171,8 @@ pub enum Command {
     },
     /// The guided calibration: positions, captures, fit, upload, save, verification.
     Calibrate(CalibrateArgs),
+    /// Writes a session's report: one self-contained HTML page with plots (and text or JSON on stdout).
+    Report(ReportArgs),
     /// Captures one position into a session file.
     Capture(CaptureArgs),
     /// Uploads a calibration (from `download`, `calibrate --json`, or `fit --json` on data in g) and makes it active.

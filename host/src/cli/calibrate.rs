@@ -15,7 +15,7 @@ use crate::calibration::{self, describe};
 use crate::error::Error;
 use crate::fit::Fit;
 use crate::link::{Client, LinkError, Port};
-use crate::procedure::{self, CollectOptions, Feedback};
+use crate::procedure::{self, CollectOptions, Feedback, Verification};
 use crate::report::{self, CalibrateReport};
 use crate::session::{unix_time_s, BoardRecord, Session};
 
@@ -58,7 +58,7 @@ pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
     if !upload_if_confirmed(client, &fitted.chosen, feedback.as_mut())? {
         return Ok(());
     }
-    finish(args, &mut opened, &fitted, feedback.as_mut())
+    finish(args, &mut opened, &fitted, kept.path.as_deref(), feedback.as_mut())
 }
 
 /// The captures the session lacks, written after each one; an error names where they are kept.
@@ -88,11 +88,12 @@ fn collect(
     }
 }
 
-/// The verification, then the report.
+/// The verification, the session kept with it and its report beside it, then the result.
 fn finish(
     args: &CalibrateArgs,
     opened: &mut Opened,
     fitted: &Fitted,
+    kept_at: Option<&Path>,
     feedback: &mut dyn Feedback,
 ) -> Result<(), Error> {
     let (mut hand, wait_limit) = opened.hand(args.sim_placement_deg, args.device.seed);
@@ -100,11 +101,30 @@ fn finish(
     let calibrated: Vec<[f64; 3]> = fitted.session.captures.iter().map(|c| c.stats.mean_g.map(f64::from)).collect();
     let positions = usize::from(args.verify);
     let verification = procedure::verify_clear_of(client, hand.as_mut(), positions, wait_limit, feedback, &calibrated)?;
+    if let Some(stem) = kept_at {
+        keep_with_report(&fitted.session, &verification, stem, feedback)?;
+    }
     let truth = opened.sim.as_ref().map(|board| board.truth());
     let captures = fitted.session.captures.len();
     let report =
         CalibrateReport::new(&fitted.chosen, fitted.chip.as_ref(), fitted.host.as_ref(), truth, verification, captures);
     print_report(&report, args.json);
+    Ok(())
+}
+
+/// Saves the session again with its verification, writes its report beside it, and says where.
+fn keep_with_report(
+    session: &Session,
+    verification: &Verification,
+    stem: &Path,
+    feedback: &mut dyn Feedback,
+) -> Result<(), Error> {
+    let session = Session { verification: Some(verification.clone()), ..session.clone() };
+    session.save(stem)?;
+    let json = stem.with_extension("json");
+    let page = super::report::beside(&json);
+    super::report::write_page(&super::report::build(&session, &json)?, &page)?;
+    feedback.say(&format!("session kept in {}; report written to {}", json.display(), page.display()));
     Ok(())
 }
 
@@ -126,7 +146,7 @@ fn start_session(args: &CalibrateArgs, info: &DeviceInfo, feedback: &mut dyn Fee
     let kept = match &args.resume {
         Some(path) => resumed(path, &board, feedback)?,
         None => Kept {
-            session: Session { board: Some(board), quick: args.quick, captures: Vec::new() },
+            session: Session { board: Some(board), quick: args.quick, captures: Vec::new(), verification: None },
             path: args.session.clone().or_else(|| default_session_path(args)),
             resumed: false,
         },

@@ -8,6 +8,7 @@ mod calibrate;
 mod device;
 mod fit;
 mod procedure;
+mod report;
 mod terminal;
 mod thermal;
 mod transfer;
@@ -40,6 +41,7 @@ pub fn run(cli: Cli) -> Result<(), Error> {
         Command::Info { device, json } => board::info(&device, json),
         Command::Calibrate(args) => calibrate::calibrate(&args),
         Command::Capture(args) => procedure::capture(&args),
+        Command::Report(args) => report::report(&args),
         Command::Verify { device, positions } => procedure::verify(&device, usize::from(positions)),
         Command::Upload { device, file, save } => transfer::upload(&device, &file, save),
         Command::Save { device } => transfer::save(&device),

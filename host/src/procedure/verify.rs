@@ -3,9 +3,9 @@
 
 use std::time::Duration;
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use shared::linalg;
-use shared::protocol::{CalibrationSlot, StreamKind};
+use shared::protocol::{CalibrationSlot, CaptureStats, StreamKind};
 use shared::Calibration;
 
 use super::collect::capture;
@@ -19,7 +19,7 @@ pub const VERIFY_SECONDS: u8 = 5;
 const CHIP_SAMPLES: u32 = 20;
 
 /// The errors at the verification orientations, in mg.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Verification {
     /// Orientations checked.
     pub positions: usize,
@@ -32,6 +32,16 @@ pub struct Verification {
     /// Largest difference between the chip's own corrected samples and the calibration applied to
     /// the raw capture, in mg: proof the chip applies what was verified (noise of 20 samples).
     pub on_chip_difference_mg: f64,
+    /// RMS over the orientations of the noise of each capture's |m| (its scatter over the square
+    /// root of its samples), in mg: errors below this are not resolved.
+    #[serde(default)]
+    pub noise_floor_mg: f64,
+    /// |m| - 1 g at each orientation with the raw readings, in mg.
+    #[serde(default)]
+    pub before_mg: Vec<f64>,
+    /// |a| - 1 g at each orientation with the calibration, in mg.
+    #[serde(default)]
+    pub after_mg: Vec<f64>,
 }
 
 /// The errors at one orientation, in mg.
@@ -39,6 +49,7 @@ struct Check {
     before_mg: f64,
     after_mg: f64,
     on_chip_mg: f64,
+    noise_mg: f64,
 }
 
 /// Checks the active calibration at `positions` fresh orientations.
@@ -95,6 +106,7 @@ fn check<P: Port>(
         before_mg: (f64::from(linalg::norm(stats.mean_g)) - 1.0) * 1000.0,
         after_mg: (f64::from(linalg::norm(corrected)) - 1.0) * 1000.0,
         on_chip_mg: f64::from(linalg::norm(linalg::sub(chip_mean, corrected))) * 1000.0,
+        noise_mg: norm_noise_g(&stats) * 1000.0,
     })
 }
 
@@ -108,7 +120,19 @@ fn summary(checks: &[Check]) -> Verification {
         after_rms_mg: rms(|c| c.after_mg),
         after_max_mg: checks.iter().fold(0.0, |m, c| m.max(c.after_mg.abs())),
         on_chip_difference_mg: checks.iter().fold(0.0, |m, c| m.max(c.on_chip_mg)),
+        noise_floor_mg: rms(|c| c.noise_mg),
+        before_mg: checks.iter().map(|c| c.before_mg).collect(),
+        after_mg: checks.iter().map(|c| c.after_mg).collect(),
     }
+}
+
+/// The standard deviation of a capture's mean |m|, in g: each axis's scatter weighted by its share
+/// of |m| (the gradient of |m|), over the square root of the samples averaged.
+fn norm_noise_g(stats: &CaptureStats) -> f64 {
+    let mean = stats.mean_g.map(f64::from);
+    let norm = linalg::norm(mean).max(f64::EPSILON);
+    let variance: f64 = (0..3).map(|k| (mean[k] / norm * f64::from(stats.std_g[k])).powi(2)).sum();
+    (variance / f64::from(stats.samples.max(1))).sqrt()
 }
 
 /// Mean of samples corrected by the chip itself.
@@ -120,4 +144,28 @@ fn chip_corrected_mean<P: Port>(client: &mut Client<P>) -> Result<[f32; 3], Proc
         count += 1;
     })?;
     Ok(linalg::scale(sum, 1.0 / count.max(1) as f32))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use shared::AccelRange;
+
+    fn capture(mean_g: [f32; 3], std_g: [f32; 3], samples: u32) -> CaptureStats {
+        let (gyro_mean_dps, gyro_std_dps) = ([0.0; 3], [0.0; 3]);
+        let (seconds, temp_c, clipped, range) = (5.0, 25.0, 0, AccelRange::G2);
+        CaptureStats { samples, seconds, mean_g, std_g, gyro_mean_dps, gyro_std_dps, temp_c, clipped, range }
+    }
+
+    #[test]
+    fn the_noise_of_the_norm_is_the_scatter_along_gravity_over_root_n() {
+        // z up: only z's scatter moves |m|; 400 samples divide it by 20.
+        let z_up = capture([0.0, 0.0, 1.0], [0.009, 0.009, 0.003], 400);
+        assert!((norm_noise_g(&z_up) - 0.003 / 20.0).abs() < 1e-9);
+        // Tilted half-way between x and y: each contributes half its variance.
+        let r = std::f32::consts::FRAC_1_SQRT_2;
+        let tilted = capture([r, r, 0.0], [0.004, 0.002, 0.05], 100);
+        let expected = ((0.5 * 0.004f64.powi(2) + 0.5 * 0.002f64.powi(2)) / 100.0).sqrt();
+        assert!((norm_noise_g(&tilted) - expected).abs() < 1e-8, "{} vs {expected}", norm_noise_g(&tilted));
+    }
 }

@@ -4,7 +4,7 @@ use std::collections::BTreeMap;
 
 use serde::Serialize;
 
-use super::{CalibrateReport, Comparison, FitReport};
+use super::{CalibrateReport, Comparison, FitReport, SessionReport};
 use crate::calibration::CalibrationJson;
 use crate::fit::{Evaluation, NoiseTest};
 
@@ -61,6 +61,11 @@ pub fn fit_report(report: &FitReport) -> String {
 
 /// `accelcal calibrate --json`: the report as pretty JSON.
 pub fn calibrate_report(report: &CalibrateReport) -> String {
+    to_pretty(report)
+}
+
+/// `accelcal report --json`: the session report as pretty JSON.
+pub fn session_report(report: &SessionReport) -> String {
     to_pretty(report)
 }
 

@@ -1,14 +1,22 @@
-//! What a fit and a calibration report: one model each, computed once, then rendered as text for a
-//! person ([`text`]) or as the JSON of DESIGN.md ([`json`]).
+//! What a fit, a calibration and a session report: one model each, computed once, then rendered
+//! as text for a person ([`text`]), as the JSON of DESIGN.md ([`json`]), and for a session as an
+//! HTML page with plots ([`html`]).
 
 mod calibrate;
 mod comparison;
+mod figure;
+pub mod html;
 pub mod json;
+mod plot;
+mod session;
 pub mod text;
 pub mod thermal;
 
 pub use calibrate::{CalibrateReport, HostFitSummary, TruthJson};
 pub use comparison::{ComparedModel, Comparison};
+pub use figure::{Figure, Role, Series, SeriesStyle};
+pub use plot::PlotError;
+pub use session::{Board, Figures, FitSummary, PositionResult, SessionReport, Verdict, NOT_RECORDED};
 
 use crate::data::Dataset;
 use crate::fit::{self, Evaluation, Fit, FitError, FitOptions, ModelChoice};

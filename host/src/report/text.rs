@@ -2,7 +2,7 @@
 
 use std::fmt::Write;
 
-use super::{shown, CalibrateReport, Comparison, FitReport};
+use super::{shown, Board, CalibrateReport, Comparison, FitReport, SessionReport, NOT_RECORDED};
 use crate::fit::{Evaluation, Fit};
 
 /// The fit: parameters with standard errors, then errors before and after in mg, then (for `auto`)
@@ -111,4 +111,32 @@ fn number(value: f64) -> String {
     } else {
         format!("{value:+.7e}")
     }
+}
+
+/// The session report for a terminal: verdict, board, fit, positions, model comparison.
+pub fn session_report(report: &SessionReport) -> String {
+    let mut out = format!("{}\n", report.verdict.line);
+    write_board(&mut out, &report.board);
+    let fit = &report.fit;
+    let _ = writeln!(out, "model {}: cost {:.3e}, | |a| - 1 g | rms {:.3} mg", fit.model, fit.cost, fit.rms_mg);
+    for p in &fit.parameters {
+        let error = p.std_error.map_or("(no redundancy)".to_owned(), |e| format!("+- {e:.2e}"));
+        let _ = writeln!(out, "  {:<5} {:>16} {error}", p.name, number(p.value));
+    }
+    for p in &report.positions {
+        let (before, after) = (p.residual_before_mg, p.residual_after_mg);
+        let _ = writeln!(out, "  {:<8} |v| - 1 g: {before:>9.2} mg raw {after:>8.3} mg calibrated", p.name);
+    }
+    if let Some(comparison) = &report.comparison {
+        write_comparison(&mut out, comparison);
+    }
+    out
+}
+
+fn write_board(out: &mut String, board: &Board) {
+    let or_absent = |value: &Option<String>| value.clone().unwrap_or_else(|| NOT_RECORDED.to_owned());
+    let (serial, firmware) = (or_absent(&board.serial), or_absent(&board.firmware));
+    let _ = writeln!(out, "board {serial}, firmware {firmware}, sensor {}", or_absent(&board.sensor_config));
+    let range = board.range_g.map_or(NOT_RECORDED.to_owned(), |g| format!("+-{g} g"));
+    let _ = writeln!(out, "captured {} UTC, range {range}", or_absent(&board.date_utc));
 }

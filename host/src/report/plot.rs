@@ -1,0 +1,128 @@
+//! Draws a [`Figure`] as inline SVG with plotters' SVG backend. Text stays `<text>` for the
+//! browser to set; axes and labels are drawn in [`INK`], which the page's CSS turns into its
+//! text colour, so a plot reads on light and dark pages and on paper.
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+use super::figure::{Figure, Role, Series, SeriesStyle};
+
+/// Placeholder colour of axes and text; the page's CSS replaces it with `currentColor`.
+pub const INK: RGBColor = RGBColor(0, 0, 0);
+/// Raw data: orange, a mid-tone readable on white and on near-black (and apart from blue for the
+/// colour-blind).
+const RAW: RGBColor = RGBColor(0xF5, 0x7C, 0x00);
+/// Calibrated data: blue, likewise.
+const CALIBRATED: RGBColor = RGBColor(0x3B, 0x82, 0xF6);
+/// References: mid grey.
+const REFERENCE: RGBColor = RGBColor(0x8A, 0x8A, 0x8A);
+/// The colour of a series.
+fn colour_of(role: Role) -> RGBColor {
+    match role {
+        Role::Raw => RAW,
+        Role::Calibrated => CALIBRATED,
+        Role::Reference => REFERENCE,
+    }
+}
+
+/// The colour of a series as CSS, for the page's legend.
+pub fn colour(role: Role) -> String {
+    let RGBColor(r, g, b) = colour_of(role);
+    format!("#{r:02X}{g:02X}{b:02X}")
+}
+
+/// Drawing size in SVG user units; the page scales it to the column width.
+const SIZE: (u32, u32) = (480, 340);
+/// Square drawing for figures with equal axes.
+const SQUARE: (u32, u32) = (400, 400);
+
+/// Why a figure could not be drawn (a plotters error, as text).
+#[derive(Debug, thiserror::Error)]
+#[error("cannot draw the {figure} plot: {reason}")]
+pub struct PlotError {
+    figure: &'static str,
+    reason: String,
+}
+
+/// The figure as an `<svg>` element.
+pub fn svg(figure: &Figure) -> Result<String, PlotError> {
+    let mut out = String::new();
+    let size = if figure.equal_axes { SQUARE } else { SIZE };
+    draw(figure, SVGBackend::with_string(&mut out, size).into_drawing_area())
+        .map_err(|reason| PlotError { figure: figure.id, reason })?;
+    Ok(out)
+}
+
+fn draw(figure: &Figure, area: DrawingArea<SVGBackend, Shift>) -> Result<(), String> {
+    let (x, y) = ranges(figure);
+    let mut chart = ChartBuilder::on(&area)
+        .margin(12)
+        .x_label_area_size(52)
+        .y_label_area_size(72)
+        .build_cartesian_2d(x, y)
+        .map_err(|e| e.to_string())?;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .axis_style(INK)
+        .label_style(("sans-serif", 20).into_font().color(&INK))
+        .axis_desc_style(("sans-serif", 20).into_font().color(&INK))
+        .x_label_formatter(&short)
+        .y_label_formatter(&short)
+        .x_desc(figure.x_label.as_str())
+        .y_desc(figure.y_label.as_str())
+        .draw()
+        .map_err(|e| e.to_string())?;
+    for series in &figure.series {
+        draw_series(&mut chart, series, colour_of(series.role))?;
+    }
+    area.present().map_err(|e| e.to_string())
+}
+
+type Chart<'a, 'b> = ChartContext<
+    'a,
+    SVGBackend<'b>,
+    Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+>;
+
+fn draw_series(chart: &mut Chart, series: &Series, colour: RGBColor) -> Result<(), String> {
+    let points = series.points.iter().map(|[x, y]| (*x, *y));
+    match series.style {
+        SeriesStyle::Line => chart.draw_series(LineSeries::new(points, colour.stroke_width(2))),
+        SeriesStyle::Points => chart.draw_series(points.map(|p| Circle::new(p, 4, colour.filled()))),
+    }
+    .map(|_| ())
+    .map_err(|e| e.to_string())
+}
+
+/// The axis ranges holding every point with a margin; with equal axes, one square range.
+fn ranges(figure: &Figure) -> (std::ops::Range<f64>, std::ops::Range<f64>) {
+    let points = || figure.series.iter().flat_map(|s| s.points.iter());
+    let span = |axis: usize| {
+        let (low, high) =
+            points().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| (l.min(p[axis]), h.max(p[axis])));
+        if low.is_finite() {
+            (low, high)
+        } else {
+            (0.0, 1.0)
+        }
+    };
+    let (x, y) = (span(0), span(1));
+    if figure.equal_axes {
+        let reach = [x.0, x.1, y.0, y.1].iter().fold(0.0f64, |m, v| m.max(v.abs())) * 1.15;
+        return (-reach..reach, -reach..reach);
+    }
+    (padded(x), padded(y))
+}
+
+/// A tick label: the shortest form that reads back as the tick (2, 0.5, -60).
+fn short(value: &f64) -> String {
+    // NOTE: adding 0.0 turns -0 into 0.
+    format!("{}", (value * 1e6).round() / 1e6 + 0.0)
+}
+
+/// A range with a tenth of its width added on each side (half a unit around a single value).
+fn padded((low, high): (f64, f64)) -> std::ops::Range<f64> {
+    let pad = if high > low { (high - low) * 0.1 } else { 0.5 };
+    (low - pad)..(high + pad)
+}

@@ -1,0 +1,267 @@
+//! The report of a calibration session: the board, the verdict, every position before and after,
+//! the fit with its uncertainties and the models it was chosen from, the verification, and the
+//! figures drawn from them. Computed once; [`super::html`], [`super::text`] and JSON render it.
+
+use serde::Serialize;
+use shared::linalg;
+
+use super::figure::{self, Figure};
+use super::{Comparison, FitReport};
+use crate::fit::{FitError, FitOptions, ModelChoice, Parameter};
+use crate::procedure::Verification;
+use crate::session::Session;
+
+/// Shown for what the session does not carry.
+pub const NOT_RECORDED: &str = "not recorded";
+
+/// Everything a session's report shows; `accelcal report SESSION --json` prints it.
+#[derive(Debug, Clone, Serialize)]
+pub struct SessionReport {
+    /// The board the session was captured on.
+    pub board: Board,
+    /// The verdict in one line.
+    pub verdict: Verdict,
+    /// Every captured position, raw and calibrated.
+    pub positions: Vec<PositionResult>,
+    /// The fit chosen, with every parameter's standard error.
+    pub fit: FitSummary,
+    /// Every model on the same positions.
+    pub comparison: Option<Comparison>,
+    /// The check at fresh orientations, when the session holds one.
+    pub verification: Option<Verification>,
+    /// The plots, each with the numbers it is drawn from.
+    pub figures: Figures,
+}
+
+/// What the session records of the board; `None` where it records nothing.
+#[derive(Debug, Clone, Serialize)]
+pub struct Board {
+    /// The board's serial number.
+    pub serial: Option<String>,
+    /// The firmware version.
+    pub firmware: Option<String>,
+    /// The sensor configuration (range, filter, sample rate).
+    pub sensor_config: Option<String>,
+    /// The accelerometer range of the captures, full scale in g.
+    pub range_g: Option<u8>,
+    /// When the first capture ended, UTC (YYYY-MM-DD HH:MM).
+    pub date_utc: Option<String>,
+}
+
+/// The one-line verdict.
+#[derive(Debug, Clone, Serialize)]
+pub struct Verdict {
+    /// Whether the calibration can be trusted to the stated figure.
+    pub trusted: bool,
+    /// The verdict for a person.
+    pub line: String,
+}
+
+/// One captured position, in g, and its residual | |v| - 1 g | in mg (signed).
+#[derive(Debug, Clone, Serialize)]
+pub struct PositionResult {
+    /// The capture's name.
+    pub name: String,
+    /// The raw mean reading, in g.
+    pub raw_g: [f64; 3],
+    /// The calibrated reading, in g.
+    pub calibrated_g: [f64; 3],
+    /// |raw| - 1 g, in mg.
+    pub residual_before_mg: f64,
+    /// |calibrated| - 1 g, in mg.
+    pub residual_after_mg: f64,
+}
+
+/// The fit chosen.
+#[derive(Debug, Clone, Serialize)]
+pub struct FitSummary {
+    /// Model name.
+    pub model: &'static str,
+    /// Dimensionless cost.
+    pub cost: f64,
+    /// RMS of | |a| - 1 g | over the positions, in mg.
+    pub rms_mg: f64,
+    /// Every parameter with its standard error.
+    pub parameters: Vec<Parameter>,
+    /// What the fit warns about.
+    pub warnings: Vec<String>,
+}
+
+/// The plots; the sections later issues add are `None` until a session carries them.
+#[derive(Debug, Clone, Serialize)]
+pub struct Figures {
+    /// The positions seen down the z axis.
+    pub sphere_xy: Figure,
+    /// The positions seen along the y axis.
+    pub sphere_xz: Figure,
+    /// Each position's residual, raw and calibrated.
+    pub residuals: [Figure; 2],
+    /// The verification's orientations, raw and calibrated with the noise floor.
+    pub verification: Option<[Figure; 2]>,
+    /// The temperature model and the bins it came from.
+    pub temperature: Option<Figure>,
+    /// The Allan deviation.
+    pub allan_deviation: Option<Figure>,
+    /// The gyro's turns.
+    pub gyro_turns: Option<Figure>,
+}
+
+impl SessionReport {
+    /// Fits the session (`auto`, every model compared) and gathers the report.
+    pub fn new(session: &Session) -> Result<Self, FitError> {
+        let fit_report = FitReport::new(&session.dataset(), ModelChoice::Auto, &FitOptions::default())?;
+        let positions = positions(session, &fit_report);
+        let fit = summary(&fit_report, &positions);
+        let verification = session.verification.clone();
+        Ok(SessionReport {
+            board: Board::of(session),
+            verdict: Verdict::new(&fit, verification.as_ref()),
+            figures: Figures::new(&positions, &fit_report, verification.as_ref()),
+            positions,
+            fit,
+            comparison: fit_report.comparison,
+            verification,
+        })
+    }
+}
+
+fn positions(session: &Session, report: &FitReport) -> Vec<PositionResult> {
+    let (matrix, offset) = (&report.fit.matrix, &report.fit.offset);
+    session
+        .captures
+        .iter()
+        .map(|capture| {
+            let raw_g = capture.stats.mean_g.map(f64::from);
+            let calibrated_g = linalg::mul_vec(matrix, linalg::sub(raw_g, *offset));
+            PositionResult {
+                name: capture.name.clone(),
+                raw_g,
+                calibrated_g,
+                residual_before_mg: residual_mg(raw_g),
+                residual_after_mg: residual_mg(calibrated_g),
+            }
+        })
+        .collect()
+}
+
+/// |v| - 1 g, in mg, for v in g.
+pub fn residual_mg(v: [f64; 3]) -> f64 {
+    (linalg::norm(v) - 1.0) * 1000.0
+}
+
+fn summary(report: &FitReport, positions: &[PositionResult]) -> FitSummary {
+    let squares: f64 = positions.iter().map(|p| p.residual_after_mg.powi(2)).sum();
+    FitSummary {
+        model: report.fit.model.name(),
+        cost: report.fit.cost,
+        rms_mg: (squares / positions.len().max(1) as f64).sqrt(),
+        parameters: report.fit.parameters.clone(),
+        warnings: report.fit.warnings.clone(),
+    }
+}
+
+impl Board {
+    fn of(session: &Session) -> Self {
+        let first = session.captures.first();
+        let board = session.board.as_ref();
+        Board {
+            serial: board.map(|b| b.serial.clone()),
+            firmware: board.map(|b| format!("{}.{}.{}", b.firmware.major, b.firmware.minor, b.firmware.patch)),
+            sensor_config: board.map(|b| {
+                let c = b.config;
+                format!("+-{} g, {} Hz, low-pass {:?}", c.range.full_scale_g(), c.sample_rate_hz, c.filter)
+            }),
+            range_g: first.map(|c| c.stats.range.full_scale_g()),
+            date_utc: first.map(|c| utc_minutes(c.unix_time_s)),
+        }
+    }
+}
+
+impl Verdict {
+    fn new(fit: &FitSummary, verification: Option<&Verification>) -> Self {
+        let Some(v) = verification else {
+            let line = format!(
+                "fitted ({}): | |a| - 1 g | rms {:.3} mg over the positions; not verified at fresh orientations",
+                fit.model, fit.rms_mg
+            );
+            return Verdict { trusted: false, line };
+        };
+        let trusted = v.after_rms_mg <= crate::limits::TRUSTED_AFTER_NOISE_FLOOR * v.noise_floor_mg.max(f64::EPSILON);
+        let judged = if trusted { "trusted" } else { "not trusted" };
+        let line = format!(
+            "{judged}: | |a| - 1 g | rms {:.3} mg at {} fresh orientations (noise floor {:.3} mg; {:.2} mg uncalibrated)",
+            v.after_rms_mg, v.positions, v.noise_floor_mg, v.before_rms_mg
+        );
+        Verdict { trusted, line }
+    }
+}
+
+impl Figures {
+    fn new(positions: &[PositionResult], report: &FitReport, verification: Option<&Verification>) -> Self {
+        let fit = &report.fit;
+        Figures {
+            sphere_xy: figure::sphere_view(positions, (&fit.matrix, &fit.offset), [0, 1]),
+            sphere_xz: figure::sphere_view(positions, (&fit.matrix, &fit.offset), [0, 2]),
+            residuals: figure::residuals(positions),
+            verification: verification.and_then(figure::verification),
+            temperature: None,
+            allan_deviation: None,
+            gyro_turns: None,
+        }
+    }
+}
+
+/// Seconds since the Unix epoch as `YYYY-MM-DD HH:MM` UTC.
+fn utc_minutes(unix_time_s: f64) -> String {
+    let seconds = unix_time_s.max(0.0) as i64;
+    let (days, minute_of_day) = (seconds.div_euclid(86_400), seconds.rem_euclid(86_400) / 60);
+    let (year, month, day) = civil_from_days(days);
+    format!("{year:04}-{month:02}-{day:02} {:02}:{:02}", minute_of_day / 60, minute_of_day % 60)
+}
+
+/// The proleptic Gregorian date of a day count since 1970-01-01 (H. Hinnant's civil_from_days).
+fn civil_from_days(days: i64) -> (i64, i64, i64) {
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let day_of_era = z - era * 146_097;
+    let year_of_era = (day_of_era - day_of_era / 1460 + day_of_era / 36_524 - day_of_era / 146_096) / 365;
+    let day_of_year = day_of_era - (365 * year_of_era + year_of_era / 4 - year_of_era / 100);
+    let mp = (5 * day_of_year + 2) / 153;
+    let day = day_of_year - (153 * mp + 2) / 5 + 1;
+    let month = if mp < 10 { mp + 3 } else { mp - 9 };
+    (year_of_era + era * 400 + i64::from(month <= 2), month, day)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn verified(after_rms_mg: f64, noise_floor_mg: f64) -> Verification {
+        Verification {
+            positions: 6,
+            before_rms_mg: 40.0,
+            after_rms_mg,
+            after_max_mg: after_rms_mg * 2.0,
+            on_chip_difference_mg: 0.5,
+            noise_floor_mg,
+            before_mg: vec![],
+            after_mg: vec![],
+        }
+    }
+
+    #[test]
+    fn a_calibration_is_trusted_within_three_noise_floors_and_only_when_verified() {
+        let fit = FitSummary { model: "ortho9", cost: 1e-8, rms_mg: 0.05, parameters: vec![], warnings: vec![] };
+        assert!(Verdict::new(&fit, Some(&verified(0.37, 0.125))).trusted);
+        assert!(!Verdict::new(&fit, Some(&verified(0.38, 0.125))).trusted);
+        let unverified = Verdict::new(&fit, None);
+        assert!(!unverified.trusted && unverified.line.contains("not verified"), "{}", unverified.line);
+    }
+
+    #[test]
+    fn dates_are_utc_calendar_dates() {
+        assert_eq!(utc_minutes(0.0), "1970-01-01 00:00");
+        assert_eq!(utc_minutes(951_782_400.0 + 3_660.0), "2000-02-29 01:01");
+        assert_eq!(utc_minutes(1_795_000_000.0), "2026-11-18 11:06");
+    }
+}
