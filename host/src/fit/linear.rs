@@ -5,6 +5,7 @@ use nalgebra::{DMatrix, Matrix3, Matrix4, SymmetricEigen, Vector3};
 use shared::linalg::{self, Mat3, Vec3};
 use shared::{Position, PositionMap, SixPositionError};
 
+use super::normalization::Normalization;
 use super::{full_parameters, Fit, FitError, FitOptions, Model};
 use crate::data::{Dataset, Row};
 use crate::limits::REFERENCE_FACE_TOLERANCE_DEG;
@@ -65,10 +66,13 @@ pub(super) fn six_position(dataset: &Dataset, options: &FitOptions) -> Result<Fi
 }
 
 /// The index of the row at each face, in the order of `Position::ALL`; a face met twice is refused.
+/// Readings are judged after the normalisation of the least-squares models, so that a file's zero
+/// and unit do not matter.
 fn rows_at_faces(dataset: &Dataset, tolerance_deg: f64) -> Result<[Option<usize>; 6], FitError> {
+    let normalization = Normalization::of_dataset(dataset);
     let mut first_row_at: [Option<usize>; 6] = [None; 6];
     for (index, row) in dataset.rows.iter().enumerate() {
-        let Some(position) = face_of(row, tolerance_deg) else {
+        let Some(position) = face_of(row, &normalization, tolerance_deg) else {
             continue;
         };
         if let Some(first) = first_row_at[position.index()] {
@@ -80,11 +84,12 @@ fn rows_at_faces(dataset: &Dataset, tolerance_deg: f64) -> Result<[Option<usize>
     Ok(first_row_at)
 }
 
-/// The face a row was taken at: from its known orientation when it has one, else from its reading.
-fn face_of(row: &Row, tolerance_deg: f64) -> Option<Position> {
+/// The face a row was taken at: from its known orientation when it has one, else from its
+/// normalised reading.
+fn face_of(row: &Row, normalization: &Normalization, tolerance_deg: f64) -> Option<Position> {
     let (vector, tolerance) = match row.reference {
         Some(reference) => (reference, REFERENCE_FACE_TOLERANCE_DEG as f32),
-        None => (row.reading, tolerance_deg as f32),
+        None => (normalization.apply(row.reading).into(), tolerance_deg as f32),
     };
     Position::detect(vector.map(|v| v as f32), tolerance).ok().map(|(position, _)| position)
 }

@@ -33,9 +33,8 @@ fn shape_of(model: Model) -> Shape {
 /// Fits one of the least-squares models to the training rows.
 pub(super) fn least_squares(training: &Dataset, model: Model, options: &FitOptions) -> Result<Fit, FitError> {
     let shape = shape_of(model);
-    check_positions(training, model, shape)?;
-    let readings: Vec<[f64; 3]> = training.rows.iter().map(|r| r.reading).collect();
-    let normalization = Normalization::from_readings(&readings);
+    let normalization = Normalization::of_dataset(training);
+    check_positions(training, model, shape, &normalization)?;
     let observations = observations(training, model, &normalization, options.g);
     let mut start = shape.identity();
     start.extend([0.0; 3]);
@@ -90,8 +89,14 @@ fn noise_warning(test: &NoiseTest) -> Option<String> {
     })
 }
 
-/// Refuses, before fitting, positions that cannot determine the model, naming what to add.
-fn check_positions(training: &Dataset, model: Model, shape: Shape) -> Result<(), FitError> {
+/// Refuses, before fitting, positions that cannot determine the model, naming what to add; judged on
+/// the normalised readings, so that the file's zero and unit do not matter.
+fn check_positions(
+    training: &Dataset,
+    model: Model,
+    shape: Shape,
+    normalization: &Normalization,
+) -> Result<(), FitError> {
     if model == Model::ReferenceNorm12 {
         return check_references(training, model, shape);
     }
@@ -101,7 +106,7 @@ fn check_positions(training: &Dataset, model: Model, shape: Shape) -> Result<(),
     }
     for (axis, letter) in ['x', 'y', 'z'].into_iter().enumerate() {
         for up in [true, false] {
-            if !points_along(training, axis, up) {
+            if !points_along(training, normalization, axis, up) {
                 return Err(FitError::NoSpread { model: model.name(), axis: letter, up });
             }
         }
@@ -130,11 +135,11 @@ fn check_references(training: &Dataset, model: Model, shape: Shape) -> Result<()
     Ok(())
 }
 
-/// Whether some reading points `axis` up (or down) within the spread the fits need.
-fn points_along(training: &Dataset, axis: usize, up: bool) -> bool {
+/// Whether some normalised reading points `axis` up (or down) within the spread the fits need.
+fn points_along(training: &Dataset, normalization: &Normalization, axis: usize, up: bool) -> bool {
     let sign = if up { 1.0 } else { -1.0 };
     training.rows.iter().any(|r| {
-        let m = Vector3::from(r.reading);
+        let m = normalization.apply(r.reading);
         sign * m[axis] > AXIS_SPREAD * m.norm()
     })
 }
