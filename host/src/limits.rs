@@ -49,6 +49,12 @@ pub const AXIS_SPREAD: f64 = 0.3;
 /// this are one direction held twice.
 pub const INDEPENDENT_REFERENCES_DEG: f64 = 10.0;
 
+/// Fewest samples a row must average for its own standard deviation to be trusted.
+///
+/// NOTE: a standard deviation from n samples is uncertain by 1 / sqrt(2 (n - 1)): 24 % at 10
+/// samples, 100 % at 2. Below 10 a row's spread says little about the noise.
+pub const TRUSTED_SAMPLE_COUNT: u32 = 10;
+
 /// [`AXIS_SPREAD`] as the largest angle from an axis, in whole degrees, for messages.
 pub fn axis_spread_deg() -> f64 {
     AXIS_SPREAD.acos().to_degrees().round()

@@ -8,6 +8,7 @@ mod nonlinear;
 mod normalization;
 mod shape;
 mod statistics;
+mod uncertainty;
 
 use std::fmt;
 use std::str::FromStr;
@@ -125,9 +126,28 @@ pub struct Parameter {
     pub name: String,
     /// Value (M dimensionless, o in the file's unit).
     pub value: f64,
-    /// Standard error from the Jacobian and the residual scatter.
+    /// The standard error reported: the noise-based one, scaled up when the residuals are
+    /// significantly larger than the noise explains, so that it holds whether the scatter comes from
+    /// the noise or from what the model misses; the scatter-based one where the file gives no noise.
     pub std_error: Option<f64>,
+    /// Standard error from the Jacobian and the residual scatter (none without redundancy).
+    pub scatter_std_error: Option<f64>,
+    /// Standard error from the noise the captures measured (`count`, `std_*`), where the data has it.
+    pub noise_std_error: Option<f64>,
 }
+
+impl Parameter {
+    /// A parameter with its scatter- and noise-based standard errors; `inflation` scales the noise's
+    /// for what the residuals show beyond the noise.
+    fn new(name: String, value: f64, errors: [Option<f64>; 2], inflation: f64) -> Self {
+        let [scatter_std_error, noise_std_error] = errors;
+        let std_error = noise_std_error.map(|e| e * inflation).or(scatter_std_error);
+        Parameter { name, value, std_error, scatter_std_error, noise_std_error }
+    }
+}
+
+/// Standard errors of a full calibration's M and o.
+type FullErrors = Option<(Mat3<f64>, Vec3<f64>)>;
 
 /// A fitted calibration: `a = matrix (m - offset)`, in the file's units.
 #[derive(Debug, Clone, PartialEq)]
@@ -222,18 +242,24 @@ fn fit_model(training: &Dataset, model: Model, options: &FitOptions) -> Result<F
     }
 }
 
-/// Parameter list of a full 12-parameter calibration, with optional standard errors.
-fn full_parameters(matrix: &Mat3<f64>, offset: &Vec3<f64>, errors: Option<(Mat3<f64>, Vec3<f64>)>) -> Vec<Parameter> {
+/// Parameter list of a full 12-parameter calibration, with scatter- and noise-based standard errors
+/// (the latter scaled by `inflation` where reported).
+fn full_parameters(
+    matrix: &Mat3<f64>,
+    offset: &Vec3<f64>,
+    [scatter, noise]: [FullErrors; 2],
+    inflation: f64,
+) -> Vec<Parameter> {
     let mut parameters = Vec::with_capacity(12);
     for (i, row) in matrix.iter().enumerate() {
         for (j, &value) in row.iter().enumerate() {
-            let std_error = errors.map(|(m, _)| m[i][j]);
-            parameters.push(Parameter { name: format!("M{}{}", i + 1, j + 1), value, std_error });
+            let (a, b) = (scatter.map(|(m, _)| m[i][j]), noise.map(|(m, _)| m[i][j]));
+            parameters.push(Parameter::new(format!("M{}{}", i + 1, j + 1), value, [a, b], inflation));
         }
     }
     for (k, (&value, axis)) in offset.iter().zip(["x", "y", "z"]).enumerate() {
-        let std_error = errors.map(|(_, o)| o[k]);
-        parameters.push(Parameter { name: format!("o_{axis}"), value, std_error });
+        let (a, b) = (scatter.map(|(_, o)| o[k]), noise.map(|(_, o)| o[k]));
+        parameters.push(Parameter::new(format!("o_{axis}"), value, [a, b], inflation));
     }
     parameters
 }

@@ -6,7 +6,7 @@ use nalgebra::{DMatrix, DVector, Vector3};
 use super::nonlinear::{solve, Observation, Problem, Solution};
 use super::normalization::Normalization;
 use super::shape::Shape;
-use super::{statistics, Fit, FitError, FitOptions, Model, NoiseTest, Parameter};
+use super::{statistics, uncertainty, Fit, FitError, FitOptions, Model, NoiseTest, Parameter};
 use crate::data::Dataset;
 use crate::limits::{AXIS_SPREAD, INDEPENDENT_REFERENCES_DEG};
 use levenberg_marquardt::LeastSquaresProblem;
@@ -42,10 +42,16 @@ pub(super) fn least_squares(training: &Dataset, model: Model, options: &FitOptio
     let mut warnings = Vec::new();
     check_conditioning(model, shape, &observations, &start, &mut warnings)?;
     let solution = solve(shape, &observations, start)?;
-    let std_errors = standard_errors(&solution);
-    let parameters = file_parameters(shape, &solution, std_errors.as_ref(), &normalization, options.g);
+    let scatter = standard_errors(&solution);
+    let degrees_of_freedom = solution.residuals.len().saturating_sub(solution.params.len());
+    let noise = uncertainty::noise_errors(training, shape, &solution, &observations, &normalization);
+    let inflation = noise.as_ref().map_or(1.0, |n| uncertainty::inflation(n.chi_square, degrees_of_freedom));
+    let noise = noise.map(|n| uncertainty::diagonal_errors(&n.covariance));
+    let errors = ([scatter.as_ref(), noise.as_ref()], inflation);
+    let parameters = file_parameters(shape, &solution, errors, &normalization, options.g);
     let noise_test = statistics::noise_test(training, shape, &solution, &observations, &normalization);
     warnings.extend(noise_test.as_ref().and_then(noise_warning));
+    warnings.extend(uncertainty::redundancy_warnings(training, degrees_of_freedom));
     let (matrix, offset) = calibration_of(shape, &parameters);
     Ok(Fit {
         model,
@@ -60,14 +66,17 @@ pub(super) fn least_squares(training: &Dataset, model: Model, options: &FitOptio
     })
 }
 
-/// The rows as the solver sees them: normalised readings, references in g where the model uses them.
+/// The rows as the solver sees them: normalised readings, references in g where the model uses them,
+/// weights from the samples each row averaged.
 fn observations(training: &Dataset, model: Model, normalization: &Normalization, g: f64) -> Vec<Observation> {
     let uses_references = model == Model::ReferenceNorm12;
-    let observation = |row: &crate::data::Row| Observation {
+    let weights = uncertainty::row_weights(training);
+    let observation = |(row, weight): (&crate::data::Row, f64)| Observation {
         reading: normalization.apply(row.reading),
         reference: row.reference.filter(|_| uses_references).map(|r| Vector3::from(r) / g),
+        weight: weight.sqrt(),
     };
-    training.rows.iter().map(observation).collect()
+    training.rows.iter().zip(weights).map(observation).collect()
 }
 
 /// M and o from the parameters in the file's units.
@@ -209,11 +218,12 @@ fn standard_errors(solution: &Solution) -> Option<DVector<f64>> {
     Some(covariance.diagonal().map(f64::sqrt))
 }
 
-/// The parameters in the file's units: M = g M' diag(1/r), o = c + r o'.
+/// The parameters in the file's units: M = g M' diag(1/r), o = c + r o'; `errors` the scatter- and
+/// noise-based standard errors in the solver's units, with the noise's inflation.
 fn file_parameters(
     shape: Shape,
     solution: &Solution,
-    std_errors: Option<&DVector<f64>>,
+    (errors, inflation): ([Option<&DVector<f64>>; 2], f64),
     normalization: &Normalization,
     g: f64,
 ) -> Vec<Parameter> {
@@ -225,11 +235,9 @@ fn file_parameters(
         } else {
             (normalization.radii[k - n], normalization.center[k - n])
         };
-        parameters.push(Parameter {
-            name: parameter_name(shape, k),
-            value: solution.params[k] * factor + shift,
-            std_error: std_errors.map(|e| e[k] * factor),
-        });
+        let errors = errors.map(|e| e.map(|e| e[k] * factor));
+        let value = solution.params[k] * factor + shift;
+        parameters.push(Parameter::new(parameter_name(shape, k), value, errors, inflation));
     }
     parameters
 }
