@@ -109,8 +109,7 @@ struct LinearSolution {
     sensor_matrix: Mat3<f64>,
     /// y, the offset in the file's unit.
     offset: Vec3<f64>,
-    /// Per reading axis, the covariance of (X row, y) from the residual scatter; `None` without
-    /// redundancy.
+    /// Per reading axis, the covariance of (X row, y) from the residual scatter (`None`: no redundancy).
     scatter: Option<[Matrix4<f64>; 3]>,
     /// Per reading axis, the covariance of (X row, y) from the measured noise, where the file has it.
     noise: Option<[Matrix4<f64>; 3]>,
@@ -204,6 +203,7 @@ impl LinearSolution {
             noise_test: None,
             // NOTE: per reading axis, since each axis's residual variance is estimated on its own.
             warnings: uncertainty::redundancy_warnings(dataset, self.degrees_of_freedom),
+            selection: None,
         }
     }
 }

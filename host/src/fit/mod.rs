@@ -6,6 +6,7 @@ mod model;
 mod models;
 mod nonlinear;
 mod normalization;
+mod selection;
 mod shape;
 mod statistics;
 mod uncertainty;
@@ -21,12 +22,13 @@ use crate::data::Dataset;
 
 pub use evaluate::{evaluate, Evaluation, RowEvaluation};
 pub use model::Model;
+pub use selection::{leave_one_out_rms, Selection};
 pub use statistics::{misalignment_deg, NoiseTest};
 
 /// The model asked for on the command line.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ModelChoice {
-    /// The richest model the data supports.
+    /// The model that best predicts rows left out of its fit (leave-one-out).
     Auto,
     /// One model.
     Only(Model),
@@ -170,6 +172,8 @@ pub struct Fit {
     pub noise_test: Option<NoiseTest>,
     /// Things the user should know: a poor condition number, a model that does not fit the noise.
     pub warnings: Vec<String>,
+    /// With `auto`: why this model, and every model's leave-one-out figure.
+    pub selection: Option<Selection>,
 }
 
 /// Why a fit could not run; each says what to add or change.
@@ -206,23 +210,17 @@ pub enum FitError {
     NotConverged { reason: String },
     #[error("the positions do not determine the sensor: opposite faces read alike (is the file's unit right?)")]
     Degenerate,
+    #[error("no model can be fitted to these rows; the closest is {closest} ({short} short): {reason}")]
+    NothingFits { closest: &'static str, short: usize, reason: String },
 }
 
-/// Fits a model (or, for `auto`, the richest the data supports) to the training rows of a data set.
+/// Fits a model (or, for `auto`, the one that best predicts rows it did not see) to the training rows
+/// of a data set.
 pub fn fit(dataset: &Dataset, choice: ModelChoice, options: &FitOptions) -> Result<Fit, FitError> {
     let training = options.training_set(dataset)?;
     match choice {
         ModelChoice::Only(model) => fit_model(&training, model, options),
-        ModelChoice::Auto => {
-            let mut last_error = FitError::Degenerate;
-            for model in RICHEST_FIRST {
-                match fit_model(&training, model, options) {
-                    Ok(fit) => return Ok(fit),
-                    Err(error) => last_error = error,
-                }
-            }
-            Err(last_error)
-        }
+        ModelChoice::Auto => selection::choose(&training, options),
     }
 }
 

@@ -42,11 +42,8 @@ pub(super) fn least_squares(training: &Dataset, model: Model, options: &FitOptio
     let mut warnings = Vec::new();
     check_conditioning(model, shape, &observations, &start, &mut warnings)?;
     let solution = solve(shape, &observations, start)?;
-    let scatter = standard_errors(&solution);
     let degrees_of_freedom = solution.residuals.len().saturating_sub(solution.params.len());
-    let noise = uncertainty::noise_errors(training, shape, &solution, &observations, &normalization);
-    let inflation = noise.as_ref().map_or(1.0, |n| uncertainty::inflation(n.chi_square, degrees_of_freedom));
-    let noise = noise.map(|n| uncertainty::diagonal_errors(&n.covariance));
+    let (scatter, noise, inflation) = errors(training, shape, &solution, &observations, &normalization);
     let errors = ([scatter.as_ref(), noise.as_ref()], inflation);
     let parameters = file_parameters(shape, &solution, errors, &normalization, options.g);
     let noise_test = statistics::noise_test(training, shape, &solution, &observations, &normalization);
@@ -63,7 +60,22 @@ pub(super) fn least_squares(training: &Dataset, model: Model, options: &FitOptio
         lines_used: training.rows.iter().map(|r| r.line).collect(),
         noise_test,
         warnings,
+        selection: None,
     })
+}
+
+/// The scatter- and noise-based standard errors in the solver's units, and the noise's inflation.
+fn errors(
+    training: &Dataset,
+    shape: Shape,
+    solution: &Solution,
+    observations: &[Observation],
+    normalization: &Normalization,
+) -> (Option<DVector<f64>>, Option<DVector<f64>>, f64) {
+    let degrees_of_freedom = solution.residuals.len().saturating_sub(solution.params.len());
+    let noise = uncertainty::noise_errors(training, shape, solution, observations, normalization);
+    let inflation = noise.as_ref().map_or(1.0, |n| uncertainty::inflation(n.chi_square, degrees_of_freedom));
+    (standard_errors(solution), noise.map(|n| uncertainty::diagonal_errors(&n.covariance)), inflation)
 }
 
 /// The rows as the solver sees them: normalised readings, references in g where the model uses them,

@@ -36,6 +36,9 @@ fn write_fit(out: &mut String, fit: &Fit, rows: usize, g: f64) {
     for warning in &fit.warnings {
         let _ = writeln!(out, "warning: {warning}");
     }
+    if let Some(selection) = &fit.selection {
+        let _ = writeln!(out, "auto: {}", selection.reason);
+    }
 }
 
 fn write_rows(out: &mut String, evaluation: &Evaluation, g: f64) {
