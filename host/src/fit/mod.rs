@@ -10,6 +10,7 @@ mod selection;
 mod shape;
 mod statistics;
 mod uncertainty;
+mod verdict;
 
 use std::fmt;
 use std::str::FromStr;

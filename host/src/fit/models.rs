@@ -1,13 +1,13 @@
 //! The least-squares models `reference-norm12`, `ortho9` and `diag6`: observability checks, the
 //! normalised solve, and the map back to the file's units with standard errors.
 
-use nalgebra::{DMatrix, DVector, Vector3};
+use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 
 use super::nonlinear::{solve, Observation, Problem, Solution};
 use super::normalization::Normalization;
 use super::shape::Shape;
-use super::{statistics, uncertainty, Fit, FitError, FitOptions, Model, NoiseTest, Parameter};
-use crate::data::Dataset;
+use super::{statistics, uncertainty, verdict, Fit, FitError, FitOptions, Model, NoiseTest, Parameter};
+use crate::data::{Dataset, Row};
 use crate::limits::{AXIS_SPREAD, INDEPENDENT_REFERENCES_DEG};
 use levenberg_marquardt::LeastSquaresProblem;
 use shared::linalg::{Mat3, Vec3};
@@ -36,20 +36,17 @@ pub(super) fn least_squares(training: &Dataset, model: Model, options: &FitOptio
     let normalization = Normalization::of_dataset(training);
     check_positions(training, model, shape, &normalization)?;
     let observations = observations(training, model, &normalization, options.g);
-    let mut start = shape.identity();
-    start.extend([0.0; 3]);
-    let start = DVector::from_vec(start);
+    let start = DVector::from_iterator(shape.len() + 3, shape.identity().into_iter().chain([0.0; 3]));
     let mut warnings = Vec::new();
     check_conditioning(model, shape, &observations, &start, &mut warnings)?;
     let solution = solve(shape, &observations, start)?;
-    let degrees_of_freedom = solution.residuals.len().saturating_sub(solution.params.len());
     let (scatter, noise, inflation) = errors(training, shape, &solution, &observations, &normalization);
     let errors = ([scatter.as_ref(), noise.as_ref()], inflation);
     let parameters = file_parameters(shape, &solution, errors, &normalization, options.g);
     let noise_test = statistics::noise_test(training, shape, &solution, &observations, &normalization);
-    warnings.extend(noise_test.as_ref().and_then(noise_warning));
-    warnings.extend(uncertainty::redundancy_warnings(training, degrees_of_freedom));
     let (matrix, offset) = calibration_of(shape, &parameters);
+    let calibration = (Matrix3::from(matrix).transpose(), Vector3::from(offset));
+    warnings.extend(fit_warnings(training, &observations, &solution, calibration, (noise_test.as_ref(), options.g)));
     Ok(Fit {
         model,
         matrix,
@@ -62,6 +59,26 @@ pub(super) fn least_squares(training: &Dataset, model: Model, options: &FitOptio
         warnings,
         selection: None,
     })
+}
+
+/// What the noise test's failure points to, and too little redundancy or too short captures.
+fn fit_warnings(
+    training: &Dataset,
+    observations: &[Observation],
+    solution: &Solution,
+    (matrix, offset): (Matrix3<f64>, Vector3<f64>),
+    (noise_test, g): (Option<&NoiseTest>, f64),
+) -> Vec<String> {
+    // NOTE: with only the references the model used: the others say nothing of this fit's placement.
+    let rows = observations.iter().zip(&training.rows);
+    let used =
+        Dataset { rows: rows.map(|(o, r)| Row { reference: o.reference.and(r.reference), ..r.clone() }).collect() };
+    let failed = noise_test.filter(|t| !t.passed);
+    let mut warnings: Vec<String> =
+        failed.map(|t| verdict::noise_warning(&used, (&matrix, &offset), g, t)).into_iter().collect();
+    let degrees_of_freedom = solution.residuals.len().saturating_sub(solution.params.len());
+    warnings.extend(uncertainty::redundancy_warnings(training, degrees_of_freedom));
+    warnings
 }
 
 /// The scatter- and noise-based standard errors in the solver's units, and the noise's inflation.
@@ -97,17 +114,6 @@ fn calibration_of(shape: Shape, parameters: &[Parameter]) -> (Mat3<f64>, Vec3<f6
     let matrix = shape.matrix(&values[..shape.len()]);
     let offset = [0, 1, 2].map(|k| values[shape.len() + k]);
     ([0, 1, 2].map(|i| [0, 1, 2].map(|j| matrix[(i, j)])), offset)
-}
-
-/// The warning for residuals larger than the capture noise explains.
-fn noise_warning(test: &NoiseTest) -> Option<String> {
-    (!test.passed).then(|| {
-        format!(
-            "the residuals exceed what the capture noise explains (chi-square {:.1} on {} degrees of freedom, \
-             p = {:.1e}): the board moved between captures, or the model is too simple",
-            test.chi_square, test.degrees_of_freedom, test.p_value
-        )
-    })
 }
 
 /// Refuses, before fitting, positions that cannot determine the model, naming what to add; judged on

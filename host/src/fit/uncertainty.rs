@@ -129,9 +129,7 @@ pub(super) fn linear_noise_errors(
     let Some((per_sample, factors)) = noise else {
         return (None, 1.0);
     };
-    let chi_square: f64 = (0..factors.len())
-        .map(|i| (0..3).map(|c| residuals[(i, c)].powi(2) / (factors[i] * per_sample[c])).sum::<f64>())
-        .sum();
+    let chi_square = linear_chi_square(residuals, &factors, &per_sample);
     let covariances = [0, 1, 2].map(|c| {
         let mut middle = Matrix4::zeros();
         for (i, factor) in factors.iter().enumerate() {
@@ -142,6 +140,12 @@ pub(super) fn linear_noise_errors(
     });
     let degrees_of_freedom = 3 * factors.len().saturating_sub(design.ncols());
     (Some(covariances), inflation(chi_square, degrees_of_freedom))
+}
+
+/// Sum over rows i and axes c of r_ic^2 / (f_i sigma_c^2).
+fn linear_chi_square(residuals: &DMatrix<f64>, factors: &[f64], per_sample: &Vector3<f64>) -> f64 {
+    let row = |i: usize| (0..3).map(|c| residuals[(i, c)].powi(2) / (factors[i] * per_sample[c])).sum::<f64>();
+    (0..factors.len()).map(row).sum()
 }
 
 /// Each row's weight in the fit, relative to the mean: its sample count where every row carries its
@@ -166,25 +170,24 @@ pub(super) fn relative_weights(counts: &[f64]) -> Vec<f64> {
 
 /// The warnings about too little redundancy or too short captures, where they apply.
 pub(super) fn redundancy_warnings(training: &Dataset, degrees_of_freedom: usize) -> Vec<String> {
-    let mut warnings = Vec::new();
-    if degrees_of_freedom <= 2 {
-        warnings.push(format!(
+    let few = (degrees_of_freedom <= 2).then(|| {
+        format!(
             "only {degrees_of_freedom} residual degree(s) of freedom: the residual scatter says little about \
              the error; the standard errors lean on the measured noise (add positions for a check)"
-        ));
-    }
-    let short: Vec<String> = training
-        .rows
-        .iter()
-        .filter(|r| r.count.is_some_and(|n| n < TRUSTED_SAMPLE_COUNT))
-        .map(|r| r.line.to_string())
-        .collect();
-    if !short.is_empty() {
-        warnings.push(format!(
+        )
+    });
+    few.into_iter().chain(short_rows_warning(training)).collect()
+}
+
+/// The warning naming the rows that averaged fewer than [`TRUSTED_SAMPLE_COUNT`] samples.
+fn short_rows_warning(training: &Dataset) -> Option<String> {
+    let short = training.rows.iter().filter(|r| r.count.is_some_and(|n| n < TRUSTED_SAMPLE_COUNT));
+    let lines: Vec<String> = short.map(|r| r.line.to_string()).collect();
+    (!lines.is_empty()).then(|| {
+        format!(
             "line(s) {} averaged fewer than {TRUSTED_SAMPLE_COUNT} samples: their spread is a rough guess \
              of the noise; capture longer",
-            short.join(", ")
-        ));
-    }
-    warnings
+            lines.join(", ")
+        )
+    })
 }
