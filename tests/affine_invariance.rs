@@ -140,3 +140,25 @@ fn five_faces_of_the_phone_set_are_refused_alike_in_any_units() {
     let worst = check_invariance(&dataset, PHONE_G, 4000.0 / PHONE_G, [32768.0; 3]);
     assert!(worst < RELATIVE_TOLERANCE, "{worst:e}");
 }
+
+#[test]
+fn columns_labelled_mg_are_mg_for_raw_counts_too() {
+    // The phone set in m/s^2 compares its readings with g as they stand; in raw counts the "before"
+    // errors are of the readings centred and put on a nominal scale, not millions of "mg".
+    let options = FitOptions { g: PHONE_G, ..FitOptions::default() };
+    let original = phone_dataset();
+    let raw = converted(&original, 4000.0 / PHONE_G, [32768.0, 32790.0, 32741.0]);
+    let mut worst = Vec::new();
+    for dataset in [&original, &raw] {
+        let fit = fit::fit(dataset, ModelChoice::Only(Model::Ortho9), &options).unwrap();
+        let evaluation = fit::evaluate(dataset, &fit.matrix, &fit.offset, PHONE_G, &fit.lines_used);
+        let (before, after) = evaluation.worst_norm_error();
+        let mg = |v: f64| v / PHONE_G * 1000.0;
+        println!("nominal {}: worst before {:.2} mg, after {:.3} mg", evaluation.before_nominal, mg(before), mg(after));
+        worst.push((evaluation.before_nominal, mg(before), mg(after)));
+    }
+    assert!(!worst[0].0 && worst[1].0);
+    // The same calibration after; before, a nominal scale of the same order as the m/s^2 readings' error.
+    assert!((worst[0].2 - worst[1].2).abs() < 1e-6 * worst[0].2);
+    assert!(worst[1].1 > worst[1].2 && worst[1].1 < 3.0 * worst[0].1, "{worst:?}");
+}

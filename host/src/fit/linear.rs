@@ -5,10 +5,10 @@ use nalgebra::{DMatrix, Matrix3, Matrix4, SymmetricEigen, Vector3};
 use shared::linalg::{self, Mat3, Vec3};
 use shared::{Position, PositionMap, SixPositionError};
 
-use super::normalization::Normalization;
+use super::faces::{face_force, rows_at_faces};
+use super::prediction;
 use super::{full_parameters, uncertainty, Fit, FitError, FitOptions, Model};
-use crate::data::{Dataset, Row};
-use crate::limits::REFERENCE_FACE_TOLERANCE_DEG;
+use crate::data::Dataset;
 
 /// Known-orientation rows needed to determine 12 parameters (each row gives three equations, but the
 /// four columns of [a 1] must be independent).
@@ -68,39 +68,6 @@ pub(super) fn six_position(dataset: &Dataset, options: &FitOptions) -> Result<Fi
     pairs.sort_by_key(|p| p.row);
     let solution = LinearSolution::solve(&pairs, Model::SixPosition, uncertainty::pooled_sample_variance(dataset))?;
     Ok(solution.into_fit(Model::SixPosition, (closed_form.matrix, closed_form.offset), &pairs, dataset, options.g))
-}
-
-/// The index of the row at each face, in the order of `Position::ALL`; a face met twice is refused.
-/// Readings are judged after the normalisation of the least-squares models, so that a file's zero
-/// and unit do not matter.
-fn rows_at_faces(dataset: &Dataset, tolerance_deg: f64) -> Result<[Option<usize>; 6], FitError> {
-    let normalization = Normalization::of_dataset(dataset);
-    let mut first_row_at: [Option<usize>; 6] = [None; 6];
-    for (index, row) in dataset.rows.iter().enumerate() {
-        let Some(position) = face_of(row, &normalization, tolerance_deg) else {
-            continue;
-        };
-        if let Some(first) = first_row_at[position.index()] {
-            let first_line = dataset.rows[first].line;
-            return Err(FitError::DuplicatePosition { position, first_line, second_line: row.line });
-        }
-        first_row_at[position.index()] = Some(index);
-    }
-    Ok(first_row_at)
-}
-
-/// The face a row was taken at: from its known orientation when it has one, else from its
-/// normalised reading.
-fn face_of(row: &Row, normalization: &Normalization, tolerance_deg: f64) -> Option<Position> {
-    let (vector, tolerance) = match row.reference {
-        Some(reference) => (reference, REFERENCE_FACE_TOLERANCE_DEG as f32),
-        None => (normalization.apply(row.reading).into(), tolerance_deg as f32),
-    };
-    Position::detect(vector.map(|v| v as f32), tolerance).ok().map(|(position, _)| position)
-}
-
-fn face_force(position: Position, g: f64) -> Vec3<f64> {
-    linalg::scale(position.specific_force_g(), g)
 }
 
 /// Least-squares solution of m = X a + y with the statistics for standard errors.
@@ -172,6 +139,11 @@ impl LinearSolution {
         Some((matrix_errors, offset_errors))
     }
 
+    /// The per-axis covariances behind the reported errors: the noise's (scaled) or the scatter's.
+    fn reported(&self) -> Option<[Matrix4<f64>; 3]> {
+        self.noise.map(|c| c.map(|m| m * self.inflation.powi(2))).or(self.scatter)
+    }
+
     /// The fit of `calibration` (M, o) made from this solution on `pairs` of `dataset`.
     fn into_fit(
         self,
@@ -204,6 +176,7 @@ impl LinearSolution {
             // NOTE: per reading axis, since each axis's residual variance is estimated on its own.
             warnings: uncertainty::redundancy_warnings(dataset, self.degrees_of_freedom),
             selection: None,
+            prediction: self.reported().map(|c| prediction::linear(&matrix, &c, g)),
         }
     }
 }
@@ -232,6 +205,7 @@ fn check_spread(pairs: &[Pair], model: Model) -> Result<(), FitError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::data::Row;
     use crate::fit::{fit, ModelChoice};
     use shared::orientation::from_inclination_toolface;
 

@@ -1,11 +1,13 @@
 //! Fitting a calibration `a = M (m - o)` to a data file, by the models of DESIGN.md.
 
 mod evaluate;
+mod faces;
 mod linear;
 mod model;
 mod models;
 mod nonlinear;
 mod normalization;
+mod prediction;
 mod selection;
 mod shape;
 mod statistics;
@@ -23,6 +25,7 @@ use crate::data::Dataset;
 
 pub use evaluate::{evaluate, Evaluation, RowEvaluation};
 pub use model::Model;
+pub use prediction::{axis_angles_deg, Prediction};
 pub use selection::{leave_one_out_rms, Selection};
 pub use statistics::{misalignment_deg, NoiseTest};
 
@@ -175,6 +178,8 @@ pub struct Fit {
     pub warnings: Vec<String>,
     /// With `auto`: why this model, and every model's leave-one-out figure.
     pub selection: Option<Selection>,
+    /// The errors the parameters' uncertainty predicts at a fresh orientation.
+    pub prediction: Option<Prediction>,
 }
 
 /// Why a fit could not run; each says what to add or change.

@@ -5,6 +5,7 @@ use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 
 use super::nonlinear::{solve, Observation, Problem, Solution};
 use super::normalization::Normalization;
+use super::prediction::{self, Prediction};
 use super::shape::Shape;
 use super::{statistics, uncertainty, verdict, Fit, FitError, FitOptions, Model, NoiseTest, Parameter};
 use crate::data::{Dataset, Row};
@@ -40,9 +41,10 @@ pub(super) fn least_squares(training: &Dataset, model: Model, options: &FitOptio
     let mut warnings = Vec::new();
     check_conditioning(model, shape, &observations, &start, &mut warnings)?;
     let solution = solve(shape, &observations, start)?;
-    let (scatter, noise, inflation) = errors(training, shape, &solution, &observations, &normalization);
+    let (scatter, noise, inflation, reported) = errors(training, shape, &solution, &observations, &normalization);
     let errors = ([scatter.as_ref(), noise.as_ref()], inflation);
     let parameters = file_parameters(shape, &solution, errors, &normalization, options.g);
+    let prediction = reported.map(|c| predicted(shape, &parameters, &normalization, &c, options.g));
     let noise_test = statistics::noise_test(training, shape, &solution, &observations, &normalization);
     let (matrix, offset) = calibration_of(shape, &parameters);
     let calibration = (Matrix3::from(matrix).transpose(), Vector3::from(offset));
@@ -58,7 +60,29 @@ pub(super) fn least_squares(training: &Dataset, model: Model, options: &FitOptio
         noise_test,
         warnings,
         selection: None,
+        prediction,
     })
+}
+
+/// The prediction at fresh orientations from the covariance in the solver's units.
+fn predicted(
+    shape: Shape,
+    parameters: &[Parameter],
+    normalization: &Normalization,
+    covariance: &DMatrix<f64>,
+    g: f64,
+) -> Prediction {
+    let n = shape.len();
+    let factors = DVector::from_fn(n + 3, |k, _| {
+        if k < n {
+            shape.unit_factor(k, g, &normalization.radii)
+        } else {
+            normalization.radii[k - n]
+        }
+    });
+    let file = DMatrix::from_diagonal(&factors) * covariance * DMatrix::from_diagonal(&factors);
+    let values: Vec<f64> = parameters.iter().map(|p| p.value).collect();
+    prediction::least_squares(shape, &values, &file, g)
 }
 
 /// What the noise test's failure points to, and too little redundancy or too short captures.
@@ -81,18 +105,25 @@ fn fit_warnings(
     warnings
 }
 
-/// The scatter- and noise-based standard errors in the solver's units, and the noise's inflation.
+/// Scatter- and noise-based standard errors, the noise's inflation, the reported covariance.
+type Errors = (Option<DVector<f64>>, Option<DVector<f64>>, f64, Option<DMatrix<f64>>);
+
+/// The scatter- and noise-based standard errors in the solver's units, the noise's inflation, and the
+/// covariance behind the reported errors (the noise's, inflated, or the scatter's).
 fn errors(
     training: &Dataset,
     shape: Shape,
     solution: &Solution,
     observations: &[Observation],
     normalization: &Normalization,
-) -> (Option<DVector<f64>>, Option<DVector<f64>>, f64) {
+) -> Errors {
     let degrees_of_freedom = solution.residuals.len().saturating_sub(solution.params.len());
     let noise = uncertainty::noise_errors(training, shape, solution, observations, normalization);
     let inflation = noise.as_ref().map_or(1.0, |n| uncertainty::inflation(n.chi_square, degrees_of_freedom));
-    (standard_errors(solution), noise.map(|n| uncertainty::diagonal_errors(&n.covariance)), inflation)
+    let (scatter, noise) = (scatter_covariance(solution), noise.map(|n| n.covariance));
+    let reported = noise.as_ref().map(|c| c * inflation.powi(2)).or(scatter.clone());
+    let diagonal = |c: Option<DMatrix<f64>>| c.map(|c| uncertainty::diagonal_errors(&c));
+    (diagonal(scatter), diagonal(noise), inflation, reported)
 }
 
 /// The rows as the solver sees them: normalised readings, references in g where the model uses them,
@@ -226,14 +257,13 @@ fn parameter_name(shape: Shape, index: usize) -> String {
     shape.names().get(index).map_or_else(|| format!("o_{}", ['x', 'y', 'z'][index - shape.len()]), |n| (*n).to_owned())
 }
 
-/// Standard errors in the solver's units: s^2 (J^T J)^-1 with s^2 the residual variance.
-fn standard_errors(solution: &Solution) -> Option<DVector<f64>> {
+/// Parameter covariance in the solver's units: s^2 (J^T J)^-1 with s^2 the residual variance.
+fn scatter_covariance(solution: &Solution) -> Option<DMatrix<f64>> {
     let (residuals, parameters) = solution.jacobian.shape();
     let dof = residuals.checked_sub(parameters).filter(|&d| d > 0)?;
     let variance = solution.cost / dof as f64;
     let normal = solution.jacobian.transpose() * &solution.jacobian;
-    let covariance = normal.cholesky()?.inverse() * variance;
-    Some(covariance.diagonal().map(f64::sqrt))
+    Some(normal.cholesky()?.inverse() * variance)
 }
 
 /// The parameters in the file's units: M = g M' diag(1/r), o = c + r o'; `errors` the scatter- and

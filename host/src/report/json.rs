@@ -6,7 +6,7 @@ use serde::Serialize;
 
 use super::{CalibrateReport, Comparison, FitReport};
 use crate::calibration::CalibrationJson;
-use crate::fit::{Evaluation, NoiseTest, Selection};
+use crate::fit::{axis_angles_deg, Evaluation, Model, NoiseTest, Prediction, Selection};
 
 /// The object `accelcal fit --json` prints: the calibration (`model`, `matrix`, `offset`, `g`) and
 /// the fit's statistics.
@@ -39,6 +39,10 @@ pub struct FitJson<'a> {
     pub comparison: Option<&'a Comparison>,
     /// Why `auto` chose the model, with every model's leave-one-out figure.
     pub selection: Option<&'a Selection>,
+    /// The | |a| - g | (mg) and tilt (degrees) errors the uncertainty predicts at a fresh orientation.
+    pub prediction: Option<&'a Prediction>,
+    /// Angles between the sensor's axes x-y, x-z, y-z, in degrees (not for `diag6`, square by model).
+    pub axis_angles_deg: Option<[f64; 3]>,
 }
 
 impl<'a> FitJson<'a> {
@@ -59,6 +63,8 @@ impl<'a> FitJson<'a> {
             evaluation: &report.evaluation,
             comparison: report.comparison.as_ref(),
             selection: fit.selection.as_ref(),
+            prediction: fit.prediction.as_ref(),
+            axis_angles_deg: axis_angles_deg(&fit.matrix).filter(|_| fit.model != Model::Diag6),
         }
     }
 }

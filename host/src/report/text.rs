@@ -3,7 +3,7 @@
 use std::fmt::Write;
 
 use super::{CalibrateReport, Comparison, FitReport};
-use crate::fit::{Evaluation, Fit};
+use crate::fit::{axis_angles_deg, Evaluation, Fit, Model};
 
 /// The fit: parameters with standard errors, then errors before and after in mg, then (for `auto`)
 /// the comparison.
@@ -39,11 +39,30 @@ fn write_fit(out: &mut String, fit: &Fit, rows: usize, g: f64) {
     if let Some(selection) = &fit.selection {
         let _ = writeln!(out, "auto: {}", selection.reason);
     }
+    write_meaning(out, fit);
+}
+
+/// What the uncertainty means at a fresh orientation, and the angles between the sensor's axes.
+fn write_meaning(out: &mut String, fit: &Fit) {
+    if let Some(p) = &fit.prediction {
+        let _ = writeln!(
+            out,
+            "at a fresh orientation the parameters' uncertainty predicts | |a| - g | of {:.4} mg and a tilt \
+             error of {:.4} degrees (RMS)",
+            p.norm_error_mg, p.tilt_error_deg
+        );
+    }
+    if let Some([xy, xz, yz]) = axis_angles_deg(&fit.matrix).filter(|_| fit.model != Model::Diag6) {
+        let _ = writeln!(out, "angles between the sensor's axes: x-y {xy:.3}, x-z {xz:.3}, y-z {yz:.3} degrees");
+    }
 }
 
 fn write_rows(out: &mut String, evaluation: &Evaluation, g: f64) {
     let mg = |value: f64| value / g * 1000.0;
     let angles = evaluation.rows.iter().any(|r| r.inclination_error_deg.is_some());
+    if evaluation.before_nominal {
+        out.push_str("(the file is not in g: \"before\" is its readings centred and put on a nominal scale of g)\n");
+    }
     let _ = write!(out, "line  set    ||a|-g| mg before   after   |a-ref| mg before   after");
     let _ = writeln!(out, "{}", if angles { "  incl err deg  tf err deg" } else { "" });
     for row in &evaluation.rows {
