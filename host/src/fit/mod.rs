@@ -62,7 +62,8 @@ impl fmt::Display for ModelChoice {
     }
 }
 
-/// Every model, richest first: the order in which `auto` tries them.
+/// Every model, richest first: the order in which models are listed, and in which `auto` falls back
+/// to the first that fits when none can be tested on left-out rows.
 ///
 /// NOTE: `reference-norm12` uses every row (known orientations and |a| = g), `linear12` only the
 /// rows of known orientation; `ortho9` needs no orientation; the six-position closed form uses only
