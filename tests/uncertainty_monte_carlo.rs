@@ -124,3 +124,30 @@ fn one_degree_of_freedom_and_rows_of_few_samples_are_warned_of_by_line() {
         fit::fit(&draw(&problem::spread_directions(10, 7), &[400; 24], 1), ModelChoice::Only(Model::Ortho9), &options);
     assert!(more.unwrap().warnings.is_empty());
 }
+
+#[test]
+fn weighting_rows_by_their_sample_count_narrows_every_parameters_spread() {
+    // The same 300 problems of 24 rows fitted twice: weighted by count (the file carries `count` and
+    // `std_*`), and unweighted (the same readings without those columns).
+    let directions = problem::spread_directions(10, 7);
+    let counts = counts(directions.len());
+    let options = FitOptions { g: SYNTHETIC_G, ..FitOptions::default() };
+    let (mut weighted, mut unweighted) = (Vec::new(), Vec::new());
+    for seed in 0..PROBLEMS {
+        let dataset = draw(&directions, &counts, 900 + seed);
+        let mut bare = dataset.clone();
+        for row in &mut bare.rows {
+            (row.count, row.std) = (None, None);
+        }
+        let fit = |d: &Dataset| fit::fit(d, ModelChoice::Only(Model::Ortho9), &options).expect("ortho9 fits");
+        weighted.push(fit(&dataset));
+        unweighted.push(fit(&bare));
+    }
+    println!("ortho9, 24 rows: spread weighted / unweighted");
+    for k in 0..weighted[0].parameters.len() {
+        let values = |fits: &[Fit]| spread(&fits.iter().map(|f| f.parameters[k].value).collect::<Vec<_>>());
+        let ratio = values(&weighted) / values(&unweighted);
+        println!("  {:>4}: {ratio:.3}", weighted[0].parameters[k].name);
+        assert!(ratio < 0.9, "{}: {ratio:.3}", weighted[0].parameters[k].name);
+    }
+}
