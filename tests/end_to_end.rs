@@ -80,6 +80,14 @@ fn default_calibration_over_a_pty_survives_a_restart_and_verifies_below_1_mg() {
     println!("default set over a pty: {verification:?}");
     assert!(verification.before_rms_mg >= 10.0, "{verification:?}");
     assert!(verification.after_rms_mg <= 1.0, "{verification:?}");
+    // The noise floor of 5 s captures of 400 ug/sqrt(Hz) white noise: 0.4 mg / sqrt(2 * 5) = 0.126 mg
+    // on each axis, and so in |a|; the floor is an RMS over 12 captures whose spreads each come from
+    // thousands of samples: within 10 %.
+    let expected_floor = 0.4 / (2.0 * f64::from(procedure::VERIFY_SECONDS)).sqrt();
+    let floor = verification.noise_floor_mg;
+    assert!((floor / expected_floor - 1.0).abs() < 0.1, "floor {floor} for {expected_floor}: {verification:?}");
+    let without = (verification.after_rms_mg.powi(2) - floor.powi(2)).max(0.0).sqrt();
+    assert!((verification.after_rms_without_noise_mg - without).abs() < 1e-12, "{verification:?}");
     // The chip's own corrected samples agree with the verified calibration (noise of 20 samples).
     assert!(verification.on_chip_difference_mg < 3.0, "{verification:?}");
 }

@@ -68,6 +68,33 @@ pub const INDEPENDENT_REFERENCES_DEG: f64 = 10.0;
 /// near certainty; more than that is an error the calibration left that the verification resolves.
 pub const TRUSTED_AFTER_NOISE_FLOOR: f64 = 3.0;
 
+/// Fewest samples a row must average for its own standard deviation to be trusted.
+///
+/// NOTE: a standard deviation from n samples is uncertain by 1 / sqrt(2 (n - 1)): 24 % at 10
+/// samples, 100 % at 2. Below 10 a row's spread says little about the noise.
+pub const TRUSTED_SAMPLE_COUNT: u32 = 10;
+
+/// Residual | |a| - g |, in mg RMS, below which no real static model is expected to go.
+///
+/// NOTE: the MPU-6050's zero-g offset drifts with temperature by about 0.5 mg/degC (datasheet: +-35 mg
+/// over 0-70 degC); a degree or two of warming over a calibration run moves the readings by 0.5-1 mg
+/// that no static 12-parameter model can follow. Residuals below this are as good as a model gets.
+pub const MODEL_FLOOR_MG: f64 = 1.0;
+
+/// A row whose sample spread exceeds the pooled spread of all rows by this factor on some axis was
+/// taken on a board that moved.
+///
+/// NOTE: a still capture's spread is the sensor's noise, the same in every row to within the
+/// uncertainty of a standard deviation (24 % at 10 samples); three times it is motion.
+pub const MOVED_STD_RATIO: f64 = 3.0;
+
+/// RMS angle, in degrees, between corrected readings and known orientations above which the known
+/// orientations count as placed off.
+///
+/// NOTE: a calibrated MPU-6050 points to within about 0.1 degree (1.7 mg of cross-axis error); half a
+/// degree is a placement error, not the sensor.
+pub const PLACEMENT_DEG: f64 = 0.5;
+
 /// [`AXIS_SPREAD`] as the largest angle from an axis, in whole degrees, for messages.
 pub fn axis_spread_deg() -> f64 {
     AXIS_SPREAD.acos().to_degrees().round()

@@ -42,7 +42,7 @@ pub struct Device {
 pub struct FitArgs {
     /// The data file.
     pub file: PathBuf,
-    /// The model: auto (the richest the data supports, compared with the others),
+    /// The model: auto (the one that best predicts rows left out of its fit, compared with the others),
     /// reference-norm12, linear12, ortho9, diag6 or six-position.
     #[arg(long, default_value = "auto")]
     pub model: ModelChoice,

@@ -37,6 +37,9 @@ pub struct RowEvaluation {
 pub struct Evaluation {
     /// One entry per row of the data set.
     pub rows: Vec<RowEvaluation>,
+    /// Whether the "before" errors are of readings put on a nominal scale (the file's readings are not
+    /// in the output unit: centred on the ellipsoid through them and scaled by its mean radius to g).
+    pub before_nominal: bool,
 }
 
 /// Errors of every row, before (a = m) and after (a = M (m - o)) the calibration; rows on
@@ -48,19 +51,37 @@ pub fn evaluate(
     g: f64,
     training_lines: &[usize],
 ) -> Evaluation {
+    let nominal = nominal_scale(dataset, g);
     let rows = dataset
         .rows
         .iter()
         .map(|row| {
             let corrected = linalg::mul_vec(matrix, linalg::sub(row.reading, *offset));
-            evaluate_row(row, corrected, g, training_lines.contains(&row.line))
+            let before = nominal.map_or(row.reading, |(c, s)| linalg::scale(linalg::sub(row.reading, c), s));
+            evaluate_row(row, (before, corrected), g, training_lines.contains(&row.line))
         })
         .collect();
-    Evaluation { rows }
+    Evaluation { rows, before_nominal: nominal.is_some() }
 }
 
-/// The errors of one row whose corrected reading is `corrected`.
-fn evaluate_row(row: &Row, corrected: Vec3<f64>, g: f64, training: bool) -> RowEvaluation {
+/// For readings not in the output unit (median |m| off g by more than a factor of two): the centre
+/// of the ellipsoid through them and the factor that takes its mean radius to g.
+///
+/// NOTE: "before" in mg must be mg: raw counts compared with g as they stand give errors of millions.
+fn nominal_scale(dataset: &Dataset, g: f64) -> Option<(Vec3<f64>, f64)> {
+    let mut norms: Vec<f64> = dataset.rows.iter().map(|r| linalg::norm(r.reading) / g).collect();
+    norms.sort_by(f64::total_cmp);
+    let median = *norms.get(norms.len() / 2)?;
+    if (0.5..=2.0).contains(&median) {
+        return None;
+    }
+    let ellipsoid = super::normalization::Normalization::of_dataset(dataset);
+    let radius = ellipsoid.radii.iter().product::<f64>().cbrt();
+    (radius > 0.0).then(|| (ellipsoid.center, g / radius))
+}
+
+/// The errors of one row with its reading `before` and after correction.
+fn evaluate_row(row: &Row, (before, corrected): (Vec3<f64>, Vec3<f64>), g: f64, training: bool) -> RowEvaluation {
     let distance = |a: Vec3<f64>| row.reference.map(|r| linalg::norm(linalg::sub(a, r)));
     let inclination_error_deg = row.reference.map(|r| inclination_deg(corrected) - inclination_deg(r));
     let toolface_error_deg = row
@@ -70,9 +91,9 @@ fn evaluate_row(row: &Row, corrected: Vec3<f64>, g: f64, training: bool) -> RowE
     RowEvaluation {
         line: row.line,
         training,
-        norm_error_before: (linalg::norm(row.reading) - g).abs(),
+        norm_error_before: (linalg::norm(before) - g).abs(),
         norm_error_after: (linalg::norm(corrected) - g).abs(),
-        reference_error_before: distance(row.reading),
+        reference_error_before: distance(before),
         reference_error_after: distance(corrected),
         inclination_error_deg,
         toolface_error_deg,

@@ -5,9 +5,10 @@ use nalgebra::{DMatrix, Matrix3, Matrix4, SymmetricEigen, Vector3};
 use shared::linalg::{self, Mat3, Vec3};
 use shared::{Position, PositionMap, SixPositionError};
 
-use super::{full_parameters, Fit, FitError, FitOptions, Model};
-use crate::data::{Dataset, Row};
-use crate::limits::REFERENCE_FACE_TOLERANCE_DEG;
+use super::faces::{face_force, rows_at_faces};
+use super::prediction;
+use super::{full_parameters, uncertainty, Fit, FitError, FitOptions, Model};
+use crate::data::Dataset;
 
 /// Known-orientation rows needed to determine 12 parameters (each row gives three equations, but the
 /// four columns of [a 1] must be independent).
@@ -20,6 +21,8 @@ struct Pair {
     line: usize,
     reading: Vec3<f64>,
     reference: Vec3<f64>,
+    /// Samples averaged into the reading, where the file says.
+    count: Option<u32>,
 }
 
 /// Linear least squares of m = X a + y over every row with a known orientation.
@@ -28,16 +31,19 @@ pub(super) fn linear12(dataset: &Dataset, options: &FitOptions) -> Result<Fit, F
         .rows
         .iter()
         .enumerate()
-        .filter_map(|(row, r)| r.reference.map(|reference| Pair { row, line: r.line, reading: r.reading, reference }))
+        .filter_map(|(row, r)| {
+            r.reference.map(|reference| Pair { row, line: r.line, reading: r.reading, reference, count: r.count })
+        })
         .collect();
     if pairs.len() < MIN_REFERENCES {
         let model = Model::Linear12.name();
         return Err(FitError::TooFewReferences { model, needed: MIN_REFERENCES, found: pairs.len() });
     }
-    let solution = LinearSolution::solve(&pairs, Model::Linear12)?;
+    let per_sample = uncertainty::pooled_sample_variance(dataset);
+    let solution = LinearSolution::solve(&pairs, Model::Linear12, per_sample)?;
     let matrix = linalg::inverse(&solution.sensor_matrix).ok_or(FitError::Degenerate)?;
     let offset = solution.offset;
-    Ok(solution.into_fit(Model::Linear12, matrix, offset, &pairs, options.g))
+    Ok(solution.into_fit(Model::Linear12, (matrix, offset), &pairs, dataset, options.g))
 }
 
 /// The six-position closed form of `shared` (in f64), with standard errors from the equivalent
@@ -48,9 +54,9 @@ pub(super) fn six_position(dataset: &Dataset, options: &FitOptions) -> Result<Fi
     let mut pairs: Vec<Pair> = Vec::with_capacity(6);
     for (position, row) in Position::ALL.into_iter().zip(first_row_at) {
         if let Some(row) = row {
-            let (line, reading) = (dataset.rows[row].line, dataset.rows[row].reading);
+            let (line, reading, count) = (dataset.rows[row].line, dataset.rows[row].reading, dataset.rows[row].count);
             readings.replace(position, reading);
-            pairs.push(Pair { row, line, reading, reference: face_force(position, options.g) });
+            pairs.push(Pair { row, line, reading, reference: face_force(position, options.g), count });
         }
     }
     let closed_form = readings.fit(options.g).map_err(|error| match error {
@@ -60,37 +66,8 @@ pub(super) fn six_position(dataset: &Dataset, options: &FitOptions) -> Result<Fi
         SixPositionError::Degenerate => FitError::Degenerate,
     })?;
     pairs.sort_by_key(|p| p.row);
-    let solution = LinearSolution::solve(&pairs, Model::SixPosition)?;
-    Ok(solution.into_fit(Model::SixPosition, closed_form.matrix, closed_form.offset, &pairs, options.g))
-}
-
-/// The index of the row at each face, in the order of `Position::ALL`; a face met twice is refused.
-fn rows_at_faces(dataset: &Dataset, tolerance_deg: f64) -> Result<[Option<usize>; 6], FitError> {
-    let mut first_row_at: [Option<usize>; 6] = [None; 6];
-    for (index, row) in dataset.rows.iter().enumerate() {
-        let Some(position) = face_of(row, tolerance_deg) else {
-            continue;
-        };
-        if let Some(first) = first_row_at[position.index()] {
-            let first_line = dataset.rows[first].line;
-            return Err(FitError::DuplicatePosition { position, first_line, second_line: row.line });
-        }
-        first_row_at[position.index()] = Some(index);
-    }
-    Ok(first_row_at)
-}
-
-/// The face a row was taken at: from its known orientation when it has one, else from its reading.
-fn face_of(row: &Row, tolerance_deg: f64) -> Option<Position> {
-    let (vector, tolerance) = match row.reference {
-        Some(reference) => (reference, REFERENCE_FACE_TOLERANCE_DEG as f32),
-        None => (row.reading, tolerance_deg as f32),
-    };
-    Position::detect(vector.map(|v| v as f32), tolerance).ok().map(|(position, _)| position)
-}
-
-fn face_force(position: Position, g: f64) -> Vec3<f64> {
-    linalg::scale(position.specific_force_g(), g)
+    let solution = LinearSolution::solve(&pairs, Model::SixPosition, uncertainty::pooled_sample_variance(dataset))?;
+    Ok(solution.into_fit(Model::SixPosition, (closed_form.matrix, closed_form.offset), &pairs, dataset, options.g))
 }
 
 /// Least-squares solution of m = X a + y with the statistics for standard errors.
@@ -99,49 +76,84 @@ struct LinearSolution {
     sensor_matrix: Mat3<f64>,
     /// y, the offset in the file's unit.
     offset: Vec3<f64>,
-    /// (A^T A)^-1 for A = [a^T 1].
-    covariance_shape: Matrix4<f64>,
-    /// Residual variance of each reading component; `None` without redundancy.
-    residual_variance: Option<Vec3<f64>>,
+    /// Per reading axis, the covariance of (X row, y) from the residual scatter (`None`: no redundancy).
+    scatter: Option<[Matrix4<f64>; 3]>,
+    /// Per reading axis, the covariance of (X row, y) from the measured noise, where the file has it.
+    noise: Option<[Matrix4<f64>; 3]>,
+    /// Residual degrees of freedom per reading axis, and the noise-based errors' factor.
+    degrees_of_freedom: usize,
+    inflation: f64,
 }
 
 impl LinearSolution {
-    fn solve(pairs: &[Pair], model: Model) -> Result<Self, FitError> {
+    /// Weighted by the rows' sample counts where `per_sample` noise is known and the model is
+    /// `linear12` (the six-position closed form weighs its six readings alike).
+    fn solve(pairs: &[Pair], model: Model, per_sample: Option<Vector3<f64>>) -> Result<Self, FitError> {
         check_spread(pairs, model)?;
         let n = pairs.len();
-        let design = DMatrix::from_fn(n, 4, |i, j| if j < 3 { pairs[i].reference[j] } else { 1.0 });
-        let readings = DMatrix::from_fn(n, 3, |i, j| pairs[i].reading[j]);
+        let counts: Option<Vec<f64>> = pairs.iter().map(|p| p.count.map(f64::from)).collect();
+        let weights = match (&counts, per_sample, model) {
+            (Some(counts), Some(_), Model::Linear12) => uncertainty::relative_weights(counts),
+            _ => vec![1.0; n],
+        };
+        let root = |i: usize| weights[i].sqrt();
+        let design = DMatrix::from_fn(n, 4, |i, j| root(i) * if j < 3 { pairs[i].reference[j] } else { 1.0 });
+        let readings = DMatrix::from_fn(n, 3, |i, j| root(i) * pairs[i].reading[j]);
         let solution = design.clone().svd(true, true).solve(&readings, 1e-12).map_err(|_| FitError::Degenerate)?;
         let normal: Matrix4<f64> = (design.transpose() * &design).fixed_view::<4, 4>(0, 0).into_owned();
-        let covariance_shape = normal.try_inverse().ok_or(FitError::Degenerate)?;
+        let inverse_normal = normal.try_inverse().ok_or(FitError::Degenerate)?;
         let residuals = readings - &design * &solution;
-        let residual_variance = (n > MIN_REFERENCES)
-            .then(|| [0, 1, 2].map(|j| residuals.column(j).norm_squared() / (n - MIN_REFERENCES) as f64));
+        let scatter = (n > MIN_REFERENCES).then(|| {
+            [0, 1, 2].map(|j| inverse_normal * (residuals.column(j).norm_squared() / (n - MIN_REFERENCES) as f64))
+        });
+        let degrees_of_freedom = n.saturating_sub(MIN_REFERENCES);
+        let factors = counts.map(|c| c.iter().zip(&weights).map(|(n, w)| w / n).collect());
+        let noise = per_sample.zip(factors);
+        let (noise, inflation) = uncertainty::linear_noise_errors(&design, &inverse_normal, &residuals, noise);
         Ok(LinearSolution {
             sensor_matrix: [0, 1, 2].map(|row| [0, 1, 2].map(|col| solution[(col, row)])),
             offset: [0, 1, 2].map(|row| solution[(3, row)]),
-            covariance_shape,
-            residual_variance,
+            scatter,
+            noise,
+            degrees_of_freedom,
+            inflation,
         })
     }
 
-    /// Standard errors of M = X^-1 (propagated: dM = -M dX M) and of o = y.
-    fn std_errors(&self, matrix: &Mat3<f64>) -> Option<(Mat3<f64>, Vec3<f64>)> {
-        let variance = self.residual_variance?;
-        let shape: Matrix3<f64> = self.covariance_shape.fixed_view::<3, 3>(0, 0).into_owned();
+    /// Standard errors of M = X^-1 (propagated: dM = -M dX M) and of o = y, from per-axis
+    /// covariances of (X row, y).
+    fn std_errors(covariances: Option<[Matrix4<f64>; 3]>, matrix: &Mat3<f64>) -> Option<(Mat3<f64>, Vec3<f64>)> {
+        let covariances = covariances?;
         let m = Matrix3::from_fn(|i, j| matrix[i][j]);
         let matrix_errors = [0, 1, 2].map(|a| {
             [0, 1, 2].map(|b| {
                 let column: Vector3<f64> = m.column(b).into_owned();
-                let spread = (column.transpose() * shape * column)[0];
-                (0..3).map(|c| m[(a, c)].powi(2) * variance[c] * spread).sum::<f64>().sqrt()
+                let variance = |c: usize| {
+                    let shape: Matrix3<f64> = covariances[c].fixed_view::<3, 3>(0, 0).into_owned();
+                    m[(a, c)].powi(2) * (column.transpose() * shape * column)[0]
+                };
+                (0..3).map(variance).sum::<f64>().sqrt()
             })
         });
-        let offset_errors = variance.map(|v| (v * self.covariance_shape[(3, 3)]).sqrt());
+        let offset_errors = [0, 1, 2].map(|c| covariances[c][(3, 3)].sqrt());
         Some((matrix_errors, offset_errors))
     }
 
-    fn into_fit(self, model: Model, matrix: Mat3<f64>, offset: Vec3<f64>, pairs: &[Pair], g: f64) -> Fit {
+    /// The per-axis covariances behind the reported errors: the noise's (scaled) or the scatter's.
+    fn reported(&self) -> Option<[Matrix4<f64>; 3]> {
+        self.noise.map(|c| c.map(|m| m * self.inflation.powi(2))).or(self.scatter)
+    }
+
+    /// The fit of `calibration` (M, o) made from this solution on `pairs` of `dataset`.
+    fn into_fit(
+        self,
+        model: Model,
+        calibration: (Mat3<f64>, Vec3<f64>),
+        pairs: &[Pair],
+        dataset: &Dataset,
+        g: f64,
+    ) -> Fit {
+        let (matrix, offset) = calibration;
         let cost = pairs
             .iter()
             .map(|p| {
@@ -150,7 +162,8 @@ impl LinearSolution {
                 linalg::dot(error, error) / (g * g)
             })
             .sum();
-        let parameters = full_parameters(&matrix, &offset, self.std_errors(&matrix));
+        let (scatter, noise) = (Self::std_errors(self.scatter, &matrix), Self::std_errors(self.noise, &matrix));
+        let parameters = full_parameters(&matrix, &offset, [scatter, noise], self.inflation);
         Fit {
             model,
             matrix,
@@ -160,7 +173,10 @@ impl LinearSolution {
             parameters,
             lines_used: pairs.iter().map(|p| p.line).collect(),
             noise_test: None,
-            warnings: Vec::new(),
+            // NOTE: per reading axis, since each axis's residual variance is estimated on its own.
+            warnings: uncertainty::redundancy_warnings(dataset, self.degrees_of_freedom),
+            selection: None,
+            prediction: self.reported().map(|c| prediction::linear(&matrix, &c, g)),
         }
     }
 }
@@ -189,6 +205,7 @@ fn check_spread(pairs: &[Pair], model: Model) -> Result<(), FitError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::data::Row;
     use crate::fit::{fit, ModelChoice};
     use shared::orientation::from_inclination_toolface;
 

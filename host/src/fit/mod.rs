@@ -1,14 +1,19 @@
 //! Fitting a calibration `a = M (m - o)` to a data file, by the models of DESIGN.md.
 
 mod evaluate;
+mod faces;
 mod linear;
 mod model;
 mod models;
 mod nonlinear;
 mod normalization;
+mod prediction;
+mod selection;
 mod shape;
 mod statistics;
 pub mod thermal;
+mod uncertainty;
+mod verdict;
 
 use std::fmt;
 use std::str::FromStr;
@@ -21,12 +26,14 @@ use crate::data::Dataset;
 
 pub use evaluate::{evaluate, Evaluation, RowEvaluation};
 pub use model::Model;
+pub use prediction::{axis_angles_deg, Prediction};
+pub use selection::{leave_one_out_rms, Selection};
 pub use statistics::{misalignment_deg, NoiseTest};
 
 /// The model asked for on the command line.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ModelChoice {
-    /// The richest model the data supports.
+    /// The model that best predicts rows left out of its fit (leave-one-out).
     Auto,
     /// One model.
     Only(Model),
@@ -56,7 +63,8 @@ impl fmt::Display for ModelChoice {
     }
 }
 
-/// Every model, richest first: the order in which `auto` tries them.
+/// Every model, richest first: the order in which models are listed, and in which `auto` falls back
+/// to the first that fits when none can be tested on left-out rows.
 ///
 /// NOTE: `reference-norm12` uses every row (known orientations and |a| = g), `linear12` only the
 /// rows of known orientation; `ortho9` needs no orientation; the six-position closed form uses only
@@ -126,9 +134,28 @@ pub struct Parameter {
     pub name: String,
     /// Value (M dimensionless, o in the file's unit).
     pub value: f64,
-    /// Standard error from the Jacobian and the residual scatter.
+    /// The standard error reported: the noise-based one, scaled up when the residuals are
+    /// significantly larger than the noise explains, so that it holds whether the scatter comes from
+    /// the noise or from what the model misses; the scatter-based one where the file gives no noise.
     pub std_error: Option<f64>,
+    /// Standard error from the Jacobian and the residual scatter (none without redundancy).
+    pub scatter_std_error: Option<f64>,
+    /// Standard error from the noise the captures measured (`count`, `std_*`), where the data has it.
+    pub noise_std_error: Option<f64>,
 }
+
+impl Parameter {
+    /// A parameter with its scatter- and noise-based standard errors; `inflation` scales the noise's
+    /// for what the residuals show beyond the noise.
+    fn new(name: String, value: f64, errors: [Option<f64>; 2], inflation: f64) -> Self {
+        let [scatter_std_error, noise_std_error] = errors;
+        let std_error = noise_std_error.map(|e| e * inflation).or(scatter_std_error);
+        Parameter { name, value, std_error, scatter_std_error, noise_std_error }
+    }
+}
+
+/// Standard errors of a full calibration's M and o.
+type FullErrors = Option<(Mat3<f64>, Vec3<f64>)>;
 
 /// A fitted calibration: `a = matrix (m - offset)`, in the file's units.
 #[derive(Debug, Clone, PartialEq)]
@@ -151,6 +178,10 @@ pub struct Fit {
     pub noise_test: Option<NoiseTest>,
     /// Things the user should know: a poor condition number, a model that does not fit the noise.
     pub warnings: Vec<String>,
+    /// With `auto`: why this model, and every model's leave-one-out figure.
+    pub selection: Option<Selection>,
+    /// The errors the parameters' uncertainty predicts at a fresh orientation.
+    pub prediction: Option<Prediction>,
 }
 
 /// Why a fit could not run; each says what to add or change.
@@ -187,23 +218,17 @@ pub enum FitError {
     NotConverged { reason: String },
     #[error("the positions do not determine the sensor: opposite faces read alike (is the file's unit right?)")]
     Degenerate,
+    #[error("no model can be fitted to these rows; the closest is {closest} ({short} short): {reason}")]
+    NothingFits { closest: &'static str, short: usize, reason: String },
 }
 
-/// Fits a model (or, for `auto`, the richest the data supports) to the training rows of a data set.
+/// Fits a model (or, for `auto`, the one that best predicts rows it did not see) to the training rows
+/// of a data set.
 pub fn fit(dataset: &Dataset, choice: ModelChoice, options: &FitOptions) -> Result<Fit, FitError> {
     let training = options.training_set(dataset)?;
     match choice {
         ModelChoice::Only(model) => fit_model(&training, model, options),
-        ModelChoice::Auto => {
-            let mut last_error = FitError::Degenerate;
-            for model in RICHEST_FIRST {
-                match fit_model(&training, model, options) {
-                    Ok(fit) => return Ok(fit),
-                    Err(error) => last_error = error,
-                }
-            }
-            Err(last_error)
-        }
+        ModelChoice::Auto => selection::choose(&training, options),
     }
 }
 
@@ -223,18 +248,24 @@ fn fit_model(training: &Dataset, model: Model, options: &FitOptions) -> Result<F
     }
 }
 
-/// Parameter list of a full 12-parameter calibration, with optional standard errors.
-fn full_parameters(matrix: &Mat3<f64>, offset: &Vec3<f64>, errors: Option<(Mat3<f64>, Vec3<f64>)>) -> Vec<Parameter> {
+/// Parameter list of a full 12-parameter calibration, with scatter- and noise-based standard errors
+/// (the latter scaled by `inflation` where reported).
+fn full_parameters(
+    matrix: &Mat3<f64>,
+    offset: &Vec3<f64>,
+    [scatter, noise]: [FullErrors; 2],
+    inflation: f64,
+) -> Vec<Parameter> {
     let mut parameters = Vec::with_capacity(12);
     for (i, row) in matrix.iter().enumerate() {
         for (j, &value) in row.iter().enumerate() {
-            let std_error = errors.map(|(m, _)| m[i][j]);
-            parameters.push(Parameter { name: format!("M{}{}", i + 1, j + 1), value, std_error });
+            let (a, b) = (scatter.map(|(m, _)| m[i][j]), noise.map(|(m, _)| m[i][j]));
+            parameters.push(Parameter::new(format!("M{}{}", i + 1, j + 1), value, [a, b], inflation));
         }
     }
     for (k, (&value, axis)) in offset.iter().zip(["x", "y", "z"]).enumerate() {
-        let std_error = errors.map(|(_, o)| o[k]);
-        parameters.push(Parameter { name: format!("o_{axis}"), value, std_error });
+        let (a, b) = (scatter.map(|(_, o)| o[k]), noise.map(|(_, o)| o[k]));
+        parameters.push(Parameter::new(format!("o_{axis}"), value, [a, b], inflation));
     }
     parameters
 }

@@ -1,13 +1,14 @@
 //! The least-squares models `reference-norm12`, `ortho9` and `diag6`: observability checks, the
 //! normalised solve, and the map back to the file's units with standard errors.
 
-use nalgebra::{DMatrix, DVector, Vector3};
+use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 
 use super::nonlinear::{solve, Observation, Problem, Solution};
 use super::normalization::Normalization;
+use super::prediction::{self, Prediction};
 use super::shape::Shape;
-use super::{statistics, Fit, FitError, FitOptions, Model, NoiseTest, Parameter};
-use crate::data::Dataset;
+use super::{statistics, uncertainty, verdict, Fit, FitError, FitOptions, Model, NoiseTest, Parameter};
+use crate::data::{Dataset, Row};
 use crate::limits::{AXIS_SPREAD, INDEPENDENT_REFERENCES_DEG};
 use levenberg_marquardt::LeastSquaresProblem;
 use shared::linalg::{Mat3, Vec3};
@@ -33,21 +34,21 @@ fn shape_of(model: Model) -> Shape {
 /// Fits one of the least-squares models to the training rows.
 pub(super) fn least_squares(training: &Dataset, model: Model, options: &FitOptions) -> Result<Fit, FitError> {
     let shape = shape_of(model);
-    check_positions(training, model, shape)?;
-    let readings: Vec<[f64; 3]> = training.rows.iter().map(|r| r.reading).collect();
-    let normalization = Normalization::from_readings(&readings);
+    let normalization = Normalization::of_dataset(training);
+    check_positions(training, model, shape, &normalization)?;
     let observations = observations(training, model, &normalization, options.g);
-    let mut start = shape.identity();
-    start.extend([0.0; 3]);
-    let start = DVector::from_vec(start);
+    let start = DVector::from_iterator(shape.len() + 3, shape.identity().into_iter().chain([0.0; 3]));
     let mut warnings = Vec::new();
     check_conditioning(model, shape, &observations, &start, &mut warnings)?;
     let solution = solve(shape, &observations, start)?;
-    let std_errors = standard_errors(&solution);
-    let parameters = file_parameters(shape, &solution, std_errors.as_ref(), &normalization, options.g);
+    let (scatter, noise, inflation, reported) = errors(training, shape, &solution, &observations, &normalization);
+    let errors = ([scatter.as_ref(), noise.as_ref()], inflation);
+    let parameters = file_parameters(shape, &solution, errors, &normalization, options.g);
+    let prediction = reported.map(|c| predicted(shape, &parameters, &normalization, &c, options.g));
     let noise_test = statistics::noise_test(training, shape, &solution, &observations, &normalization);
-    warnings.extend(noise_test.as_ref().and_then(noise_warning));
     let (matrix, offset) = calibration_of(shape, &parameters);
+    let calibration = (Matrix3::from(matrix).transpose(), Vector3::from(offset));
+    warnings.extend(fit_warnings(training, &observations, &solution, calibration, (noise_test.as_ref(), options.g)));
     Ok(Fit {
         model,
         matrix,
@@ -58,17 +59,84 @@ pub(super) fn least_squares(training: &Dataset, model: Model, options: &FitOptio
         lines_used: training.rows.iter().map(|r| r.line).collect(),
         noise_test,
         warnings,
+        selection: None,
+        prediction,
     })
 }
 
-/// The rows as the solver sees them: normalised readings, references in g where the model uses them.
+/// The prediction at fresh orientations from the covariance in the solver's units.
+fn predicted(
+    shape: Shape,
+    parameters: &[Parameter],
+    normalization: &Normalization,
+    covariance: &DMatrix<f64>,
+    g: f64,
+) -> Prediction {
+    let n = shape.len();
+    let factors = DVector::from_fn(n + 3, |k, _| {
+        if k < n {
+            shape.unit_factor(k, g, &normalization.radii)
+        } else {
+            normalization.radii[k - n]
+        }
+    });
+    let file = DMatrix::from_diagonal(&factors) * covariance * DMatrix::from_diagonal(&factors);
+    let values: Vec<f64> = parameters.iter().map(|p| p.value).collect();
+    prediction::least_squares(shape, &values, &file, g)
+}
+
+/// What the noise test's failure points to, and too little redundancy or too short captures.
+fn fit_warnings(
+    training: &Dataset,
+    observations: &[Observation],
+    solution: &Solution,
+    (matrix, offset): (Matrix3<f64>, Vector3<f64>),
+    (noise_test, g): (Option<&NoiseTest>, f64),
+) -> Vec<String> {
+    // NOTE: with only the references the model used: the others say nothing of this fit's placement.
+    let rows = observations.iter().zip(&training.rows);
+    let used =
+        Dataset { rows: rows.map(|(o, r)| Row { reference: o.reference.and(r.reference), ..r.clone() }).collect() };
+    let failed = noise_test.filter(|t| !t.passed);
+    let mut warnings: Vec<String> =
+        failed.map(|t| verdict::noise_warning(&used, (&matrix, &offset), g, t)).into_iter().collect();
+    let degrees_of_freedom = solution.residuals.len().saturating_sub(solution.params.len());
+    warnings.extend(uncertainty::redundancy_warnings(training, degrees_of_freedom));
+    warnings
+}
+
+/// Scatter- and noise-based standard errors, the noise's inflation, the reported covariance.
+type Errors = (Option<DVector<f64>>, Option<DVector<f64>>, f64, Option<DMatrix<f64>>);
+
+/// The scatter- and noise-based standard errors in the solver's units, the noise's inflation, and the
+/// covariance behind the reported errors (the noise's, inflated, or the scatter's).
+fn errors(
+    training: &Dataset,
+    shape: Shape,
+    solution: &Solution,
+    observations: &[Observation],
+    normalization: &Normalization,
+) -> Errors {
+    let degrees_of_freedom = solution.residuals.len().saturating_sub(solution.params.len());
+    let noise = uncertainty::noise_errors(training, shape, solution, observations, normalization);
+    let inflation = noise.as_ref().map_or(1.0, |n| uncertainty::inflation(n.chi_square, degrees_of_freedom));
+    let (scatter, noise) = (scatter_covariance(solution), noise.map(|n| n.covariance));
+    let reported = noise.as_ref().map(|c| c * inflation.powi(2)).or(scatter.clone());
+    let diagonal = |c: Option<DMatrix<f64>>| c.map(|c| uncertainty::diagonal_errors(&c));
+    (diagonal(scatter), diagonal(noise), inflation, reported)
+}
+
+/// The rows as the solver sees them: normalised readings, references in g where the model uses them,
+/// weights from the samples each row averaged.
 fn observations(training: &Dataset, model: Model, normalization: &Normalization, g: f64) -> Vec<Observation> {
     let uses_references = model == Model::ReferenceNorm12;
-    let observation = |row: &crate::data::Row| Observation {
+    let weights = uncertainty::row_weights(training);
+    let observation = |(row, weight): (&crate::data::Row, f64)| Observation {
         reading: normalization.apply(row.reading),
         reference: row.reference.filter(|_| uses_references).map(|r| Vector3::from(r) / g),
+        weight: weight.sqrt(),
     };
-    training.rows.iter().map(observation).collect()
+    training.rows.iter().zip(weights).map(observation).collect()
 }
 
 /// M and o from the parameters in the file's units.
@@ -79,19 +147,14 @@ fn calibration_of(shape: Shape, parameters: &[Parameter]) -> (Mat3<f64>, Vec3<f6
     ([0, 1, 2].map(|i| [0, 1, 2].map(|j| matrix[(i, j)])), offset)
 }
 
-/// The warning for residuals larger than the capture noise explains.
-fn noise_warning(test: &NoiseTest) -> Option<String> {
-    (!test.passed).then(|| {
-        format!(
-            "the residuals exceed what the capture noise explains (chi-square {:.1} on {} degrees of freedom, \
-             p = {:.1e}): the board moved between captures, or the model is too simple",
-            test.chi_square, test.degrees_of_freedom, test.p_value
-        )
-    })
-}
-
-/// Refuses, before fitting, positions that cannot determine the model, naming what to add.
-fn check_positions(training: &Dataset, model: Model, shape: Shape) -> Result<(), FitError> {
+/// Refuses, before fitting, positions that cannot determine the model, naming what to add; judged on
+/// the normalised readings, so that the file's zero and unit do not matter.
+fn check_positions(
+    training: &Dataset,
+    model: Model,
+    shape: Shape,
+    normalization: &Normalization,
+) -> Result<(), FitError> {
     if model == Model::ReferenceNorm12 {
         return check_references(training, model, shape);
     }
@@ -101,7 +164,7 @@ fn check_positions(training: &Dataset, model: Model, shape: Shape) -> Result<(),
     }
     for (axis, letter) in ['x', 'y', 'z'].into_iter().enumerate() {
         for up in [true, false] {
-            if !points_along(training, axis, up) {
+            if !points_along(training, normalization, axis, up) {
                 return Err(FitError::NoSpread { model: model.name(), axis: letter, up });
             }
         }
@@ -130,11 +193,11 @@ fn check_references(training: &Dataset, model: Model, shape: Shape) -> Result<()
     Ok(())
 }
 
-/// Whether some reading points `axis` up (or down) within the spread the fits need.
-fn points_along(training: &Dataset, axis: usize, up: bool) -> bool {
+/// Whether some normalised reading points `axis` up (or down) within the spread the fits need.
+fn points_along(training: &Dataset, normalization: &Normalization, axis: usize, up: bool) -> bool {
     let sign = if up { 1.0 } else { -1.0 };
     training.rows.iter().any(|r| {
-        let m = Vector3::from(r.reading);
+        let m = normalization.apply(r.reading);
         sign * m[axis] > AXIS_SPREAD * m.norm()
     })
 }
@@ -194,21 +257,21 @@ fn parameter_name(shape: Shape, index: usize) -> String {
     shape.names().get(index).map_or_else(|| format!("o_{}", ['x', 'y', 'z'][index - shape.len()]), |n| (*n).to_owned())
 }
 
-/// Standard errors in the solver's units: s^2 (J^T J)^-1 with s^2 the residual variance.
-fn standard_errors(solution: &Solution) -> Option<DVector<f64>> {
+/// Parameter covariance in the solver's units: s^2 (J^T J)^-1 with s^2 the residual variance.
+fn scatter_covariance(solution: &Solution) -> Option<DMatrix<f64>> {
     let (residuals, parameters) = solution.jacobian.shape();
     let dof = residuals.checked_sub(parameters).filter(|&d| d > 0)?;
     let variance = solution.cost / dof as f64;
     let normal = solution.jacobian.transpose() * &solution.jacobian;
-    let covariance = normal.cholesky()?.inverse() * variance;
-    Some(covariance.diagonal().map(f64::sqrt))
+    Some(normal.cholesky()?.inverse() * variance)
 }
 
-/// The parameters in the file's units: M = g M' diag(1/r), o = c + r o'.
+/// The parameters in the file's units: M = g M' diag(1/r), o = c + r o'; `errors` the scatter- and
+/// noise-based standard errors in the solver's units, with the noise's inflation.
 fn file_parameters(
     shape: Shape,
     solution: &Solution,
-    std_errors: Option<&DVector<f64>>,
+    (errors, inflation): ([Option<&DVector<f64>>; 2], f64),
     normalization: &Normalization,
     g: f64,
 ) -> Vec<Parameter> {
@@ -220,11 +283,9 @@ fn file_parameters(
         } else {
             (normalization.radii[k - n], normalization.center[k - n])
         };
-        parameters.push(Parameter {
-            name: parameter_name(shape, k),
-            value: solution.params[k] * factor + shift,
-            std_error: std_errors.map(|e| e[k] * factor),
-        });
+        let errors = errors.map(|e| e.map(|e| e[k] * factor));
+        let value = solution.params[k] * factor + shift;
+        parameters.push(Parameter::new(parameter_name(shape, k), value, errors, inflation));
     }
     parameters
 }

@@ -18,6 +18,8 @@ pub(super) struct Observation {
     pub reading: Vector3<f64>,
     /// Known specific force in g, for a reference row; `None` for a row where only |a| = g is known.
     pub reference: Option<Vector3<f64>>,
+    /// Factor on this row's residuals: the square root of its weight (1 for rows weighed alike).
+    pub weight: f64,
 }
 
 /// The least-squares problem handed to the solver. Parameters: the shape's matrix parameters, then o'.
@@ -69,8 +71,8 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
         for observation in self.observations {
             let a = matrix * (observation.reading - offset);
             match observation.reference {
-                Some(reference) => residuals.extend((a - reference).iter()),
-                None => residuals.push(a.norm() - 1.0),
+                Some(reference) => residuals.extend((a - reference).iter().map(|r| r * observation.weight)),
+                None => residuals.push((a.norm() - 1.0) * observation.weight),
             }
         }
         Some(DVector::from_vec(residuals))
@@ -85,10 +87,12 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
         let mut row = 0;
         for observation in self.observations {
             let centered = observation.reading - offset;
-            row += match observation.reference {
+            let used = match observation.reference {
                 Some(_) => reference_rows(&mut jacobian, row, &derivatives, &matrix, &centered),
                 None => norm_row(&mut jacobian, row, &derivatives, &matrix, &centered),
             };
+            jacobian.rows_mut(row, used).scale_mut(observation.weight);
+            row += used;
         }
         Some(jacobian)
     }
@@ -175,9 +179,13 @@ mod tests {
     #[test]
     fn the_jacobian_matches_finite_differences_for_norm_and_reference_rows() {
         let observations = [
-            Observation { reading: Vector3::new(0.9, 0.2, 0.1), reference: None },
-            Observation { reading: Vector3::new(-0.1, 1.05, -0.2), reference: Some(Vector3::new(0.0, 1.0, 0.0)) },
-            Observation { reading: Vector3::new(0.3, -0.4, -0.8), reference: None },
+            Observation { reading: Vector3::new(0.9, 0.2, 0.1), reference: None, weight: 1.0 },
+            Observation {
+                reading: Vector3::new(-0.1, 1.05, -0.2),
+                reference: Some(Vector3::new(0.0, 1.0, 0.0)),
+                weight: 1.0,
+            },
+            Observation { reading: Vector3::new(0.3, -0.4, -0.8), reference: None, weight: 1.0 },
         ];
         for shape in [Shape::Diagonal, Shape::TriangularTimesDiagonal, Shape::Full] {
             let mut params = shape.identity();

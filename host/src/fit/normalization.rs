@@ -18,6 +18,12 @@ impl Normalization {
         Self::ellipsoid(readings).unwrap_or_else(|| Self::spread(readings))
     }
 
+    /// From the readings of every row of a data set.
+    pub(super) fn of_dataset(dataset: &crate::data::Dataset) -> Self {
+        let readings: Vec<[f64; 3]> = dataset.rows.iter().map(|r| r.reading).collect();
+        Self::from_readings(&readings)
+    }
+
     fn ellipsoid(readings: &[[f64; 3]]) -> Option<Self> {
         if readings.len() < 6 {
             return None;

@@ -6,7 +6,7 @@ use serde::Serialize;
 
 use super::{CalibrateReport, Comparison, FitReport, SessionReport};
 use crate::calibration::CalibrationJson;
-use crate::fit::{Evaluation, NoiseTest};
+use crate::fit::{axis_angles_deg, Evaluation, Model, NoiseTest, Prediction, Selection};
 
 /// The object `accelcal fit --json` prints: the calibration (`model`, `matrix`, `offset`, `g`) and
 /// the fit's statistics.
@@ -21,6 +21,10 @@ pub struct FitJson<'a> {
     pub iterations: usize,
     /// Standard error of every parameter (null without redundancy).
     pub std_errors: BTreeMap<&'a str, Option<f64>>,
+    /// The standard error from the residual scatter alone, by parameter.
+    pub scatter_std_errors: BTreeMap<&'a str, Option<f64>>,
+    /// The standard error from the noise the captures measured, by parameter (null without it).
+    pub noise_std_errors: BTreeMap<&'a str, Option<f64>>,
     /// Every parameter's value, by name.
     pub parameters: BTreeMap<&'a str, f64>,
     /// Data-file lines the fit used.
@@ -33,6 +37,12 @@ pub struct FitJson<'a> {
     pub evaluation: &'a Evaluation,
     /// The other models on the same rows (with `--model auto`).
     pub comparison: Option<&'a Comparison>,
+    /// Why `auto` chose the model, with every model's leave-one-out figure.
+    pub selection: Option<&'a Selection>,
+    /// The | |a| - g | (mg) and tilt (degrees) errors the uncertainty predicts at a fresh orientation.
+    pub prediction: Option<&'a Prediction>,
+    /// Angles between the sensor's axes x-y, x-z, y-z, in degrees (not for `diag6`, square by model).
+    pub axis_angles_deg: Option<[f64; 3]>,
 }
 
 impl<'a> FitJson<'a> {
@@ -44,12 +54,17 @@ impl<'a> FitJson<'a> {
             cost: fit.cost,
             iterations: fit.iterations,
             std_errors: fit.parameters.iter().map(|p| (p.name.as_str(), p.std_error)).collect(),
+            scatter_std_errors: fit.parameters.iter().map(|p| (p.name.as_str(), p.scatter_std_error)).collect(),
+            noise_std_errors: fit.parameters.iter().map(|p| (p.name.as_str(), p.noise_std_error)).collect(),
             parameters: fit.parameters.iter().map(|p| (p.name.as_str(), p.value)).collect(),
             lines_used: &fit.lines_used,
             noise_test: fit.noise_test.as_ref(),
             warnings: &fit.warnings,
             evaluation: &report.evaluation,
             comparison: report.comparison.as_ref(),
+            selection: fit.selection.as_ref(),
+            prediction: fit.prediction.as_ref(),
+            axis_angles_deg: axis_angles_deg(&fit.matrix).filter(|_| fit.model != Model::Diag6),
         }
     }
 }

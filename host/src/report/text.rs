@@ -3,7 +3,7 @@
 use std::fmt::Write;
 
 use super::{shown, Board, CalibrateReport, Comparison, FitReport, SessionReport, NOT_RECORDED};
-use crate::fit::{Evaluation, Fit};
+use crate::fit::{axis_angles_deg, Evaluation, Fit, Model};
 
 /// The fit: parameters with standard errors, then errors before and after in mg, then (for `auto`)
 /// the comparison.
@@ -36,11 +36,33 @@ fn write_fit(out: &mut String, fit: &Fit, rows: usize, g: f64) {
     for warning in &fit.warnings {
         let _ = writeln!(out, "warning: {warning}");
     }
+    if let Some(selection) = &fit.selection {
+        let _ = writeln!(out, "auto: {}", selection.reason);
+    }
+    write_meaning(out, fit);
+}
+
+/// What the uncertainty means at a fresh orientation, and the angles between the sensor's axes.
+fn write_meaning(out: &mut String, fit: &Fit) {
+    if let Some(p) = &fit.prediction {
+        let _ = writeln!(
+            out,
+            "at a fresh orientation the parameters' uncertainty predicts | |a| - g | of {:.4} mg and a tilt \
+             error of {:.4} degrees (RMS)",
+            p.norm_error_mg, p.tilt_error_deg
+        );
+    }
+    if let Some([xy, xz, yz]) = axis_angles_deg(&fit.matrix).filter(|_| fit.model != Model::Diag6) {
+        let _ = writeln!(out, "angles between the sensor's axes: x-y {xy:.3}, x-z {xz:.3}, y-z {yz:.3} degrees");
+    }
 }
 
 fn write_rows(out: &mut String, evaluation: &Evaluation, g: f64) {
     let mg = |value: f64| shown(value / g * 1000.0, 2);
     let angles = evaluation.rows.iter().any(|r| r.inclination_error_deg.is_some());
+    if evaluation.before_nominal {
+        out.push_str("(the file is not in g: \"before\" is its readings centred and put on a nominal scale of g)\n");
+    }
     let _ = write!(out, "line  set    ||a|-g| mg before   after   |a-ref| mg before   after");
     let _ = writeln!(out, "{}", if angles { "  incl err deg  tf err deg" } else { "" });
     for row in &evaluation.rows {
@@ -94,8 +116,9 @@ fn write_comparison(out: &mut String, comparison: &Comparison) {
 pub fn calibrate_report(report: &CalibrateReport) -> String {
     let v = &report.verification;
     format!(
-        "verified at {} fresh orientations: | |a| - 1 g | rms {:.2} mg before, {:.3} mg after (worst {:.3} mg)\n",
-        v.positions, v.before_rms_mg, v.after_rms_mg, v.after_max_mg
+        "verified at {} fresh orientations: | |a| - 1 g | rms {:.2} mg before, {:.3} mg after (worst {:.3} mg); \
+         the captures' own noise {:.3} mg, error without it {:.3} mg\n",
+        v.positions, v.before_rms_mg, v.after_rms_mg, v.after_max_mg, v.noise_floor_mg, v.after_rms_without_noise_mg
     )
 }
 
