@@ -6,6 +6,7 @@
 //! [`SimCommand`] handle that [`SimBoard::controls`] gives.
 
 mod board;
+pub mod noise;
 mod pty;
 pub mod random;
 mod serve;
