@@ -1,11 +1,12 @@
 //! The command line: arguments ([`args`]), and one file per command group: offline fits
 //! ([`fit`]), the guided procedure ([`procedure`]), moving calibrations to and from the board
-//! ([`transfer`]), the board itself ([`board`]); [`device`] opens the board each command names.
+//! ([`transfer`]), the board itself ([`board`]), noise of a recording ([`noise`]); [`device`] opens the board each command names.
 
 pub mod args;
 mod board;
 mod device;
 mod fit;
+mod noise;
 mod procedure;
 mod terminal;
 mod transfer;
@@ -44,6 +45,7 @@ pub fn run(cli: Cli) -> Result<(), Error> {
         Command::Download { device, stored } => transfer::download(&device, stored),
         Command::Erase { device } => transfer::erase(&device),
         Command::Stream(args) => board::stream(&args),
+        Command::Noise(args) => noise::noise(&args),
         Command::Sim { pty: _, seed } => Ok(crate::sim::serve_pty(seed)?),
     }
 }

@@ -5,6 +5,7 @@
 
 pub mod allan;
 pub mod fit;
+pub mod input;
 pub mod json;
 pub mod plot;
 pub mod text;
