@@ -7,7 +7,7 @@ use std::collections::BTreeMap;
 use serde::Serialize;
 
 use super::{AxisNoise, NoiseReport};
-use crate::noise::text::{capture_limit_s, CAPTURE_SECONDS_SHOWN};
+use crate::noise::text::{capture_limit_is_lower_bound, capture_limit_s, CAPTURE_SECONDS_SHOWN};
 
 /// Micro-g per g.
 pub const UG_PER_G: f64 = 1e6;
@@ -85,6 +85,8 @@ struct KalibrNumbers {
 struct CalibrationJson {
     /// Averaging time in seconds beyond which no accelerometer axis improves with a longer capture.
     capture_limit_s: Option<f64>,
+    /// True when the deviation still fell at the longest averaging time analysed: the limit is at least that.
+    capture_limit_is_lower_bound: bool,
     /// Capture lengths in seconds and the 1-sigma error of each accelerometer axis's mean, ug.
     accuracy_ug: Vec<(f64, [Option<f64>; 3])>,
 }
@@ -148,6 +150,7 @@ fn calibration_json(report: &NoiseReport) -> CalibrationJson {
     };
     CalibrationJson {
         capture_limit_s: capture_limit_s(report),
+        capture_limit_is_lower_bound: capture_limit_is_lower_bound(report),
         accuracy_ug: CAPTURE_SECONDS_SHOWN.iter().map(|&s| accuracy(s)).collect(),
     }
 }

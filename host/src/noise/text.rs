@@ -17,6 +17,15 @@ pub fn capture_limit_s(report: &NoiseReport) -> Option<f64> {
     accel_axes(report).filter_map(|a| a.terms.map(|t| t.bias_instability_tau_s)).reduce(f64::max)
 }
 
+/// Whether an accelerometer axis's deviation was still falling at the longest averaging time analysed,
+/// so [`capture_limit_s`] is only a lower bound: longer captures help at least up to there.
+pub fn capture_limit_is_lower_bound(report: &NoiseReport) -> bool {
+    accel_axes(report).any(|a| match (a.terms, a.curve.last()) {
+        (Some(t), Some(last)) => t.bias_instability_tau_s >= last.tau_s,
+        _ => false,
+    })
+}
+
 fn accel_axes(report: &NoiseReport) -> impl Iterator<Item = &AxisNoise> {
     report.axes.iter().filter(|a| a.is_accel())
 }
@@ -73,8 +82,14 @@ fn write_gyro_per_hour(out: &mut String, report: &NoiseReport) {
 }
 
 fn write_calibration(out: &mut String, report: &NoiseReport) {
-    if let Some(limit) = capture_limit_s(report) {
-        let _ = writeln!(out, "captures longer than {limit:.0} s per position stop helping (accelerometer)");
+    match capture_limit_s(report) {
+        Some(limit) if capture_limit_is_lower_bound(report) => {
+            let _ = writeln!(out, "the accelerometer's deviation still falls at {limit:.0} s, the longest averaging time this recording resolves: captures help at least that long");
+        }
+        Some(limit) => {
+            let _ = writeln!(out, "captures longer than {limit:.0} s per position stop helping (accelerometer)");
+        }
+        None => {}
     }
     for seconds in CAPTURE_SECONDS_SHOWN {
         let errors: Vec<String> = accel_axes(report)
