@@ -7,6 +7,7 @@ use crate::calibration::CalibrationRecordError;
 use crate::data::DataError;
 use crate::fit::{FitError, ModelChoice};
 use crate::link::LinkError;
+use crate::noise::input::NoiseInputError;
 use crate::procedure::ProcedureError;
 use crate::report::PlotError;
 use crate::session::SessionError;
@@ -47,6 +48,10 @@ pub enum Error {
     WhichDevice,
     #[error("the device has no calibration to download: calibrate or upload one first")]
     NothingToDownload,
+    #[error(transparent)]
+    NoiseInput(#[from] NoiseInputError),
+    #[error("cannot write {}: {source}; check the folder exists and is writable", .path.display())]
+    WriteFile { path: PathBuf, source: std::io::Error },
     #[error("cannot read {}: {source}; check the path", .path.display())]
     ReadFile { path: PathBuf, source: std::io::Error },
 }

@@ -8,6 +8,7 @@
 //! - [`session`]: the captures of a calibration, kept as files;
 //! - [`data`]: calibration data files;
 //! - [`fit`]: least-squares fits;
+//! - [`noise`]: noise characterisation of a still recording by Allan deviation;
 //! - [`calibration`]: the device's calibration record on the host (its JSON form, from a fit);
 //! - [`report`]: what a fit or a calibration reports, computed once, rendered as text or JSON;
 //! - [`cli`]: the command line; the `accelcal` binary only calls [`cli::main`].
@@ -19,6 +20,7 @@ pub mod error;
 pub mod fit;
 pub mod limits;
 pub mod link;
+pub mod noise;
 pub mod orientation;
 pub mod procedure;
 pub mod report;

@@ -154,6 +154,22 @@ pub struct StreamArgs {
     pub rate: u16,
 }
 
+/// `accelcal noise`.
+#[derive(Args)]
+pub struct NoiseArgs {
+    /// The recording (CSV with ax_g,ay_g,az_g,gx_dps,gy_dps,gz_dps, as `accelcal stream` writes).
+    pub file: PathBuf,
+    /// Samples per second of the recording.
+    #[arg(long, default_value_t = 1000.0)]
+    pub rate: f64,
+    /// Print one JSON object instead of the table.
+    #[arg(long)]
+    pub json: bool,
+    /// Also draw the deviation curves as an SVG file.
+    #[arg(long)]
+    pub plot: Option<PathBuf>,
+}
+
 /// The commands of `accelcal`.
 #[derive(Subcommand)]
 pub enum Command {
@@ -216,6 +232,8 @@ pub enum Command {
     /// Learns how the sensor drifts with temperature and adds the temperature model to the active
     /// calibration (with --sim: the whole simulated story, verified at 15-45 degC).
     Thermal(ThermalArgs),
+    /// Allan deviation and noise terms (white noise, bias instability, random walk) of a still recording.
+    Noise(NoiseArgs),
     /// Runs a simulated board on a pseudo-terminal; prints its path, then serves until killed.
     Sim {
         /// Serve on a pseudo-terminal (the only transport offered).

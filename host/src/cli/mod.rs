@@ -1,12 +1,13 @@
 //! The command line: arguments ([`args`]), and one file per command group: offline fits
 //! ([`fit`]), the guided procedure ([`procedure`]), moving calibrations to and from the board
-//! ([`transfer`]), the board itself ([`board`]); [`device`] opens the board each command names.
+//! ([`transfer`]), the board itself ([`board`]), noise of a recording ([`noise`]); [`device`] opens the board each command names.
 
 pub mod args;
 mod board;
 mod calibrate;
 mod device;
 mod fit;
+mod noise;
 mod procedure;
 mod report;
 mod terminal;
@@ -48,6 +49,7 @@ pub fn run(cli: Cli) -> Result<(), Error> {
         Command::Download { device, stored } => transfer::download(&device, stored),
         Command::Erase { device } => transfer::erase(&device),
         Command::Stream(args) => board::stream(&args),
+        Command::Noise(args) => noise::noise(&args),
         Command::Thermal(args) => thermal::thermal(&args),
         Command::Sim { pty: _, seed, fast } => {
             let pace = if fast { crate::sim::Pace::Fast } else { crate::sim::Pace::RealTime };

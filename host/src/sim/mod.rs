@@ -8,6 +8,7 @@
 mod board;
 mod clock;
 mod commands;
+pub mod noise;
 mod outgoing;
 mod pty;
 pub mod random;

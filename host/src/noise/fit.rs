@@ -1,0 +1,131 @@
+//! The three noise terms fitted to an Allan deviation curve (IEEE Std 952 Annex C):
+//! AVAR(tau) = N^2 / tau + (2 ln 2 / pi) B^2 + K^2 tau / 3, for white noise N (rate / sqrt(Hz)), bias
+//! instability B (the flicker floor, rate) and random walk K (rate / s / sqrt(Hz)).
+
+use nalgebra::{Matrix3, Vector3};
+
+use super::allan::AllanPoint;
+
+/// The flicker floor of the Allan deviation is this times the bias instability: sqrt(2 ln 2 / pi).
+pub const FLICKER_FLOOR: f64 = 0.664_282_433_663_950_4;
+
+/// The fitted noise terms of one axis, in the rate's unit (g or deg/s) and seconds.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NoiseTerms {
+    /// White noise density N, rate / sqrt(Hz): the deviation at tau = 1 s of the -1/2 slope line.
+    pub white_noise_density: f64,
+    /// Bias instability B, rate: the flicker floor divided by [`FLICKER_FLOOR`].
+    pub bias_instability: f64,
+    /// Averaging time in seconds where the fitted deviation is smallest.
+    pub bias_instability_tau_s: f64,
+    /// Random walk K, rate / s / sqrt(Hz) (= rate / sqrt(s)): the deviation at tau = 3 s of the +1/2 line.
+    pub random_walk: f64,
+}
+
+impl NoiseTerms {
+    /// The fitted Allan deviation at `tau_s`.
+    pub fn adev(&self, tau_s: f64) -> f64 {
+        model_terms(tau_s).dot(&self.variances()).sqrt()
+    }
+
+    fn variances(&self) -> Vector3<f64> {
+        Vector3::new(self.white_noise_density, self.bias_instability, self.random_walk).map(|v| v * v)
+    }
+}
+
+/// What each squared term contributes to the Allan variance at `tau_s`.
+fn model_terms(tau_s: f64) -> Vector3<f64> {
+    Vector3::new(1.0 / tau_s, FLICKER_FLOOR * FLICKER_FLOOR, tau_s / 3.0)
+}
+
+/// Fits the three terms to the curve by weighted least squares on the relative variance error, each
+/// point weighted by its degrees of freedom; terms the data drive negative are fixed at zero.
+/// `None` for an empty curve.
+pub fn fit(curve: &[AllanPoint]) -> Option<NoiseTerms> {
+    let taus: Vec<f64> = curve.iter().map(|p| p.tau_s).collect();
+    let (variances, _) =
+        (1u8..8).filter_map(|subset| solve_subset(curve, subset)).min_by(|a, b| a.1.total_cmp(&b.1))?;
+    let [n2, b2, k2] = [variances.x, variances.y, variances.z];
+    let mut terms = NoiseTerms {
+        white_noise_density: n2.sqrt(),
+        bias_instability: b2.sqrt(),
+        bias_instability_tau_s: 0.0,
+        random_walk: k2.sqrt(),
+    };
+    terms.bias_instability_tau_s = taus.iter().copied().min_by(|a, b| terms.adev(*a).total_cmp(&terms.adev(*b)))?;
+    Some(terms)
+}
+
+/// Least squares with only the terms in the bit set `subset`; the variances and the cost, or `None`
+/// when a term comes out negative or the system is singular.
+fn solve_subset(curve: &[AllanPoint], subset: u8) -> Option<(Vector3<f64>, f64)> {
+    let used = Vector3::from_fn(|i, _| if subset & (1 << i) != 0 { 1.0 } else { 0.0 });
+    let mut normal = Matrix3::from_diagonal(&used.map(|u| 1.0 - u));
+    let mut rhs = Vector3::zeros();
+    for point in curve {
+        let avar = point.adev * point.adev;
+        let row = model_terms(point.tau_s).component_mul(&used) / avar;
+        normal += row * row.transpose() * point.edf;
+        rhs += row * point.edf;
+    }
+    let variances = normal.lu().solve(&rhs)?;
+    if variances.iter().any(|v| *v < 0.0 || !v.is_finite()) {
+        return None;
+    }
+    Some((variances, cost(curve, &variances)))
+}
+
+/// Sum over the curve of edf times the squared relative variance error.
+fn cost(curve: &[AllanPoint], variances: &Vector3<f64>) -> f64 {
+    curve
+        .iter()
+        .map(|p| {
+            let relative = model_terms(p.tau_s).dot(variances) / (p.adev * p.adev) - 1.0;
+            p.edf * relative * relative
+        })
+        .sum()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn exact_curve(terms: &NoiseTerms) -> Vec<AllanPoint> {
+        (0..40)
+            .map(|k| {
+                let tau_s = 10f64.powf(k as f64 / 8.0 - 2.0);
+                let adev = terms.adev(tau_s);
+                AllanPoint { tau_s, adev, adev_low: adev, adev_high: adev, edf: 1e4 / tau_s }
+            })
+            .collect()
+    }
+
+    #[test]
+    fn an_exact_curve_gives_back_its_terms() {
+        let truth = NoiseTerms {
+            white_noise_density: 4e-4,
+            bias_instability: 4e-5,
+            bias_instability_tau_s: 0.0,
+            random_walk: 1e-6,
+        };
+        let fitted = fit(&exact_curve(&truth)).expect("fits");
+        assert!((fitted.white_noise_density / truth.white_noise_density - 1.0).abs() < 1e-9, "{fitted:?}");
+        assert!((fitted.bias_instability / truth.bias_instability - 1.0).abs() < 1e-9, "{fitted:?}");
+        assert!((fitted.random_walk / truth.random_walk - 1.0).abs() < 1e-9, "{fitted:?}");
+    }
+
+    #[test]
+    fn pure_white_noise_fits_no_other_term() {
+        let truth = NoiseTerms {
+            white_noise_density: 4e-4,
+            bias_instability: 0.0,
+            bias_instability_tau_s: 0.0,
+            random_walk: 0.0,
+        };
+        let fitted = fit(&exact_curve(&truth)).expect("fits");
+        assert!((fitted.white_noise_density / 4e-4 - 1.0).abs() < 1e-9, "{fitted:?}");
+        assert!(fitted.bias_instability < 1e-12 && fitted.random_walk < 1e-12, "{fitted:?}");
+        // With only white noise the deviation keeps falling: the longest averaging time is best.
+        assert!((fitted.bias_instability_tau_s - 10f64.powf(39.0 / 8.0 - 2.0)).abs() < 1e-9, "{fitted:?}");
+    }
+}

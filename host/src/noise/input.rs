@@ -1,0 +1,75 @@
+//! Reading a still recording for the noise analysis: CSV as `accelcal stream` writes it (columns
+//! `ax_g,ay_g,az_g,gx_dps,gy_dps,gz_dps`, others ignored), sampled at a rate the caller names.
+
+use std::io::Read;
+use std::path::Path;
+
+use super::RateSeries;
+
+/// The six columns the analysis needs, in [`super::AXES`] order.
+pub const COLUMNS: [&str; 6] = ["ax_g", "ay_g", "az_g", "gx_dps", "gy_dps", "gz_dps"];
+
+/// Fewest samples for an Allan deviation curve worth fitting (ten averaging times from 1 to N / 10).
+pub const MIN_SAMPLES: usize = 100;
+
+/// Why a recording cannot be analysed.
+#[derive(Debug, thiserror::Error)]
+pub enum NoiseInputError {
+    #[error("cannot read {path}: {source}")]
+    Io { path: String, source: std::io::Error },
+    #[error("line 1: the header lacks column {column}; a recording has {}", COLUMNS.join(","))]
+    MissingColumn { column: &'static str },
+    #[error("line {line}: {reason}")]
+    BadLine { line: usize, reason: String },
+    #[error("{samples} samples is too few for an Allan deviation: record at least {MIN_SAMPLES}")]
+    TooShort { samples: usize },
+    #[error("--rate must be a positive number of samples per second, got {rate_hz}")]
+    BadRate { rate_hz: f64 },
+}
+
+/// Reads a recording file sampled at `rate_hz`.
+pub fn read_path(path: &Path, rate_hz: f64) -> Result<RateSeries, NoiseInputError> {
+    let io = |source| NoiseInputError::Io { path: path.display().to_string(), source };
+    read_csv(std::fs::File::open(path).map_err(io)?, rate_hz)
+}
+
+/// Reads CSV text sampled at `rate_hz`.
+pub fn read_csv(reader: impl Read, rate_hz: f64) -> Result<RateSeries, NoiseInputError> {
+    if !(rate_hz > 0.0 && rate_hz.is_finite()) {
+        return Err(NoiseInputError::BadRate { rate_hz });
+    }
+    let mut csv = csv::ReaderBuilder::new().trim(csv::Trim::All).from_reader(reader);
+    let header = csv.headers().map_err(|e| bad_line(1, e))?.clone();
+    let mut columns = [0usize; 6];
+    for (slot, column) in columns.iter_mut().zip(COLUMNS) {
+        *slot = header.iter().position(|h| h == column).ok_or(NoiseInputError::MissingColumn { column })?;
+    }
+    let mut axes: [Vec<f64>; 6] = Default::default();
+    for (row, record) in csv.records().enumerate() {
+        let record = record.map_err(|e| bad_line(row + 2, e))?;
+        for (axis, &column) in axes.iter_mut().zip(&columns) {
+            let cell = record.get(column).unwrap_or_default();
+            axis.push(cell.parse().map_err(|_| bad_line(row + 2, format!("{cell:?} is not a number")))?);
+        }
+    }
+    if axes[0].len() < MIN_SAMPLES {
+        return Err(NoiseInputError::TooShort { samples: axes[0].len() });
+    }
+    Ok(RateSeries { rate_hz, axes })
+}
+
+fn bad_line(line: usize, reason: impl ToString) -> NoiseInputError {
+    NoiseInputError::BadLine { line, reason: reason.to_string() }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_recording_without_a_gyro_column_is_refused_by_name() {
+        let text = "index,ax_g,ay_g,az_g,gx_dps,gy_dps\n0,0,0,1,0,0\n";
+        let error = read_csv(text.as_bytes(), 100.0).unwrap_err();
+        assert!(matches!(error, NoiseInputError::MissingColumn { column: "gz_dps" }), "{error}");
+    }
+}

@@ -1,0 +1,79 @@
+//! Noise characterisation of a still recording by overlapping Allan deviation: the deviation of each of
+//! the six axes at log-spaced averaging times ([`allan`]), the fitted white noise, bias instability and
+//! random walk ([`fit`]), what they mean for a calibration, computed once ([`NoiseReport`]) and
+//! rendered as text ([`text`]), JSON ([`json`]) or an SVG plot ([`plot`]).
+
+pub mod allan;
+pub mod fit;
+pub mod input;
+pub mod json;
+pub mod plot;
+pub mod text;
+
+pub use allan::AllanPoint;
+pub use fit::NoiseTerms;
+
+/// Averaging times per decade of the Allan deviation curves.
+pub const TAUS_PER_DECADE: usize = 10;
+
+/// The six axes of a recording, in file and report order.
+pub const AXES: [&str; 6] = ["accel_x", "accel_y", "accel_z", "gyro_x", "gyro_y", "gyro_z"];
+
+/// Six still-sensor rate series sampled together: accelerometer in g, gyro in deg/s.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RateSeries {
+    /// Samples per second.
+    pub rate_hz: f64,
+    /// One series per axis of [`AXES`]: three in g, three in deg/s.
+    pub axes: [Vec<f64>; 6],
+}
+
+/// The Allan deviation and the fitted noise terms of one axis, in the axis's unit (g or deg/s).
+#[derive(Debug, Clone, PartialEq)]
+pub struct AxisNoise {
+    /// One of [`AXES`].
+    pub name: &'static str,
+    /// The deviation at each averaging time.
+    pub curve: Vec<AllanPoint>,
+    /// The fitted terms (`None` when the series is too short for any averaging time).
+    pub terms: Option<NoiseTerms>,
+}
+
+impl AxisNoise {
+    /// Whether the axis is an accelerometer axis (g) rather than a gyro axis (deg/s).
+    pub fn is_accel(&self) -> bool {
+        self.name.starts_with("accel")
+    }
+}
+
+/// The noise of a recording: each axis analysed once, for every renderer.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NoiseReport {
+    /// Samples per second of the recording.
+    pub rate_hz: f64,
+    /// Samples per axis.
+    pub samples: usize,
+    /// The six axes in [`AXES`] order.
+    pub axes: Vec<AxisNoise>,
+}
+
+/// Analyses one rate series at `rate_hz` under the name `name`.
+pub fn analyse_axis(name: &'static str, rate: &[f64], rate_hz: f64) -> AxisNoise {
+    let factors = allan::averaging_factors(rate.len(), TAUS_PER_DECADE);
+    let curve = allan::overlapping_adev(rate, rate_hz, &factors);
+    let terms = fit::fit(&curve);
+    AxisNoise { name, curve, terms }
+}
+
+/// Analyses the six axes, one thread each.
+pub fn analyse(series: &RateSeries) -> NoiseReport {
+    let axes = std::thread::scope(|scope| {
+        let handles: Vec<_> = AXES
+            .iter()
+            .zip(&series.axes)
+            .map(|(name, rate)| scope.spawn(move || analyse_axis(name, rate, series.rate_hz)))
+            .collect();
+        handles.into_iter().map(|h| h.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic))).collect()
+    });
+    NoiseReport { rate_hz: series.rate_hz, samples: series.axes[0].len(), axes }
+}

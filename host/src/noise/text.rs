@@ -1,0 +1,100 @@
+//! `accelcal noise`: the fitted terms per axis and what they mean for a calibration, as a table.
+
+use std::fmt::Write;
+
+use super::json::{usual_scale, UG_PER_G};
+use super::{AxisNoise, NoiseReport};
+
+/// Capture lengths in seconds whose reachable accuracy the report shows.
+pub const CAPTURE_SECONDS_SHOWN: [f64; 6] = [1.0, 2.0, 5.0, 10.0, 30.0, 60.0];
+
+/// Seconds of deg/s per deg/h.
+const SECONDS_PER_HOUR: f64 = 3600.0;
+
+/// Averaging time in seconds beyond which no accelerometer axis improves with a longer capture: the
+/// largest of their bias-instability averaging times.
+pub fn capture_limit_s(report: &NoiseReport) -> Option<f64> {
+    accel_axes(report).filter_map(|a| a.terms.map(|t| t.bias_instability_tau_s)).reduce(f64::max)
+}
+
+/// Whether an accelerometer axis's deviation was still falling at the longest averaging time analysed,
+/// so [`capture_limit_s`] is only a lower bound: longer captures help at least up to there.
+pub fn capture_limit_is_lower_bound(report: &NoiseReport) -> bool {
+    accel_axes(report).any(|a| match (a.terms, a.curve.last()) {
+        (Some(t), Some(last)) => t.bias_instability_tau_s >= last.tau_s,
+        _ => false,
+    })
+}
+
+fn accel_axes(report: &NoiseReport) -> impl Iterator<Item = &AxisNoise> {
+    report.axes.iter().filter(|a| a.is_accel())
+}
+
+/// The report as text.
+pub fn render(report: &NoiseReport) -> String {
+    let mut out = String::new();
+    let minutes = report.samples as f64 / report.rate_hz / 60.0;
+    let _ = writeln!(out, "{} samples at {} Hz ({minutes:.1} min) per axis", report.samples, report.rate_hz);
+    let _ = writeln!(
+        out,
+        "{:<8} {:>16} {:>16} {:>10} {:>18}",
+        "axis", "white noise", "bias instab.", "at tau", "random walk"
+    );
+    for axis in &report.axes {
+        let _ = writeln!(out, "{}", axis_line(axis));
+    }
+    let _ = writeln!(
+        out,
+        "(accelerometer in ug, ug/sqrt(Hz), ug/s/sqrt(Hz); gyro in deg/s, deg/s/sqrt(Hz), deg/s/s/sqrt(Hz))"
+    );
+    write_gyro_per_hour(&mut out, report);
+    write_calibration(&mut out, report);
+    out
+}
+
+fn axis_line(axis: &AxisNoise) -> String {
+    let Some(t) = axis.terms else {
+        return format!("{:<8} too short for any averaging time", axis.name);
+    };
+    let s = usual_scale(axis);
+    format!(
+        "{:<8} {:>16.4e} {:>16.4e} {:>9.1}s {:>18.4e}",
+        axis.name,
+        t.white_noise_density * s,
+        t.bias_instability * s,
+        t.bias_instability_tau_s,
+        t.random_walk * s
+    )
+}
+
+fn write_gyro_per_hour(out: &mut String, report: &NoiseReport) {
+    for axis in report.axes.iter().filter(|a| !a.is_accel()) {
+        if let Some(t) = axis.terms {
+            let arw = t.white_noise_density * SECONDS_PER_HOUR.sqrt();
+            let bias = t.bias_instability * SECONDS_PER_HOUR;
+            let _ = writeln!(
+                out,
+                "{}: angle random walk {arw:.3} deg/sqrt(h), bias instability {bias:.2} deg/h",
+                axis.name
+            );
+        }
+    }
+}
+
+fn write_calibration(out: &mut String, report: &NoiseReport) {
+    match capture_limit_s(report) {
+        Some(limit) if capture_limit_is_lower_bound(report) => {
+            let _ = writeln!(out, "the accelerometer's deviation still falls at {limit:.0} s, the longest averaging time this recording resolves: captures help at least that long");
+        }
+        Some(limit) => {
+            let _ = writeln!(out, "captures longer than {limit:.0} s per position stop helping (accelerometer)");
+        }
+        None => {}
+    }
+    for seconds in CAPTURE_SECONDS_SHOWN {
+        let errors: Vec<String> = accel_axes(report)
+            .map(|a| a.terms.map_or("-".to_owned(), |t| format!("{:.1}", t.adev(seconds) * UG_PER_G)))
+            .collect();
+        let _ = writeln!(out, "a {seconds:>3.0} s position: mean known to {} ug (1 sigma, x y z)", errors.join(" / "));
+    }
+}

@@ -1,0 +1,73 @@
+//! `accelcal noise FILE --json --plot FILE.svg` as a user runs it: the JSON interface of the design,
+//! in the units it names, on a recording with known white noise.
+
+use std::fmt::Write;
+use std::process::Command;
+
+use accelcal::sim::noise::{noisy_series, TrueNoise};
+
+const RATE_HZ: f64 = 1000.0;
+const ACCEL_DENSITY_G: f64 = 400e-6;
+const GYRO_DENSITY_DPS: f64 = 0.005;
+
+/// A minute of white noise on all six axes, as `accelcal stream` writes it.
+fn white_recording() -> std::path::PathBuf {
+    let samples = 60_000;
+    let white = |density: f64, mean: f64, seed: u64| {
+        let truth = TrueNoise { white_noise_density: density, bias_instability: 0.0, random_walk: 0.0 };
+        noisy_series(&truth, mean, RATE_HZ, samples, seed)
+    };
+    let axes: Vec<Vec<f64>> = (0..6u64)
+        .map(|k| if k < 3 { white(ACCEL_DENSITY_G, 0.0, k) } else { white(GYRO_DENSITY_DPS, 0.5, k) })
+        .collect();
+    let mut text = String::from("index,ax_g,ay_g,az_g,gx_dps,gy_dps,gz_dps,temp_c\n");
+    for i in 0..samples {
+        let row: Vec<String> = axes.iter().map(|a| format!("{:.9}", a[i])).collect();
+        let _ = writeln!(text, "{i},{},25.0", row.join(","));
+    }
+    let path = std::env::temp_dir().join(format!("accelcal-noise-{}.csv", std::process::id()));
+    std::fs::write(&path, text).expect("temporary recording written");
+    path
+}
+
+fn close(value: &serde_json::Value, truth: f64, tolerance: f64) -> bool {
+    value.as_f64().is_some_and(|v| (v / truth - 1.0).abs() < tolerance)
+}
+
+#[test]
+fn noise_json_has_every_axis_in_its_named_units_and_finds_the_white_noise() {
+    let recording = white_recording();
+    let plot = recording.with_extension("svg");
+    let output = Command::new(env!("CARGO_BIN_EXE_accelcal"))
+        .args(["noise", &recording.display().to_string(), "--json", "--plot", &plot.display().to_string()])
+        .output()
+        .expect("accelcal runs");
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&output.stdout).expect("stdout is one JSON object");
+    for axis in ["accel_x", "accel_y", "accel_z", "gyro_x", "gyro_y", "gyro_z"] {
+        let a = &json[axis];
+        let n = a["tau_s"].as_array().map_or(0, Vec::len);
+        assert!(n >= 30, "{axis}: {n} averaging times");
+        for key in ["adev", "adev_low", "adev_high"] {
+            assert_eq!(a[key].as_array().map_or(0, Vec::len), n, "{axis}.{key}");
+        }
+        let (low, dev, high) = (a["adev_low"][0].as_f64(), a["adev"][0].as_f64(), a["adev_high"][0].as_f64());
+        assert!(low < dev && dev < high, "{axis}: interval {low:?} {dev:?} {high:?}");
+        for key in ["bias_instability", "bias_instability_tau_s", "random_walk"] {
+            assert!(a[key].is_number(), "{axis}.{key}");
+        }
+    }
+    // The usual units: ug/sqrt(Hz) for the accelerometer, deg/s/sqrt(Hz) for the gyro.
+    assert_eq!(json["units"]["accel_y"]["white_noise_density"], "ug/sqrt(Hz)");
+    assert_eq!(json["units"]["gyro_y"]["white_noise_density"], "deg/s/sqrt(Hz)");
+    assert!(close(&json["accel_x"]["white_noise_density"], ACCEL_DENSITY_G * 1e6, 0.05), "{}", json["accel_x"]);
+    assert!(close(&json["gyro_z"]["white_noise_density"], GYRO_DENSITY_DPS, 0.05), "{}", json["gyro_z"]);
+    // Kalibr's continuous-time density is SI: m/s^2/sqrt(Hz).
+    let kalibr = &json["kalibr"]["continuous_time"]["accelerometer_noise_density"];
+    assert!(close(kalibr, ACCEL_DENSITY_G * 9.80665, 0.05), "{kalibr}");
+    // White noise keeps falling: the capture limit is only a lower bound, the longest tau analysed.
+    assert_eq!(json["calibration"]["capture_limit_is_lower_bound"], true, "{}", json["calibration"]);
+    let svg = std::fs::read_to_string(&plot).expect("the plot is written");
+    assert!(svg.starts_with("<svg") && svg.contains("gyro_z"), "{}", &svg[..svg.len().min(200)]);
+    let _ = (std::fs::remove_file(recording), std::fs::remove_file(plot));
+}
