@@ -44,11 +44,11 @@ fn samples(id: u16, window: Window, count: u32) -> Vec<u8> {
     frames.concat()
 }
 
-fn captured(id: u16) -> Vec<u8> {
+fn captured(id: u16, mean_g: [f32; 3]) -> Vec<u8> {
     let stats = CaptureStats {
         samples: 500,
         seconds: 5.0,
-        mean_g: [0.0, 0.0, 1.0],
+        mean_g,
         std_g: [0.001; 3],
         gyro_mean_dps: [0.0; 3],
         gyro_std_dps: [0.01; 3],
@@ -60,11 +60,19 @@ fn captured(id: u16) -> Vec<u8> {
 }
 
 /// A client on a scripted device that serves the live windows of `script` (the last one repeats) and
-/// logs each request by kind.
+/// logs each request by kind; every capture reads +Z.
 fn scripted_client(script: &[Window]) -> (Client<PipeEnd>, Arc<Mutex<Vec<&'static str>>>) {
+    scripted_client_capturing(script, &[[0.0, 0.0, 1.0]])
+}
+
+/// As [`scripted_client`], the captures reading the means of `captures` in turn (the last repeats).
+fn scripted_client_capturing(
+    script: &[Window],
+    captures: &[[f32; 3]],
+) -> (Client<PipeEnd>, Arc<Mutex<Vec<&'static str>>>) {
     let log = Arc::new(Mutex::new(Vec::new()));
     let (host, device) = pipe();
-    let (device_log, mut windows) = (Arc::clone(&log), script.to_vec());
+    let (device_log, mut windows, mut means) = (Arc::clone(&log), script.to_vec(), captures.to_vec());
     let _device = scripted::spawn(device, move |id, request| {
         let (kind, answer) = match request {
             Request::ClearPositions => ("clear", frame(id, &Response::Done)),
@@ -78,7 +86,10 @@ fn scripted_client(script: &[Window]) -> (Client<PipeEnd>, Arc<Mutex<Vec<&'stati
                 let window = if windows.len() > 1 { windows.remove(0) } else { windows[0] };
                 ("window", samples(id, window, count))
             }
-            Request::Capture { .. } => ("capture", captured(id)),
+            Request::Capture { .. } => {
+                let mean = if means.len() > 1 { means.remove(0) } else { means[0] };
+                ("capture", captured(id, mean))
+            }
             _ => ("other", frame(id, &Response::Error(DeviceError::Busy))),
         };
         device_log.lock().unwrap().push(kind);
@@ -161,4 +172,20 @@ fn the_verification_never_takes_an_orientation_the_calibration_was_captured_at()
     assert!(matches!(result, Err(calibrate::ProcedureError::NeverFresh)), "{result:?}");
     assert!(!feedback.0.is_empty());
     assert!(feedback.0.iter().all(|line| line.starts_with("this orientation was used already")), "{:?}", feedback.0);
+}
+
+#[test]
+fn a_capture_that_ends_at_another_orientation_is_not_kept_under_the_wanted_name() {
+    // The person turned the board from +Z to +X during the first capture and held it there: the
+    // capture reads +X. It must not be recorded as +Z; the wait starts again and the next capture,
+    // at +Z, is the one kept.
+    let (mut client, log) = scripted_client_capturing(&[Window::Still], &[[1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]);
+    let target = calibrate::faces().into_iter().find(|t| t.name == "+Z").expect("a +Z face");
+    let options = CollectOptions { seconds: 5, wait_limit: Some(Duration::from_secs(20)) };
+    let mut feedback = LiveLines::default();
+    let session = calibrate::collect(&mut client, &mut PersonHand, &[target], &options, &mut feedback).unwrap();
+    assert_eq!(session.captures.len(), 1);
+    assert_eq!(session.captures[0].stats.mean_g, [0.0, 0.0, 1.0], "the +X reading was kept as +Z");
+    let captures = log.lock().unwrap().iter().filter(|kind| **kind == "capture").count();
+    assert_eq!(captures, 2);
 }

@@ -1,5 +1,5 @@
 //! Collecting the captures of a calibration: every wanted orientation, in whatever order the board
-//! arrives at them, each capture retried while the board moves.
+//! arrives at them; a capture the board moved during, or that ended elsewhere, goes back to waiting.
 
 use shared::protocol::{CaptureStats, DeviceError};
 use shared::Position;
@@ -39,18 +39,52 @@ pub fn collect_into<P: Port>(
     client.clear_positions()?;
     let captured = |t: &Orientation| session.captures.iter().any(|c| c.name == t.name);
     let (mut done, mut remaining): (Vec<Orientation>, Vec<Orientation>) = targets.iter().cloned().partition(captured);
+    let mut moved_in_a_row = 0;
     while !remaining.is_empty() {
         hand.present(&remaining[0], feedback)?;
         let index = wait_for_target(client, &remaining, &done, options.wait_limit, feedback)?;
+        feedback.say(&format!("{} found; averaging for {} s", remaining[index].name, options.seconds));
+        let Some((stats, face)) = capture_at(client, &remaining[index], options.seconds, feedback)? else {
+            moved_in_a_row += 1;
+            if moved_in_a_row >= CAPTURE_ATTEMPTS {
+                return Err(ProcedureError::KeptMoving { attempts: CAPTURE_ATTEMPTS });
+            }
+            continue;
+        };
+        moved_in_a_row = 0;
         let target = remaining.remove(index);
-        feedback.say(&format!("{} found; averaging for {} s", target.name, options.seconds));
-        let (stats, face) = capture(client, options.seconds, feedback)?;
         session.captures.push(CaptureRecord::now(&target.name, Some(target.clone()), face, stats));
         keep(session)?;
         done.push(target);
         feedback.say(&format!("captured {} of {}", done.len(), targets.len()));
     }
     Ok(())
+}
+
+/// One capture at `target`; `None` when the board moved during it or its mean lies outside the
+/// target's tolerance (the person turned it elsewhere and held it there): the wait starts again, so
+/// a capture is never kept under the name of an orientation it was not taken at.
+fn capture_at<P: Port>(
+    client: &mut Client<P>,
+    target: &Orientation,
+    seconds: u8,
+    feedback: &mut dyn Feedback,
+) -> Result<Option<(CaptureStats, Option<Position>)>, ProcedureError> {
+    let result = client.capture(seconds, |p| feedback.progress(p.samples, p.total_samples));
+    feedback.progress_done();
+    let (stats, face) = match result {
+        Err(LinkError::Device(error @ DeviceError::Moved { .. })) => {
+            feedback.say(&format!("{}; trying again", explain(&error)));
+            return Ok(None);
+        }
+        other => other?,
+    };
+    let tilt = target.tilt_deg(stats.mean_g.map(f64::from));
+    if tilt > target.tolerance_deg {
+        feedback.say(&format!("the board ended {tilt:.1} degrees from {}: hold it there and keep still", target.name));
+        return Ok(None);
+    }
+    Ok(Some((stats, face)))
 }
 
 /// One capture with its progress shown, retried while the board moves.
