@@ -40,7 +40,7 @@ pub enum Error {
     Plot(#[from] PlotError),
     #[error("--g must be a positive number, got {g}")]
     BadGravity { g: f64 },
-    #[error("{source}; the {captures} captures so far are kept in {}: continue with `accelcal calibrate {device} --resume {}`", .path.display(), .path.display())]
+    #[error("{source}; {} so far {} kept in {}: continue with `accelcal calibrate {device} --resume {}`", count(*.captures, "capture"), if *.captures == 1 { "is" } else { "are" }, .path.display(), .path.display())]
     Stopped { source: Box<ProcedureError>, captures: usize, path: PathBuf, device: String },
     #[error("--json cannot ask whether to upload the calibration: add --yes to upload and save it, or leave out --json to be asked")]
     JsonCannotAsk,
@@ -67,6 +67,15 @@ impl Error {
     }
 }
 
+/// `n` and the noun, plural unless there is one.
+fn count(n: usize, noun: &str) -> String {
+    if n == 1 {
+        format!("1 {noun}")
+    } else {
+        format!("{n} {noun}s")
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -80,5 +89,13 @@ mod tests {
         assert_eq!(text.matches("/tmp/accelcal-missing.csv").count(), 1, "{text}");
         assert!(text.starts_with("cannot read /tmp/accelcal-missing.csv: "), "{text}");
         assert!(text.ends_with("; check the path"), "{text}");
+    }
+
+    #[test]
+    fn counts_are_plural_unless_there_is_one() {
+        assert_eq!(
+            (count(1, "capture"), count(2, "capture"), count(0, "capture")),
+            ("1 capture".into(), "2 captures".into(), "0 captures".into())
+        );
     }
 }

@@ -79,3 +79,13 @@ pub fn host_fit(session: &Session) -> Result<Fit, FitError> {
 pub fn host_six_position_fit(session: &Session) -> Result<Fit, FitError> {
     fit::fit(&session.dataset(), ModelChoice::Only(fit::Model::SixPosition), &FitOptions::default())
 }
+
+/// The model a session's calibration is fitted with: the six-position closed form (the chip's own)
+/// for a `--quick` session, the host's choice for a full one; the report fits the same.
+pub fn session_model(session: &Session) -> ModelChoice {
+    if session.quick {
+        ModelChoice::Only(fit::Model::SixPosition)
+    } else {
+        ModelChoice::Auto
+    }
+}

@@ -7,7 +7,7 @@ use shared::linalg;
 
 use super::figure::{self, Figure};
 use super::{Comparison, FitReport};
-use crate::fit::{FitError, FitOptions, ModelChoice, Parameter};
+use crate::fit::{FitError, FitOptions, Parameter};
 use crate::procedure::Verification;
 use crate::session::Session;
 
@@ -109,7 +109,8 @@ pub struct Figures {
 impl SessionReport {
     /// Fits the session (`auto`, every model compared) and gathers the report.
     pub fn new(session: &Session) -> Result<Self, FitError> {
-        let fit_report = FitReport::new(&session.dataset(), ModelChoice::Auto, &FitOptions::default())?;
+        let model = crate::procedure::session_model(session);
+        let fit_report = FitReport::new(&session.dataset(), model, &FitOptions::default())?;
         let positions = positions(session, &fit_report);
         let fit = summary(&fit_report, &positions);
         let verification = session.verification.clone();
