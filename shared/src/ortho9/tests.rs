@@ -115,6 +115,39 @@ fn refuses_readings_in_one_plane_naming_the_undetermined_parameter() {
 }
 
 #[test]
+fn refuses_readings_on_a_cone_whose_scale_and_offset_along_its_axis_trade_off() {
+    // The board turned about z while tilted: z reads the same everywhere, so s_z and o_z move
+    // together (their scaled columns agree to rounding, a pivot of about 1e-16).
+    let readings: Vec<Vec3<f64>> = (0..12)
+        .map(|k| {
+            let angle = k as f64 * 0.5;
+            [0.8 * angle.cos(), 0.8 * angle.sin(), 0.6]
+        })
+        .collect();
+    match fit(&readings) {
+        Err(Ortho9Error::IllConditioned(k)) => assert!([5, 8].contains(&k), "named parameter {k}"),
+        other => panic!("expected a refusal, got {other:?}"),
+    }
+}
+
+#[test]
+fn the_cholesky_refuses_a_pivot_below_the_threshold_and_names_it() {
+    // Parameters 2 and 3 correlated to 1 - delta: the second pivot is about 2 delta.
+    let correlated = |delta: f64| {
+        let mut a = [[0.0; PARAMETERS]; PARAMETERS];
+        for (k, row) in a.iter_mut().enumerate() {
+            row[k] = 4.0;
+        }
+        (a[2][3], a[3][2]) = (4.0 * (1.0 - delta), 4.0 * (1.0 - delta));
+        a
+    };
+    let b = [1.0; PARAMETERS];
+    let threshold = min_pivot::<f64>();
+    assert_eq!(normal::solve_scaled(&correlated(threshold / 4.0), &b, 0.0, threshold), Err(3));
+    assert!(normal::solve_scaled(&correlated(threshold * 4.0), &b, 0.0, threshold).is_ok());
+}
+
+#[test]
 fn refuses_a_reading_that_is_not_finite() {
     let (_, mut readings) = problem(5, 12, 1e-4);
     readings[4][1] = f64::NAN;
