@@ -6,6 +6,7 @@ mod model;
 mod models;
 mod nonlinear;
 mod normalization;
+mod ortho9;
 mod shape;
 mod statistics;
 pub mod thermal;

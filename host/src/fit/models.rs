@@ -5,6 +5,7 @@ use nalgebra::{DMatrix, DVector, Vector3};
 
 use super::nonlinear::{solve, Observation, Problem, Solution};
 use super::normalization::Normalization;
+use super::ortho9;
 use super::shape::Shape;
 use super::{statistics, Fit, FitError, FitOptions, Model, NoiseTest, Parameter};
 use crate::data::Dataset;
@@ -42,7 +43,11 @@ pub(super) fn least_squares(training: &Dataset, model: Model, options: &FitOptio
     let start = DVector::from_vec(start);
     let mut warnings = Vec::new();
     check_conditioning(model, shape, &observations, &start, &mut warnings)?;
-    let solution = solve(shape, &observations, start)?;
+    let solution = if ortho9::applies(shape, &observations) {
+        ortho9::solve(&observations)?
+    } else {
+        solve(shape, &observations, start)?
+    };
     let std_errors = standard_errors(&solution);
     let parameters = file_parameters(shape, &solution, std_errors.as_ref(), &normalization, options.g);
     let noise_test = statistics::noise_test(training, shape, &solution, &observations, &normalization);
@@ -62,7 +67,12 @@ pub(super) fn least_squares(training: &Dataset, model: Model, options: &FitOptio
 }
 
 /// The rows as the solver sees them: normalised readings, references in g where the model uses them.
-fn observations(training: &Dataset, model: Model, normalization: &Normalization, g: f64) -> Vec<Observation> {
+pub(super) fn observations(
+    training: &Dataset,
+    model: Model,
+    normalization: &Normalization,
+    g: f64,
+) -> Vec<Observation> {
     let uses_references = model == Model::ReferenceNorm12;
     let observation = |row: &crate::data::Row| Observation {
         reading: normalization.apply(row.reading),
@@ -190,7 +200,7 @@ fn column_scaled(jacobian: &DMatrix<f64>) -> DMatrix<f64> {
     scaled
 }
 
-fn parameter_name(shape: Shape, index: usize) -> String {
+pub(super) fn parameter_name(shape: Shape, index: usize) -> String {
     shape.names().get(index).map_or_else(|| format!("o_{}", ['x', 'y', 'z'][index - shape.len()]), |n| (*n).to_owned())
 }
 

@@ -121,7 +121,7 @@ impl<T: Float> State<T> {
         for (t, d) in trial.iter_mut().zip(&delta) {
             *t = *t + *d;
         }
-        if cost(readings, &trial) <= self.normal.cost {
+        if cost(readings, &trial) <= self.normal.cost + cost_resolution(self.normal.cost, readings.len()) {
             self.params = trial;
             self.normal = accumulate(readings, &trial)?;
             self.lambda = (self.lambda * constant(0.1)).max(constant(1e-12));
@@ -145,6 +145,16 @@ fn negligible<T: Float>(delta: &Params<T>, params: &Params<T>) -> bool {
     let largest = params.iter().fold(T::one(), |m, p| m.max(p.abs()));
     let tolerance = T::epsilon() * constant(64.0) * largest;
     delta.iter().all(|d| d.abs() <= tolerance)
+}
+
+/// How far the cost can move by rounding alone: each residual |a| - 1 carries an absolute error of a
+/// few epsilons, so the cost about 2 sqrt(n cost) of them.
+///
+/// NOTE: near the minimum the last Gauss-Newton step lowers the cost by less than that; judged by
+/// the cost it would be refused, and the fit would stop short of the minimum by about sqrt(epsilon).
+fn cost_resolution<T: Float>(cost: T, readings: usize) -> T {
+    let n = T::from(readings).unwrap_or_else(T::one);
+    T::epsilon() * constant(64.0) * (n * cost).sqrt()
 }
 
 /// Sum of squared residuals; infinite when a value is not finite, so such a step is never taken.
