@@ -7,6 +7,7 @@
 pub mod calibration;
 pub mod linalg;
 pub mod orientation;
+pub mod ortho9;
 pub mod protocol;
 pub mod six_position;
 

@@ -7,6 +7,7 @@ mod model;
 mod models;
 mod nonlinear;
 mod normalization;
+mod ortho9;
 mod prediction;
 mod selection;
 mod shape;
@@ -168,7 +169,8 @@ pub struct Fit {
     pub offset: Vec3<f64>,
     /// The model's dimensionless cost at the solution (residuals divided by g, squared, summed).
     pub cost: f64,
-    /// Solver iterations: residual evaluations of Levenberg-Marquardt (0 for closed-form fits).
+    /// Solver iterations: residual evaluations of the levenberg-marquardt crate, iterations of the
+    /// fixed-size `ortho9` solver (one 9x9 solve each), 0 for closed-form fits.
     pub iterations: usize,
     /// Every parameter with its standard error.
     pub parameters: Vec<Parameter>,

@@ -5,6 +5,7 @@ use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 
 use super::nonlinear::{solve, Observation, Problem, Solution};
 use super::normalization::Normalization;
+use super::ortho9;
 use super::prediction::{self, Prediction};
 use super::shape::Shape;
 use super::{statistics, uncertainty, verdict, Fit, FitError, FitOptions, Model, NoiseTest, Parameter};
@@ -40,7 +41,11 @@ pub(super) fn least_squares(training: &Dataset, model: Model, options: &FitOptio
     let start = DVector::from_iterator(shape.len() + 3, shape.identity().into_iter().chain([0.0; 3]));
     let mut warnings = Vec::new();
     check_conditioning(model, shape, &observations, &start, &mut warnings)?;
-    let solution = solve(shape, &observations, start)?;
+    let solution = if ortho9::applies(shape, &observations) {
+        ortho9::solve(&observations)?
+    } else {
+        solve(shape, &observations, start)?
+    };
     let (scatter, noise, inflation, reported) = errors(training, shape, &solution, &observations, &normalization);
     let errors = ([scatter.as_ref(), noise.as_ref()], inflation);
     let parameters = file_parameters(shape, &solution, errors, &normalization, options.g);
@@ -128,7 +133,12 @@ fn errors(
 
 /// The rows as the solver sees them: normalised readings, references in g where the model uses them,
 /// weights from the samples each row averaged.
-fn observations(training: &Dataset, model: Model, normalization: &Normalization, g: f64) -> Vec<Observation> {
+pub(super) fn observations(
+    training: &Dataset,
+    model: Model,
+    normalization: &Normalization,
+    g: f64,
+) -> Vec<Observation> {
     let uses_references = model == Model::ReferenceNorm12;
     let weights = uncertainty::row_weights(training);
     let observation = |(row, weight): (&crate::data::Row, f64)| Observation {
@@ -253,7 +263,7 @@ fn column_scaled(jacobian: &DMatrix<f64>) -> DMatrix<f64> {
     scaled
 }
 
-fn parameter_name(shape: Shape, index: usize) -> String {
+pub(super) fn parameter_name(shape: Shape, index: usize) -> String {
     shape.names().get(index).map_or_else(|| format!("o_{}", ['x', 'y', 'z'][index - shape.len()]), |n| (*n).to_owned())
 }
 

@@ -17,7 +17,7 @@ pub struct FitJson<'a> {
     pub calibration: CalibrationJson,
     /// Dimensionless cost at the solution.
     pub cost: f64,
-    /// Solver iterations (residual evaluations).
+    /// Solver iterations (see `Fit::iterations`).
     pub iterations: usize,
     /// Standard error of every parameter (null without redundancy).
     pub std_errors: BTreeMap<&'a str, Option<f64>>,

@@ -31,7 +31,35 @@ pub struct Result<'a> {
 
 /// Runs every computation and hands each result to `report`; `false` when one could not run.
 pub fn run(report: &mut impl FnMut(Result<'_>)) -> bool {
-    phone_six_position(report) && device_calibration(report) && thermal_correction(report)
+    phone_six_position(report) && device_calibration(report) && thermal_correction(report) && ortho9_session(report)
+}
+
+/// A simulated 14-position session in g: the published-error MPU-6050 (firmware::sim's truth) at the
+/// six faces and the eight cube corners, with a fixed pattern of +-1e-4 g standing in for noise.
+pub fn ortho9_session_readings() -> [[f32; 3]; 14] {
+    let truth = firmware::sim::physics::TrueErrors::published_mpu6050();
+    // NOTE: 1 / sqrt(3) as a literal: no_std f32 has no sqrt method.
+    let corner = 0.577_350_26f32;
+    let mut readings = [[0.0f32; 3]; 14];
+    for (i, reading) in readings.iter_mut().enumerate() {
+        let up = match Position::ALL.get(i) {
+            Some(face) => face.specific_force_g(),
+            None => [0, 1, 2].map(|k| if (i - 6) >> k & 1 == 1 { corner } else { -corner }),
+        };
+        *reading = truth.reading_g(up);
+        for (k, value) in reading.iter_mut().enumerate() {
+            *value += 1e-4 * (((i * 3 + k) * 7 % 3) as f32 - 1.0);
+        }
+    }
+    readings
+}
+
+/// The chip's 9-parameter fit of the simulated session: its parameters and iteration count.
+fn ortho9_session(report: &mut impl FnMut(Result<'_>)) -> bool {
+    let Ok(fit) = shared::ortho9::fit(&ortho9_session_readings()) else { return false };
+    report(Result { name: "ortho9-session-params", values: &fit.params });
+    report(Result { name: "ortho9-session-iterations", values: &[fit.iterations as f32] });
+    true
 }
 
 /// A calibration with a temperature model (the simulated sensor's typical drift, third order

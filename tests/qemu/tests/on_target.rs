@@ -156,3 +156,20 @@ fn the_chip_s_temperature_correction_equals_the_host_s_computation_at_15_to_45_d
     let uncorrected_model = f64::from(qemu_tests::thermal_calibration().matrix[2][2]) * (-2100.0 / 16384.0 + 78.3e-3);
     assert!((z45 - uncorrected_model).abs() > 0.02, "z at 45 degC: {z45} vs {uncorrected_model} without the model");
 }
+
+#[test]
+fn the_chip_s_ortho9_fit_of_a_simulated_session_equals_the_host_s_f64_fit_within_f32_tolerance() {
+    let Some(target) = on_target() else { return };
+    let on_chip: Vec<f64> = target["ortho9-session-params"].iter().map(|&b| f64::from(f32::from_bits(b))).collect();
+    let readings: Vec<[f64; 3]> = qemu_tests::ortho9_session_readings().iter().map(|m| m.map(f64::from)).collect();
+    let host = shared::ortho9::fit(&readings).expect("the host fits the session");
+    for (k, (chip, host)) in on_chip.iter().zip(&host.params).enumerate() {
+        // M is near the identity (1e-4 on its parameters is 1e-4 relative), o in g to 1e-5 g.
+        let tolerance = if k < 6 { 1e-4 } else { 1e-5 };
+        assert!((chip - host).abs() <= tolerance, "parameter {k}: chip {chip} vs host {host}");
+    }
+    // Not the start: the published sensor's z scale is 0.983.
+    assert!((on_chip[5] - 1.0).abs() > 0.01, "s_z = {}", on_chip[5]);
+    let iterations = f32::from_bits(target["ortho9-session-iterations"][0]);
+    println!("chip: {iterations} iterations; host: {} iterations", host.iterations);
+}

@@ -1,0 +1,201 @@
+//! The 9-parameter orientation-free fit `ortho9`: M = T K with T = [[1, a_yz, a_zy], [0, 1, a_zx],
+//! [0, 0, 1]] and K = diag(s_x, s_y, s_z), offset o, minimising sum (|M (m_i - o)| - 1)^2 over
+//! readings in g (the published MPU-6050 model of data/README.md).
+//!
+//! A small Levenberg-Marquardt on the 9x9 normal equations: fixed size, no allocation, generic over
+//! f32 (chip) and f64 (host). NOTE: no maintained crate offers a no_std fixed-size solver, and the
+//! problem is tiny and well scaled (every parameter of order one near M = I, o = 0), so normal
+//! equations with a conditioning guard lose nothing: the guard refuses any problem whose scaled
+//! normal matrix has a pivot below [`min_pivot`], which keeps the squared condition number far from
+//! the float type's rounding.
+
+mod normal;
+#[cfg(test)]
+mod tests;
+
+use num_traits::Float;
+use serde::{Deserialize, Serialize};
+
+use crate::linalg::{self, Mat3, Vec3};
+use normal::{accumulate, solve_scaled};
+
+/// Number of parameters: a_yz, a_zy, a_zx, s_x, s_y, s_z, o_x, o_y, o_z (offset in g).
+pub const PARAMETERS: usize = 9;
+/// The fewest readings that can determine the nine parameters.
+pub const MIN_READINGS: usize = PARAMETERS;
+/// Iterations after which the fit gives up.
+pub const MAX_ITERATIONS: u32 = 100;
+
+/// The nine parameters in [`PARAMETERS`] order.
+pub type Params<T> = [T; PARAMETERS];
+
+/// Why the `ortho9` fit could not run.
+#[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Ortho9Error {
+    /// Fewer than [`MIN_READINGS`] readings (the count found, saturated at 255).
+    TooFewReadings(u8),
+    /// The readings hardly determine this parameter (index in [`PARAMETERS`] order): add positions
+    /// spread over the sphere.
+    IllConditioned(u8),
+    /// The iterations ran out before the steps became negligible.
+    NotConverged,
+    /// A reading or an intermediate value is not finite.
+    NotFinite,
+}
+
+/// A converged `ortho9` fit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ortho9Fit<T> {
+    /// The parameters in [`PARAMETERS`] order (scales dimensionless, offset in g).
+    pub params: Params<T>,
+    /// Sum of squared residuals (|a_i| - 1)^2, dimensionless.
+    pub cost: T,
+    /// Levenberg-Marquardt iterations taken (each solves the 9x9 system once).
+    pub iterations: u32,
+}
+
+impl<T: Float> Ortho9Fit<T> {
+    /// The correction matrix M = T K.
+    pub fn matrix(&self) -> Mat3<T> {
+        matrix_of(&self.params)
+    }
+
+    /// The offset o, in g.
+    pub fn offset(&self) -> Vec3<T> {
+        [self.params[6], self.params[7], self.params[8]]
+    }
+}
+
+/// The parameters of M = I, o = 0: where the fit starts for readings in g.
+pub fn identity<T: Float>() -> Params<T> {
+    let (o, z) = (T::one(), T::zero());
+    [z, z, z, o, o, o, z, z, z]
+}
+
+/// M = T K for the parameters `p`.
+pub fn matrix_of<T: Float>(p: &Params<T>) -> Mat3<T> {
+    let z = T::zero();
+    [[p[3], p[0] * p[4], p[1] * p[5]], [z, p[4], p[2] * p[5]], [z, z, p[5]]]
+}
+
+/// The smallest pivot the scaled normal matrix may have: a hundred times the float's epsilon
+/// (f64 2.2e-14, f32 1.2e-5), so the solve keeps at least two digits above rounding.
+pub fn min_pivot<T: Float>() -> T {
+    T::epsilon() * T::from(100.0).unwrap_or_else(T::one)
+}
+
+/// Fits `ortho9` to readings in g, starting from M = I, o = 0.
+pub fn fit<T: Float>(readings: &[Vec3<T>]) -> Result<Ortho9Fit<T>, Ortho9Error> {
+    fit_from(readings, identity())
+}
+
+/// Fits `ortho9` to readings in g from the parameters `start`.
+pub fn fit_from<T: Float>(readings: &[Vec3<T>], start: Params<T>) -> Result<Ortho9Fit<T>, Ortho9Error> {
+    if readings.len() < MIN_READINGS {
+        return Err(Ortho9Error::TooFewReadings(readings.len().min(255) as u8));
+    }
+    let mut state = State { params: start, normal: accumulate(readings, &start)?, lambda: constant(1e-3) };
+    check_conditioning(&state)?;
+    for iteration in 1..=MAX_ITERATIONS {
+        if state.step(readings)? {
+            return Ok(Ortho9Fit { params: state.params, cost: state.normal.cost, iterations: iteration });
+        }
+    }
+    Err(Ortho9Error::NotConverged)
+}
+
+/// The iteration's state: parameters, their normal equations and the damping.
+struct State<T> {
+    params: Params<T>,
+    normal: normal::Normal<T>,
+    lambda: T,
+}
+
+impl<T: Float> State<T> {
+    /// One damped step; `Ok(true)` once converged.
+    fn step(&mut self, readings: &[Vec3<T>]) -> Result<bool, Ortho9Error> {
+        let minus_jtr = self.normal.jtr.map(|v| -v);
+        let delta = solve_scaled(&self.normal.jtj, &minus_jtr, self.lambda, min_pivot())
+            .map_err(|k| Ortho9Error::IllConditioned(k as u8))?;
+        let mut trial = self.params;
+        for (t, d) in trial.iter_mut().zip(&delta) {
+            *t = *t + *d;
+        }
+        if cost(readings, &trial) <= self.normal.cost + cost_resolution(self.normal.cost, readings.len()) {
+            self.params = trial;
+            self.normal = accumulate(readings, &trial)?;
+            self.lambda = (self.lambda * constant(0.1)).max(constant(1e-12));
+            return Ok(negligible(&delta, &trial));
+        }
+        // NOTE: when no step however short lowers the cost, the cost is at its rounding floor.
+        self.lambda = self.lambda * constant(10.0);
+        Ok(self.lambda > constant(1e12))
+    }
+}
+
+/// Refuses readings whose undamped scaled normal matrix has a pivot below [`min_pivot`].
+fn check_conditioning<T: Float>(state: &State<T>) -> Result<(), Ortho9Error> {
+    let zero = [T::zero(); PARAMETERS];
+    solve_scaled(&state.normal.jtj, &zero, T::zero(), min_pivot()).map_err(|k| Ortho9Error::IllConditioned(k as u8))?;
+    Ok(())
+}
+
+/// Whether a step is below the solver's resolution: 64 epsilons of the largest parameter.
+fn negligible<T: Float>(delta: &Params<T>, params: &Params<T>) -> bool {
+    let largest = params.iter().fold(T::one(), |m, p| m.max(p.abs()));
+    let tolerance = T::epsilon() * constant(64.0) * largest;
+    delta.iter().all(|d| d.abs() <= tolerance)
+}
+
+/// How far the cost can move by rounding alone: each residual |a| - 1 carries an absolute error of a
+/// few epsilons, so the cost about 2 sqrt(n cost) of them.
+///
+/// NOTE: near the minimum the last Gauss-Newton step lowers the cost by less than that; judged by
+/// the cost it would be refused, and the fit would stop short of the minimum by about sqrt(epsilon).
+fn cost_resolution<T: Float>(cost: T, readings: usize) -> T {
+    let n = T::from(readings).unwrap_or_else(T::one);
+    T::epsilon() * constant(64.0) * (n * cost).sqrt()
+}
+
+/// Sum of squared residuals; infinite when a value is not finite, so such a step is never taken.
+fn cost<T: Float>(readings: &[Vec3<T>], p: &Params<T>) -> T {
+    let matrix = matrix_of(p);
+    let offset = [p[6], p[7], p[8]];
+    let sum = readings.iter().fold(T::zero(), |sum, &m| {
+        let r = linalg::norm(linalg::mul_vec(&matrix, linalg::sub(m, offset))) - T::one();
+        sum + r * r
+    });
+    if sum.is_finite() {
+        sum
+    } else {
+        T::infinity()
+    }
+}
+
+/// The residual |M (m - o)| - 1 of one reading and its gradient over the parameters.
+fn residual_and_gradient<T: Float>(p: &Params<T>, m: Vec3<T>) -> (T, Params<T>) {
+    let (a_yz, a_zy, a_zx, s_x, s_y, s_z) = (p[0], p[1], p[2], p[3], p[4], p[5]);
+    let c = linalg::sub(m, [p[6], p[7], p[8]]);
+    let a = linalg::mul_vec(&matrix_of(p), c);
+    let length = linalg::norm(a);
+    let u = linalg::scale(a, T::one() / length);
+    // d|a|/dM_ij = u_i c_j; each parameter's dM/dp picks its entries.
+    let column_z = u[0] * a_zy + u[1] * a_zx + u[2];
+    let gradient = [
+        u[0] * s_y * c[1],
+        u[0] * s_z * c[2],
+        u[1] * s_z * c[2],
+        u[0] * c[0],
+        (u[0] * a_yz + u[1]) * c[1],
+        column_z * c[2],
+        -(u[0] * s_x),
+        -((u[0] * a_yz + u[1]) * s_y),
+        -(column_z * s_z),
+    ];
+    (length - T::one(), gradient)
+}
+
+/// A literal in the float type.
+fn constant<T: Float>(value: f64) -> T {
+    T::from(value).unwrap_or_else(T::zero)
+}
