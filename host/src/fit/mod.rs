@@ -1,6 +1,7 @@
 //! Fitting a calibration `a = M (m - o)` to a data file, by the models of DESIGN.md.
 
 mod evaluate;
+pub mod gyro;
 mod linear;
 mod model;
 mod models;
