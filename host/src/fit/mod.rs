@@ -2,6 +2,7 @@
 
 mod evaluate;
 mod faces;
+pub mod gyro;
 mod linear;
 mod model;
 mod models;
