@@ -154,10 +154,27 @@ pub struct StreamArgs {
     pub rate: u16,
 }
 
+/// `accelcal record`.
+#[derive(Args)]
+pub struct RecordArgs {
+    #[command(flatten)]
+    pub device: Device,
+    /// The recording to write (NumPy .npy; `np.load(FILE)` in Python).
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// How long to record, in seconds.
+    #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u32).range(1..=MAX_RECORD_SECONDS))]
+    pub seconds: u32,
+    /// The sensor's sample rate, every sample recorded (must divide 1000 Hz).
+    #[arg(long, default_value_t = 1000, value_parser = clap::value_parser!(u16).range(1..=1000))]
+    pub rate: u16,
+}
+
 /// `accelcal noise`.
 #[derive(Args)]
 pub struct NoiseArgs {
-    /// The recording (CSV with ax_g,ay_g,az_g,gx_dps,gy_dps,gz_dps, as `accelcal stream` writes).
+    /// The recording: .npy as `accelcal record` writes, or CSV with ax_g,ay_g,az_g,gx_dps,gy_dps,gz_dps
+    /// as `accelcal stream` writes.
     pub file: PathBuf,
     /// Samples per second of the recording.
     #[arg(long, default_value_t = 1000.0)]
@@ -232,6 +249,8 @@ pub enum Command {
     /// Learns how the sensor drifts with temperature and adds the temperature model to the active
     /// calibration (with --sim: the whole simulated story, verified at 15-45 degC).
     Thermal(ThermalArgs),
+    /// Records raw samples at the sensor's full rate into a .npy file, with a progress bar.
+    Record(RecordArgs),
     /// Allan deviation and noise terms (white noise, bias instability, random walk) of a still recording.
     Noise(NoiseArgs),
     /// Runs a simulated board on a pseudo-terminal; prints its path, then serves until killed.
@@ -254,6 +273,10 @@ pub enum Command {
 /// NOTE: the simulated hand keeps its orientations 30 degrees apart, and about 20 such fit on the
 /// sphere with room to spare; a person would not turn the board more often than that anyway.
 const MAX_VERIFY_POSITIONS: i64 = 20;
+/// Longest recording, in seconds.
+///
+/// NOTE: a day at 1 kHz is 86.4 million samples, within the stream's u32 sample count.
+const MAX_RECORD_SECONDS: i64 = 24 * 3600;
 /// Largest placement error of the simulated hand, in degrees.
 ///
 /// NOTE: beyond 10 degrees a face is no longer reliably within the face tolerance's reach after

@@ -1,0 +1,74 @@
+//! `accelcal record`: raw samples at the sensor's rate into a `.npy` recording, written as they
+//! arrive; lost samples are counted and fail the command, Ctrl-C ends it with the file readable.
+
+use indicatif::{ProgressBar, ProgressStyle};
+use shared::protocol::{SensorConfig, StreamKind};
+
+use super::args::RecordArgs;
+use super::calibrate::interrupt_on_ctrl_c;
+use crate::error::Error;
+use crate::link::{Client, LinkError, Port, StreamRequest, Tally};
+use crate::recording::{Recorder, RecordingError};
+
+/// `accelcal record (--port P | --sim) -o FILE [--seconds S] [--rate HZ]`.
+pub(super) fn record(args: &RecordArgs) -> Result<(), Error> {
+    let mut opened = args.device.open()?;
+    let config = SensorConfig { sample_rate_hz: args.rate, ..opened.connection.info.config };
+    let client = &mut opened.connection.client;
+    let achieved = client.configure(config)?;
+    if achieved.sample_rate_hz != args.rate {
+        return Err(Error::RateNotAchieved { wanted_hz: args.rate, achieved_hz: achieved.sample_rate_hz });
+    }
+    client.interrupt_on(interrupt_on_ctrl_c());
+    let request = StreamRequest { kind: StreamKind::Raw, rate_hz: args.rate, count: args.seconds * u32::from(args.rate) };
+    let mut recorder = Recorder::create(&args.output)?;
+    let streamed = stream_into(client, request, &mut recorder);
+    let written = recorder.finish()?;
+    let shown = args.output.display();
+    match streamed {
+        Err(Streamed::Link(LinkError::Interrupted)) => {
+            eprintln!("stopped by Ctrl-C: {written} samples in {shown}, readable");
+            Ok(())
+        }
+        Err(Streamed::Link(error)) => Err(Error::RecordingCut { written, path: args.output.clone(), source: error }),
+        Err(Streamed::Write(error)) => Err(error.into()),
+        Ok(tally) => {
+            eprintln!("{written} samples in {shown}");
+            Ok(tally.complete()?)
+        }
+    }
+}
+
+/// Why a stream into a recording ended early.
+enum Streamed {
+    Link(LinkError),
+    Write(RecordingError),
+}
+
+/// Streams `request` into `recorder` with a progress bar; what arrived and what was lost.
+fn stream_into<P: Port>(
+    client: &mut Client<P>,
+    request: StreamRequest,
+    recorder: &mut Recorder,
+) -> Result<Tally, Streamed> {
+    let bar = progress_bar(request.count);
+    let mut failed = None;
+    let streamed = client.stream_while(request, |sample| {
+        bar.inc(1);
+        failed = recorder.push(sample).err();
+        failed.is_none()
+    });
+    bar.finish_and_clear();
+    match (failed, streamed) {
+        (Some(error), _) => Err(Streamed::Write(error)),
+        (None, streamed) => streamed.map_err(Streamed::Link),
+    }
+}
+
+fn progress_bar(samples: u32) -> ProgressBar {
+    let bar = ProgressBar::new(u64::from(samples));
+    let style = ProgressStyle::with_template("recording [{bar:40}] {pos}/{len} samples, {elapsed} (eta {eta})")
+        .unwrap_or_else(|_| ProgressStyle::default_bar());
+    bar.set_style(style);
+    bar
+}
