@@ -20,7 +20,8 @@ pub(super) fn record(args: &RecordArgs) -> Result<(), Error> {
         return Err(Error::RateNotAchieved { wanted_hz: args.rate, achieved_hz: achieved.sample_rate_hz });
     }
     client.interrupt_on(interrupt_on_ctrl_c());
-    let request = StreamRequest { kind: StreamKind::Raw, rate_hz: args.rate, count: args.seconds * u32::from(args.rate) };
+    let request =
+        StreamRequest { kind: StreamKind::Raw, rate_hz: args.rate, count: args.seconds * u32::from(args.rate) };
     let mut recorder = Recorder::create(&args.output)?;
     let streamed = stream_into(client, request, &mut recorder);
     let written = recorder.finish()?;

@@ -22,8 +22,12 @@ impl Recorder {
     /// Creates (or replaces) the file at `path` with an empty recording.
     pub fn create(path: &Path) -> Result<Self, RecordingError> {
         let file = File::create(path).map_err(|source| io(path, source))?;
-        let mut recorder =
-            Recorder { file, path: path.to_owned(), block: Vec::with_capacity(BLOCK_SAMPLES * RECORD_BYTES), written: 0 };
+        let mut recorder = Recorder {
+            file,
+            path: path.to_owned(),
+            block: Vec::with_capacity(BLOCK_SAMPLES * RECORD_BYTES),
+            written: 0,
+        };
         recorder.write_header()?;
         Ok(recorder)
     }
