@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use clap::{Args, Parser, Subcommand};
 use shared::protocol::{SensorConfig, DEFAULT_CAPTURE_SECONDS, MAX_CAPTURE_SECONDS, MIN_CAPTURE_SECONDS};
 
+pub use super::record::RecordArgs;
 use crate::data::RowList;
 use crate::fit::ModelChoice;
 use crate::limits::FACE_TOLERANCE_DEG;
@@ -154,27 +155,10 @@ pub struct StreamArgs {
     pub rate: u16,
 }
 
-/// `accelcal record`.
-#[derive(Args)]
-pub struct RecordArgs {
-    #[command(flatten)]
-    pub device: Device,
-    /// The recording to write (NumPy .npy; `np.load(FILE)` in Python).
-    #[arg(short, long)]
-    pub output: PathBuf,
-    /// How long to record, in seconds.
-    #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u32).range(1..=MAX_RECORD_SECONDS))]
-    pub seconds: u32,
-    /// The sensor's sample rate, every sample recorded (must divide 1000 Hz).
-    #[arg(long, default_value_t = 1000, value_parser = clap::value_parser!(u16).range(1..=1000))]
-    pub rate: u16,
-}
-
 /// `accelcal noise`.
 #[derive(Args)]
 pub struct NoiseArgs {
-    /// The recording: .npy as `accelcal record` writes, or CSV with ax_g,ay_g,az_g,gx_dps,gy_dps,gz_dps
-    /// as `accelcal stream` writes.
+    /// The recording: .npy from `accelcal record`, or CSV (ax_g ... gz_dps) from `accelcal stream`.
     pub file: PathBuf,
     /// Samples per second of the recording.
     #[arg(long, default_value_t = 1000.0)]
@@ -273,10 +257,6 @@ pub enum Command {
 /// NOTE: the simulated hand keeps its orientations 30 degrees apart, and about 20 such fit on the
 /// sphere with room to spare; a person would not turn the board more often than that anyway.
 const MAX_VERIFY_POSITIONS: i64 = 20;
-/// Longest recording, in seconds.
-///
-/// NOTE: a day at 1 kHz is 86.4 million samples, within the stream's u32 sample count.
-const MAX_RECORD_SECONDS: i64 = 24 * 3600;
 /// Largest placement error of the simulated hand, in degrees.
 ///
 /// NOTE: beyond 10 degrees a face is no longer reliably within the face tolerance's reach after
