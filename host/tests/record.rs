@@ -126,3 +126,19 @@ fn wait_for_samples(path: &Path, samples: usize) -> usize {
     }
     panic!("the recording never reached {samples} samples");
 }
+
+#[test]
+fn samples_lost_on_the_link_are_counted_and_fail_the_recording_which_keeps_the_rest() {
+    let mut sim = SimPty::start(&["--fast"]);
+    sim.command("lose 7");
+    let path = temp("lost.npy");
+    let args = ["record", "--port", &sim.path, "--rate", "1000", "--seconds", "2", "-o", path.to_str().unwrap()];
+    let (output, _) = accelcal_within(&args, Duration::from_secs(60));
+    let stderr = String::from_utf8(output.stderr).unwrap();
+    assert!(!output.status.success(), "{stderr}");
+    assert!(stderr.contains("7 of 2000 samples were lost") && stderr.contains("7 on the link"), "{stderr}");
+    let samples = read_path(&path).unwrap();
+    assert_eq!(samples.len(), 1993);
+    assert_eq!(samples[0].index, 7, "the link lost the first 7");
+    std::fs::remove_file(path).unwrap();
+}
