@@ -50,6 +50,12 @@ pub enum Error {
     NothingToDownload,
     #[error(transparent)]
     NoiseInput(#[from] NoiseInputError),
+    #[error(transparent)]
+    Recording(#[from] crate::recording::RecordingError),
+    #[error("the board ran at {achieved_hz} Hz, not the {wanted_hz} Hz asked for; choose a rate that divides 1000 Hz")]
+    RateNotAchieved { wanted_hz: u16, achieved_hz: u16 },
+    #[error("{source}; the {written} samples before it are kept in {} (np.load reads them)", .path.display())]
+    RecordingCut { written: u64, path: PathBuf, source: LinkError },
     #[error("cannot write {}: {source}; check the folder exists and is writable", .path.display())]
     WriteFile { path: PathBuf, source: std::io::Error },
     #[error("cannot read {}: {source}; check the path", .path.display())]

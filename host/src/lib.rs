@@ -23,6 +23,7 @@ pub mod link;
 pub mod noise;
 pub mod orientation;
 pub mod procedure;
+pub mod recording;
 pub mod report;
 pub mod session;
 pub mod sim;

@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use clap::{Args, Parser, Subcommand};
 use shared::protocol::{SensorConfig, DEFAULT_CAPTURE_SECONDS, MAX_CAPTURE_SECONDS, MIN_CAPTURE_SECONDS};
 
+pub use super::record::RecordArgs;
 use crate::data::RowList;
 use crate::fit::ModelChoice;
 use crate::limits::FACE_TOLERANCE_DEG;
@@ -157,7 +158,7 @@ pub struct StreamArgs {
 /// `accelcal noise`.
 #[derive(Args)]
 pub struct NoiseArgs {
-    /// The recording (CSV with ax_g,ay_g,az_g,gx_dps,gy_dps,gz_dps, as `accelcal stream` writes).
+    /// The recording: .npy from `accelcal record`, or CSV (ax_g ... gz_dps) from `accelcal stream`.
     pub file: PathBuf,
     /// Samples per second of the recording.
     #[arg(long, default_value_t = 1000.0)]
@@ -232,6 +233,8 @@ pub enum Command {
     /// Learns how the sensor drifts with temperature and adds the temperature model to the active
     /// calibration (with --sim: the whole simulated story, verified at 15-45 degC).
     Thermal(ThermalArgs),
+    /// Records raw samples at the sensor's full rate into a .npy file, with a progress bar.
+    Record(RecordArgs),
     /// Allan deviation and noise terms (white noise, bias instability, random walk) of a still recording.
     Noise(NoiseArgs),
     /// Runs a simulated board on a pseudo-terminal; prints its path, then serves until killed.

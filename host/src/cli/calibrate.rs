@@ -130,7 +130,7 @@ fn keep_with_report(
 
 /// A flag that Ctrl-C sets (instead of ending the process), so that the capture is cancelled on
 /// the board and the session stays as written.
-fn interrupt_on_ctrl_c() -> Arc<AtomicBool> {
+pub(super) fn interrupt_on_ctrl_c() -> Arc<AtomicBool> {
     let flag = Arc::new(AtomicBool::new(false));
     let set = flag.clone();
     // NOTE: fails only when a handler is already set; without one, Ctrl-C ends the process and the

@@ -9,6 +9,7 @@ mod device;
 mod fit;
 mod noise;
 mod procedure;
+mod record;
 mod report;
 mod terminal;
 mod thermal;
@@ -50,6 +51,7 @@ pub fn run(cli: Cli) -> Result<(), Error> {
         Command::Erase { device } => transfer::erase(&device),
         Command::Stream(args) => board::stream(&args),
         Command::Noise(args) => noise::noise(&args),
+        Command::Record(args) => record::record(&args),
         Command::Thermal(args) => thermal::thermal(&args),
         Command::Sim { pty: _, seed, fast } => {
             let pace = if fast { crate::sim::Pace::Fast } else { crate::sim::Pace::RealTime };

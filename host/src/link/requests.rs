@@ -1,7 +1,8 @@
 //! One typed method per request: what the device answers, or why not.
 
 use shared::protocol::{
-    CalibrationSlot, CaptureProgress, CaptureStats, DeviceInfo, Request, Response, Sample, StreamKind, PROTOCOL_VERSION,
+    CalibrationSlot, CaptureProgress, CaptureStats, DeviceInfo, Request, Response, Sample, SensorConfig, StreamKind,
+    PROTOCOL_VERSION,
 };
 use shared::{Calibration, Position};
 
@@ -47,6 +48,15 @@ impl<P: Port> Client<P> {
         })?;
         match response {
             Response::Captured { stats, position } => Ok((stats, position)),
+            other => Err(unexpected(&request, &other)),
+        }
+    }
+
+    /// Sets range, sample rate and filter; the configuration the device achieved.
+    pub fn configure(&mut self, config: SensorConfig) -> Result<SensorConfig, LinkError> {
+        let request = Request::Configure(config);
+        match self.call(request.clone())? {
+            Response::Configured(achieved) => Ok(achieved),
             other => Err(unexpected(&request, &other)),
         }
     }

@@ -1,10 +1,14 @@
-//! Reading a still recording for the noise analysis: CSV as `accelcal stream` writes it (columns
+//! Reading a still recording for the noise analysis: a `.npy` recording as `accelcal record`
+//! writes it (told by its magic), or CSV as `accelcal stream` writes it (columns
 //! `ax_g,ay_g,az_g,gx_dps,gy_dps,gz_dps`, others ignored), sampled at a rate the caller names.
 
 use std::io::Read;
 use std::path::Path;
 
+use shared::protocol::Sample;
+
 use super::RateSeries;
+use crate::recording::{self, read::is_npy, RecordingError};
 
 /// The six columns the analysis needs, in [`super::AXES`] order.
 pub const COLUMNS: [&str; 6] = ["ax_g", "ay_g", "az_g", "gx_dps", "gy_dps", "gz_dps"];
@@ -23,6 +27,8 @@ pub enum NoiseInputError {
     BadLine { line: usize, reason: String },
     #[error("{samples} samples is too few for an Allan deviation: record at least {MIN_SAMPLES}")]
     TooShort { samples: usize },
+    #[error(transparent)]
+    Recording(#[from] RecordingError),
     #[error("--rate must be a positive number of samples per second, got {rate_hz}")]
     BadRate { rate_hz: f64 },
 }
@@ -30,14 +36,43 @@ pub enum NoiseInputError {
 /// Reads a recording file sampled at `rate_hz`.
 pub fn read_path(path: &Path, rate_hz: f64) -> Result<RateSeries, NoiseInputError> {
     let io = |source| NoiseInputError::Io { path: path.display().to_string(), source };
+    let mut file = std::fs::File::open(path).map_err(io)?;
+    let mut magic = [0u8; 6];
+    let opened = file.read(&mut magic).map_err(io)?;
+    if is_npy(&magic[..opened]) {
+        return from_samples(&recording::read_path(path)?, rate_hz);
+    }
     read_csv(std::fs::File::open(path).map_err(io)?, rate_hz)
+}
+
+/// The six axes of recorded samples taken at `rate_hz`.
+pub fn from_samples(samples: &[Sample], rate_hz: f64) -> Result<RateSeries, NoiseInputError> {
+    check_rate(rate_hz)?;
+    let mut axes: [Vec<f64>; 6] = Default::default();
+    for sample in samples {
+        let values = sample.accel_g.iter().chain(&sample.gyro_dps);
+        axes.iter_mut().zip(values).for_each(|(axis, &value)| axis.push(f64::from(value)));
+    }
+    check_length(RateSeries { rate_hz, axes })
+}
+
+fn check_rate(rate_hz: f64) -> Result<(), NoiseInputError> {
+    match rate_hz > 0.0 && rate_hz.is_finite() {
+        true => Ok(()),
+        false => Err(NoiseInputError::BadRate { rate_hz }),
+    }
+}
+
+fn check_length(series: RateSeries) -> Result<RateSeries, NoiseInputError> {
+    match series.axes[0].len() {
+        samples if samples < MIN_SAMPLES => Err(NoiseInputError::TooShort { samples }),
+        _ => Ok(series),
+    }
 }
 
 /// Reads CSV text sampled at `rate_hz`.
 pub fn read_csv(reader: impl Read, rate_hz: f64) -> Result<RateSeries, NoiseInputError> {
-    if !(rate_hz > 0.0 && rate_hz.is_finite()) {
-        return Err(NoiseInputError::BadRate { rate_hz });
-    }
+    check_rate(rate_hz)?;
     let mut csv = csv::ReaderBuilder::new().trim(csv::Trim::All).from_reader(reader);
     let header = csv.headers().map_err(|e| bad_line(1, e))?.clone();
     let mut columns = [0usize; 6];
@@ -52,10 +87,7 @@ pub fn read_csv(reader: impl Read, rate_hz: f64) -> Result<RateSeries, NoiseInpu
             axis.push(cell.parse().map_err(|_| bad_line(row + 2, format!("{cell:?} is not a number")))?);
         }
     }
-    if axes[0].len() < MIN_SAMPLES {
-        return Err(NoiseInputError::TooShort { samples: axes[0].len() });
-    }
-    Ok(RateSeries { rate_hz, axes })
+    check_length(RateSeries { rate_hz, axes })
 }
 
 fn bad_line(line: usize, reason: impl ToString) -> NoiseInputError {

@@ -1,0 +1,98 @@
+//! `accelcal record`: raw samples at the sensor's rate into a `.npy` recording, written as they
+//! arrive; lost samples are counted and fail the command, Ctrl-C ends it with the file readable.
+
+use std::path::PathBuf;
+
+use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
+use shared::protocol::{SensorConfig, StreamKind};
+
+use super::args::Device;
+use super::calibrate::interrupt_on_ctrl_c;
+use crate::error::Error;
+use crate::link::{Client, LinkError, Port, StreamRequest, Tally};
+use crate::recording::{Recorder, RecordingError};
+
+/// `accelcal record`.
+#[derive(Args)]
+pub struct RecordArgs {
+    #[command(flatten)]
+    pub device: Device,
+    /// The recording to write (NumPy .npy; `np.load(FILE)` in Python).
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// How long to record, in seconds.
+    #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u32).range(1..=MAX_RECORD_SECONDS))]
+    pub seconds: u32,
+    /// The sensor's sample rate, every sample recorded (must divide 1000 Hz).
+    #[arg(long, default_value_t = 1000, value_parser = clap::value_parser!(u16).range(1..=1000))]
+    pub rate: u16,
+}
+
+/// Longest recording, in seconds.
+///
+/// NOTE: a day at 1 kHz is 86.4 million samples, within the stream's u32 sample count.
+const MAX_RECORD_SECONDS: i64 = 24 * 3600;
+/// `accelcal record (--port P | --sim) -o FILE [--seconds S] [--rate HZ]`.
+pub(super) fn record(args: &RecordArgs) -> Result<(), Error> {
+    let mut opened = args.device.open()?;
+    let config = SensorConfig { sample_rate_hz: args.rate, ..opened.connection.info.config };
+    let client = &mut opened.connection.client;
+    let achieved = client.configure(config)?;
+    if achieved.sample_rate_hz != args.rate {
+        return Err(Error::RateNotAchieved { wanted_hz: args.rate, achieved_hz: achieved.sample_rate_hz });
+    }
+    client.interrupt_on(interrupt_on_ctrl_c());
+    let request =
+        StreamRequest { kind: StreamKind::Raw, rate_hz: args.rate, count: args.seconds * u32::from(args.rate) };
+    let mut recorder = Recorder::create(&args.output)?;
+    let streamed = stream_into(client, request, &mut recorder);
+    let written = recorder.finish()?;
+    let shown = args.output.display();
+    match streamed {
+        Err(Streamed::Link(LinkError::Interrupted)) => {
+            eprintln!("stopped by Ctrl-C: {written} samples in {shown}, readable");
+            Ok(())
+        }
+        Err(Streamed::Link(error)) => Err(Error::RecordingCut { written, path: args.output.clone(), source: error }),
+        Err(Streamed::Write(error)) => Err(error.into()),
+        Ok(tally) => {
+            eprintln!("{written} samples in {shown}");
+            Ok(tally.complete()?)
+        }
+    }
+}
+
+/// Why a stream into a recording ended early.
+enum Streamed {
+    Link(LinkError),
+    Write(RecordingError),
+}
+
+/// Streams `request` into `recorder` with a progress bar; what arrived and what was lost.
+fn stream_into<P: Port>(
+    client: &mut Client<P>,
+    request: StreamRequest,
+    recorder: &mut Recorder,
+) -> Result<Tally, Streamed> {
+    let bar = progress_bar(request.count);
+    let mut failed = None;
+    let streamed = client.stream_while(request, |sample| {
+        bar.inc(1);
+        failed = recorder.push(sample).err();
+        failed.is_none()
+    });
+    bar.finish_and_clear();
+    match (failed, streamed) {
+        (Some(error), _) => Err(Streamed::Write(error)),
+        (None, streamed) => streamed.map_err(Streamed::Link),
+    }
+}
+
+fn progress_bar(samples: u32) -> ProgressBar {
+    let bar = ProgressBar::new(u64::from(samples));
+    let style = ProgressStyle::with_template("recording [{bar:40}] {pos}/{len} samples, {elapsed} (eta {eta})")
+        .unwrap_or_else(|_| ProgressStyle::default_bar());
+    bar.set_style(style);
+    bar
+}

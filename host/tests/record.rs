@@ -1,0 +1,144 @@
+//! `accelcal record`: every sample at 1 kHz into a `.npy` recording that numpy and our reader load,
+//! also after the link is cut mid-recording; `noise` reads it as it reads the stream's CSV.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::Duration;
+
+use accelcal::recording::read_path;
+use common::{accelcal_within, SimPty};
+
+fn temp(name: &str) -> PathBuf {
+    std::env::temp_dir().join(format!("accelcal-record-{}-{name}", std::process::id()))
+}
+
+fn record_sim(seconds: &str, path: &Path) {
+    let args = ["record", "--sim", "--rate", "1000", "--seconds", seconds, "-o", path.to_str().unwrap()];
+    let (output, _) = accelcal_within(&args, Duration::from_secs(300));
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+}
+
+#[test]
+fn a_60_s_sim_recording_at_1_khz_holds_60000_consecutive_samples_1_ms_apart() {
+    let path = temp("60s.npy");
+    record_sim("60", &path);
+    let samples = read_path(&path).unwrap();
+    assert_eq!(samples.len(), 60_000);
+    for (i, sample) in samples.iter().enumerate() {
+        assert_eq!((sample.index, sample.time_us), (i as u32, i as u64 * 1000), "sample {i}");
+    }
+    // The realistic sensor lies flat: z near 1 g, die temperature near room temperature.
+    let last = samples.last().unwrap();
+    assert!((last.accel_g[2] - 1.0).abs() < 0.1 && (15.0..40.0).contains(&last.temp_c), "{last:?}");
+    assert_eq!(std::fs::metadata(&path).unwrap().len(), 256 + 60_000 * 40, "40 bytes per sample");
+    std::fs::remove_file(path).unwrap();
+}
+
+/// The same samples as `path` holds, as CSV with the stream's columns, every digit kept.
+fn as_csv(path: &Path) -> PathBuf {
+    let mut text = String::from("index,time_s,ax_g,ay_g,az_g,gx_dps,gy_dps,gz_dps,temp_c\n");
+    for s in read_path(path).unwrap() {
+        // NOTE: as f64, whose shortest decimal reads back to the very value the recording's f32 gives.
+        let ([ax, ay, az], [gx, gy, gz]) = (s.accel_g.map(f64::from), s.gyro_dps.map(f64::from));
+        text += &format!("{},{},{ax},{ay},{az},{gx},{gy},{gz},{}\n", s.index, s.time_us as f64 * 1e-6, s.temp_c);
+    }
+    let csv = path.with_extension("csv");
+    std::fs::write(&csv, text).unwrap();
+    csv
+}
+
+#[test]
+fn noise_on_a_recording_gives_the_same_report_as_on_the_equivalent_csv() {
+    let path = temp("noise.npy");
+    record_sim("20", &path);
+    let csv = as_csv(&path);
+    let noise = |file: &Path| accelcal_within(&["noise", file.to_str().unwrap(), "--json"], Duration::from_secs(60)).0;
+    let (from_npy, from_csv) = (noise(&path), noise(&csv));
+    assert!(from_npy.status.success(), "{}", String::from_utf8_lossy(&from_npy.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&from_npy.stdout).unwrap();
+    assert!(json["accel_z"]["white_noise_density"].as_f64().unwrap() > 0.0, "{json}");
+    assert!(
+        from_npy.stdout == from_csv.stdout,
+        "the reports differ; from the CSV: {}",
+        String::from_utf8_lossy(&from_csv.stdout)
+    );
+    std::fs::remove_file(path).unwrap();
+    std::fs::remove_file(csv).unwrap();
+}
+
+/// Python with numpy, when installed: `None` (after saying why) where it is not and CI is not set.
+fn numpy() -> Option<()> {
+    let found = Command::new("python3").args(["-c", "import numpy"]).status().is_ok_and(|s| s.success());
+    if found {
+        return Some(());
+    }
+    assert!(std::env::var("CI").as_deref() != Ok("true"), "CI=true but python3 with numpy is not installed");
+    eprintln!("skipped: python3 with numpy is not installed (pip install numpy); CI=true makes this a failure");
+    None
+}
+
+#[test]
+fn the_readme_python_one_liner_loads_a_recording_with_its_columns() {
+    let Some(()) = numpy() else { return };
+    let path = temp("python.npy");
+    record_sim("3", &path);
+    let script = "import numpy as np, sys; r = np.load(sys.argv[1]); \
+                  print(len(r), int((r['seq'] == np.arange(len(r))).all()), r['time_us'][-1], round(float(r['az_g'].mean())))";
+    let output = Command::new("python3").args(["-c", script, path.to_str().unwrap()]).output().unwrap();
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    assert_eq!(String::from_utf8_lossy(&output.stdout).trim(), "3000 1 2999000 1");
+    std::fs::remove_file(path).unwrap();
+}
+
+#[test]
+fn a_pulled_cable_leaves_a_readable_file_with_every_sample_up_to_the_cut() {
+    let sim = SimPty::start(&["--fast"]);
+    let path = temp("cut.npy");
+    let mut record = Command::new(env!("CARGO_BIN_EXE_accelcal"))
+        .args(["record", "--port", &sim.path, "--rate", "1000", "--seconds", "3600", "-o", path.to_str().unwrap()])
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let on_disk = wait_for_samples(&path, 20_000);
+    drop(sim); // the cable is pulled: the board's end of the link is gone
+    let status = common::wait_or_kill(&mut record, Duration::from_secs(20));
+    let mut stderr = String::new();
+    std::io::Read::read_to_string(&mut record.stderr.take().unwrap(), &mut stderr).unwrap();
+    assert!(!status.success(), "a cut recording must fail: {stderr}");
+    assert!(stderr.contains("are kept in") && stderr.contains("np.load"), "{stderr}");
+    let samples = read_path(&path).unwrap();
+    assert!(samples.len() >= on_disk, "{} samples read, {on_disk} were on disk before the cut", samples.len());
+    assert!(samples.iter().enumerate().all(|(i, s)| s.index == i as u32), "a sample before the cut is missing");
+    assert!(stderr.contains(&format!("the {} samples", samples.len())), "{stderr}");
+    std::fs::remove_file(path).unwrap();
+}
+
+/// Waits until the recording at `path` holds at least `samples` complete records; how many it holds.
+fn wait_for_samples(path: &Path, samples: usize) -> usize {
+    for _ in 0..1500 {
+        let held = std::fs::metadata(path).map_or(0, |m| (m.len() as usize).saturating_sub(256) / 40);
+        if held >= samples {
+            return held;
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    panic!("the recording never reached {samples} samples");
+}
+
+#[test]
+fn samples_lost_on_the_link_are_counted_and_fail_the_recording_which_keeps_the_rest() {
+    let mut sim = SimPty::start(&["--fast"]);
+    sim.command("lose 7");
+    let path = temp("lost.npy");
+    let args = ["record", "--port", &sim.path, "--rate", "1000", "--seconds", "2", "-o", path.to_str().unwrap()];
+    let (output, _) = accelcal_within(&args, Duration::from_secs(60));
+    let stderr = String::from_utf8(output.stderr).unwrap();
+    assert!(!output.status.success(), "{stderr}");
+    assert!(stderr.contains("7 of 2000 samples were lost") && stderr.contains("7 on the link"), "{stderr}");
+    let samples = read_path(&path).unwrap();
+    assert_eq!(samples.len(), 1993);
+    assert_eq!(samples[0].index, 7, "the link lost the first 7");
+    std::fs::remove_file(path).unwrap();
+}
