@@ -41,11 +41,7 @@ pub(super) fn least_squares(training: &Dataset, model: Model, options: &FitOptio
     let start = DVector::from_iterator(shape.len() + 3, shape.identity().into_iter().chain([0.0; 3]));
     let mut warnings = Vec::new();
     check_conditioning(model, shape, &observations, &start, &mut warnings)?;
-    let solution = if ortho9::applies(shape, &observations) {
-        ortho9::solve(&observations)?
-    } else {
-        solve(shape, &observations, start)?
-    };
+    let solution = ortho9::solve_or(shape, &observations, || solve(shape, &observations, start))?;
     let (scatter, noise, inflation, reported) = errors(training, shape, &solution, &observations, &normalization);
     let errors = ([scatter.as_ref(), noise.as_ref()], inflation);
     let parameters = file_parameters(shape, &solution, errors, &normalization, options.g);

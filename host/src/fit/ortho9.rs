@@ -16,6 +16,19 @@ pub(super) fn applies(shape: Shape, observations: &[Observation]) -> bool {
     shape == Shape::TriangularTimesDiagonal && observations.iter().all(|o| o.reference.is_none() && o.weight == weight)
 }
 
+/// The shared solver's solution where it applies, else `otherwise`'s (the crate-based solve).
+pub(super) fn solve_or(
+    shape: Shape,
+    observations: &[Observation],
+    otherwise: impl FnOnce() -> Result<Solution, FitError>,
+) -> Result<Solution, FitError> {
+    if applies(shape, observations) {
+        solve(observations)
+    } else {
+        otherwise()
+    }
+}
+
 /// Minimises the `ortho9` problem from M' = I, o' = 0, as the crate-based solve does.
 pub(super) fn solve(observations: &[Observation]) -> Result<Solution, FitError> {
     let readings: Vec<[f64; 3]> = observations.iter().map(|o| o.reading.into()).collect();
