@@ -3,6 +3,7 @@
 //! simulated story: a static calibration at 25 degC, learning while the board warms from 13 to 47
 //! degC, and verification at fresh orientations at 15, 25, 35 and 45 degC against the truth.
 
+use std::io::IsTerminal;
 use std::sync::mpsc::Sender;
 use std::time::Duration;
 
@@ -137,6 +138,8 @@ fn learn_and_fit(
     quiet: bool,
 ) -> Result<(Calibration, ThermalFitJson), Error> {
     let mut bins = ThermalBins::default();
+    // NOTE: a live line rewrites itself on a terminal; in a log it would be one endless line.
+    let quiet = quiet || !std::io::stderr().is_terminal();
     let mut show = |s: LearnStatus| {
         if !quiet {
             eprint!("\rtemperature {:5.1} degC, span {:4.1} degC, {:3} bins", s.temp_c, s.span_c, s.bins);
