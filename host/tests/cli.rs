@@ -1,5 +1,9 @@
 //! The `accelcal` binary as a user runs it: output on success, one line naming the cause on failure.
 
+mod common;
+
+use common::SimPty;
+
 use std::process::{Command, Output};
 
 fn accelcal(args: &[&str]) -> Output {
@@ -220,37 +224,9 @@ fn a_device_of_another_protocol_version_is_named_with_what_to_update() {
     );
 }
 
-/// `accelcal sim --pty` running in the background, killed when dropped.
-struct SimPty {
-    child: std::process::Child,
-    path: String,
-}
-
-impl SimPty {
-    fn start(seed: &str) -> Self {
-        use std::io::BufRead;
-        let mut child = Command::new(env!("CARGO_BIN_EXE_accelcal"))
-            .args(["sim", "--pty", "--seed", seed])
-            .stdin(std::process::Stdio::piped())
-            .stdout(std::process::Stdio::piped())
-            .spawn()
-            .unwrap();
-        let mut first_line = String::new();
-        std::io::BufReader::new(child.stdout.take().unwrap()).read_line(&mut first_line).unwrap();
-        SimPty { child, path: first_line.trim().to_owned() }
-    }
-}
-
-impl Drop for SimPty {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-    }
-}
-
 #[test]
 fn sim_pty_prints_its_path_and_speaks_the_board_protocol() {
-    let sim = SimPty::start("4");
+    let sim = SimPty::with_seed("4", &[]);
     assert!(sim.path.starts_with("/dev/pts/"), "{}", sim.path);
     let output = accelcal(&["info", "--port", &sim.path, "--json"]);
     assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
@@ -282,7 +258,7 @@ fn largest_difference(a: &serde_json::Value, b: &serde_json::Value) -> f64 {
 
 #[test]
 fn upload_takes_what_download_fit_json_and_calibrate_json_write() {
-    let sim = SimPty::start("5");
+    let sim = SimPty::with_seed("5", &[]);
     // calibrate --json: the calibration is the object under "calibration".
     let calibrated = accelcal(&["calibrate", "--sim", "--json", "--seed", "5"]);
     assert!(calibrated.status.success(), "{}", String::from_utf8_lossy(&calibrated.stderr));
@@ -325,7 +301,7 @@ fn an_absurd_upload_is_refused_with_the_reason_before_it_reaches_the_board() {
 
 #[test]
 fn calibrate_json_on_a_port_without_yes_is_refused_at_once_naming_the_missing_flag() {
-    let sim = SimPty::start("6");
+    let sim = SimPty::with_seed("6", &[]);
     let mut child = Command::new(env!("CARGO_BIN_EXE_accelcal"))
         .args(["calibrate", "--port", &sim.path, "--json"])
         .stdout(std::process::Stdio::piped())

@@ -2,57 +2,32 @@
 //! the person on stderr and turns the simulated board through the simulator's stdin, as a person
 //! would; it declines, presses Ctrl-C, pulls the cable and resumes.
 
-use std::io::{BufRead, BufReader, Write};
-use std::process::{Child, ChildStdin, Command, Output, Stdio};
+use std::io::{BufRead, BufReader};
+use std::process::{Child, Command, Output, Stdio};
 use std::sync::mpsc::{channel, Receiver};
 use std::time::Duration;
+
+mod common;
+
+use common::SimPty;
 
 fn accelcal(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_accelcal")).args(args).output().expect("accelcal runs")
 }
 
-/// `accelcal sim --pty` in the background, turned through its stdin, killed when dropped.
-struct SimPty {
-    child: Child,
-    stdin: ChildStdin,
-    path: String,
+/// `accelcal sim --pty` with `seed`, lying on the desk at no wanted orientation: only the person's
+/// turns bring it to one.
+fn board_on_the_desk(seed: &str) -> SimPty {
+    let mut sim = SimPty::with_seed(seed, &[]);
+    sim.tell("place 0.3 0.4 0.866");
+    sim
 }
 
-impl SimPty {
-    fn start(seed: &str) -> Self {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_accelcal"))
-            .args(["sim", "--pty", "--seed", seed])
-            .stdin(Stdio::piped())
-            .stdout(Stdio::piped())
-            .spawn()
-            .unwrap();
-        let mut first_line = String::new();
-        BufReader::new(child.stdout.take().unwrap()).read_line(&mut first_line).unwrap();
-        let stdin = child.stdin.take().unwrap();
-        let mut sim = SimPty { child, stdin, path: first_line.trim().to_owned() };
-        // On the desk, at no wanted orientation: only the person's turns bring it to one.
-        sim.tell("place 0.3 0.4 0.866");
-        sim
-    }
-
-    fn tell(&mut self, line: &str) {
-        writeln!(self.stdin, "{line}").unwrap();
-        self.stdin.flush().unwrap();
-    }
-
-    /// The board's active and stored calibration, as `download` prints them.
-    fn calibrations(&self) -> (String, String) {
-        let active = accelcal(&["download", "--port", &self.path]);
-        let stored = accelcal(&["download", "--port", &self.path, "--stored"]);
-        (String::from_utf8(active.stdout).unwrap(), String::from_utf8(stored.stdout).unwrap())
-    }
-}
-
-impl Drop for SimPty {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-    }
+/// The board's active and stored calibration, as `download` prints them.
+fn calibrations(sim: &SimPty) -> (String, String) {
+    let active = accelcal(&["download", "--port", &sim.path]);
+    let stored = accelcal(&["download", "--port", &sim.path, "--stored"]);
+    (String::from_utf8(active.stdout).unwrap(), String::from_utf8(stored.stdout).unwrap())
 }
 
 /// `accelcal calibrate` against the simulated board, with its stderr lines on a channel.
@@ -122,24 +97,24 @@ fn temp_stem(name: &str) -> std::path::PathBuf {
 
 #[test]
 fn declining_the_upload_leaves_the_active_and_stored_calibration_as_they_were() {
-    let mut sim = SimPty::start("11");
+    let mut sim = board_on_the_desk("11");
     let kept = r#"{"model": "six-position", "matrix": [[1.01,0,0],[0,0.99,0],[0,0,1]], "offset": [0.02, -0.01, 0.03]}"#;
     let file = temp_stem("kept.json");
     std::fs::write(&file, kept).unwrap();
     assert!(accelcal(&["upload", "--port", &sim.path, file.to_str().unwrap(), "--save"]).status.success());
-    let before = sim.calibrations();
+    let before = calibrations(&sim);
     assert!(before.0.contains("0.0299999") && before.1.contains("0.0299999"), "{before:?}");
     let session = temp_stem("declined");
     let run = Run::start(&sim.path.clone(), &["--session", session.to_str().unwrap()]);
     let (status, _, stderr) = run.finish(&mut sim);
     assert!(status.success(), "{stderr}");
     assert!(stderr.contains("not uploaded; the board keeps its previous calibration"), "{stderr}");
-    assert_eq!(sim.calibrations(), before, "declining changed the board");
+    assert_eq!(calibrations(&sim), before, "declining changed the board");
 }
 
 #[test]
 fn ctrl_c_keeps_the_captures_so_far_and_resume_completes_them_to_a_verified_calibration() {
-    let mut sim = SimPty::start("12");
+    let mut sim = board_on_the_desk("12");
     let session = temp_stem("interrupted");
     let mut run = Run::start(&sim.path.clone(), &["--session", session.to_str().unwrap()]);
     assert!(run.follow(&mut sim, "captured 2 of 6").is_some(), "{:?}", run.seen);
@@ -164,12 +139,12 @@ fn ctrl_c_keeps_the_captures_so_far_and_resume_completes_them_to_a_verified_cali
 
 #[test]
 fn a_pulled_cable_keeps_the_captures_so_far_and_resume_on_another_board_is_refused_by_serial() {
-    let mut sim = SimPty::start("13");
+    let mut sim = board_on_the_desk("13");
     let session = temp_stem("pulled");
     let mut run = Run::start(&sim.path.clone(), &["--session", session.to_str().unwrap()]);
     assert!(run.follow(&mut sim, "captured 3 of 6").is_some(), "{:?}", run.seen);
     drop(sim); // the cable is pulled
-    let mut other = SimPty::start("14");
+    let mut other = board_on_the_desk("14");
     let (status, _, stderr) = run.finish(&mut other);
     assert!(!status.success());
     assert!(stderr.lines().last().unwrap().contains("3 captures so far are kept in"), "{stderr}");
@@ -185,7 +160,7 @@ fn a_pulled_cable_keeps_the_captures_so_far_and_resume_on_another_board_is_refus
 
 #[test]
 fn a_session_in_a_missing_directory_is_refused_before_the_first_capture() {
-    let sim = SimPty::start("15");
+    let sim = board_on_the_desk("15");
     let output = accelcal(&["calibrate", "--port", &sim.path, "--session", "/nonexistent-dir/s", "--yes"]);
     assert!(!output.status.success());
     let stderr = String::from_utf8(output.stderr).unwrap();

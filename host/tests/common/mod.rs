@@ -57,8 +57,13 @@ pub struct SimPty {
 impl SimPty {
     /// Starts `accelcal sim --pty` with `extra` arguments and reads its path.
     pub fn start(extra: &[&str]) -> Self {
+        Self::with_seed("7", extra)
+    }
+
+    /// Starts `accelcal sim --pty --seed SEED` with `extra` arguments and reads its path.
+    pub fn with_seed(seed: &str, extra: &[&str]) -> Self {
         let mut child = Command::new(env!("CARGO_BIN_EXE_accelcal"))
-            .args(["sim", "--pty", "--seed", "7"])
+            .args(["sim", "--pty", "--seed", seed])
             .args(extra)
             .stdin(Stdio::piped())
             .stdout(Stdio::piped())
@@ -71,12 +76,17 @@ impl SimPty {
 }
 
 impl SimPty {
-    /// Writes one command line to the simulated board's stdin and gives it time to act.
-    pub fn command(&mut self, line: &str) {
+    /// Writes one command line to the simulated board's stdin.
+    pub fn tell(&mut self, line: &str) {
         use std::io::Write;
         let stdin = self.child.stdin.as_mut().unwrap();
         writeln!(stdin, "{line}").unwrap();
         stdin.flush().unwrap();
+    }
+
+    /// Writes one command line to the simulated board's stdin and gives it time to act.
+    pub fn command(&mut self, line: &str) {
+        self.tell(line);
         std::thread::sleep(Duration::from_millis(200));
     }
 }
