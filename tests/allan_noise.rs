@@ -17,7 +17,7 @@ fn check_recovery(name: &'static str, truth: TrueNoise, mean: f64, seed: u64) {
     let series = noisy_series(&truth, mean, RATE_HZ, (RATE_HZ * SECONDS) as usize, seed);
     let axis = noise::analyse_axis(name, &series, RATE_HZ);
     let fitted = axis.terms.expect("a two-hour recording is fitted");
-    let white = fitted.white_noise_density / truth.white_noise_density;
+    let white = fitted.white_noise_density() / truth.white_noise_density;
     let bias = fitted.bias_instability / truth.bias_instability;
     println!(
         "{name}: white noise {white:.4} x truth, bias instability {bias:.3} x truth at {:.0} s",

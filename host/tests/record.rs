@@ -68,6 +68,26 @@ fn noise_on_a_recording_gives_the_same_report_as_on_the_equivalent_csv() {
     std::fs::remove_file(csv).unwrap();
 }
 
+/// The simulated sensor's true white noise densities (as its datasheet states them, one-sided).
+const TRUE_DENSITY: [f32; 2] =
+    [firmware::sim::physics::ACCEL_NOISE_DENSITY_G * 1e6, firmware::sim::physics::GYRO_NOISE_DENSITY_DPS];
+
+#[test]
+fn noise_finds_the_simulated_sensors_white_noise_within_5_percent_in_a_60_s_recording_at_1_khz() {
+    let path = temp("density.npy");
+    record_sim("60", &path);
+    let output = accelcal_within(&["noise", path.to_str().unwrap(), "--json"], Duration::from_secs(60)).0;
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    for (k, axis) in ["accel_x", "accel_y", "accel_z", "gyro_x", "gyro_y", "gyro_z"].iter().enumerate() {
+        let truth = f64::from(TRUE_DENSITY[k / 3]);
+        let ratio = json[axis]["white_noise_density"].as_f64().unwrap() / truth;
+        eprintln!("{axis}: white noise density {ratio:.4} x the truth");
+        assert!((ratio - 1.0).abs() < 0.05, "{axis}: {ratio} x the simulated sensor's {truth}");
+    }
+    std::fs::remove_file(path).unwrap();
+}
+
 /// Python with numpy, when installed: `None` (after saying why) where it is not and CI is not set.
 fn numpy() -> Option<()> {
     let found = Command::new("python3").args(["-c", "import numpy"]).status().is_ok_and(|s| s.success());
@@ -92,27 +112,57 @@ fn the_readme_python_one_liner_loads_a_recording_with_its_columns() {
     std::fs::remove_file(path).unwrap();
 }
 
-#[test]
-fn a_pulled_cable_leaves_a_readable_file_with_every_sample_up_to_the_cut() {
+/// A recording over `accelcal sim --pty` cut after 20 000 samples are on disk by `cut`: the command
+/// fails naming `cause`, and the file holds every sample up to the cut, as many as the message says.
+fn cut_recording(name: &str, cut: impl FnOnce(SimPty, &std::process::Child), cause: &str) {
     let sim = SimPty::start(&["--fast"]);
-    let path = temp("cut.npy");
+    let path = temp(name);
     let mut record = Command::new(env!("CARGO_BIN_EXE_accelcal"))
         .args(["record", "--port", &sim.path, "--rate", "1000", "--seconds", "3600", "-o", path.to_str().unwrap()])
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
     let on_disk = wait_for_samples(&path, 20_000);
-    drop(sim); // the cable is pulled: the board's end of the link is gone
+    cut(sim, &record);
     let status = common::wait_or_kill(&mut record, Duration::from_secs(20));
     let mut stderr = String::new();
     std::io::Read::read_to_string(&mut record.stderr.take().unwrap(), &mut stderr).unwrap();
     assert!(!status.success(), "a cut recording must fail: {stderr}");
-    assert!(stderr.contains("are kept in") && stderr.contains("np.load"), "{stderr}");
+    assert!(stderr.contains(cause) && stderr.contains("are kept in") && stderr.contains("np.load"), "{stderr}");
     let samples = read_path(&path).unwrap();
     assert!(samples.len() >= on_disk, "{} samples read, {on_disk} were on disk before the cut", samples.len());
     assert!(samples.iter().enumerate().all(|(i, s)| s.index == i as u32), "a sample before the cut is missing");
     assert!(stderr.contains(&format!("the {} samples", samples.len())), "{stderr}");
+    if numpy().is_some() {
+        assert_eq!(numpy_count(&path), samples.len(), "np.load reads another count");
+    }
     std::fs::remove_file(path).unwrap();
+}
+
+/// How many records `np.load` reads from the recording at `path`.
+fn numpy_count(path: &Path) -> usize {
+    let script = "import numpy as np, sys; print(len(np.load(sys.argv[1])))";
+    let output = Command::new("python3").args(["-c", script, path.to_str().unwrap()]).output().unwrap();
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    String::from_utf8_lossy(&output.stdout).trim().parse().unwrap()
+}
+
+#[test]
+fn a_pulled_cable_leaves_a_readable_file_with_every_sample_up_to_the_cut() {
+    // The board's end of the link is gone.
+    cut_recording("cut.npy", |sim, _| drop(sim), "the device");
+}
+
+#[test]
+fn ctrl_c_leaves_a_readable_file_with_every_sample_up_to_it_and_says_how_many() {
+    let interrupt = |sim: SimPty, record: &std::process::Child| {
+        let status = Command::new("kill").args(["-INT", &record.id().to_string()]).status().unwrap();
+        assert!(status.success());
+        // The board stays plugged in until the command has ended.
+        std::thread::sleep(Duration::from_secs(2));
+        drop(sim);
+    };
+    cut_recording("ctrl-c.npy", interrupt, "interrupted (Ctrl-C)");
 }
 
 /// Waits until the recording at `path` holds at least `samples` complete records; how many it holds.

@@ -49,11 +49,9 @@ pub(super) fn record(args: &RecordArgs) -> Result<(), Error> {
     let streamed = stream_into(client, request, &mut recorder);
     let written = recorder.finish()?;
     let shown = args.output.display();
+    // NOTE: Ctrl-C ends the recording as a pulled cable does: short of what was asked, so not a
+    // success; the message names the cause and how many samples the file keeps.
     match streamed {
-        Err(Streamed::Link(LinkError::Interrupted)) => {
-            eprintln!("stopped by Ctrl-C: {written} samples in {shown}, readable");
-            Ok(())
-        }
         Err(Streamed::Link(error)) => Err(Error::RecordingCut { written, path: args.output.clone(), source: error }),
         Err(Streamed::Write(error)) => Err(error.into()),
         Ok(tally) => {

@@ -1,6 +1,13 @@
 //! The three noise terms fitted to an Allan deviation curve (IEEE Std 952 Annex C):
 //! AVAR(tau) = N^2 / tau + (2 ln 2 / pi) B^2 + K^2 tau / 3, for white noise N (rate / sqrt(Hz)), bias
 //! instability B (the flicker floor, rate) and random walk K (rate / s / sqrt(Hz)).
+//!
+//! NOTE: two conventions for "noise density" differ by sqrt(2), and both are called rate / sqrt(Hz).
+//! IEEE 952's N is the root of the two-sided PSD (the Allan deviation at 1 s; Kalibr's continuous-
+//! time density). Datasheets give the root of the one-sided PSD, rms noise = density * sqrt(bandwidth):
+//! the MPU-6050's gyro, 0.005 deg/s/sqrt(Hz) and 0.05 deg/s rms in a 100 Hz band (Product Specification
+//! table 6.1). A one-sided density n puts n^2 / 2 into the two-sided PSD, so N = n / sqrt(2); the
+//! report's white noise density is the datasheet's, comparable with its 400 ug/sqrt(Hz).
 
 use nalgebra::{Matrix3, Vector3};
 
@@ -12,8 +19,8 @@ pub const FLICKER_FLOOR: f64 = 0.664_282_433_663_950_4;
 /// The fitted noise terms of one axis, in the rate's unit (g or deg/s) and seconds.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NoiseTerms {
-    /// White noise density N, rate / sqrt(Hz): the deviation at tau = 1 s of the -1/2 slope line.
-    pub white_noise_density: f64,
+    /// White noise N (IEEE 952, two-sided), rate / sqrt(Hz): the deviation at tau = 1 s of the -1/2 line.
+    pub white_noise_n: f64,
     /// Bias instability B, rate: the flicker floor divided by [`FLICKER_FLOOR`].
     pub bias_instability: f64,
     /// Averaging time in seconds where the fitted deviation is smallest.
@@ -23,13 +30,18 @@ pub struct NoiseTerms {
 }
 
 impl NoiseTerms {
+    /// White noise density as datasheets state it (one-sided), rate / sqrt(Hz): sqrt(2) N.
+    pub fn white_noise_density(&self) -> f64 {
+        self.white_noise_n * std::f64::consts::SQRT_2
+    }
+
     /// The fitted Allan deviation at `tau_s`.
     pub fn adev(&self, tau_s: f64) -> f64 {
         model_terms(tau_s).dot(&self.variances()).sqrt()
     }
 
     fn variances(&self) -> Vector3<f64> {
-        Vector3::new(self.white_noise_density, self.bias_instability, self.random_walk).map(|v| v * v)
+        Vector3::new(self.white_noise_n, self.bias_instability, self.random_walk).map(|v| v * v)
     }
 }
 
@@ -47,7 +59,7 @@ pub fn fit(curve: &[AllanPoint]) -> Option<NoiseTerms> {
         (1u8..8).filter_map(|subset| solve_subset(curve, subset)).min_by(|a, b| a.1.total_cmp(&b.1))?;
     let [n2, b2, k2] = [variances.x, variances.y, variances.z];
     let mut terms = NoiseTerms {
-        white_noise_density: n2.sqrt(),
+        white_noise_n: n2.sqrt(),
         bias_instability: b2.sqrt(),
         bias_instability_tau_s: 0.0,
         random_walk: k2.sqrt(),
@@ -102,28 +114,20 @@ mod tests {
 
     #[test]
     fn an_exact_curve_gives_back_its_terms() {
-        let truth = NoiseTerms {
-            white_noise_density: 4e-4,
-            bias_instability: 4e-5,
-            bias_instability_tau_s: 0.0,
-            random_walk: 1e-6,
-        };
+        let truth =
+            NoiseTerms { white_noise_n: 4e-4, bias_instability: 4e-5, bias_instability_tau_s: 0.0, random_walk: 1e-6 };
         let fitted = fit(&exact_curve(&truth)).expect("fits");
-        assert!((fitted.white_noise_density / truth.white_noise_density - 1.0).abs() < 1e-9, "{fitted:?}");
+        assert!((fitted.white_noise_n / truth.white_noise_n - 1.0).abs() < 1e-9, "{fitted:?}");
         assert!((fitted.bias_instability / truth.bias_instability - 1.0).abs() < 1e-9, "{fitted:?}");
         assert!((fitted.random_walk / truth.random_walk - 1.0).abs() < 1e-9, "{fitted:?}");
     }
 
     #[test]
     fn pure_white_noise_fits_no_other_term() {
-        let truth = NoiseTerms {
-            white_noise_density: 4e-4,
-            bias_instability: 0.0,
-            bias_instability_tau_s: 0.0,
-            random_walk: 0.0,
-        };
+        let truth =
+            NoiseTerms { white_noise_n: 4e-4, bias_instability: 0.0, bias_instability_tau_s: 0.0, random_walk: 0.0 };
         let fitted = fit(&exact_curve(&truth)).expect("fits");
-        assert!((fitted.white_noise_density / 4e-4 - 1.0).abs() < 1e-9, "{fitted:?}");
+        assert!((fitted.white_noise_n / 4e-4 - 1.0).abs() < 1e-9, "{fitted:?}");
         assert!(fitted.bias_instability < 1e-12 && fitted.random_walk < 1e-12, "{fitted:?}");
         // With only white noise the deviation keeps falling: the longest averaging time is best.
         assert!((fitted.bias_instability_tau_s - 10f64.powf(39.0 / 8.0 - 2.0)).abs() < 1e-9, "{fitted:?}");

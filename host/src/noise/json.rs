@@ -99,6 +99,8 @@ struct NoiseJson {
     #[serde(flatten)]
     axes: BTreeMap<&'static str, AxisJson>,
     units: BTreeMap<&'static str, &'static AxisUnits>,
+    /// Which of the two noise density conventions `white_noise_density` follows.
+    white_noise_convention: &'static str,
     calibration: CalibrationJson,
     kalibr: Option<KalibrJson>,
 }
@@ -110,6 +112,7 @@ pub fn render(report: &NoiseReport) -> String {
         samples: report.samples,
         axes: report.axes.iter().map(|a| (a.name, axis_json(a))).collect(),
         units: report.axes.iter().map(|a| (a.name, if a.is_accel() { &ACCEL_UNITS } else { &GYRO_UNITS })).collect(),
+        white_noise_convention: WHITE_NOISE_CONVENTION,
         calibration: calibration_json(report),
         kalibr: kalibr_json(report),
     };
@@ -133,7 +136,7 @@ fn axis_json(axis: &AxisNoise) -> AxisJson {
         adev: column(|p| p.adev),
         adev_low: column(|p| p.adev_low),
         adev_high: column(|p| p.adev_high),
-        white_noise_density: axis.terms.map(|t| t.white_noise_density * scale),
+        white_noise_density: axis.terms.map(|t| t.white_noise_density() * scale),
         bias_instability: axis.terms.map(|t| t.bias_instability * scale),
         bias_instability_tau_s: axis.terms.map(|t| t.bias_instability_tau_s),
         random_walk: axis.terms.map(|t| t.random_walk * scale),
@@ -161,16 +164,21 @@ fn kalibr_json(report: &NoiseReport) -> Option<KalibrJson> {
     };
     let to_rad = std::f64::consts::PI / 180.0;
     let continuous = KalibrNumbers {
-        accelerometer_noise_density: largest(true, |t| t.white_noise_density)? * STANDARD_GRAVITY,
+        accelerometer_noise_density: largest(true, |t| t.white_noise_n)? * STANDARD_GRAVITY,
         accelerometer_random_walk: largest(true, |t| t.random_walk)? * STANDARD_GRAVITY,
-        gyroscope_noise_density: largest(false, |t| t.white_noise_density)? * to_rad,
+        gyroscope_noise_density: largest(false, |t| t.white_noise_n)? * to_rad,
         gyroscope_random_walk: largest(false, |t| t.random_walk)? * to_rad,
     };
     let discrete = discrete_time(&continuous, report.rate_hz);
     Some(KalibrJson { note: KALIBR_NOTE, continuous_time: continuous, discrete_time: discrete })
 }
 
-const KALIBR_NOTE: &str = "continuous_time: what Kalibr's imu.yaml takes (m/s^2/sqrt(Hz), m/s^3/sqrt(Hz), \
+/// See the NOTE in [`super::fit`].
+const WHITE_NOISE_CONVENTION: &str = "white_noise_density is one-sided, as datasheets state it (rms noise = \
+density * sqrt(bandwidth)); IEEE 952's N, the Allan deviation at 1 s, and kalibr.continuous_time are two-sided: \
+white_noise_density / sqrt(2)";
+
+const KALIBR_NOTE: &str = "continuous_time: what Kalibr's imu.yaml takes (two-sided, the Allan deviation at 1 s) (m/s^2/sqrt(Hz), m/s^3/sqrt(Hz), \
 rad/s/sqrt(Hz), rad/s^2/sqrt(Hz)); discrete_time: per sample at sample_rate_hz (noise density * sqrt(rate): \
 m/s^2, rad/s; random walk / sqrt(rate): m/s^2, rad/s), what a filter stepping at that rate adds each step";
 

@@ -45,7 +45,8 @@ pub fn render(report: &NoiseReport) -> String {
     }
     let _ = writeln!(
         out,
-        "(accelerometer in ug, ug/sqrt(Hz), ug/s/sqrt(Hz); gyro in deg/s, deg/s/sqrt(Hz), deg/s/s/sqrt(Hz))"
+        "(accelerometer in ug, ug/sqrt(Hz), ug/s/sqrt(Hz); gyro in deg/s, deg/s/sqrt(Hz), deg/s/s/sqrt(Hz))\n\
+         (white noise one-sided, as datasheets give it; the Allan deviation at 1 s and Kalibr's density are it / sqrt(2))"
     );
     write_gyro_per_hour(&mut out, report);
     write_calibration(&mut out, report);
@@ -60,7 +61,7 @@ fn axis_line(axis: &AxisNoise) -> String {
     format!(
         "{:<8} {:>16.4e} {:>16.4e} {:>9.1}s {:>18.4e}",
         axis.name,
-        t.white_noise_density * s,
+        t.white_noise_density() * s,
         t.bias_instability * s,
         t.bias_instability_tau_s,
         t.random_walk * s
@@ -70,7 +71,7 @@ fn axis_line(axis: &AxisNoise) -> String {
 fn write_gyro_per_hour(out: &mut String, report: &NoiseReport) {
     for axis in report.axes.iter().filter(|a| !a.is_accel()) {
         if let Some(t) = axis.terms {
-            let arw = t.white_noise_density * SECONDS_PER_HOUR.sqrt();
+            let arw = t.white_noise_n * SECONDS_PER_HOUR.sqrt();
             let bias = t.bias_instability * SECONDS_PER_HOUR;
             let _ = writeln!(
                 out,

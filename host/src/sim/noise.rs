@@ -1,5 +1,6 @@
 //! Synthetic rate series with known noise terms, for checking the noise analysis against the truth:
-//! white noise, bias instability (flicker) and random walk, in the IEEE Std 952 sense the analysis fits.
+//! white noise, bias instability (flicker) and random walk, in the IEEE Std 952 sense the analysis fits
+//! (white noise given as datasheets give it: see `noise::fit`).
 
 use rand_xoshiro::rand_core::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -9,7 +10,7 @@ use super::random::gaussian;
 /// The true noise terms of a synthetic series, in the rate's unit and seconds.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TrueNoise {
-    /// White noise density N, rate / sqrt(Hz) (two-sided PSD N^2).
+    /// White noise density as datasheets state it, rate / sqrt(Hz): one-sided PSD n^2 (two-sided n^2 / 2).
     pub white_noise_density: f64,
     /// Bias instability B, rate (two-sided PSD B^2 / (2 pi f)).
     pub bias_instability: f64,
@@ -33,7 +34,9 @@ pub fn noisy_series(truth: &TrueNoise, mean: f64, rate_hz: f64, samples: usize, 
     let flicker_sigma = truth.bias_instability * (ratio.ln() / std::f64::consts::PI).sqrt();
     let mut flicker: Vec<(f64, f64)> =
         flicker_correlation_times_s().map(|t| ((-dt / t).exp(), flicker_sigma * gaussian(&mut rng))).collect();
-    let white_sigma = truth.white_noise_density * rate_hz.sqrt();
+    // NOTE: a one-sided density n spread over the band up to Nyquist, rate / 2: the firmware's
+    // simulated sensor draws its white noise the same way.
+    let white_sigma = truth.white_noise_density * (rate_hz / 2.0).sqrt();
     let walk_step = truth.random_walk * dt.sqrt();
     let mut walk = 0.0;
     (0..samples)
