@@ -24,22 +24,23 @@ fn record_sim(seconds: &str, path: &Path) {
 fn a_60_s_sim_recording_at_1_khz_holds_60000_consecutive_samples_1_ms_apart() {
     let path = temp("60s.npy");
     record_sim("60", &path);
-    let samples = read_path(&path).unwrap();
-    assert_eq!(samples.len(), 60_000);
+    let recording = read_path(&path).unwrap();
+    let samples = recording.samples;
+    assert_eq!((samples.len(), recording.rate_hz), (60_000, 1000));
     for (i, sample) in samples.iter().enumerate() {
         assert_eq!((sample.index, sample.time_us), (i as u32, i as u64 * 1000), "sample {i}");
     }
     // The realistic sensor lies flat: z near 1 g, die temperature near room temperature.
     let last = samples.last().unwrap();
     assert!((last.accel_g[2] - 1.0).abs() < 0.1 && (15.0..40.0).contains(&last.temp_c), "{last:?}");
-    assert_eq!(std::fs::metadata(&path).unwrap().len(), 256 + 60_000 * 40, "40 bytes per sample");
+    assert_eq!(std::fs::metadata(&path).unwrap().len(), 320 + 60_000 * 32, "32 bytes per sample");
     std::fs::remove_file(path).unwrap();
 }
 
 /// The same samples as `path` holds, as CSV with the stream's columns, every digit kept.
 fn as_csv(path: &Path) -> PathBuf {
     let mut text = String::from("index,time_s,ax_g,ay_g,az_g,gx_dps,gy_dps,gz_dps,temp_c\n");
-    for s in read_path(path).unwrap() {
+    for s in read_path(path).unwrap().samples {
         // NOTE: as f64, whose shortest decimal reads back to the very value the recording's f32 gives.
         let ([ax, ay, az], [gx, gy, gz]) = (s.accel_g.map(f64::from), s.gyro_dps.map(f64::from));
         text += &format!("{},{},{ax},{ay},{az},{gx},{gy},{gz},{}\n", s.index, s.time_us as f64 * 1e-6, s.temp_c);
@@ -88,6 +89,23 @@ fn noise_finds_the_simulated_sensors_white_noise_within_5_percent_in_a_60_s_reco
     std::fs::remove_file(path).unwrap();
 }
 
+#[test]
+fn noise_takes_the_rate_from_the_recording_and_refuses_another() {
+    let path = temp("100hz.npy");
+    let args = ["record", "--sim", "--rate", "100", "--seconds", "30", "-o", path.to_str().unwrap()];
+    assert!(accelcal_within(&args, Duration::from_secs(120)).0.status.success());
+    let output = accelcal_within(&["noise", path.to_str().unwrap(), "--json"], Duration::from_secs(60)).0;
+    let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    assert_eq!((json["sample_rate_hz"].as_f64(), json["samples"].as_u64()), (Some(100.0), Some(3000)));
+    let output = accelcal_within(&["noise", path.to_str().unwrap(), "--rate", "1000"], Duration::from_secs(60)).0;
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        !output.status.success() && stderr.contains("differs from the 100 Hz the recording was taken at"),
+        "{stderr}"
+    );
+    std::fs::remove_file(path).unwrap();
+}
+
 /// Python with numpy, when installed: `None` (after saying why) where it is not and CI is not set.
 fn numpy() -> Option<()> {
     let found = Command::new("python3").args(["-c", "import numpy"]).status().is_ok_and(|s| s.success());
@@ -104,11 +122,14 @@ fn the_readme_python_one_liner_loads_a_recording_with_its_columns() {
     let Some(()) = numpy() else { return };
     let path = temp("python.npy");
     record_sim("3", &path);
+    // The rate rides in the title of the `seq` field: the sample time is seq / rate.
     let script = "import numpy as np, sys; r = np.load(sys.argv[1]); \
-                  print(len(r), int((r['seq'] == np.arange(len(r))).all()), r['time_us'][-1], round(float(r['az_g'].mean())))";
+                  print(len(r), int((r['seq'] == np.arange(len(r))).all()), round(float(r['az_g'].mean())), \
+                  r.dtype.fields['seq'][2])";
     let output = Command::new("python3").args(["-c", script, path.to_str().unwrap()]).output().unwrap();
     assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
-    assert_eq!(String::from_utf8_lossy(&output.stdout).trim(), "3000 1 2999000 1");
+    let expected = "3000 1 1 sample number; samples per second: 1000; time_s = seq / 1000";
+    assert_eq!(String::from_utf8_lossy(&output.stdout).trim(), expected);
     std::fs::remove_file(path).unwrap();
 }
 
@@ -129,7 +150,7 @@ fn cut_recording(name: &str, cut: impl FnOnce(SimPty, &std::process::Child), cau
     std::io::Read::read_to_string(&mut record.stderr.take().unwrap(), &mut stderr).unwrap();
     assert!(!status.success(), "a cut recording must fail: {stderr}");
     assert!(stderr.contains(cause) && stderr.contains("are kept in") && stderr.contains("np.load"), "{stderr}");
-    let samples = read_path(&path).unwrap();
+    let samples = read_path(&path).unwrap().samples;
     assert!(samples.len() >= on_disk, "{} samples read, {on_disk} were on disk before the cut", samples.len());
     assert!(samples.iter().enumerate().all(|(i, s)| s.index == i as u32), "a sample before the cut is missing");
     assert!(stderr.contains(&format!("the {} samples", samples.len())), "{stderr}");
@@ -168,7 +189,7 @@ fn ctrl_c_leaves_a_readable_file_with_every_sample_up_to_it_and_says_how_many() 
 /// Waits until the recording at `path` holds at least `samples` complete records; how many it holds.
 fn wait_for_samples(path: &Path, samples: usize) -> usize {
     for _ in 0..1500 {
-        let held = std::fs::metadata(path).map_or(0, |m| (m.len() as usize).saturating_sub(256) / 40);
+        let held = std::fs::metadata(path).map_or(0, |m| (m.len() as usize).saturating_sub(320) / 32);
         if held >= samples {
             return held;
         }
@@ -187,7 +208,7 @@ fn samples_lost_on_the_link_are_counted_and_fail_the_recording_which_keeps_the_r
     let stderr = String::from_utf8(output.stderr).unwrap();
     assert!(!output.status.success(), "{stderr}");
     assert!(stderr.contains("7 of 2000 samples were lost") && stderr.contains("7 on the link"), "{stderr}");
-    let samples = read_path(&path).unwrap();
+    let samples = read_path(&path).unwrap().samples;
     assert_eq!(samples.len(), 1993);
     assert_eq!(samples[0].index, 7, "the link lost the first 7");
     std::fs::remove_file(path).unwrap();

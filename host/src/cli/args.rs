@@ -160,9 +160,9 @@ pub struct StreamArgs {
 pub struct NoiseArgs {
     /// The recording: .npy from `accelcal record`, or CSV (ax_g ... gz_dps) from `accelcal stream`.
     pub file: PathBuf,
-    /// Samples per second of the recording.
-    #[arg(long, default_value_t = 1000.0)]
-    pub rate: f64,
+    /// Samples per second of a CSV file (default 1000); a .npy recording names its own.
+    #[arg(long)]
+    pub rate: Option<f64>,
     /// Print one JSON object instead of the table.
     #[arg(long)]
     pub json: bool,

@@ -45,7 +45,7 @@ pub(super) fn record(args: &RecordArgs) -> Result<(), Error> {
     client.interrupt_on(interrupt_on_ctrl_c());
     let request =
         StreamRequest { kind: StreamKind::Raw, rate_hz: args.rate, count: args.seconds * u32::from(args.rate) };
-    let mut recorder = Recorder::create(&args.output)?;
+    let mut recorder = Recorder::create(&args.output, args.rate)?;
     let streamed = stream_into(client, request, &mut recorder);
     let written = recorder.finish()?;
     let shown = args.output.display();

@@ -1,6 +1,7 @@
 //! Reading a still recording for the noise analysis: a `.npy` recording as `accelcal record`
 //! writes it (told by its magic), or CSV as `accelcal stream` writes it (columns
-//! `ax_g,ay_g,az_g,gx_dps,gy_dps,gz_dps`, others ignored), sampled at a rate the caller names.
+//! `ax_g,ay_g,az_g,gx_dps,gy_dps,gz_dps`, others ignored), sampled at a rate the caller names
+//! (a recording names its own).
 
 use std::io::Read;
 use std::path::Path;
@@ -31,18 +32,29 @@ pub enum NoiseInputError {
     Recording(#[from] RecordingError),
     #[error("--rate must be a positive number of samples per second, got {rate_hz}")]
     BadRate { rate_hz: f64 },
+    #[error("--rate {given_hz} differs from the {recorded_hz} Hz the recording was taken at; leave --rate out")]
+    RateDiffers { given_hz: f64, recorded_hz: f64 },
 }
 
-/// Reads a recording file sampled at `rate_hz`.
-pub fn read_path(path: &Path, rate_hz: f64) -> Result<RateSeries, NoiseInputError> {
+/// Sample rate of a CSV file when the caller names none, in Hz: the sensor's full rate.
+pub const CSV_DEFAULT_RATE_HZ: f64 = 1000.0;
+
+/// Reads a recording file: a `.npy` recording at the rate it names (`rate_hz`, when given, must
+/// agree), a CSV file at `rate_hz` or [`CSV_DEFAULT_RATE_HZ`].
+pub fn read_path(path: &Path, rate_hz: Option<f64>) -> Result<RateSeries, NoiseInputError> {
     let io = |source| NoiseInputError::Io { path: path.display().to_string(), source };
     let mut file = std::fs::File::open(path).map_err(io)?;
     let mut magic = [0u8; 6];
     let opened = file.read(&mut magic).map_err(io)?;
     if is_npy(&magic[..opened]) {
-        return from_samples(&recording::read_path(path)?, rate_hz);
+        let recording = recording::read_path(path)?;
+        let recorded_hz = f64::from(recording.rate_hz);
+        if rate_hz.is_some_and(|given| given != recorded_hz) {
+            return Err(NoiseInputError::RateDiffers { given_hz: rate_hz.unwrap_or_default(), recorded_hz });
+        }
+        return from_samples(&recording.samples, recorded_hz);
     }
-    read_csv(std::fs::File::open(path).map_err(io)?, rate_hz)
+    read_csv(std::fs::File::open(path).map_err(io)?, rate_hz.unwrap_or(CSV_DEFAULT_RATE_HZ))
 }
 
 /// The six axes of recorded samples taken at `rate_hz`.

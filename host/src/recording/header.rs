@@ -1,22 +1,32 @@
 //! The `.npy` (version 1.0) header of a recording: magic, version, header length, and a Python
-//! dict literal naming the record layout and the sample count.
+//! dict literal naming the record layout, the sample rate and the sample count.
 //!
 //! NOTE: the header is written with a fixed length, so that the count can be rewritten in place
-//! after each block without moving the samples (format: numpy.lib.format, NEP 1).
+//! after each block without moving the samples (format: numpy.lib.format, NEP 1). numpy refuses
+//! any key beside `descr`, `fortran_order` and `shape`, so the sample rate rides in the title of
+//! the `seq` field, numpy's own place for a field's description (`dtype.fields['seq'][2]`).
 
 /// The magic string that opens every `.npy` file.
 pub const MAGIC: &[u8] = b"\x93NUMPY";
 
 /// Bytes of the whole header, samples start here (a multiple of 64, as numpy aligns it).
-pub const HEADER_BYTES: usize = 256;
+pub const HEADER_BYTES: usize = 320;
 
-/// The record layout as numpy's `descr`: one field per column, little-endian, packed.
-pub const DESCR: &str = "[('seq', '<u4'), ('time_us', '<u8'), ('ax_g', '<f4'), ('ay_g', '<f4'), \
-('az_g', '<f4'), ('gx_dps', '<f4'), ('gy_dps', '<f4'), ('gz_dps', '<f4'), ('temp_c', '<f4')]";
+/// The columns after `seq`, little-endian, packed: the sample time is `seq` over the rate.
+const COLUMNS: &str = "('ax_g', '<f4'), ('ay_g', '<f4'), ('az_g', '<f4'), \
+('gx_dps', '<f4'), ('gy_dps', '<f4'), ('gz_dps', '<f4'), ('temp_c', '<f4')";
 
-/// The header of a file holding `samples` records.
-pub fn render(samples: u64) -> Vec<u8> {
-    let dict = format!("{{'descr': {DESCR}, 'fortran_order': False, 'shape': ({samples},), }}");
+/// The title of the `seq` field up to the rate.
+const SEQ_TITLE: &str = "sample number; samples per second: ";
+
+/// The record layout as numpy's `descr` for a recording at `rate_hz`.
+pub fn descr(rate_hz: u16) -> String {
+    format!("[(('{SEQ_TITLE}{rate_hz}; time_s = seq / {rate_hz}', 'seq'), '<u4'), {COLUMNS}]")
+}
+
+/// The header of a file holding `samples` records taken at `rate_hz`.
+pub fn render(samples: u64, rate_hz: u16) -> Vec<u8> {
+    let dict = format!("{{'descr': {}, 'fortran_order': False, 'shape': ({samples},), }}", descr(rate_hz));
     let text_len = HEADER_BYTES - MAGIC.len() - 4;
     let mut bytes = Vec::with_capacity(HEADER_BYTES);
     bytes.extend_from_slice(MAGIC);
@@ -26,8 +36,8 @@ pub fn render(samples: u64) -> Vec<u8> {
     bytes
 }
 
-/// Checks that `bytes` open a recording of our layout; `Err` says what differs.
-pub fn check(bytes: &[u8]) -> Result<(), String> {
+/// The sample rate in Hz of a recording of our layout that `bytes` open; `Err` says what differs.
+pub fn check(bytes: &[u8]) -> Result<u16, String> {
     if bytes.len() < HEADER_BYTES || !bytes.starts_with(MAGIC) {
         return Err("it does not start with a .npy header".to_owned());
     }
@@ -36,10 +46,17 @@ pub fn check(bytes: &[u8]) -> Result<(), String> {
         return Err("its .npy header is not the one `accelcal record` writes".to_owned());
     }
     let text = String::from_utf8_lossy(&bytes[10..HEADER_BYTES]);
-    if !text.contains(DESCR) || !text.contains("'fortran_order': False") {
-        return Err(format!("its columns differ from {DESCR}"));
+    let rate_hz = rate_in(&text).ok_or_else(|| format!("its columns differ from {}", descr(1000)))?;
+    if !text.contains(&descr(rate_hz)) || !text.contains("'fortran_order': False") {
+        return Err(format!("its columns differ from {}", descr(rate_hz)));
     }
-    Ok(())
+    Ok(rate_hz)
+}
+
+/// The sample rate the `seq` title in a header's text names.
+fn rate_in(text: &str) -> Option<u16> {
+    let after = &text[text.find(SEQ_TITLE)? + SEQ_TITLE.len()..];
+    after[..after.find(';')?].parse().ok().filter(|&rate| rate > 0)
 }
 
 #[cfg(test)]
@@ -47,12 +64,12 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_header_keeps_its_length_and_names_the_count() {
-        for samples in [0, 1, 3_600_000, u64::MAX] {
-            let header = render(samples);
+    fn the_header_keeps_its_length_and_names_the_count_and_the_rate() {
+        for (samples, rate_hz) in [(0, 1), (1, 1000), (3_600_000, 250), (u64::MAX, 1000)] {
+            let header = render(samples, rate_hz);
             assert_eq!(header.len(), HEADER_BYTES);
             assert!(String::from_utf8_lossy(&header).contains(&format!("'shape': ({samples},)")));
-            assert_eq!(check(&header), Ok(()));
+            assert_eq!(check(&header), Ok(rate_hz));
         }
     }
 }

@@ -16,17 +16,20 @@ pub struct Recorder {
     block: Vec<u8>,
     /// Samples on disk (complete blocks written).
     written: u64,
+    /// Samples per second, named in the header.
+    rate_hz: u16,
 }
 
 impl Recorder {
-    /// Creates (or replaces) the file at `path` with an empty recording.
-    pub fn create(path: &Path) -> Result<Self, RecordingError> {
+    /// Creates (or replaces) the file at `path` with an empty recording at `rate_hz`.
+    pub fn create(path: &Path, rate_hz: u16) -> Result<Self, RecordingError> {
         let file = File::create(path).map_err(|source| io(path, source))?;
         let mut recorder = Recorder {
             file,
             path: path.to_owned(),
             block: Vec::with_capacity(BLOCK_SAMPLES * RECORD_BYTES),
             written: 0,
+            rate_hz,
         };
         recorder.write_header()?;
         Ok(recorder)
@@ -60,17 +63,16 @@ impl Recorder {
     fn write_header(&mut self) -> Result<(), RecordingError> {
         let at_end = (|| {
             self.file.seek(SeekFrom::Start(0))?;
-            self.file.write_all(&header::render(self.written))?;
+            self.file.write_all(&header::render(self.written, self.rate_hz))?;
             self.file.seek(SeekFrom::End(0))
         })();
         at_end.map(|_| ()).map_err(|source| io(&self.path, source))
     }
 }
 
-/// Appends one sample's record.
+/// Appends one sample's record (its time is implied by its index, see [`RECORD_BYTES`]).
 pub fn encode(sample: &Sample, out: &mut Vec<u8>) {
     out.extend_from_slice(&sample.index.to_le_bytes());
-    out.extend_from_slice(&sample.time_us.to_le_bytes());
     for value in sample.accel_g.iter().chain(&sample.gyro_dps).chain([&sample.temp_c]) {
         out.extend_from_slice(&value.to_le_bytes());
     }
