@@ -60,6 +60,8 @@ pub enum Error {
     WriteFile { path: PathBuf, source: std::io::Error },
     #[error("cannot read {}: {source}; check the path", .path.display())]
     ReadFile { path: PathBuf, source: std::io::Error },
+    #[error("{} cannot go into the report: {reason}", .path.display())]
+    ReportInput { path: PathBuf, reason: String },
 }
 
 impl Error {

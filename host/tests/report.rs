@@ -34,8 +34,33 @@ fn simulated_session(dir: &Path) -> PathBuf {
     stem.with_extension("json")
 }
 
+/// What `report --thermal` and `--noise` take, made in `dir`: the simulated board's `thermal --json`
+/// and a 60 s recording at 1 kHz with its `noise --json`.
+struct Extras {
+    thermal: PathBuf,
+    recording: PathBuf,
+    noise: PathBuf,
+}
+
+fn extras(dir: &Path) -> Extras {
+    let (thermal, recording, noise) = (dir.join("thermal.json"), dir.join("rec.npy"), dir.join("noise.json"));
+    let output = accelcal(&["thermal", "--sim", "--json", "--seed", "3"]);
+    assert!(output.status.success(), "{}", text(&output.stderr));
+    std::fs::write(&thermal, &output.stdout).unwrap();
+    let output = accelcal(&["record", "--sim", "--seconds", "60", "-o", recording.to_str().unwrap()]);
+    assert!(output.status.success(), "{}", text(&output.stderr));
+    let output = accelcal(&["noise", recording.to_str().unwrap(), "--json"]);
+    assert!(output.status.success(), "{}", text(&output.stderr));
+    std::fs::write(&noise, &output.stdout).unwrap();
+    Extras { thermal, recording, noise }
+}
+
 fn report_json(session: &Path) -> Value {
-    let output = accelcal(&["report", session.to_str().unwrap(), "--json"]);
+    report_json_with(session, &[])
+}
+
+fn report_json_with(session: &Path, extra: &[&str]) -> Value {
+    let output = accelcal(&[&["report", session.to_str().unwrap(), "--json"], extra].concat());
     assert!(output.status.success(), "{}", text(&output.stderr));
     serde_json::from_slice(&output.stdout).expect("report --json prints one JSON object")
 }
@@ -56,9 +81,21 @@ fn unescape(text: &str) -> String {
     text.replace("&lt;", "<").replace("&gt;", ">").replace("&quot;", "\"").replace("&amp;", "&")
 }
 
-/// The pointers the page must show: every parameter, position, verification figure, the verdict.
+/// The pointers the page must show: every parameter, position, verification figure, the verdict,
+/// the temperature model's figures and every fitted noise term.
 fn required_pointers(json: &Value) -> BTreeSet<String> {
     let mut wanted: BTreeSet<String> = ["/verdict/line", "/fit/cost", "/fit/rms_mg"].map(String::from).into();
+    for key in ["ref_temp_c", "learned_c/0", "learned_c/1", "held_out_mg"] {
+        wanted.insert(format!("/temperature/{key}"));
+    }
+    for k in 0..3 {
+        wanted.extend(["offset_change_mg", "gyro_bias_change_dps"].map(|key| format!("/temperature/{key}/{k}")));
+    }
+    wanted.extend(["/allan_deviation/sample_rate_hz", "/allan_deviation/capture_limit_s"].map(String::from));
+    for i in 0..6 {
+        let terms = ["white_noise_density", "bias_instability", "bias_instability_tau_s", "random_walk"];
+        wanted.extend(terms.map(|key| format!("/allan_deviation/axes/{i}/{key}")));
+    }
     for key in ["positions", "before_rms_mg", "after_rms_mg", "after_max_mg", "noise_floor_mg", "on_chip_difference_mg"]
     {
         wanted.insert(format!("/verification/{key}"));
@@ -94,9 +131,20 @@ fn check_number(pointer: &str, value: &str, shown: &str, json: &Value) {
 
 #[test]
 fn every_number_on_the_page_is_the_one_report_json_prints() {
-    let session = simulated_session(&scratch("numbers"));
-    let json = report_json(&session);
-    let html = std::fs::read_to_string(session.with_extension("html")).unwrap();
+    let dir = scratch("numbers");
+    let session = simulated_session(&dir);
+    let extras = extras(&dir);
+    let given = ["--thermal", extras.thermal.to_str().unwrap(), "--noise", extras.noise.to_str().unwrap()];
+    let json = report_json_with(&session, &given);
+    let page = dir.join("with-extras.html");
+    let output = accelcal(&[&["report", session.to_str().unwrap(), "-o", page.to_str().unwrap()], &given[..]].concat());
+    assert!(output.status.success(), "{}", text(&output.stderr));
+    let html = std::fs::read_to_string(page).unwrap();
+    // The noise terms are the ones `noise --json` printed, the bins the ones `thermal --json` learned.
+    let noise: Value = serde_json::from_str(&std::fs::read_to_string(&extras.noise).unwrap()).unwrap();
+    assert_eq!(json["allan_deviation"]["axes"][2]["white_noise_density"], noise["accel_z"]["white_noise_density"]);
+    let thermal: Value = serde_json::from_str(&std::fs::read_to_string(&extras.thermal).unwrap()).unwrap();
+    assert_eq!(json["temperature"]["bins"], thermal["fit"]["points"]);
     let tags = tagged(&html);
     let shown: BTreeSet<String> = tags.iter().map(|(pointer, _, _)| pointer.clone()).collect();
     let missing: Vec<_> = required_pointers(&json).difference(&shown).cloned().collect();
@@ -174,7 +222,13 @@ fn the_page_loads_in_headless_chromium_without_console_errors_and_draws_every_pl
     let Some(browser) = chromium() else { return };
     let dir = scratch("browser");
     let session = simulated_session(&dir);
-    let html = std::fs::read_to_string(session.with_extension("html")).unwrap();
+    let extras = extras(&dir);
+    // The noise straight from the recording this time: `report` analyses it as `noise` would.
+    let given = ["--thermal", extras.thermal.to_str().unwrap(), "--noise", extras.recording.to_str().unwrap()];
+    let page = dir.join("with-extras.html");
+    let output = accelcal(&[&["report", session.to_str().unwrap(), "-o", page.to_str().unwrap()], &given[..]].concat());
+    assert!(output.status.success(), "{}", text(&output.stderr));
+    let html = std::fs::read_to_string(page).unwrap();
     let probed = dir.join("probed.html");
     std::fs::write(&probed, html.replacen("<meta charset=\"utf-8\">", LISTEN, 1).replace("</body>", PROBE)).unwrap();
     let output = Command::new(browser)
@@ -193,8 +247,9 @@ fn the_page_loads_in_headless_chromium_without_console_errors_and_draws_every_pl
     let plots: Vec<Value> = probed_attribute(&dom, "data-plots");
     let ids: Vec<&str> = plots.iter().map(|p| p["id"].as_str().unwrap()).collect();
     let all = ["sphere-xy", "sphere-xz", "residuals-raw", "residuals-calibrated"];
-    assert_eq!(ids, [&all[..], &["verification-raw", "verification-calibrated"]].concat());
-    let figures = figures_by_id(&report_json(&session)["figures"]);
+    let later = ["verification-raw", "verification-calibrated", "temperature", "allan-deviation"];
+    assert_eq!(ids, [&all[..], &later[..]].concat());
+    let figures = figures_by_id(&report_json_with(&session, &given)["figures"]);
     for plot in &plots {
         let (width, height) = (plot["width"].as_f64().unwrap(), plot["height"].as_f64().unwrap());
         assert!(width > 200.0 && height > 200.0, "{plot} is drawn smaller than its axes");

@@ -138,6 +138,12 @@ pub struct ReportArgs {
     /// Print the report as one JSON object instead of text (the page is written only with -o).
     #[arg(long)]
     pub json: bool,
+    /// Add the board's temperature model and its bins (the output of `accelcal thermal --json`).
+    #[arg(long, value_name = "THERMAL.json")]
+    pub thermal: Option<PathBuf>,
+    /// Add the board's Allan deviation (the output of `accelcal noise --json`, or a recording).
+    #[arg(long, value_name = "NOISE.json")]
+    pub noise: Option<PathBuf>,
 }
 
 /// `accelcal stream`.

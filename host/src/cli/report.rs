@@ -5,13 +5,23 @@ use std::path::{Path, PathBuf};
 
 use super::args::ReportArgs;
 use crate::error::Error;
+use crate::noise;
+use crate::report::allan::AllanSection;
+use crate::report::temperature::TemperatureSection;
+use crate::report::thermal::ThermalReport;
 use crate::report::{self, SessionReport};
 use crate::session::{write_atomically, Session};
 
 /// Reads the session, builds its report, writes the page and prints the text (or the JSON).
 pub(super) fn report(args: &ReportArgs) -> Result<(), Error> {
     let session = Session::load(&args.session)?;
-    let report = build(&session, &args.session)?;
+    let mut report = build(&session, &args.session)?;
+    if let Some(path) = &args.thermal {
+        report = report.with_temperature(thermal_section(path)?);
+    }
+    if let Some(path) = &args.noise {
+        report = report.with_allan_deviation(noise_section(path)?);
+    }
     if args.json {
         println!("{}", report::json::session_report(&report));
         if let Some(path) = &args.output {
@@ -24,6 +34,30 @@ pub(super) fn report(args: &ReportArgs) -> Result<(), Error> {
     print!("{}", report::text::session_report(&report));
     println!("report written to {}", path.display());
     Ok(())
+}
+
+/// The temperature section from the output of `accelcal thermal --json` at `path`.
+fn thermal_section(path: &Path) -> Result<(TemperatureSection, report::Figure), Error> {
+    let refused = |reason: String| Error::ReportInput { path: path.into(), reason };
+    let text = std::fs::read_to_string(path).map_err(|source| Error::ReadFile { path: path.into(), source })?;
+    let thermal: ThermalReport =
+        serde_json::from_str(&text).map_err(|e| refused(format!("{e}; give the output of accelcal thermal --json")))?;
+    TemperatureSection::new(&thermal).map_err(refused)
+}
+
+/// The Allan deviation section from the output of `accelcal noise --json` at `path`, or from the
+/// recording there (analysed as `accelcal noise` would).
+fn noise_section(path: &Path) -> Result<(AllanSection, report::Figure), Error> {
+    let refused = |reason: String| Error::ReportInput { path: path.into(), reason };
+    let bytes = std::fs::read(path).map_err(|source| Error::ReadFile { path: path.into(), source })?;
+    let json = if bytes.trim_ascii_start().starts_with(b"{") {
+        serde_json::from_slice(&bytes).map_err(|e| refused(format!("{e}; give the output of accelcal noise --json")))?
+    } else {
+        let series = noise::input::read_path(path, None)?;
+        let rendered = noise::json::render(&noise::analyse(&series));
+        serde_json::from_str(&rendered).map_err(|e| refused(e.to_string()))?
+    };
+    AllanSection::new(&json).map_err(refused)
 }
 
 /// The report of the session at `path`.

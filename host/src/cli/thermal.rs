@@ -162,7 +162,7 @@ fn learn_and_fit(
 }
 
 fn fit_summary(fit: &ThermalFit, bins: &ThermalBins, learned: (f64, f64), stopped: String) -> ThermalFitJson {
-    ThermalFitJson::new(fit, bins.len(), learned, stopped)
+    ThermalFitJson::new(fit, &bins.points(), bins.len(), learned, stopped)
 }
 
 fn end_text(end: LearnEnd) -> &'static str {

@@ -27,6 +27,8 @@ pub struct Figure {
     pub y_label: String,
     /// Whether both axes share one scale (a sphere stays round).
     pub equal_axes: bool,
+    /// Whether both axes are logarithmic (an Allan deviation); the points stay in their units.
+    pub log_axes: bool,
     /// The series, drawn in order.
     pub series: Vec<Series>,
 }
@@ -64,10 +66,22 @@ pub enum Role {
     Calibrated,
     /// A reference to read the others against (the 1 g sphere, a noise floor).
     Reference,
+    /// The sensor's x axis, where a plot shows the three axes side by side.
+    AxisX,
+    /// The sensor's y axis.
+    AxisY,
+    /// The sensor's z axis.
+    AxisZ,
+}
+
+/// The role of the sensor axis `k` (0, 1, 2).
+pub fn axis_role(k: usize) -> Role {
+    [Role::AxisX, Role::AxisY, Role::AxisZ][k.min(2)]
 }
 
 impl Series {
-    fn new(name: &str, role: Role, style: SeriesStyle, points: Vec<[f64; 2]>) -> Self {
+    /// A series named `name`.
+    pub fn new(name: &str, role: Role, style: SeriesStyle, points: Vec<[f64; 2]>) -> Self {
         Series { name: name.to_owned(), style, role, points }
     }
 }
@@ -91,6 +105,7 @@ pub fn sphere_view(positions: &[PositionResult], fit: (&Mat3<f64>, &Vec3<f64>), 
         x_label: format!("{} (g)", name(axes[0])),
         y_label: format!("{} (g)", name(axes[1])),
         equal_axes: true,
+        log_axes: false,
         series: vec![
             Series::new(
                 "1 g sphere",
@@ -158,7 +173,8 @@ fn numbered(id: &'static str, title: &str, x_label: &str, role: Role, values: &[
         let band = vec![[left, floor], [right, floor], [right, -floor], [left, -floor], [left, floor]];
         series.push(Series::new("noise floor (+-)", Role::Reference, SeriesStyle::Line, band));
     }
-    Figure { id, title: title.to_owned(), x_label: x_label.to_owned(), y_label: "mg".into(), equal_axes: false, series }
+    let (x_label, y_label) = (x_label.to_owned(), "mg".to_owned());
+    Figure { id, title: title.to_owned(), x_label, y_label, equal_axes: false, log_axes: false, series }
 }
 
 /// The unit circle in the plane of `axes` (a great circle of the 1 g sphere).

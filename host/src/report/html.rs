@@ -31,8 +31,8 @@ pub fn page(report: &SessionReport) -> Result<String, PlotError> {
     }
     verification(&mut out, report)?;
     let figures = &report.figures;
-    optional(&mut out, "Temperature model", figures.temperature.as_ref())?;
-    optional(&mut out, "Allan deviation", figures.allan_deviation.as_ref())?;
+    super::html_sections::temperature(&mut out, report)?;
+    super::html_sections::allan_deviation(&mut out, report)?;
     optional(&mut out, "Gyro turns", figures.gyro_turns.as_ref())?;
     out.push_str("</main></body></html>\n");
     Ok(out)
@@ -183,7 +183,7 @@ fn pair(out: &mut String, figures: &[Figure; 2]) -> Result<(), PlotError> {
     Ok(())
 }
 
-fn figure(out: &mut String, figure: &Figure) -> Result<(), PlotError> {
+pub(super) fn figure(out: &mut String, figure: &Figure) -> Result<(), PlotError> {
     let _ = write!(out, "<figure id=\"{}\">{}<figcaption>{}", figure.id, plot::svg(figure)?, escape(&figure.title));
     for series in &figure.series {
         let _ = write!(
@@ -207,7 +207,7 @@ fn style_class(style: SeriesStyle) -> &'static str {
 }
 
 /// A table cell holding `value` rounded to `digits`, or a dash.
-fn cell(pointer: &str, value: Option<f64>, digits: usize) -> String {
+pub(super) fn cell(pointer: &str, value: Option<f64>, digits: usize) -> String {
     match value {
         Some(value) => format!("<td class=\"num\">{}</td>", span(pointer, value, digits)),
         None => format!("<td class=\"num\" data-json=\"{pointer}\" data-value=\"null\">&ndash;</td>"),
@@ -215,7 +215,7 @@ fn cell(pointer: &str, value: Option<f64>, digits: usize) -> String {
 }
 
 /// `value` shown with `digits` decimals, tagged with its JSON pointer and full value.
-fn span(pointer: &str, value: f64, digits: usize) -> String {
+pub(super) fn span(pointer: &str, value: f64, digits: usize) -> String {
     format!("<span data-json=\"{pointer}\" data-value=\"{value:e}\">{}</span>", shown(value, digits))
 }
 
@@ -228,7 +228,7 @@ pub fn shown(value: f64, digits: usize) -> String {
     }
 }
 
-fn absent(what: &str) -> String {
+pub(super) fn absent(what: &str) -> String {
     format!("<p class=\"absent\">{what}</p>")
 }
 

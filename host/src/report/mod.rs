@@ -2,19 +2,22 @@
 //! as text for a person ([`text`]), as the JSON of DESIGN.md ([`json`]), and for a session as an
 //! HTML page with plots ([`html`]).
 
+pub mod allan;
 mod calibrate;
 mod comparison;
 mod figure;
 pub mod html;
+mod html_sections;
 pub mod json;
 mod plot;
 mod session;
+pub mod temperature;
 pub mod text;
 pub mod thermal;
 
 pub use calibrate::{CalibrateReport, HostFitSummary, TruthJson};
 pub use comparison::{ComparedModel, Comparison};
-pub use figure::{Figure, Role, Series, SeriesStyle};
+pub use figure::{axis_role, Figure, Role, Series, SeriesStyle};
 pub use plot::PlotError;
 pub use session::{Board, Figures, FitSummary, PositionResult, SessionReport, Verdict, NOT_RECORDED};
 

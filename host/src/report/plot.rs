@@ -16,12 +16,19 @@ const RAW: RGBColor = RGBColor(0xF5, 0x7C, 0x00);
 const CALIBRATED: RGBColor = RGBColor(0x3B, 0x82, 0xF6);
 /// References: mid grey.
 const REFERENCE: RGBColor = RGBColor(0x8A, 0x8A, 0x8A);
+/// The three sensor axes: vermilion, bluish green and sky blue of Okabe and Ito's palette, told
+/// apart with any colour vision and mid-toned for light and dark pages.
+const AXES: [RGBColor; 3] = [RGBColor(0xD5, 0x5E, 0x00), RGBColor(0x00, 0x9E, 0x73), RGBColor(0x56, 0xB4, 0xE9)];
+
 /// The colour of a series.
 fn colour_of(role: Role) -> RGBColor {
     match role {
         Role::Raw => RAW,
         Role::Calibrated => CALIBRATED,
         Role::Reference => REFERENCE,
+        Role::AxisX => AXES[0],
+        Role::AxisY => AXES[1],
+        Role::AxisZ => AXES[2],
     }
 }
 
@@ -54,6 +61,11 @@ pub fn svg(figure: &Figure) -> Result<String, PlotError> {
 }
 
 fn draw(figure: &Figure, area: DrawingArea<SVGBackend, Shift>) -> Result<(), String> {
+    // NOTE: a log plot is drawn on linear axes in log10 of the values, its ticks labelled with
+    // the values themselves: one chart type for every figure.
+    let drawn = if figure.log_axes { in_log10(figure) } else { figure.clone() };
+    let figure = &drawn;
+    let label: &dyn Fn(&f64) -> String = if figure.log_axes { &power_of_ten } else { &short };
     let (x, y) = ranges(figure);
     let mut chart = ChartBuilder::on(&area)
         .margin(12)
@@ -67,8 +79,8 @@ fn draw(figure: &Figure, area: DrawingArea<SVGBackend, Shift>) -> Result<(), Str
         .axis_style(INK)
         .label_style(("sans-serif", 20).into_font().color(&INK))
         .axis_desc_style(("sans-serif", 20).into_font().color(&INK))
-        .x_label_formatter(&short)
-        .y_label_formatter(&short)
+        .x_label_formatter(label)
+        .y_label_formatter(label)
         .x_desc(figure.x_label.as_str())
         .y_desc(figure.y_label.as_str())
         .draw()
@@ -115,14 +127,60 @@ fn ranges(figure: &Figure) -> (std::ops::Range<f64>, std::ops::Range<f64>) {
     (padded(x), padded(y))
 }
 
-/// A tick label: the shortest form that reads back as the tick (2, 0.5, -60).
-fn short(value: &f64) -> String {
+/// A tick label: the shortest form that reads back as the tick (2, 0.5, -60), in scientific
+/// notation for ticks below 0.001 (residuals of 1e-13 mg would otherwise all read "0").
+pub fn short(value: &f64) -> String {
     // NOTE: adding 0.0 turns -0 into 0.
+    let value = *value + 0.0;
+    if value != 0.0 && value.abs() < 1e-3 {
+        let text = format!("{value:.2e}");
+        let (mantissa, exponent) = text.split_once('e').unwrap_or((&text, "0"));
+        let mantissa = mantissa.trim_end_matches('0').trim_end_matches('.');
+        return format!("{mantissa}e{exponent}");
+    }
     format!("{}", (value * 1e6).round() / 1e6 + 0.0)
+}
+
+/// A tick label on a log axis drawn in log10: the value itself at whole decades, none between
+/// (half-decade labels such as 0.00316 ran into each other).
+fn power_of_ten(exponent: &f64) -> String {
+    if (exponent - exponent.round()).abs() > 1e-9 {
+        return String::new();
+    }
+    let value = 10f64.powf(exponent.round());
+    let rounded = format!("{value:.2e}").parse::<f64>().unwrap_or(value);
+    short(&rounded)
+}
+
+/// The figure with every point in log10 (points that are not positive are left out).
+fn in_log10(figure: &Figure) -> Figure {
+    let mut drawn = figure.clone();
+    for series in &mut drawn.series {
+        series.points.retain(|[x, y]| *x > 0.0 && *y > 0.0);
+        series.points.iter_mut().for_each(|p| *p = [p[0].log10(), p[1].log10()]);
+    }
+    drawn
 }
 
 /// A range with a tenth of its width added on each side (half a unit around a single value).
 fn padded((low, high): (f64, f64)) -> std::ops::Range<f64> {
     let pad = if high > low { (high - low) * 0.1 } else { 0.5 };
     (low - pad)..(high + pad)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tick_labels_of_tiny_values_keep_their_digits() {
+        assert_eq!(short(&1e-13), "1e-13");
+        assert_eq!(short(&-2.5e-13), "-2.5e-13");
+        assert_eq!(short(&-0.0), "0");
+        assert_eq!(short(&0.5), "0.5");
+        assert_eq!(short(&-60.0), "-60");
+        assert_eq!(power_of_ten(&-2.0), "0.01");
+        assert_eq!(power_of_ten(&3.0), "1000");
+        assert_eq!(power_of_ten(&0.5), "");
+    }
 }

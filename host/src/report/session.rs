@@ -5,7 +5,9 @@
 use serde::Serialize;
 use shared::linalg;
 
+use super::allan::AllanSection;
 use super::figure::{self, Figure};
+use super::temperature::TemperatureSection;
 use super::{Comparison, FitReport};
 use crate::fit::{FitError, FitOptions, Parameter};
 use crate::procedure::Verification;
@@ -29,6 +31,10 @@ pub struct SessionReport {
     pub comparison: Option<Comparison>,
     /// The check at fresh orientations, when the session holds one.
     pub verification: Option<Verification>,
+    /// The board's temperature model and its bins, when a thermal report is given.
+    pub temperature: Option<TemperatureSection>,
+    /// The board's noise, when a noise report (or a recording) is given.
+    pub allan_deviation: Option<AllanSection>,
     /// The plots, each with the numbers it is drawn from.
     pub figures: Figures,
 }
@@ -122,7 +128,23 @@ impl SessionReport {
             fit,
             comparison: fit_report.comparison,
             verification,
+            temperature: None,
+            allan_deviation: None,
         })
+    }
+
+    /// Adds the temperature section and its plot.
+    pub fn with_temperature(mut self, (section, plot): (TemperatureSection, Figure)) -> Self {
+        self.temperature = Some(section);
+        self.figures.temperature = Some(plot);
+        self
+    }
+
+    /// Adds the Allan deviation section and its plot.
+    pub fn with_allan_deviation(mut self, (section, plot): (AllanSection, Figure)) -> Self {
+        self.allan_deviation = Some(section);
+        self.figures.allan_deviation = Some(plot);
+        self
     }
 }
 

@@ -1,13 +1,13 @@
 //! The report of a thermal calibration: the calibration with its temperature model and, on the
 //! simulated board, its verification at several temperatures against the simulator's truth.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::calibration::CalibrationJson;
-use crate::fit::thermal::ThermalFit;
+use crate::fit::thermal::{ThermalFit, ThermalPoint};
 
 /// One verification temperature (the `accelcal thermal --sim --json` interface, DESIGN.md).
-#[derive(Debug, Clone, Serialize, PartialEq)]
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct ThermalRow {
     /// The die temperature the sensor reported, in degC (mean over the row's captures).
     pub temp_c: f64,
@@ -33,8 +33,27 @@ pub struct ThermalRow {
     pub positions: usize,
 }
 
+/// One learning bin: the resting board's averages at one temperature and orientation.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, PartialEq)]
+pub struct ThermalBinJson {
+    /// Die temperature the sensor reported, in degC.
+    pub temp_c: f64,
+    /// The specific force of the face the board rested on, in g.
+    pub force_g: [f64; 3],
+    /// Mean accelerometer reading, raw, in g.
+    pub accel_g: [f64; 3],
+    /// Mean gyro reading, raw, in deg/s.
+    pub gyro_dps: [f64; 3],
+}
+
+impl From<&ThermalPoint> for ThermalBinJson {
+    fn from(p: &ThermalPoint) -> Self {
+        ThermalBinJson { temp_c: p.temp_c, force_g: p.force_g, accel_g: p.accel_g, gyro_dps: p.gyro_dps }
+    }
+}
+
 /// The fit's choices, for the report.
-#[derive(Debug, Clone, Serialize, PartialEq)]
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct ThermalFitJson {
     /// Polynomial order per accelerometer axis.
     pub accel_order: [usize; 3],
@@ -50,11 +69,14 @@ pub struct ThermalFitJson {
     pub learned_c: [f64; 2],
     /// Why learning stopped.
     pub stopped: String,
+    /// The bins the model was fitted to (`accelcal report --thermal` plots them).
+    #[serde(default)]
+    pub points: Vec<ThermalBinJson>,
 }
 
 impl ThermalFitJson {
-    /// The report's view of a fit over `bins` bins spanning `learned_c`.
-    pub fn new(fit: &ThermalFit, bins: usize, learned_c: (f64, f64), stopped: String) -> Self {
+    /// The report's view of a fit to `points`, binned into `bins` bins spanning `learned_c`.
+    pub fn new(fit: &ThermalFit, points: &[ThermalPoint], bins: usize, learned_c: (f64, f64), stopped: String) -> Self {
         ThermalFitJson {
             accel_order: fit.accel_order,
             gyro_order: fit.gyro_order,
@@ -63,18 +85,20 @@ impl ThermalFitJson {
             bins,
             learned_c: [learned_c.0, learned_c.1],
             stopped,
+            points: points.iter().map(ThermalBinJson::from).collect(),
         }
     }
 }
 
 /// The whole report.
-#[derive(Debug, Clone, Serialize, PartialEq)]
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct ThermalReport {
     /// The calibration with its temperature model.
     pub calibration: CalibrationJson,
     /// How the temperature model was fitted.
     pub fit: ThermalFitJson,
     /// Verification rows (simulated board only).
+    #[serde(default)]
     pub verification: Vec<ThermalRow>,
 }
 

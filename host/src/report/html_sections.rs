@@ -1,0 +1,76 @@
+//! The HTML of the report's sections that come from outside the session: the temperature model
+//! (`report --thermal`) and the Allan deviation (`report --noise`). Every number carries its JSON
+//! pointer, as in [`super::html`].
+
+use std::fmt::Write;
+
+use super::html::{absent, cell, figure, span, ABSENT};
+use super::plot::PlotError;
+use super::session::SessionReport;
+
+/// The temperature model with its plot, or what to give to have one.
+pub fn temperature(out: &mut String, report: &SessionReport) -> Result<(), PlotError> {
+    out.push_str("<section><h2>Temperature model</h2>");
+    let (Some(t), Some(plot)) = (&report.temperature, &report.figures.temperature) else {
+        let _ = write!(out, "{}</section>", absent(&format!("{ABSENT} (give --thermal THERMAL.json)")));
+        return Ok(());
+    };
+    figure(out, plot)?;
+    let _ = write!(
+        out,
+        "<p>around {} degC, learned over {}&ndash;{} degC in {} bins; held-out error {} mg; sensitivity {}</p>",
+        span("/temperature/ref_temp_c", t.ref_temp_c, 1),
+        span("/temperature/learned_c/0", t.learned_c[0], 1),
+        span("/temperature/learned_c/1", t.learned_c[1], 1),
+        t.bins.len(),
+        span("/temperature/held_out_mg", t.held_out_mg, 3),
+        if t.scale_fitted { "fitted" } else { "not observable (one orientation)" }
+    );
+    out.push_str("<div class=\"table-wrap\"><table><tr><th>axis</th><th>order accel, gyro</th>");
+    out.push_str("<th>offset change over the span (mg)</th><th>gyro bias change (deg/s)</th></tr>");
+    for k in 0..3 {
+        let _ = write!(out, "<tr><td>{}</td><td>{}, {}</td>", ["x", "y", "z"][k], t.accel_order[k], t.gyro_order[k]);
+        out.push_str(&cell(&format!("/temperature/offset_change_mg/{k}"), Some(t.offset_change_mg[k]), 2));
+        let _ = write!(
+            out,
+            "{}</tr>",
+            cell(&format!("/temperature/gyro_bias_change_dps/{k}"), Some(t.gyro_bias_change_dps[k]), 4)
+        );
+    }
+    out.push_str("</table></div></section>");
+    Ok(())
+}
+
+/// The Allan deviation with the fitted terms, or what to give to have it.
+pub fn allan_deviation(out: &mut String, report: &SessionReport) -> Result<(), PlotError> {
+    out.push_str("<section><h2>Allan deviation</h2>");
+    let (Some(a), Some(plot)) = (&report.allan_deviation, &report.figures.allan_deviation) else {
+        let _ = write!(out, "{}</section>", absent(&format!("{ABSENT} (give --noise NOISE.json or a recording)")));
+        return Ok(());
+    };
+    figure(out, plot)?;
+    let minutes = a.samples as f64 / a.sample_rate_hz / 60.0;
+    let _ = write!(
+        out,
+        "<p>{} samples at {} Hz ({minutes:.1} min)",
+        a.samples,
+        span("/allan_deviation/sample_rate_hz", a.sample_rate_hz, 0)
+    );
+    if let Some(limit) = a.capture_limit_s {
+        let _ =
+            write!(out, "; captures longer than {} s stop helping", span("/allan_deviation/capture_limit_s", limit, 1));
+    }
+    out.push_str("</p><div class=\"table-wrap\"><table><tr><th>axis</th><th>white noise density</th>");
+    out.push_str("<th>bias instability</th><th>at tau (s)</th><th>random walk</th></tr>");
+    for (i, axis) in a.axes.iter().enumerate() {
+        let _ = write!(out, "<tr><td>{}</td>", axis.name);
+        let pointer = |key: &str| format!("/allan_deviation/axes/{i}/{key}");
+        out.push_str(&cell(&pointer("white_noise_density"), axis.white_noise_density, 4));
+        out.push_str(&cell(&pointer("bias_instability"), axis.bias_instability, 4));
+        out.push_str(&cell(&pointer("bias_instability_tau_s"), axis.bias_instability_tau_s, 1));
+        let _ = write!(out, "{}</tr>", cell(&pointer("random_walk"), axis.random_walk, 4));
+    }
+    out.push_str("</table></div><p class=\"muted\">accelerometer in ug, ug/sqrt(Hz), ug/s/sqrt(Hz); gyro in deg/s, ");
+    out.push_str("deg/s/sqrt(Hz), deg/s/s/sqrt(Hz); white noise one-sided, as datasheets give it</p></section>");
+    Ok(())
+}
