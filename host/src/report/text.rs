@@ -153,7 +153,32 @@ pub fn session_report(report: &SessionReport) -> String {
     if let Some(comparison) = &report.comparison {
         write_comparison(&mut out, comparison);
     }
+    write_extras(&mut out, report);
     out
+}
+
+/// The temperature model and the noise, one line each, when given.
+fn write_extras(out: &mut String, report: &SessionReport) {
+    if let Some(t) = &report.temperature {
+        let [x, y, z] = t.offset_change_mg;
+        let _ = writeln!(
+            out,
+            "temperature model around {:.1} degC from {} bins over {:.1}-{:.1} degC: offset changes {x:+.2} {y:+.2} {z:+.2} mg over the span, held-out {:.3} mg",
+            t.ref_temp_c, t.bins.len(), t.learned_c[0], t.learned_c[1], t.held_out_mg
+        );
+    }
+    if let Some(a) = &report.allan_deviation {
+        let density = |i: usize| a.axes[i].white_noise_density.map_or("-".to_owned(), |d| format!("{d:.1}"));
+        let _ = writeln!(
+            out,
+            "noise: white noise density {} / {} / {} ug/sqrt(Hz) (x y z, one-sided); {} samples at {} Hz",
+            density(0),
+            density(1),
+            density(2),
+            a.samples,
+            a.sample_rate_hz
+        );
+    }
 }
 
 fn write_board(out: &mut String, board: &Board) {
