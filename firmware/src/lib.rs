@@ -12,3 +12,4 @@ pub mod server;
 #[cfg(feature = "sim")]
 pub mod sim;
 pub mod storage;
+pub mod temperature_bins;

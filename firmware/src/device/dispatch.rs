@@ -36,6 +36,9 @@ where
             Request::Hello { protocol_version } => Ok(self.hello(protocol_version)),
             Request::Cancel => Ok(self.cancel()),
             Request::GetCalibration(slot) => self.get_calibration(slot).await,
+            Request::TakeTemperatureBins => {
+                Ok(Response::TemperatureBins(self.temperature_bins.take(self.config.range)))
+            }
             _ if self.is_busy() => Err(DeviceError::Busy),
             Request::Configure(config) => self.configure(config),
             Request::ClearPositions => {
@@ -76,8 +79,9 @@ where
     fn configure(&mut self, config: SensorConfig) -> Result<Response, DeviceError> {
         let achieved = self.with_sensor(|sensor, bus| sensor.configure(bus, config))?;
         if achieved.range != self.config.range {
-            // Captures belong to the range they were taken at.
+            // Captures and bins belong to the range they were taken at.
             self.positions = PositionMap::new();
+            self.temperature_bins.clear();
         }
         self.config = achieved;
         Ok(Response::Configured(achieved))

@@ -77,7 +77,11 @@ where
         loop {
             match self.read_fifo(&mut batch) {
                 Ok(0) => break,
-                Ok(n) => capture.take(&batch[..n]),
+                Ok(n) => {
+                    let taken = capture.take(&batch[..n]);
+                    self.temperature_bins.add(&batch[..taken]);
+                    taken
+                }
                 Err(error) => return self.end_job(request_id, Response::Error(error)),
             };
             if capture.is_complete() {
@@ -172,6 +176,7 @@ where
             Ok(n) => n,
             Err(error) => return self.end_job(stream.request_id, Response::Error(error)),
         };
+        self.temperature_bins.add(&batch[..n]);
         for raw in &batch[..n] {
             let time_us = stream.fifo_samples * u64::from(stream.sample_period_us);
             stream.fifo_samples += 1;

@@ -25,6 +25,7 @@ use shared::{Calibration, PositionMap};
 
 use crate::sensor::{self, Sensor};
 use crate::storage::{Storage, StorageError};
+use crate::temperature_bins::TemperatureBins;
 
 pub use sample::sample_message;
 
@@ -50,6 +51,8 @@ pub struct Device<I, F: NorFlash> {
     source: ActiveCalibration,
     /// The latest capture at each face, kept for the six-position fit.
     positions: PositionMap<CaptureStats>,
+    /// Every sample captures and streams took, by whole degree, until the host takes them.
+    temperature_bins: TemperatureBins,
     job: jobs::Job,
     outbox: Deque<(u16, Response), OUTBOX_LEN>,
 }
@@ -75,6 +78,7 @@ where
             active: Calibration::identity(config.range),
             source: ActiveCalibration::None,
             positions: PositionMap::new(),
+            temperature_bins: TemperatureBins::default(),
             job: jobs::Job::Idle,
             outbox: Deque::new(),
         };
@@ -195,3 +199,6 @@ mod guard_tests;
 
 #[cfg(test)]
 mod stream_tests;
+
+#[cfg(test)]
+mod bin_tests;

@@ -16,7 +16,8 @@ use shared::Calibration;
 use super::args::ThermalArgs;
 use crate::calibration::{self as record, CalibrationJson};
 use crate::error::Error;
-use crate::fit::thermal::{fit_temperature, ThermalFit};
+use crate::fit::hysteresis::{self, Hysteresis};
+use crate::fit::thermal::fit_temperature;
 use crate::link::{Connection, LinkError};
 use crate::procedure::thermal::{capture_now, learn, LearnEnd, LearnOptions, LearnStatus, ThermalBins, ThermalBoard};
 use crate::procedure::{corners, faces, ProcedureError};
@@ -31,8 +32,10 @@ const STATIC_TEMP_C: f32 = 25.0;
 const LEARN_FROM_C: f32 = 13.0;
 /// ... while the surroundings warm to this, in degC ...
 const LEARN_AMBIENT_TO_C: f32 = 44.0;
-/// ... at 1 degC a minute, in degC/s.
+/// ... at 1 degC a minute, in degC/s; and then back down to this, in degC.
 const LEARN_RAMP_C_PER_S: f32 = 1.0 / 60.0;
+/// Where the surroundings cool to after the warming run (the die follows them down past 13 degC).
+const LEARN_AMBIENT_BACK_TO_C: f32 = 2.0;
 /// Long enough for the die to settle: ten time constants of the simulated board, in seconds.
 const SOAK_S: f32 = 2400.0;
 /// Capture length while learning and verifying, in seconds.
@@ -105,7 +108,17 @@ fn sim_story(connection: &mut Connection, board: &SimBoard, args: &ThermalArgs) 
     sim.send(SimCommand::Ambient { target_c: LEARN_AMBIENT_TO_C, c_per_s: LEARN_RAMP_C_PER_S })?;
     let face_forces: Vec<Vec3<f64>> = faces().iter().map(|f| f.up).collect();
     let options = learn_options(face_forces, args.target_span_c, 20.0);
-    let (calibration, fit_json) = learn_and_fit(connection, &mut sim, &options, &static_calibration, args.json)?;
+    let heating = learn_bins(connection, &mut sim, &options, args.json)?;
+    // Then the way back down, learned apart, for the heating-versus-cooling comparison.
+    let cooling = match heating.complete {
+        true => {
+            sim.send(SimCommand::Ambient { target_c: LEARN_AMBIENT_BACK_TO_C, c_per_s: LEARN_RAMP_C_PER_S })?;
+            Some(learn_bins(connection, &mut sim, &options, args.json)?)
+        }
+        false => None,
+    };
+    let (calibration, mut fit_json) = fit_and_activate(connection, &static_calibration, &heating, cooling.as_ref())?;
+    fit_json.hysteresis = cooling.as_ref().and_then(|c| hysteresis_of(&calibration, &heating.bins, &c.bins));
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(args.device.seed);
     let mut verification = Vec::new();
     for temp_c in VERIFY_TEMPS_C {
@@ -129,40 +142,70 @@ fn learn_options(faces: Vec<Vec3<f64>>, target_span_c: f64, rest_seconds: f64) -
     LearnOptions { faces, capture_seconds: CAPTURE_S, rest_seconds, target_span_c, max_rounds: 10_000 }
 }
 
-/// Learns (keeping the bins if interrupted), fits, and makes the combined calibration active.
-fn learn_and_fit(
+/// What one learning run gathered.
+struct Learned {
+    bins: ThermalBins,
+    /// Why it stopped.
+    stopped: String,
+    /// Whether it ran to its end (not interrupted).
+    complete: bool,
+}
+
+/// Learns with the live line on a terminal; an interrupted run keeps its bins when they span enough.
+fn learn_bins(
     connection: &mut Connection,
     board: &mut dyn ThermalBoard,
     options: &LearnOptions,
-    static_calibration: &Calibration,
     quiet: bool,
-) -> Result<(Calibration, ThermalFitJson), Error> {
+) -> Result<Learned, Error> {
     let mut bins = ThermalBins::default();
     // NOTE: a live line rewrites itself on a terminal; in a log it would be one endless line.
     let quiet = quiet || !std::io::stderr().is_terminal();
     let mut show = |s: LearnStatus| {
         if !quiet {
-            eprint!("\rtemperature {:5.1} degC, span {:4.1} degC, {:3} bins", s.temp_c, s.span_c, s.bins);
+            let (temp, span, bins, chip) = (s.temp_c, s.span_c, s.bins, s.chip_bins);
+            eprint!("\rtemperature {temp:5.1} degC, span {span:4.1} degC, {bins:3} bins (chip bins in the last capture: {chip})");
         }
     };
     let learned = learn(connection, board, options, &mut bins, &mut show);
     if !quiet {
         eprintln!();
     }
-    let stopped = match learned {
-        Ok(end) => end_text(end).to_owned(),
-        Err(error) if bins.check_span().is_ok() => format!("interrupted ({error}); fitted what was learned"),
-        Err(error) => return Err(error.into()),
-    };
-    let fit = fit_temperature(&record::thermal_reference(static_calibration), &bins.check_span()?.points())?;
-    let calibration = record::with_temperature(static_calibration, fit.model)?;
-    connection.client.set_calibration(calibration)?;
-    let learned = bins.range_c().unwrap_or_default();
-    Ok((calibration, fit_summary(&fit, &bins, learned, stopped)))
+    match learned {
+        Ok(end) => Ok(Learned { bins, stopped: end_text(end).to_owned(), complete: true }),
+        Err(error) if bins.check_span().is_ok() => {
+            Ok(Learned { bins, stopped: format!("interrupted ({error}); fitted what was learned"), complete: false })
+        }
+        Err(error) => Err(error.into()),
+    }
 }
 
-fn fit_summary(fit: &ThermalFit, bins: &ThermalBins, learned: (f64, f64), stopped: String) -> ThermalFitJson {
-    ThermalFitJson::new(fit, &bins.points(), bins.len(), learned, stopped)
+/// Fits the bins of one or two runs and makes the combined calibration active.
+fn fit_and_activate(
+    connection: &mut Connection,
+    static_calibration: &Calibration,
+    first: &Learned,
+    second: Option<&Learned>,
+) -> Result<(Calibration, ThermalFitJson), Error> {
+    first.bins.check_span()?;
+    let mut points = first.bins.points();
+    points.extend(second.map(|s| s.bins.points()).unwrap_or_default());
+    let fit = fit_temperature(&record::thermal_reference(static_calibration), &points)?;
+    let calibration = record::with_temperature(static_calibration, fit.model)?;
+    connection.client.set_calibration(calibration)?;
+    let temps = points.iter().map(|p| p.temp_c);
+    let learned = (temps.clone().fold(f64::MAX, f64::min), temps.fold(f64::MIN, f64::max));
+    let bins = first.bins.len() + second.map_or(0, |s| s.bins.len());
+    let stopped =
+        second.map_or(first.stopped.clone(), |s| format!("warming: {}; cooling: {}", first.stopped, s.stopped));
+    Ok((calibration, ThermalFitJson::new(&fit, &points, bins, learned, stopped)))
+}
+
+/// The heating-versus-cooling comparison around the calibration's static matrix and temperature model.
+fn hysteresis_of(calibration: &Calibration, heating: &ThermalBins, cooling: &ThermalBins) -> Option<Hysteresis> {
+    let model = calibration.temperature?;
+    let (matrix, _) = record::static_part(calibration);
+    hysteresis::compare(&model, &matrix, &heating.points(), &cooling.points())
 }
 
 fn end_text(end: LearnEnd) -> &'static str {
@@ -240,6 +283,7 @@ fn truth_row(board: &SimBoard, calibration: &Calibration, temp_c: f32) -> Therma
 fn person_run(connection: &mut Connection, args: &ThermalArgs) -> Result<ThermalReport, Error> {
     let active = connection.client.calibration(CalibrationSlot::Active)?.ok_or(ProcedureError::NoActiveCalibration)?;
     let options = learn_options(vec![[0.0, 0.0, 1.0]], args.target_span_c, 30.0);
-    let (calibration, fit) = learn_and_fit(connection, &mut RestingBoard, &options, &active, args.json)?;
+    let learned = learn_bins(connection, &mut RestingBoard, &options, args.json)?;
+    let (calibration, fit) = fit_and_activate(connection, &active, &learned, None)?;
     Ok(ThermalReport { calibration: CalibrationJson::from_device(&calibration), fit, verification: Vec::new() })
 }

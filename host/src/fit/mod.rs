@@ -3,6 +3,7 @@
 mod evaluate;
 mod faces;
 pub mod gyro;
+pub mod hysteresis;
 mod linear;
 mod model;
 mod models;

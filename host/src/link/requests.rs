@@ -2,7 +2,7 @@
 
 use shared::protocol::{
     CalibrationSlot, CaptureProgress, CaptureStats, DeviceInfo, Request, Response, Sample, SensorConfig, StreamKind,
-    PROTOCOL_VERSION,
+    TempBin, PROTOCOL_VERSION, TEMP_BINS_PER_MESSAGE,
 };
 use shared::{Calibration, Position};
 
@@ -117,6 +117,24 @@ impl<P: Port> Client<P> {
     /// Forgets the captures kept for the on-chip six-position fit.
     pub fn clear_positions(&mut self) -> Result<(), LinkError> {
         self.expect_done(Request::ClearPositions)
+    }
+
+    /// Every temperature bin the chip holds, coolest first; the chip's bins are then empty.
+    pub fn take_temperature_bins(&mut self) -> Result<Vec<TempBin>, LinkError> {
+        let mut bins = Vec::new();
+        loop {
+            let request = Request::TakeTemperatureBins;
+            match self.call(request.clone())? {
+                Response::TemperatureBins(taken) => {
+                    let last = taken.len() < TEMP_BINS_PER_MESSAGE;
+                    bins.extend(taken);
+                    if last {
+                        return Ok(bins);
+                    }
+                }
+                other => return Err(unexpected(&request, &other)),
+            }
+        }
     }
 
     /// The on-chip six-position fit of the captures the device kept.

@@ -1,12 +1,12 @@
 //! Learning how the sensor drifts: the board rests while its temperature changes (warm-up, a cool
-//! or warm place), captures are averaged into 1 degC bins per orientation, and learning stops when
-//! the span is enough or the temperature stalls. The bins belong to the caller, so a run that is
+//! or warm place), the chip averages every sample of its captures into 1 degC bins, the host keeps
+//! them per orientation, and learning stops when the span is enough or the temperature stalls. The bins belong to the caller, so a run that is
 //! interrupted keeps what it learned.
 
 use std::collections::BTreeMap;
 
 use shared::linalg::Vec3;
-use shared::protocol::{CalibrationSlot, CaptureStats};
+use shared::protocol::{CalibrationSlot, CaptureStats, TempBin};
 
 use super::ProcedureError;
 use crate::fit::thermal::ThermalPoint;
@@ -25,20 +25,36 @@ pub struct ThermalBins {
 }
 
 impl ThermalBins {
-    /// Adds one capture taken resting on `force_g` (orientation number `face`).
+    /// Adds one capture taken resting on `force_g` (orientation number `face`), weighted by its samples.
     pub fn add(&mut self, face: usize, force_g: Vec3<f64>, stats: &CaptureStats) {
-        let temp_c = f64::from(stats.temp_c);
         let point = ThermalPoint {
-            temp_c,
+            temp_c: f64::from(stats.temp_c),
             force_g,
             accel_g: stats.mean_g.map(f64::from),
             gyro_dps: stats.gyro_mean_dps.map(f64::from),
         };
+        self.add_point(face, point, stats.samples);
+    }
+
+    /// Adds one of the chip's temperature bins, taken resting on `force_g` (orientation `face`).
+    pub fn add_chip_bin(&mut self, face: usize, force_g: Vec3<f64>, bin: &TempBin) {
+        let point = ThermalPoint {
+            temp_c: f64::from(bin.temp_c),
+            force_g,
+            accel_g: bin.accel_g.map(f64::from),
+            gyro_dps: bin.gyro_dps.map(f64::from),
+        };
+        self.add_point(face, point, bin.samples);
+    }
+
+    /// Adds `samples` samples averaging `point` to the bin of its degree and orientation.
+    fn add_point(&mut self, face: usize, point: ThermalPoint, samples: u32) {
+        let temp_c = point.temp_c;
         let key = ((temp_c / BIN_C).floor() as i64, face);
         let entry = self.bins.entry(key).or_insert((0, point));
-        entry.0 += 1;
-        let n = entry.0 as f64;
-        let mean = |old: f64, new: f64| old + (new - old) / n;
+        entry.0 += samples as usize;
+        let weight = f64::from(samples) / entry.0.max(1) as f64;
+        let mean = |old: f64, new: f64| old + (new - old) * weight;
         entry.1.temp_c = mean(entry.1.temp_c, point.temp_c);
         entry.1.accel_g = [0, 1, 2].map(|k| mean(entry.1.accel_g[k], point.accel_g[k]));
         entry.1.gyro_dps = [0, 1, 2].map(|k| mean(entry.1.gyro_dps[k], point.gyro_dps[k]));
@@ -125,6 +141,8 @@ pub struct LearnStatus {
     pub span_c: f64,
     /// Bins filled.
     pub bins: usize,
+    /// Degrees the chip's bins spanned in the latest capture.
+    pub chip_bins: usize,
 }
 
 /// Learns into `bins` until the span is reached or the temperature stalls; an error leaves the bins
@@ -137,6 +155,8 @@ pub fn learn(
     on_status: &mut dyn FnMut(LearnStatus),
 ) -> Result<LearnEnd, ProcedureError> {
     let mut history: Vec<f64> = Vec::new();
+    // NOTE: the chip's bins hold every sample since they were last taken (earlier captures too).
+    connection.client.take_temperature_bins()?;
     for _ in 0..options.max_rounds {
         let temp_c = learn_round(connection, board, options, bins, on_status)?;
         history.push(temp_c);
@@ -172,9 +192,11 @@ fn learn_round(
     for (face, force) in options.faces.iter().enumerate() {
         board.place(*force)?;
         let stats = capture_now(connection, options.capture_seconds)?;
-        bins.add(face, *force, &stats);
+        let chip_bins = connection.client.take_temperature_bins()?;
+        chip_bins.iter().for_each(|bin| bins.add_chip_bin(face, *force, bin));
         temp_c = f64::from(stats.temp_c);
-        on_status(LearnStatus { temp_c, span_c: bins.span_c(), bins: bins.len() });
+        let status = LearnStatus { temp_c, span_c: bins.span_c(), bins: bins.len(), chip_bins: chip_bins.len() };
+        on_status(status);
     }
     Ok(temp_c)
 }

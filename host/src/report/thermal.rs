@@ -4,6 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::calibration::CalibrationJson;
+use crate::fit::hysteresis::Hysteresis;
 use crate::fit::thermal::{ThermalFit, ThermalPoint};
 
 /// One verification temperature (the `accelcal thermal --sim --json` interface, DESIGN.md).
@@ -72,6 +73,9 @@ pub struct ThermalFitJson {
     /// The bins the model was fitted to (`accelcal report --thermal` plots them).
     #[serde(default)]
     pub points: Vec<ThermalBinJson>,
+    /// Heating against cooling, when the run learned both ways.
+    #[serde(default)]
+    pub hysteresis: Option<Hysteresis>,
 }
 
 impl ThermalFitJson {
@@ -86,6 +90,7 @@ impl ThermalFitJson {
             learned_c: [learned_c.0, learned_c.1],
             stopped,
             points: points.iter().map(ThermalBinJson::from).collect(),
+            hysteresis: None,
         }
     }
 }
@@ -122,6 +127,9 @@ impl ThermalReport {
             f.held_out_mg,
             if f.scale_fitted { "fitted" } else { "not observable (one orientation)" }
         );
+        if let Some(h) = &f.hysteresis {
+            text.push_str(&hysteresis_line(h));
+        }
         if !self.verification.is_empty() {
             text.push_str("temp_c  static_rms_mg  compensated_rms_mg  gyro_bias_error_dps\n");
         }
@@ -133,4 +141,19 @@ impl ThermalReport {
         }
         text
     }
+}
+
+/// Heating against cooling in one line.
+fn hysteresis_line(h: &Hysteresis) -> String {
+    let axes: Vec<String> =
+        (0..3).map(|k| format!("{:+.3} +- {:.3}", h.heating_minus_cooling_mg[k], h.std_error_mg[k])).collect();
+    format!(
+        "heating minus cooling offset at {:.1} degC (overlap {:.1}-{:.1} degC, {} and {} bins): {} mg (x, y, z)\n",
+        h.temp_c,
+        h.overlap_c[0],
+        h.overlap_c[1],
+        h.bins[0],
+        h.bins[1],
+        axes.join(", ")
+    )
 }

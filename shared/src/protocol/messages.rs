@@ -38,6 +38,10 @@ pub enum Request {
     EraseCalibration,
     /// Streams `count` samples (0: until cancelled) at `rate_hz`, raw or calibrated.
     Stream { kind: StreamKind, rate_hz: u16, count: u32 },
+    /// Hands over and empties the coolest temperature bins (at most
+    /// [`super::TEMP_BINS_PER_MESSAGE`]); answered with [`Response::TemperatureBins`]. Allowed
+    /// during a capture or stream.
+    TakeTemperatureBins,
 }
 
 /// What the device answers.
@@ -67,6 +71,9 @@ pub enum Response {
     Done,
     /// The request failed; nothing was changed unless the error says so.
     Error(DeviceError),
+    /// Temperature bins, coolest first, now emptied on the chip; fewer than
+    /// [`super::TEMP_BINS_PER_MESSAGE`] means none are left.
+    TemperatureBins(heapless::Vec<super::TempBin, { super::TEMP_BINS_PER_MESSAGE }>),
 }
 
 /// Which copy of the calibration to read.

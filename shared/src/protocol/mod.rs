@@ -5,9 +5,11 @@
 
 pub mod frame;
 mod messages;
+mod temperature;
 
 pub use frame::{decode, encode, Feed, FrameAccumulator, FrameError};
 pub use messages::*;
+pub use temperature::{TempBin, TEMP_BINS_PER_MESSAGE};
 
 /// Protocol version carried in every frame's header and in [`Response::Hello`].
 ///

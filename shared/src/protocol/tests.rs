@@ -65,6 +65,7 @@ fn every_request() -> Vec<Request> {
         Request::SaveCalibration,
         Request::EraseCalibration,
         Request::Stream { kind: StreamKind::Calibrated, rate_hz: u16::MAX, count: u32::MAX },
+        Request::TakeTemperatureBins,
     ];
     // NOTE: the match fails to compile when a variant is added without being listed above.
     for request in &all {
@@ -79,7 +80,8 @@ fn every_request() -> Vec<Request> {
             | Request::SetCalibration(_)
             | Request::SaveCalibration
             | Request::EraseCalibration
-            | Request::Stream { .. } => {}
+            | Request::Stream { .. }
+            | Request::TakeTemperatureBins => {}
         }
     }
     all
@@ -142,6 +144,7 @@ fn every_response() -> Vec<Response> {
         }),
         Response::StreamEnded { samples: u32::MAX, dropped: u32::MAX },
         Response::Done,
+        Response::TemperatureBins(full_temperature_bins()),
     ];
     all.extend(every_error().into_iter().map(Response::Error));
     for response in &all {
@@ -155,10 +158,17 @@ fn every_response() -> Vec<Response> {
             | Response::Sample(_)
             | Response::StreamEnded { .. }
             | Response::Done
-            | Response::Error(_) => {}
+            | Response::Error(_)
+            | Response::TemperatureBins(_) => {}
         }
     }
     all
+}
+
+/// As many temperature bins as one message carries, each at its largest.
+fn full_temperature_bins() -> heapless::Vec<TempBin, TEMP_BINS_PER_MESSAGE> {
+    let bin = TempBin { degree_c: i8::MIN, samples: u32::MAX, temp_c: -40.0, accel_g: [2.0; 3], gyro_dps: [250.0; 3] };
+    (0..TEMP_BINS_PER_MESSAGE).map(|_| bin).collect()
 }
 
 fn round_trip<T>(message: &T, request_id: u16) -> (u16, T, usize)
