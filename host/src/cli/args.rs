@@ -6,6 +6,7 @@ use clap::{Args, Parser, Subcommand};
 use shared::protocol::{SensorConfig, DEFAULT_CAPTURE_SECONDS, MAX_CAPTURE_SECONDS, MIN_CAPTURE_SECONDS};
 
 pub use super::record::RecordArgs;
+pub use super::report::ReportArgs;
 use crate::data::RowList;
 use crate::fit::ModelChoice;
 use crate::limits::FACE_TOLERANCE_DEG;
@@ -125,25 +126,6 @@ pub struct CaptureArgs {
     pub name: String,
     #[arg(long, default_value_t = DEFAULT_CAPTURE_SECONDS, value_parser = seconds(), help = seconds_help("Seconds to average"))]
     pub seconds: u8,
-}
-
-/// `accelcal report`.
-#[derive(Args)]
-pub struct ReportArgs {
-    /// The session file (PATH.json written by calibrate --session or capture).
-    pub session: PathBuf,
-    /// Where to write the HTML page (default: beside the session, PATH.html).
-    #[arg(short, long)]
-    pub output: Option<PathBuf>,
-    /// Print the report as one JSON object instead of text (the page is written only with -o).
-    #[arg(long)]
-    pub json: bool,
-    /// Add the board's temperature model and its bins (the output of `accelcal thermal --json`).
-    #[arg(long, value_name = "THERMAL.json")]
-    pub thermal: Option<PathBuf>,
-    /// Add the board's Allan deviation (the output of `accelcal noise --json`, or a recording).
-    #[arg(long, value_name = "NOISE.json")]
-    pub noise: Option<PathBuf>,
 }
 
 /// `accelcal stream`.

@@ -39,14 +39,7 @@ pub fn compare(
     heating: &[ThermalPoint],
     cooling: &[ThermalPoint],
 ) -> Option<Hysteresis> {
-    let span = |points: &[ThermalPoint]| {
-        points.iter().fold((f64::MAX, f64::MIN), |(low, high), p| (low.min(p.temp_c), high.max(p.temp_c)))
-    };
-    let ((h_low, h_high), (c_low, c_high)) = (span(heating), span(cooling));
-    let overlap = [h_low.max(c_low), h_high.min(c_high)];
-    if overlap[1] - overlap[0] < MIN_OVERLAP_C {
-        return None;
-    }
+    let overlap = overlap_c(heating, cooling).filter(|[low, high]| high - low >= MIN_OVERLAP_C)?;
     let temp_c = (overlap[0] + overlap[1]) / 2.0;
     let inside = |points: &[ThermalPoint]| -> Vec<ThermalPoint> {
         points.iter().filter(|p| (overlap[0]..=overlap[1]).contains(&p.temp_c)).copied().collect()
@@ -63,6 +56,15 @@ pub fn compare(
     }
     let bins = [heating.len(), cooling.len()];
     Some(Hysteresis { temp_c, overlap_c: overlap, heating_minus_cooling_mg: difference, std_error_mg: std_error, bins })
+}
+
+/// The temperatures both segments cover, lowest and highest.
+fn overlap_c(heating: &[ThermalPoint], cooling: &[ThermalPoint]) -> Option<[f64; 2]> {
+    let span = |points: &[ThermalPoint]| {
+        points.iter().fold((f64::MAX, f64::MIN), |(low, high), p| (low.min(p.temp_c), high.max(p.temp_c)))
+    };
+    let ((h_low, h_high), (c_low, c_high)) = (span(heating), span(cooling));
+    Some([h_low.max(c_low), h_high.min(c_high)]).filter(|[low, high]| low <= high)
 }
 
 /// Each bin's (temperature, offset on axis `k`): its reading less gravity's share, scaled by the

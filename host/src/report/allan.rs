@@ -68,12 +68,7 @@ fn axis(noise: &Value, name: &'static str) -> Result<AllanAxis, String> {
 fn figure(noise: &Value, accel: &[AllanAxis]) -> Result<Figure, String> {
     let mut series = Vec::new();
     for (k, axis) in accel.iter().enumerate() {
-        let list = |key: &str| -> Result<Vec<f64>, String> {
-            let values =
-                noise[axis.name][key].as_array().ok_or_else(|| format!("{}.{key} is not a list", axis.name))?;
-            Ok(values.iter().filter_map(Value::as_f64).collect())
-        };
-        let (taus, adev) = (list("tau_s")?, list("adev")?);
+        let (taus, adev) = (list(noise, axis.name, "tau_s")?, list(noise, axis.name, "adev")?);
         let short = ["x", "y", "z"][k];
         let measured = taus.iter().zip(&adev).map(|(t, a)| [*t, *a]).collect();
         series.push(Series::new(&format!("{short} deviation"), axis_role(k), SeriesStyle::Points, measured));
@@ -82,7 +77,17 @@ fn figure(noise: &Value, accel: &[AllanAxis]) -> Result<Figure, String> {
             series.push(Series::new(&format!("{short} fitted"), axis_role(k), SeriesStyle::Line, curve));
         }
     }
-    Ok(Figure {
+    Ok(deviation_axes(series))
+}
+
+/// The numbers of the list `key` of axis `name`.
+fn list(noise: &Value, name: &str, key: &str) -> Result<Vec<f64>, String> {
+    let values = noise[name][key].as_array().ok_or_else(|| format!("{name}.{key} is not a list"))?;
+    Ok(values.iter().filter_map(Value::as_f64).collect())
+}
+
+fn deviation_axes(series: Vec<Series>) -> Figure {
+    Figure {
         id: "allan-deviation",
         title: "accelerometer Allan deviation and the fitted noise terms".into(),
         x_label: "averaging time (s)".into(),
@@ -90,7 +95,7 @@ fn figure(noise: &Value, accel: &[AllanAxis]) -> Result<Figure, String> {
         equal_axes: false,
         log_axes: true,
         series,
-    })
+    }
 }
 
 /// The fitted terms of an axis as the noise analysis models them (its N is the one-sided density

@@ -4,9 +4,11 @@
 
 use std::fmt::Write;
 
+use super::allan::AllanSection;
 use super::html::{absent, cell, figure, span, ABSENT};
 use super::plot::PlotError;
 use super::session::SessionReport;
+use super::temperature::TemperatureSection;
 
 /// The temperature model with its plot, or what to give to have one.
 pub fn temperature(out: &mut String, report: &SessionReport) -> Result<(), PlotError> {
@@ -16,6 +18,13 @@ pub fn temperature(out: &mut String, report: &SessionReport) -> Result<(), PlotE
         return Ok(());
     };
     figure(out, plot)?;
+    temperature_summary(out, t);
+    temperature_table(out, t);
+    out.push_str("</section>");
+    Ok(())
+}
+
+fn temperature_summary(out: &mut String, t: &TemperatureSection) {
     let _ = write!(
         out,
         "<p>around {} degC, learned over {}&ndash;{} degC in {} bins; held-out error {} mg; sensitivity {}</p>",
@@ -26,6 +35,9 @@ pub fn temperature(out: &mut String, report: &SessionReport) -> Result<(), PlotE
         span("/temperature/held_out_mg", t.held_out_mg, 3),
         if t.scale_fitted { "fitted" } else { "not observable (one orientation)" }
     );
+}
+
+fn temperature_table(out: &mut String, t: &TemperatureSection) {
     out.push_str("<div class=\"table-wrap\"><table><tr><th>axis</th><th>order accel, gyro</th>");
     out.push_str("<th>offset change over the span (mg)</th><th>gyro bias change (deg/s)</th></tr>");
     for k in 0..3 {
@@ -37,8 +49,7 @@ pub fn temperature(out: &mut String, report: &SessionReport) -> Result<(), PlotE
             cell(&format!("/temperature/gyro_bias_change_dps/{k}"), Some(t.gyro_bias_change_dps[k]), 4)
         );
     }
-    out.push_str("</table></div></section>");
-    Ok(())
+    out.push_str("</table></div>");
 }
 
 /// The Allan deviation with the fitted terms, or what to give to have it.
@@ -49,6 +60,14 @@ pub fn allan_deviation(out: &mut String, report: &SessionReport) -> Result<(), P
         return Ok(());
     };
     figure(out, plot)?;
+    allan_summary(out, a);
+    allan_table(out, a);
+    out.push_str("<p class=\"muted\">accelerometer in ug, ug/sqrt(Hz), ug/s/sqrt(Hz); gyro in deg/s, ");
+    out.push_str("deg/s/sqrt(Hz), deg/s/s/sqrt(Hz); white noise one-sided, as datasheets give it</p></section>");
+    Ok(())
+}
+
+fn allan_summary(out: &mut String, a: &AllanSection) {
     let minutes = a.samples as f64 / a.sample_rate_hz / 60.0;
     let _ = write!(
         out,
@@ -60,7 +79,11 @@ pub fn allan_deviation(out: &mut String, report: &SessionReport) -> Result<(), P
         let _ =
             write!(out, "; captures longer than {} s stop helping", span("/allan_deviation/capture_limit_s", limit, 1));
     }
-    out.push_str("</p><div class=\"table-wrap\"><table><tr><th>axis</th><th>white noise density</th>");
+    out.push_str("</p>");
+}
+
+fn allan_table(out: &mut String, a: &AllanSection) {
+    out.push_str("<div class=\"table-wrap\"><table><tr><th>axis</th><th>white noise density</th>");
     out.push_str("<th>bias instability</th><th>at tau (s)</th><th>random walk</th></tr>");
     for (i, axis) in a.axes.iter().enumerate() {
         let _ = write!(out, "<tr><td>{}</td>", axis.name);
@@ -70,7 +93,5 @@ pub fn allan_deviation(out: &mut String, report: &SessionReport) -> Result<(), P
         out.push_str(&cell(&pointer("bias_instability_tau_s"), axis.bias_instability_tau_s, 1));
         let _ = write!(out, "{}</tr>", cell(&pointer("random_walk"), axis.random_walk, 4));
     }
-    out.push_str("</table></div><p class=\"muted\">accelerometer in ug, ug/sqrt(Hz), ug/s/sqrt(Hz); gyro in deg/s, ");
-    out.push_str("deg/s/sqrt(Hz), deg/s/s/sqrt(Hz); white noise one-sided, as datasheets give it</p></section>");
-    Ok(())
+    out.push_str("</table></div>");
 }

@@ -71,8 +71,7 @@ fn at(model: &TemperatureModel, coefficients: &shared::calibration::TempCoeffici
 /// Offset drift against temperature: per axis the model's curve o(T) - o and, for each bin, the
 /// reading less the gravity the model scales for that temperature and less the static offset.
 fn offset_figure(thermal: &ThermalReport, model: &TemperatureModel) -> Result<Figure, String> {
-    let calibration = &thermal.calibration;
-    let inverse = linalg::inverse(&calibration.matrix).ok_or("its calibration matrix is singular")?;
+    let inverse = linalg::inverse(&thermal.calibration.matrix).ok_or("its calibration matrix is singular")?;
     let [low, high] = thermal.fit.learned_c;
     let mut series = Vec::new();
     for k in 0..3 {
@@ -81,15 +80,28 @@ fn offset_figure(thermal: &ThermalReport, model: &TemperatureModel) -> Result<Fi
             let temp_c = low + (high - low) * i as f64 / CURVE_POINTS as f64;
             [temp_c, at(model, &model.offset_g, temp_c)[k] * MG_PER_G]
         });
-        let bin_drift = |bin: &ThermalBinJson| {
-            let gravity = linalg::mul_vec(&inverse, bin.force_g)[k] * (1.0 + at(model, &model.scale, bin.temp_c)[k]);
-            [bin.temp_c, (bin.accel_g[k] - gravity - calibration.offset[k]) * MG_PER_G]
-        };
         series.push(Series::new(&format!("{name} model"), axis_role(k), SeriesStyle::Line, curve.collect()));
-        let bins = thermal.fit.points.iter().map(bin_drift).collect();
+        let bins = thermal.fit.points.iter().map(|bin| bin_drift_mg(thermal, model, &inverse, bin, k)).collect();
         series.push(Series::new(&format!("{name} bins"), axis_role(k), SeriesStyle::Points, bins));
     }
-    Ok(Figure {
+    Ok(offset_axes(series))
+}
+
+/// A bin's (temperature, offset drift on axis `k` in mg): its reading less the gravity the model
+/// scales for its temperature and less the static offset.
+fn bin_drift_mg(
+    thermal: &ThermalReport,
+    model: &TemperatureModel,
+    inverse: &shared::linalg::Mat3<f64>,
+    bin: &ThermalBinJson,
+    k: usize,
+) -> [f64; 2] {
+    let gravity = linalg::mul_vec(inverse, bin.force_g)[k] * (1.0 + at(model, &model.scale, bin.temp_c)[k]);
+    [bin.temp_c, (bin.accel_g[k] - gravity - thermal.calibration.offset[k]) * MG_PER_G]
+}
+
+fn offset_axes(series: Vec<Series>) -> Figure {
+    Figure {
         id: "temperature",
         title: "accelerometer offset drift: the model's curve and the bins it was fitted to".into(),
         x_label: "die temperature (degC)".into(),
@@ -97,5 +109,5 @@ fn offset_figure(thermal: &ThermalReport, model: &TemperatureModel) -> Result<Fi
         equal_axes: false,
         log_axes: false,
         series,
-    })
+    }
 }
