@@ -6,7 +6,7 @@ use serde::Serialize;
 use shared::calibration::{drift, TemperatureModel};
 use shared::linalg::{self, Vec3};
 
-use super::figure::{axis_role, Figure, Series, SeriesStyle};
+use super::figure::{axis_role, Figure, Role, Series, SeriesStyle};
 use super::thermal::{ThermalBinJson, ThermalReport};
 
 /// Points along each model curve.
@@ -80,9 +80,10 @@ fn offset_figure(thermal: &ThermalReport, model: &TemperatureModel) -> Result<Fi
             let temp_c = low + (high - low) * i as f64 / CURVE_POINTS as f64;
             [temp_c, at(model, &model.offset_g, temp_c)[k] * MG_PER_G]
         });
-        series.push(Series::new(&format!("{name} model"), axis_role(k), SeriesStyle::Line, curve.collect()));
+        // NOTE: the bins first and the model in grey, so its line shows over the bins that lie on it.
         let bins = thermal.fit.points.iter().map(|bin| bin_drift_mg(thermal, model, &inverse, bin, k)).collect();
         series.push(Series::new(&format!("{name} bins"), axis_role(k), SeriesStyle::Points, bins));
+        series.push(Series::new(&format!("{name} model"), Role::Reference, SeriesStyle::Line, curve.collect()));
     }
     Ok(offset_axes(series))
 }
