@@ -103,11 +103,16 @@ mod board {
         let flash = BlockingAsync::new(Flash::new_blocking(p.FLASH));
         let serial = SerialNumber(unique_id());
         let serial_text = serial.hex();
-        let Ok(device) = Device::boot(i2c, flash, CALIBRATION_FLASH_RANGE, serial).await else {
-            // NOTE: only a flash range that does not fit the chip fails here: a build error.
-            defmt::panic!("calibration flash range does not fit the flash");
+        // NOTE: the device is moved into the server inside this block, so that the main task's state
+        // does not keep room for both across the await below (that doubled the device in static RAM).
+        let mut server = {
+            let Ok(device) = Device::boot(i2c, flash, CALIBRATION_FLASH_RANGE, serial).await else {
+                // NOTE: only a flash range that does not fit the chip fails here: a build error.
+                defmt::panic!("calibration flash range does not fit the flash");
+            };
+            info!("calibration active: {}", device.active_calibration().is_some());
+            Server::new(device)
         };
-        info!("calibration active: {}", device.active_calibration().is_some());
 
         let mut ep_out_buffer = [0u8; 256];
         let mut usb_config = usb::Config::default();
@@ -124,7 +129,6 @@ mod board {
         let mut class = CdcAcmClass::new(&mut builder, &mut state, USB_PACKET_LEN);
         let mut usb = builder.build();
 
-        let mut server = Server::new(device);
         join(usb.run(), serve(&mut server, &mut class, &mut led)).await;
     }
 
