@@ -1,14 +1,15 @@
 //! The device: answers every request with exactly one final response, runs captures and streams,
-//! fits six positions, and keeps the calibration active in RAM and stored in flash.
+//! fits its captures (six positions, or the 9-parameter model on any captures), and keeps the calibration active in RAM and stored in flash.
 //!
 //! Target-independent: the board binary feeds it decoded requests and polls it every few
 //! milliseconds; tests and the host's simulated device do the same on the simulated MPU-6050.
 //!
 //! Split by concern: [`dispatch`] routes requests, [`jobs`] runs the long operations (capture,
-//! stream), [`slots`] keeps the active and stored calibration, [`sample`] turns a sensor reading
-//! into a message.
+//! stream), [`slots`] keeps the active and stored calibration, [`fit`] keeps captures for the chip's
+//! 9-parameter fit and runs it, [`sample`] turns a sensor reading into a message.
 
 mod dispatch;
+mod fit;
 mod jobs;
 mod sample;
 mod slots;
@@ -50,6 +51,8 @@ pub struct Device<I, F: NorFlash> {
     source: ActiveCalibration,
     /// The latest capture at each face, kept for the six-position fit.
     positions: PositionMap<CaptureStats>,
+    /// The latest captures wherever they were taken, kept for the 9-parameter fit.
+    kept: fit::KeptCaptures,
     job: jobs::Job,
     outbox: Deque<(u16, Response), OUTBOX_LEN>,
 }
@@ -75,6 +78,7 @@ where
             active: Calibration::identity(config.range),
             source: ActiveCalibration::None,
             positions: PositionMap::new(),
+            kept: fit::KeptCaptures::default(),
             job: jobs::Job::Idle,
             outbox: Deque::new(),
         };
@@ -192,6 +196,9 @@ mod fault_tests;
 
 #[cfg(test)]
 mod guard_tests;
+
+#[cfg(test)]
+mod fit_tests;
 
 #[cfg(test)]
 mod stream_tests;
