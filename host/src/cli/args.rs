@@ -73,7 +73,7 @@ pub struct CalibrateArgs {
     #[arg(long)]
     pub quick: bool,
     #[arg(long, value_parser = seconds(),
-          help = seconds_help("Seconds to average each position [default: 10; with --quick 5]"))]
+          help = format!("{}; default {DEFAULT_CAPTURE_SECONDS}, --quick {}", seconds_help("Seconds to average each position"), crate::procedure::QUICK_CAPTURE_SECONDS))]
     pub seconds: Option<u8>,
     /// Fresh orientations to verify at (1-20).
     #[arg(long, default_value_t = 6, value_parser = clap::value_parser!(u8).range(1..=MAX_VERIFY_POSITIONS))]
