@@ -56,7 +56,9 @@ impl Run {
     /// Plays the person: turns the board as each instruction says, until a line contains `until`
     /// (or the run ends: `None`).
     fn follow(&mut self, sim: &mut SimPty, until: &str) -> Option<String> {
-        let fresh = ["place 0.5 0.5 0.707", "place -0.6 0.3 -0.742", "place 0.1 -0.8 0.59"];
+        // NOTE: midpoints of cube edges: 45 degrees from the faces and 35 from the corners the
+        // calibration asked for, so each is fresh (limits::FRESH_DEG is 20).
+        let fresh = ["place 0.707 0 0.707", "place 0 0.707 -0.707", "place -0.707 0.707 0"];
         while let Ok(line) = self.lines.recv_timeout(Duration::from_secs(60)) {
             self.seen.push(line.clone());
             if let Some(rest) = line.strip_prefix("Rest the board with ") {
