@@ -93,9 +93,10 @@ fn default_calibration_over_a_pty_survives_a_restart_and_verifies_below_1_mg() {
 }
 
 #[test]
-fn quick_six_position_on_the_chip_improves_the_error_too() {
-    // NOTE: the six-position closed form takes each face as exactly placed, so a hand's 3 degrees
-    // go straight into its cross-axis terms: the gain varies from run to run. Six runs, averaged.
+fn quick_on_the_chip_verifies_within_a_few_mg_with_no_fit_on_the_host() {
+    // NOTE: the chip's ortho9 needs no exact placement; what verification still sees is its own
+    // noise (0.13 mg) and the realistic sensor warming on after the calibration (about 1.4 mg/degC
+    // on z): the calibration's own error against the truth is measured in tests/quick_mode.rs.
     let (mut before, mut after) = (0.0, 0.0);
     for seed in 1..=6 {
         let (host, device) = pipe();
@@ -103,20 +104,21 @@ fn quick_six_position_on_the_chip_improves_the_error_too() {
         let (mut client, _) = Client::connect(host).unwrap();
         let mut hand = SimulatedHand::new(board.controls(), PLACEMENT_DEG, seed);
         let mut feedback = Silent { yes: true };
-        procedure::collect(&mut client, &mut hand, &procedure::faces(), &options(), &mut feedback).unwrap();
-        let chip = client.fit_six_position().unwrap();
-        client.set_calibration(chip).unwrap();
+        let quick = CollectOptions { seconds: procedure::capture_seconds(true), wait_limit: WAIT };
+        procedure::collect(&mut client, &mut hand, &procedure::targets(true), &quick, &mut feedback).unwrap();
+        let chip = client.fit_ortho9().unwrap();
+        client.set_calibration(chip.calibration).unwrap();
         client.save_calibration().unwrap();
         let verification = procedure::verify(&mut client, &mut hand, 12, WAIT, &mut feedback).unwrap();
         println!(
-            "quick, seed {seed}: {:.1} mg rms before, {:.1} mg after",
+            "quick, seed {seed}: {:.1} mg rms before, {:.3} mg after",
             verification.before_rms_mg, verification.after_rms_mg
         );
         before += verification.before_rms_mg / 6.0;
         after += verification.after_rms_mg / 6.0;
     }
-    println!("quick, mean of six runs: {before:.1} mg rms before, {after:.1} mg after");
-    assert!(after < 0.6 * before, "quick: {before:.1} -> {after:.1} mg");
+    println!("quick, mean of six runs: {before:.1} mg rms before, {after:.3} mg after");
+    assert!(after < 2.0, "quick: {before:.1} -> {after:.3} mg");
 }
 
 /// A feedback that remembers the live lines.

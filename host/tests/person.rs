@@ -56,7 +56,9 @@ impl Run {
     /// Plays the person: turns the board as each instruction says, until a line contains `until`
     /// (or the run ends: `None`).
     fn follow(&mut self, sim: &mut SimPty, until: &str) -> Option<String> {
-        let fresh = ["place 0.5 0.5 0.707", "place -0.6 0.3 -0.742", "place 0.1 -0.8 0.59"];
+        // NOTE: midpoints of cube edges: 45 degrees from the faces and 35 from the corners the
+        // calibration asked for, so each is fresh (limits::FRESH_DEG is 20).
+        let fresh = ["place 0.707 0 0.707", "place 0 0.707 -0.707", "place -0.707 0.707 0"];
         while let Ok(line) = self.lines.recv_timeout(Duration::from_secs(60)) {
             self.seen.push(line.clone());
             if let Some(rest) = line.strip_prefix("Rest the board with ") {
@@ -117,7 +119,7 @@ fn ctrl_c_keeps_the_captures_so_far_and_resume_completes_them_to_a_verified_cali
     let mut sim = board_on_the_desk("12");
     let session = temp_stem("interrupted");
     let mut run = Run::start(&sim.path.clone(), &["--session", session.to_str().unwrap()]);
-    assert!(run.follow(&mut sim, "captured 2 of 6").is_some(), "{:?}", run.seen);
+    assert!(run.follow(&mut sim, "captured 2 of 10").is_some(), "{:?}", run.seen);
     // The person stops instead of turning the board to the third face.
     std::thread::sleep(Duration::from_millis(300));
     run.interrupt();
@@ -132,9 +134,9 @@ fn ctrl_c_keeps_the_captures_so_far_and_resume_completes_them_to_a_verified_cali
     let run = Run::start(&sim.path.clone(), &["--resume", json.to_str().unwrap(), "--yes"]);
     let (status, stdout, stderr) = run.finish(&mut sim);
     assert!(status.success(), "{stderr}");
-    assert!(stderr.contains("2 of 6 positions captured"), "{stderr}");
+    assert!(stderr.contains("2 of 10 positions captured"), "{stderr}");
     assert!(stdout.starts_with("verified at 2 fresh orientations"), "{stdout}");
-    assert_eq!(session_captures(&session), 6);
+    assert_eq!(session_captures(&session), 10);
 }
 
 #[test]
@@ -142,7 +144,7 @@ fn a_pulled_cable_keeps_the_captures_so_far_and_resume_on_another_board_is_refus
     let mut sim = board_on_the_desk("13");
     let session = temp_stem("pulled");
     let mut run = Run::start(&sim.path.clone(), &["--session", session.to_str().unwrap()]);
-    assert!(run.follow(&mut sim, "captured 3 of 6").is_some(), "{:?}", run.seen);
+    assert!(run.follow(&mut sim, "captured 3 of 10").is_some(), "{:?}", run.seen);
     drop(sim); // the cable is pulled
     let mut other = board_on_the_desk("14");
     let (status, _, stderr) = run.finish(&mut other);

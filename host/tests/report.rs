@@ -278,12 +278,12 @@ fn points_marked(figure: &Value) -> u64 {
 }
 
 #[test]
-fn the_report_of_a_quick_session_shows_the_six_position_calibration_that_was_uploaded() {
+fn the_report_of_a_quick_session_shows_the_ortho9_calibration_the_chip_fitted() {
     let dir = scratch("quick");
     let stem = dir.join("quick");
     let output =
         accelcal(&["calibrate", "--sim", "--quick", "--yes", "--seed", "3", "--session", stem.to_str().unwrap()]);
     assert!(output.status.success(), "{}", text(&output.stderr));
     let json = report_json(&stem.with_extension("json"));
-    assert_eq!(json.pointer("/fit/model").and_then(Value::as_str), Some("six-position"), "{json:#}");
+    assert_eq!(json.pointer("/fit/model").and_then(Value::as_str), Some("ortho9"), "{json:#}");
 }

@@ -43,12 +43,14 @@ where
             Request::Configure(config) => self.configure(config),
             Request::ClearPositions => {
                 self.positions.clear();
+                self.kept.clear();
                 Ok(Response::Done)
             }
             Request::FitSixPosition => self.fit_six_position(),
             Request::SetCalibration(calibration) => self.set_calibration(calibration),
             Request::SaveCalibration => self.save().await,
             Request::EraseCalibration => self.erase().await,
+            Request::FitOrtho9 => self.fit_ortho9(),
             // NOTE: `handle` starts these itself; listed so that a new request cannot be forgotten.
             Request::Capture { .. } | Request::Stream { .. } => Err(DeviceError::Busy),
         }
@@ -82,6 +84,7 @@ where
             // Captures and bins belong to the range they were taken at.
             self.positions = PositionMap::new();
             self.temperature_bins.clear();
+            self.kept.clear();
         }
         self.config = achieved;
         Ok(Response::Configured(achieved))

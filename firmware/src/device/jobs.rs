@@ -96,8 +96,10 @@ where
         self.job = Job::Capturing { request_id, capture, next_progress };
     }
 
-    /// Keeps a finished capture for the six-position fit when it was taken at a face.
+    /// Keeps a finished capture for the 9-parameter fit, and for the six-position fit when it was
+    /// taken at a face.
     fn keep(&mut self, stats: CaptureStats) -> Response {
+        self.kept.keep(&stats);
         let position = face_of(stats.mean_g);
         if let Some(p) = position {
             self.positions.replace(p, stats);

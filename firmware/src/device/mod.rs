@@ -1,14 +1,15 @@
 //! The device: answers every request with exactly one final response, runs captures and streams,
-//! fits six positions, and keeps the calibration active in RAM and stored in flash.
+//! fits its captures (six positions, or the 9-parameter model on any captures), and keeps the calibration active in RAM and stored in flash.
 //!
 //! Target-independent: the board binary feeds it decoded requests and polls it every few
 //! milliseconds; tests and the host's simulated device do the same on the simulated MPU-6050.
 //!
 //! Split by concern: [`dispatch`] routes requests, [`jobs`] runs the long operations (capture,
-//! stream), [`slots`] keeps the active and stored calibration, [`sample`] turns a sensor reading
-//! into a message.
+//! stream), [`slots`] keeps the active and stored calibration, [`fit`] keeps captures for the chip's
+//! 9-parameter fit and runs it, [`sample`] turns a sensor reading into a message.
 
 mod dispatch;
+mod fit;
 mod jobs;
 mod sample;
 mod slots;
@@ -53,6 +54,8 @@ pub struct Device<I, F: NorFlash> {
     positions: PositionMap<CaptureStats>,
     /// Every sample captures and streams took, by whole degree, until the host takes them.
     temperature_bins: TemperatureBins,
+    /// The latest captures wherever they were taken, kept for the 9-parameter fit.
+    kept: fit::KeptCaptures,
     job: jobs::Job,
     outbox: Deque<(u16, Response), OUTBOX_LEN>,
 }
@@ -79,6 +82,7 @@ where
             source: ActiveCalibration::None,
             positions: PositionMap::new(),
             temperature_bins: TemperatureBins::default(),
+            kept: fit::KeptCaptures::default(),
             job: jobs::Job::Idle,
             outbox: Deque::new(),
         };
@@ -196,6 +200,9 @@ mod fault_tests;
 
 #[cfg(test)]
 mod guard_tests;
+
+#[cfg(test)]
+mod fit_tests;
 
 #[cfg(test)]
 mod stream_tests;

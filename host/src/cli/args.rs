@@ -70,12 +70,12 @@ pub struct FitArgs {
 pub struct CalibrateArgs {
     #[command(flatten)]
     pub device: Device,
-    /// Only the six faces, fitted on the chip.
+    /// Ten positions (six faces, four corners), fitted on the chip: no fit on the host.
     #[arg(long)]
     pub quick: bool,
-    #[arg(long, default_value_t = DEFAULT_CAPTURE_SECONDS, value_parser = seconds(),
-          help = seconds_help("Seconds to average each position"))]
-    pub seconds: u8,
+    #[arg(long, value_parser = seconds(),
+          help = format!("{}; default {DEFAULT_CAPTURE_SECONDS}, --quick {}", seconds_help("Seconds to average each position"), crate::procedure::QUICK_CAPTURE_SECONDS))]
+    pub seconds: Option<u8>,
     /// Fresh orientations to verify at (1-20).
     #[arg(long, default_value_t = 6, value_parser = clap::value_parser!(u8).range(1..=MAX_VERIFY_POSITIONS))]
     pub verify: u8,

@@ -14,7 +14,7 @@ use super::terminal::feedback;
 use crate::calibration::{self, describe};
 use crate::error::Error;
 use crate::fit::Fit;
-use crate::link::{Client, LinkError, Port};
+use crate::link::{ChipOrtho9, Client, LinkError, Port};
 use crate::procedure::{self, CollectOptions, Feedback, Verification};
 use crate::report::{self, CalibrateReport};
 use crate::session::{unix_time_s, BoardRecord, Session};
@@ -22,7 +22,7 @@ use crate::session::{unix_time_s, BoardRecord, Session};
 /// The calibrations a calibration chooses between.
 struct Fitted {
     session: Session,
-    chip: Option<Calibration>,
+    chip: Option<ChipOrtho9>,
     host: Option<Fit>,
     chosen: Calibration,
 }
@@ -69,7 +69,8 @@ fn collect(
     feedback: &mut dyn Feedback,
 ) -> Result<(), Error> {
     let (mut hand, wait_limit) = opened.hand(args.sim_placement_deg, args.device.seed);
-    let options = CollectOptions { seconds: args.seconds, wait_limit };
+    let seconds = args.seconds.unwrap_or_else(|| procedure::capture_seconds(kept.session.quick));
+    let options = CollectOptions { seconds, wait_limit };
     let targets = procedure::targets(kept.session.quick);
     let path = kept.path.clone();
     let mut keep = |session: &Session| path.as_deref().map_or(Ok(()), |p| session.save(p));
@@ -106,8 +107,8 @@ fn finish(
     }
     let truth = opened.sim.as_ref().map(|board| board.truth());
     let captures = fitted.session.captures.len();
-    let report =
-        CalibrateReport::new(&fitted.chosen, fitted.chip.as_ref(), fitted.host.as_ref(), truth, verification, captures);
+    let chip = fitted.chip.as_ref().map(|c| &c.calibration);
+    let report = CalibrateReport::new(&fitted.chosen, chip, fitted.host.as_ref(), truth, verification, captures);
     print_report(&report, args.json);
     Ok(())
 }
@@ -200,16 +201,16 @@ fn upload_if_confirmed<P: Port>(
     Ok(true)
 }
 
-/// The on-chip fit (of captures all taken in this run), and for a full calibration the host's fit,
-/// which is then the one chosen; a resumed `--quick` session is fitted by the same closed form on
-/// the host.
+/// The chip's `ortho9` fit (of captures all taken in this run), which a `--quick` calibration takes
+/// as it is (no host fit at all), and for a full calibration the host's fit, which is then the one
+/// chosen; a resumed `--quick` session is fitted by the same solver on the host.
 fn choose<P: Port>(client: &mut Client<P>, kept: &Kept, config: SensorConfig) -> Result<Fitted, Error> {
     let session = kept.session.clone();
-    let chip = if kept.resumed { None } else { Some(client.fit_six_position()?) };
+    let chip = if kept.resumed { None } else { Some(client.fit_ortho9()?) };
     match (session.quick, chip) {
-        (true, Some(chip)) => Ok(Fitted { session, chip: Some(chip), host: None, chosen: chip }),
+        (true, Some(chip)) => Ok(Fitted { session, chip: Some(chip), host: None, chosen: chip.calibration }),
         (quick, chip) => {
-            let fit = if quick { procedure::host_six_position_fit(&session)? } else { procedure::host_fit(&session)? };
+            let fit = if quick { procedure::host_quick_fit(&session)? } else { procedure::host_fit(&session)? };
             let chosen = calibration::from_fit(&fit, &session, config)?;
             Ok(Fitted { session, chip, host: Some(fit), chosen })
         }
@@ -225,8 +226,15 @@ fn show_choice(feedback: &mut dyn Feedback, fitted: &Fitted) {
             feedback.say(&format!("  {:<5} {:+.6}{error}", p.name, crate::report::shown(p.value, 6)));
         }
     }
-    if let (Some(chip), Some(_)) = (&fitted.chip, &fitted.host) {
-        feedback.say(&format!("on-chip six-position fit for comparison: {}", describe(chip)));
+    match (&fitted.chip, &fitted.host) {
+        (Some(chip), Some(_)) => {
+            feedback.say(&format!("on-chip ortho9 fit for comparison: {}", describe(&chip.calibration)))
+        }
+        (Some(chip), None) => feedback.say(&format!(
+            "fitted on the chip (ortho9, f32): {} captures, | |a| - 1 g | rms {:.3} mg over them, {} iterations",
+            chip.captures, chip.calibration.residual_mg, chip.iterations
+        )),
+        _ => {}
     }
 }
 

@@ -183,6 +183,7 @@ pub(super) fn request_name(request: &Request) -> &'static str {
         Request::EraseCalibration => "EraseCalibration",
         Request::Stream { .. } => "Stream",
         Request::TakeTemperatureBins => "TakeTemperatureBins",
+        Request::FitOrtho9 => "FitOrtho9",
     }
 }
 

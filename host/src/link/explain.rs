@@ -2,6 +2,7 @@
 //! Numbers come from the constants that set them, never restated.
 
 use shared::calibration::limits;
+use shared::ortho9::{Ortho9Error, MIN_READINGS};
 use shared::protocol::{DeviceError, FrameError, MAX_CAPTURE_SECONDS, MIN_CAPTURE_SECONDS, PROTOCOL_VERSION};
 use shared::{CalibrationError, SixPositionError};
 
@@ -18,6 +19,7 @@ pub fn explain(error: &DeviceError) -> String {
         | DeviceError::InvalidDuration { .. }
         | DeviceError::InvalidRate { .. } => capture(error),
         DeviceError::SixPosition(reason) => six_position(reason),
+        DeviceError::Ortho9(reason) => ortho9(reason),
         DeviceError::InvalidCalibration(reason) => {
             format!("the device refused the calibration: {}", calibration_reason(&reason))
         }
@@ -54,6 +56,34 @@ fn six_position(reason: SixPositionError) -> String {
         }
     }
 }
+
+/// Why the chip's 9-parameter fit could not run on the captures it kept.
+fn ortho9(reason: Ortho9Error) -> String {
+    match reason {
+        Ortho9Error::TooFewReadings(n) => format!(
+            "the chip's 9-parameter fit needs at least {MIN_READINGS} captures and it holds {n}: capture more positions (a restart or a range change forgets them)"
+        ),
+        Ortho9Error::IllConditioned(k) => format!(
+            "the chip's captures do not determine {} (they lie too close together): capture positions spread over the sphere, the faces and the corners asked for",
+            PARAMETER_NAMES.get(usize::from(k)).copied().unwrap_or("a parameter")
+        ),
+        Ortho9Error::NotConverged => "the chip's 9-parameter fit did not settle: the captures disagree (did the board move, or the range change?); capture them again".into(),
+        Ortho9Error::NotFinite => "the chip's captures hold a value that is not a number: check the sensor and capture them again".into(),
+    }
+}
+
+/// The `ortho9` parameters in the solver's order, as the host's fit names them.
+const PARAMETER_NAMES: [&str; 9] = [
+    "the cross-axis term a_yz",
+    "the cross-axis term a_zy",
+    "the cross-axis term a_zx",
+    "the x scale",
+    "the y scale",
+    "the z scale",
+    "the x offset",
+    "the y offset",
+    "the z offset",
+];
 
 fn board(error: &DeviceError) -> String {
     match *error {
@@ -171,5 +201,13 @@ mod tests {
         assert_eq!(calibration_reason(&scale), "the z scale 3.000 is outside 0.5-2");
         let duration = explain(&DeviceError::InvalidDuration { seconds: 3 });
         assert_eq!(duration, "a capture of 3 s is not possible: choose 5 to 20 s");
+    }
+
+    #[test]
+    fn the_chip_s_ortho9_refusals_name_the_count_and_the_parameter() {
+        let few = explain(&DeviceError::Ortho9(Ortho9Error::TooFewReadings(6)));
+        assert!(few.starts_with("the chip's 9-parameter fit needs at least 9 captures and it holds 6: "), "{few}");
+        let alike = explain(&DeviceError::Ortho9(Ortho9Error::IllConditioned(2)));
+        assert!(alike.starts_with("the chip's captures do not determine the cross-axis term a_zx "), "{alike}");
     }
 }

@@ -17,5 +17,5 @@ pub use discovery::{resolve_port, serial_ports, SerialPortEntry};
 pub use error::LinkError;
 pub use explain::{calibration_reason, explain};
 pub use port::{open_serial, pipe, PipeEnd, Port};
-pub use requests::StreamRequest;
+pub use requests::{ChipOrtho9, StreamRequest};
 pub use tally::Tally;

@@ -22,6 +22,17 @@ pub struct StreamRequest {
     pub count: u32,
 }
 
+/// The chip's own 9-parameter fit of the captures it kept, as [`Client::fit_ortho9`] returns it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ChipOrtho9 {
+    /// The fit (not active); `residual_mg` is the RMS of |a| - 1 g over the captures, in mg.
+    pub calibration: Calibration,
+    /// Captures it used.
+    pub captures: u8,
+    /// Solver iterations.
+    pub iterations: u8,
+}
+
 impl<P: Port> Client<P> {
     /// Says hello; refuses a device of another protocol version.
     pub(super) fn hello(&mut self) -> Result<DeviceInfo, LinkError> {
@@ -114,7 +125,7 @@ impl<P: Port> Client<P> {
         self.expect_done(Request::EraseCalibration)
     }
 
-    /// Forgets the captures kept for the on-chip six-position fit.
+    /// Forgets the captures kept for the chip's fits.
     pub fn clear_positions(&mut self) -> Result<(), LinkError> {
         self.expect_done(Request::ClearPositions)
     }
@@ -142,6 +153,17 @@ impl<P: Port> Client<P> {
         let request = Request::FitSixPosition;
         match self.call(request.clone())? {
             Response::Fitted(calibration) => Ok(calibration),
+            other => Err(unexpected(&request, &other)),
+        }
+    }
+
+    /// The chip's 9-parameter (`ortho9`) fit of the captures it kept since they were last cleared.
+    pub fn fit_ortho9(&mut self) -> Result<ChipOrtho9, LinkError> {
+        let request = Request::FitOrtho9;
+        match self.call(request.clone())? {
+            Response::Ortho9Fitted { calibration, captures, iterations } => {
+                Ok(ChipOrtho9 { calibration, captures, iterations })
+            }
             other => Err(unexpected(&request, &other)),
         }
     }

@@ -12,7 +12,7 @@ mod wait;
 
 use std::time::Duration;
 
-pub use crate::orientation::{corners, faces, Orientation};
+pub use crate::orientation::{corners, faces, quick_set, Orientation};
 pub use collect::{collect, collect_into};
 pub use feedback::{Feedback, Silent};
 pub use hand::{Hand, PersonHand};
@@ -59,10 +59,28 @@ pub struct CollectOptions {
     pub wait_limit: Option<Duration>,
 }
 
-/// The orientations a calibration asks for: the six faces, and for a full one the eight corners.
+/// Capture length of a quick calibration, in seconds: the shortest the board takes.
+///
+/// NOTE: a board just powered on warms, and its offsets drift with it (about 0.03 mg/s, simulated
+/// sensor); the shorter session drifts less, and a 5 s mean still carries only 0.13 mg of noise per
+/// axis (400 ug/sqrt(Hz), Product Specification 6.2). Measured (tests/quick_mode.rs, 20 seeds):
+/// 5 s captures 0.320 mg rms true error, 68 s on the board; 10 s captures 0.454 mg, 118 s.
+pub const QUICK_CAPTURE_SECONDS: u8 = shared::protocol::MIN_CAPTURE_SECONDS;
+
+/// The capture length when the user does not choose one, in seconds.
+pub fn capture_seconds(quick: bool) -> u8 {
+    if quick {
+        QUICK_CAPTURE_SECONDS
+    } else {
+        shared::protocol::DEFAULT_CAPTURE_SECONDS
+    }
+}
+
+/// The orientations a calibration asks for: the six faces and the eight corners, or for a quick one
+/// the ten of [`quick_set`].
 pub fn targets(quick: bool) -> Vec<Orientation> {
     if quick {
-        faces()
+        quick_set()
     } else {
         [faces(), corners()].concat()
     }
@@ -74,18 +92,19 @@ pub fn host_fit(session: &Session) -> Result<Fit, FitError> {
     fit::fit(&session.dataset(), ModelChoice::Auto, &FitOptions::default())
 }
 
-/// The six-position closed form on the host: for a resumed `--quick` session, whose first captures
-/// the chip no longer holds.
-pub fn host_six_position_fit(session: &Session) -> Result<Fit, FitError> {
-    fit::fit(&session.dataset(), ModelChoice::Only(fit::Model::SixPosition), &FitOptions::default())
+/// The chip's model on the host (the same shared solver in f64): for a resumed `--quick` session,
+/// whose first captures the chip no longer holds.
+pub fn host_quick_fit(session: &Session) -> Result<Fit, FitError> {
+    fit::fit(&session.dataset(), session_model(session), &FitOptions::default())
 }
 
-/// The model a session's calibration is fitted with: the six-position closed form (the chip's own)
-/// for a `--quick` session, the host's choice for a full one; the report fits the same.
+/// The model a session's calibration is fitted with: for a `--quick` session the chip's own,
+/// `ortho9` (the six-position closed form for a quick session of the six faces alone, as taken
+/// before the chip fitted `ortho9`), the host's choice for a full one; the report fits the same.
 pub fn session_model(session: &Session) -> ModelChoice {
-    if session.quick {
-        ModelChoice::Only(fit::Model::SixPosition)
-    } else {
-        ModelChoice::Auto
+    match session.quick {
+        true if session.captures.len() < shared::ortho9::MIN_READINGS => ModelChoice::Only(fit::Model::SixPosition),
+        true => ModelChoice::Only(fit::Model::Ortho9),
+        false => ModelChoice::Auto,
     }
 }

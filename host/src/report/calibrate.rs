@@ -22,9 +22,9 @@ pub struct CalibrateReport {
     pub verification: Verification,
     /// Positions captured.
     pub captures: usize,
-    /// The on-chip six-position fit of the same captures, for comparison (absent for a resumed
-    /// session: the chip holds only the captures of the last run).
-    pub chip_six_position: Option<CalibrationJson>,
+    /// The chip's own `ortho9` fit of the captures it kept (the calibration itself for `--quick`; absent
+    /// for a resumed session: the chip holds only the captures of the last run).
+    pub chip_fit: Option<CalibrationJson>,
     /// The host's fit, when it made the calibration.
     pub host_fit: Option<HostFitSummary>,
 }
@@ -68,7 +68,7 @@ impl CalibrateReport {
             truth: truth.map(|t| TruthJson { matrix: t.matrix, offset: t.offset_g, gyro_bias_dps: t.gyro_bias_dps }),
             verification,
             captures,
-            chip_six_position: chip.map(CalibrationJson::from_device),
+            chip_fit: chip.map(CalibrationJson::from_device),
             host_fit: host.map(HostFitSummary::new),
         }
     }

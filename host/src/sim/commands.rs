@@ -1,7 +1,6 @@
 //! The lines `accelcal sim --pty` takes on stdin, and the help that lists them.
 
 use firmware::sim::physics::Motion;
-use shared::Position;
 
 use super::board::SimCommand;
 
@@ -9,6 +8,7 @@ use super::board::SimCommand;
 pub(super) const COMMANDS: &[(&str, &str)] = &[
     ("help", "list these commands"),
     ("place +X|-X|+Y|-Y|+Z|-Z", "rest the board with that axis up"),
+    ("place +X+Y+Z|...|-X-Y-Z", "rest the board on that corner (the three axes 54.7 degrees from up)"),
     ("place X Y Z", "rest the board with the body direction (X, Y, Z) up"),
     ("tilt DEG", "tilt the board by DEG degrees about its x axis (over a second) and leave it there"),
     ("turn SECONDS [DEG_PER_S]", "turn the board about its x axis (default 10 deg/s) for SECONDS, then rest"),
@@ -66,8 +66,9 @@ pub(super) fn help() -> String {
     COMMANDS.iter().map(|(usage, what)| format!("  {usage:width$}  {what}\n")).collect()
 }
 
+/// A face or a corner by name, as `calibrate` asks for it.
 fn face_up(name: &str) -> Option<[f32; 3]> {
-    Position::ALL.iter().find(|p| p.name().eq_ignore_ascii_case(name)).map(|p| p.specific_force_g())
+    crate::orientation::Orientation::named(name).map(|o| o.up.map(|v| v as f32))
 }
 
 fn rotation(rate_dps: f32) -> Motion {

@@ -10,7 +10,7 @@ pub const MODEL_TAG_LEN: usize = 16;
 pub enum Procedure {
     /// Nothing fitted: the identity, samples pass through.
     Identity,
-    /// The six-position closed form fitted on the chip from its own captures.
+    /// Fitted on the chip from its own captures (the six-position closed form or `ortho9`).
     ChipFit,
     /// A fit made by the host tool from a guided session or a data file.
     HostFit,
@@ -57,6 +57,12 @@ pub const SIX_POSITION: ModelTag = match ModelTag::new("six-position") {
     None => ModelTag([0; MODEL_TAG_LEN]),
 };
 
+/// The model tag of the chip's 9-parameter fit (the host's `ortho9`, the same solver in f32).
+pub const ORTHO9: ModelTag = match ModelTag::new("ortho9") {
+    Some(tag) => tag,
+    None => ModelTag([0; MODEL_TAG_LEN]),
+};
+
 /// Which procedure and which model made a calibration.
 #[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Origin {
@@ -71,6 +77,8 @@ impl Origin {
     pub const IDENTITY: Origin = Origin { procedure: Procedure::Identity, model: ModelTag([0; MODEL_TAG_LEN]) };
     /// The chip's six-position fit.
     pub const CHIP_SIX_POSITION: Origin = Origin { procedure: Procedure::ChipFit, model: SIX_POSITION };
+    /// The chip's 9-parameter (`ortho9`) fit.
+    pub const CHIP_ORTHO9: Origin = Origin { procedure: Procedure::ChipFit, model: ORTHO9 };
 }
 
 #[cfg(test)]
@@ -84,6 +92,7 @@ mod tests {
         assert_eq!(ModelTag::new("a-name-of-17-byte"), None);
         assert_eq!(ModelTag::new("two words"), None);
         assert_eq!(SIX_POSITION.as_str(), "six-position");
+        assert_eq!(ORTHO9.as_str(), "ortho9");
         assert_eq!(Origin::IDENTITY.model.as_str(), "");
     }
 }

@@ -4,6 +4,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::calibration::{AccelRange, Calibration, CalibrationError};
 use crate::orientation::{Position, PositionMap};
+use crate::ortho9::Ortho9Error;
 use crate::six_position::SixPositionError;
 
 use super::FrameError;
@@ -23,7 +24,7 @@ pub enum Request {
     Capture { seconds: u8 },
     /// Stops the running capture or stream; the stopped operation ends with an error or its end message.
     Cancel,
-    /// Forgets the captures kept for the six-position fit.
+    /// Forgets the captures kept for the chip's fits (six-position and `ortho9`).
     ClearPositions,
     /// Fits the six-position closed form on the chip from the kept captures and returns it; the active
     /// calibration is untouched (send [`Request::SetCalibration`] to make the fit active).
@@ -42,6 +43,10 @@ pub enum Request {
     /// [`super::TEMP_BINS_PER_MESSAGE`]); answered with [`Response::TemperatureBins`]. Allowed
     /// during a capture or stream.
     TakeTemperatureBins,
+    /// Fits the 9-parameter orientation-free model (`ortho9`, in f32) on the chip to the captures it
+    /// kept (the latest [`super::MAX_KEPT_CAPTURES`] since [`Request::ClearPositions`]), wherever they
+    /// were taken, and returns it as [`Response::Ortho9Fitted`]; the active calibration is untouched.
+    FitOrtho9,
 }
 
 /// What the device answers.
@@ -58,7 +63,7 @@ pub enum Response {
     Progress(CaptureProgress),
     /// A capture finished; `position` is the face it was detected at, if it was at one.
     Captured { stats: CaptureStats, position: Option<Position> },
-    /// The on-chip six-position fit, now active.
+    /// The on-chip six-position fit (not active: see [`Request::FitSixPosition`]).
     Fitted(Calibration),
     /// The requested calibration, `None` when there is none.
     Calibration(Option<Calibration>),
@@ -74,6 +79,9 @@ pub enum Response {
     /// Temperature bins, coolest first, now emptied on the chip; fewer than
     /// [`super::TEMP_BINS_PER_MESSAGE`] means none are left.
     TemperatureBins(heapless::Vec<super::TempBin, { super::TEMP_BINS_PER_MESSAGE }>),
+    /// Answer to [`Request::FitOrtho9`]: the fit (its `residual_mg` is the RMS of |a| - 1 g over
+    /// the captures, in mg), how many captures it used and the solver's iterations. Not active.
+    Ortho9Fitted { calibration: Calibration, captures: u8, iterations: u8 },
 }
 
 /// Which copy of the calibration to read.
@@ -293,4 +301,6 @@ pub enum DeviceError {
     Frame(FrameError),
     /// The host speaks another protocol version.
     UnsupportedVersion { device: u8, host: u8 },
+    /// The chip's 9-parameter fit cannot run on the captures it kept: too few, or too alike.
+    Ortho9(Ortho9Error),
 }

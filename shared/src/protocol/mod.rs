@@ -15,8 +15,10 @@ pub use temperature::{TempBin, TEMP_BINS_PER_MESSAGE};
 ///
 /// NOTE: 2 from issue 9: the calibration record (origin tag, gyro matrix, temperature model) and the
 /// board's serial number in [`DeviceInfo`]. 3 from issue 10: samples carry the sensor's sample time,
-/// and the end of a stream says how many samples the board dropped.
-pub const PROTOCOL_VERSION: u8 = 3;
+/// and the end of a stream says how many samples the board dropped. 4 from issue 16: the chip's own
+/// 9-parameter fit (`FitOrtho9`, `Ortho9Fitted`, `DeviceError::Ortho9`); a host of version 3 would read
+/// the new messages as garbled frames, so the version names the mismatch instead.
+pub const PROTOCOL_VERSION: u8 = 4;
 
 /// Largest postcard payload of one message, in bytes.
 ///
@@ -35,6 +37,12 @@ pub const USB_PID: u16 = 0x0001;
 pub const USB_MANUFACTURER: &str = "accelcal";
 /// USB product string; the host recognises the board by it together with the ids.
 pub const USB_PRODUCT: &str = "accelcal MPU-6050 calibrator";
+
+/// Most captures the chip keeps for its 9-parameter fit (the latest ones; older ones are dropped).
+///
+/// NOTE: the default calibration takes 14 positions and the quick one 10; 16 leaves room for a
+/// repeated capture or two, at 28 bytes of RAM each.
+pub const MAX_KEPT_CAPTURES: usize = 16;
 
 /// Shortest capture the device accepts, in seconds.
 pub const MIN_CAPTURE_SECONDS: u8 = 5;

@@ -8,6 +8,7 @@ use crate::calibration::{
     AccelRange, Calibration, CalibrationError, GyroCalibration, ModelTag, Origin, Procedure, TemperatureModel,
 };
 use crate::orientation::{Position, PositionMap};
+use crate::ortho9::Ortho9Error;
 use crate::six_position::SixPositionError;
 
 /// Large values take the most postcard bytes (varints), so sizes here are the worst case: every
@@ -66,6 +67,7 @@ fn every_request() -> Vec<Request> {
         Request::EraseCalibration,
         Request::Stream { kind: StreamKind::Calibrated, rate_hz: u16::MAX, count: u32::MAX },
         Request::TakeTemperatureBins,
+        Request::FitOrtho9,
     ];
     // NOTE: the match fails to compile when a variant is added without being listed above.
     for request in &all {
@@ -81,7 +83,8 @@ fn every_request() -> Vec<Request> {
             | Request::SaveCalibration
             | Request::EraseCalibration
             | Request::Stream { .. }
-            | Request::TakeTemperatureBins => {}
+            | Request::TakeTemperatureBins
+            | Request::FitOrtho9 => {}
         }
     }
     all
@@ -106,6 +109,9 @@ fn every_error() -> Vec<DeviceError> {
         DeviceError::Busy,
         DeviceError::Frame(FrameError::Version { got: 200 }),
         DeviceError::UnsupportedVersion { device: PROTOCOL_VERSION, host: 255 },
+        DeviceError::Ortho9(Ortho9Error::TooFewReadings(255)),
+        DeviceError::Ortho9(Ortho9Error::IllConditioned(8)),
+        DeviceError::Ortho9(Ortho9Error::NotConverged),
     ]
 }
 
@@ -145,6 +151,7 @@ fn every_response() -> Vec<Response> {
         Response::StreamEnded { samples: u32::MAX, dropped: u32::MAX },
         Response::Done,
         Response::TemperatureBins(full_temperature_bins()),
+        Response::Ortho9Fitted { calibration: calibration(), captures: u8::MAX, iterations: u8::MAX },
     ];
     all.extend(every_error().into_iter().map(Response::Error));
     for response in &all {
@@ -159,7 +166,8 @@ fn every_response() -> Vec<Response> {
             | Response::StreamEnded { .. }
             | Response::Done
             | Response::Error(_)
-            | Response::TemperatureBins(_) => {}
+            | Response::TemperatureBins(_)
+            | Response::Ortho9Fitted { .. } => {}
         }
     }
     all

@@ -31,7 +31,60 @@ pub struct Result<'a> {
 
 /// Runs every computation and hands each result to `report`; `false` when one could not run.
 pub fn run(report: &mut impl FnMut(Result<'_>)) -> bool {
-    phone_six_position(report) && device_calibration(report) && thermal_correction(report) && ortho9_session(report)
+    phone_six_position(report)
+        && device_calibration(report)
+        && thermal_correction(report)
+        && ortho9_session(report)
+        && device_ortho9(report)
+}
+
+/// The quick calibration's ten orientations (six faces, four tetrahedron corners), each tilted about
+/// 4 degrees in its own direction, as a hand leaves them; not unit length (the board normalises).
+pub const QUICK_TILTED: [[f32; 3]; 10] = [
+    [0.62, 0.62, 0.54],
+    [-0.54, -0.62, 0.62],
+    [-1.0, 0.0, -0.07],
+    [1.0, 0.0, 0.07],
+    [0.0, -0.07, -1.0],
+    [0.0, 0.07, 1.0],
+    [0.07, 1.0, 0.0],
+    [-0.07, -1.0, 0.0],
+    [-0.54, 0.62, -0.62],
+    [0.54, -0.62, -0.62],
+];
+
+/// The firmware's own 9-parameter fit on request: ten 5 s captures of the realistic simulated
+/// sensor at [`QUICK_TILTED`], then `FitOrtho9`; the capture means, and the fit's M (row-major), o,
+/// residual in mg, captures and iterations.
+fn device_ortho9(report: &mut impl FnMut(Result<'_>)) -> bool {
+    let Ok(mut device) =
+        block_on(Device::boot(SimMpu6050::new(16), SimFlash::new(), SIM_FLASH_RANGE, sim_serial_number(16)))
+    else {
+        return false;
+    };
+    let mut means = [0.0f32; 30];
+    for (i, up) in QUICK_TILTED.iter().enumerate() {
+        device.bus_mut().place(*up);
+        let Some(Response::Captured { stats, .. }) = run_to_end(&mut device, Request::Capture { seconds: 5 }, |_| {})
+        else {
+            return false;
+        };
+        means[3 * i..3 * i + 3].copy_from_slice(&stats.mean_g);
+    }
+    report(Result { name: "device-ortho9-means", values: &means });
+    let Some(Response::Ortho9Fitted { calibration: c, captures, iterations }) =
+        run_to_end(&mut device, Request::FitOrtho9, |_| {})
+    else {
+        return false;
+    };
+    let (m, o) = (c.matrix, c.offset_g);
+    let values = [m[0][0], m[0][1], m[0][2], m[1][0], m[1][1], m[1][2], m[2][0], m[2][1], m[2][2], o[0], o[1], o[2]];
+    report(Result { name: "device-ortho9-fit", values: &values });
+    report(Result {
+        name: "device-ortho9-residual-captures-iterations",
+        values: &[c.residual_mg, f32::from(captures), f32::from(iterations)],
+    });
+    true
 }
 
 /// A simulated 14-position session in g: the published-error MPU-6050 (firmware::sim's truth) at the

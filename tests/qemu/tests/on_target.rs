@@ -173,3 +173,41 @@ fn the_chip_s_ortho9_fit_of_a_simulated_session_equals_the_host_s_f64_fit_within
     let iterations = f32::from_bits(target["ortho9-session-iterations"][0]);
     println!("chip: {iterations} iterations; host: {} iterations", host.iterations);
 }
+
+#[test]
+fn the_chip_s_fit_on_request_equals_the_host_s_f64_fit_of_the_same_captures() {
+    let Some(target) = on_target() else { return };
+    let values = |name: &str| -> Vec<f64> { target[name].iter().map(|&b| f64::from(f32::from_bits(b))).collect() };
+    let means = values("device-ortho9-means");
+    let readings: Vec<[f64; 3]> = means.chunks_exact(3).map(|m| [m[0], m[1], m[2]]).collect();
+    let host = shared::ortho9::fit(&readings).expect("the host fits the chip's captures");
+    let (matrix, offset) = (host.matrix(), host.offset());
+    let chip = values("device-ortho9-fit");
+    // f32 against f64 over 200 problems: M within 5.6e-7, o within 7.2e-7 g (README); 1e-5 each
+    // here leaves room for the capture means' own f32 rounding.
+    for k in 0..9 {
+        let want = matrix[k / 3][k % 3];
+        assert!((chip[k] - want).abs() <= 1e-5, "M[{k}]: chip {} vs host {want}", chip[k]);
+    }
+    for k in 0..3 {
+        assert!((chip[9 + k] - offset[k]).abs() <= 1e-5, "o[{k}]: chip {} g vs host {} g", chip[9 + k], offset[k]);
+    }
+    let [residual_mg, captures, iterations] = values("device-ortho9-residual-captures-iterations")[..] else {
+        panic!("three values")
+    };
+    let host_residual_mg = (host.cost / readings.len() as f64).sqrt() * 1000.0;
+    assert!(
+        (residual_mg - host_residual_mg).abs() <= 0.01,
+        "residual chip {residual_mg} mg vs host {host_residual_mg} mg"
+    );
+    assert_eq!(captures, 10.0);
+    // Not the start: the realistic sensor's z offset is tens of mg.
+    assert!(chip[11].abs() > 0.05, "o_z = {}", chip[11]);
+    let worst_m = (0..9).map(|k| (chip[k] - matrix[k / 3][k % 3]).abs()).fold(0.0, f64::max);
+    let worst_o = (0..3).map(|k| (chip[9 + k] - offset[k]).abs()).fold(0.0, f64::max);
+    println!(
+        "chip: {iterations} iterations, residual {residual_mg:.4} mg; host: {} iterations, {host_residual_mg:.4} mg; \
+         M within {worst_m:.1e}, o within {worst_o:.1e} g",
+        host.iterations
+    );
+}
