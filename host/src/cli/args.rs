@@ -72,12 +72,14 @@ pub struct CalibrateArgs {
     /// Only the six faces, fitted on the chip.
     #[arg(long)]
     pub quick: bool,
-    #[arg(long, default_value_t = DEFAULT_CAPTURE_SECONDS, value_parser = seconds(),
-          help = seconds_help("Seconds to average each position"))]
-    pub seconds: u8,
-    /// Fresh orientations to verify at (1-20).
-    #[arg(long, default_value_t = 6, value_parser = clap::value_parser!(u8).range(1..=MAX_VERIFY_POSITIONS))]
-    pub verify: u8,
+    #[arg(long, value_parser = seconds(), help = seconds_help("Seconds to average each position, fixed \
+          (default: until its mean is known well enough for --target-mg; 10 with --quick)"))]
+    pub seconds: Option<u8>,
+    /// Fresh orientations to verify at (1-20; default 6 with fixed lengths, else 3, each as long as needed).
+    #[arg(long, value_parser = clap::value_parser!(u8).range(1..=MAX_VERIFY_POSITIONS))]
+    pub verify: Option<u8>,
+    #[command(flatten)]
+    pub length: super::length::LengthArgs,
     /// Upload and save without asking.
     #[arg(long)]
     pub yes: bool,

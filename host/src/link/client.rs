@@ -182,6 +182,7 @@ pub(super) fn request_name(request: &Request) -> &'static str {
         Request::SaveCalibration => "SaveCalibration",
         Request::EraseCalibration => "EraseCalibration",
         Request::Stream { .. } => "Stream",
+        Request::CaptureUntil(_) => "CaptureUntil",
     }
 }
 

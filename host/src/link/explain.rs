@@ -73,6 +73,12 @@ fn board(error: &DeviceError) -> String {
         DeviceError::UnsupportedVersion { device, host } => {
             format!("protocol version mismatch: device {device}, host {host}")
         }
+        DeviceError::InvalidGoal { min_samples, max_samples } => format!(
+            "the device refused a capture of {min_samples} to {max_samples} samples: at least {} and at most {} s \
+             at the sample rate; update the host tool",
+            shared::protocol::MIN_GOAL_SAMPLES,
+            shared::protocol::MAX_CAPTURE_SECONDS
+        ),
         _ => format!("the device reported {error:?}"),
     }
 }

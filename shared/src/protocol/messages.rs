@@ -38,6 +38,22 @@ pub enum Request {
     EraseCalibration,
     /// Streams `count` samples (0: until cancelled) at `rate_hz`, raw or calibrated.
     Stream { kind: StreamKind, rate_hz: u16, count: u32 },
+    /// Averages the still sensor until its mean is known well enough (see [`CaptureGoal`]); progress,
+    /// then [`Response::Captured`], whose `samples` tell whether the goal or the maximum ended it.
+    CaptureUntil(CaptureGoal),
+}
+
+/// When a [`Request::CaptureUntil`] stops: once at least `min_samples` are averaged and the standard
+/// error of the mean (sample standard deviation / sqrt(n)) of every accelerometer axis is at most
+/// `mean_std_g`, or at `max_samples` whatever it shows. `min_samples == max_samples` is a fixed length.
+#[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq)]
+pub struct CaptureGoal {
+    /// Standard error of each axis' mean to reach, in g.
+    pub mean_std_g: f32,
+    /// Fewest samples to average (at least [`super::MIN_GOAL_SAMPLES`]).
+    pub min_samples: u32,
+    /// Most samples to average (at most [`super::MAX_CAPTURE_SECONDS`] at the sample rate).
+    pub max_samples: u32,
 }
 
 /// What the device answers.
@@ -286,4 +302,7 @@ pub enum DeviceError {
     Frame(FrameError),
     /// The host speaks another protocol version.
     UnsupportedVersion { device: u8, host: u8 },
+    /// A [`CaptureGoal`] outside its limits: a goal that is not positive, fewer than
+    /// [`super::MIN_GOAL_SAMPLES`], more than [`super::MAX_CAPTURE_SECONDS`] at the rate, or min above max.
+    InvalidGoal { min_samples: u32, max_samples: u32 },
 }

@@ -65,6 +65,7 @@ fn every_request() -> Vec<Request> {
         Request::SaveCalibration,
         Request::EraseCalibration,
         Request::Stream { kind: StreamKind::Calibrated, rate_hz: u16::MAX, count: u32::MAX },
+        Request::CaptureUntil(CaptureGoal { mean_std_g: f32::MAX, min_samples: u32::MAX, max_samples: u32::MAX }),
     ];
     // NOTE: the match fails to compile when a variant is added without being listed above.
     for request in &all {
@@ -79,7 +80,8 @@ fn every_request() -> Vec<Request> {
             | Request::SetCalibration(_)
             | Request::SaveCalibration
             | Request::EraseCalibration
-            | Request::Stream { .. } => {}
+            | Request::Stream { .. }
+            | Request::CaptureUntil(_) => {}
         }
     }
     all
@@ -104,6 +106,7 @@ fn every_error() -> Vec<DeviceError> {
         DeviceError::Busy,
         DeviceError::Frame(FrameError::Version { got: 200 }),
         DeviceError::UnsupportedVersion { device: PROTOCOL_VERSION, host: 255 },
+        DeviceError::InvalidGoal { min_samples: u32::MAX, max_samples: u32::MAX },
     ]
 }
 
