@@ -72,10 +72,10 @@ pub struct CalibrateArgs {
     /// Only the six faces, fitted on the chip.
     #[arg(long)]
     pub quick: bool,
-    #[arg(long, value_parser = seconds(), help = seconds_help("Seconds to average each position, fixed \
-          (default: until its mean is known well enough for --target-mg; 10 with --quick)"))]
+    #[arg(long, value_parser = seconds(), help = format!("{}, fixed; default: until its mean is known well \
+          enough for --target-mg (10 with --quick)", seconds_help("Seconds to average each position")))]
     pub seconds: Option<u8>,
-    /// Fresh orientations to verify at (1-20; default 6 with fixed lengths, else 3, each as long as needed).
+    /// Fresh orientations to verify at (1-20); default 6 with fixed lengths, else 3, each as long as the target needs.
     #[arg(long, value_parser = clap::value_parser!(u8).range(1..=MAX_VERIFY_POSITIONS))]
     pub verify: Option<u8>,
     #[command(flatten)]
@@ -255,14 +255,12 @@ pub enum Command {
 }
 
 /// Most fresh orientations a verification asks for.
-///
-/// NOTE: the simulated hand keeps its orientations 30 degrees apart, and about 20 such fit on the
-/// sphere with room to spare; a person would not turn the board more often than that anyway.
+// NOTE: the simulated hand keeps its orientations 30 degrees apart, and about 20 such fit on the
+// sphere with room to spare; a person would not turn the board more often than that anyway.
 const MAX_VERIFY_POSITIONS: i64 = 20;
 /// Largest placement error of the simulated hand, in degrees.
-///
-/// NOTE: beyond 10 degrees a face is no longer reliably within the face tolerance's reach after
-/// the sensor's own offset tilts it, and the run would wait for a face it never reaches.
+// NOTE: beyond 10 degrees a face is no longer reliably within the face tolerance's reach after
+// the sensor's own offset tilts it, and the run would wait for a face it never reaches.
 const MAX_PLACEMENT_DEG: f64 = 10.0;
 
 /// The capture lengths the device accepts, refused when parsed.
