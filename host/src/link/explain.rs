@@ -73,9 +73,9 @@ fn board(error: &DeviceError) -> String {
         DeviceError::UnsupportedVersion { device, host } => {
             format!("protocol version mismatch: device {device}, host {host}")
         }
-        DeviceError::InvalidGoal { min_samples, max_samples } => format!(
-            "the device refused a capture of {min_samples} to {max_samples} samples: at least {} and at most {} s \
-             at the sample rate; update the host tool",
+        DeviceError::InvalidGoal => format!(
+            "the device refused the capture's stop rule (it takes {} samples to {} s at the sample rate, and a \
+             positive goal): update the host tool to the firmware's version",
             shared::protocol::MIN_GOAL_SAMPLES,
             shared::protocol::MAX_CAPTURE_SECONDS
         ),

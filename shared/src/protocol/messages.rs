@@ -304,5 +304,5 @@ pub enum DeviceError {
     UnsupportedVersion { device: u8, host: u8 },
     /// A [`CaptureGoal`] outside its limits: a goal that is not positive, fewer than
     /// [`super::MIN_GOAL_SAMPLES`], more than [`super::MAX_CAPTURE_SECONDS`] at the rate, or min above max.
-    InvalidGoal { min_samples: u32, max_samples: u32 },
+    InvalidGoal,
 }

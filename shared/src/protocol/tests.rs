@@ -106,7 +106,7 @@ fn every_error() -> Vec<DeviceError> {
         DeviceError::Busy,
         DeviceError::Frame(FrameError::Version { got: 200 }),
         DeviceError::UnsupportedVersion { device: PROTOCOL_VERSION, host: 255 },
-        DeviceError::InvalidGoal { min_samples: u32::MAX, max_samples: u32::MAX },
+        DeviceError::InvalidGoal,
     ]
 }
 
