@@ -155,6 +155,7 @@ fn twenty_default_sessions_on_the_warming_sensor() {
     // /work/notes/issues/16-minute.md for why the rest is left).
     assert!(longest <= 100.0, "longest session {longest:.1} s");
     assert!(settled <= 0.22, "settled sensor {settled:.3} mg rms: the stop rule aims at 0.2 mg");
+    // Measured: 0.213 mg at the mean temperature, 0.494 mg at the end against 1.146 mg static.
     assert!(at_mean <= 0.25, "{at_mean:.3} mg rms at the mean temperature: the drift reached the nine parameters");
-    assert!(at_end <= 0.6 * static_end, "fitted drift {at_end:.3} mg vs static {static_end:.3} mg at the end");
+    assert!(at_end <= 0.55 * static_end, "fitted drift {at_end:.3} mg vs static {static_end:.3} mg at the end");
 }

@@ -139,6 +139,62 @@ pub fn noise_from_report(path: &Path) -> Result<Noise, ProcedureError> {
         let density = density.ok_or_else(|| unreadable(format!("it has no {name}.white_noise_density")))?;
         white_noise_g[axis] = density * 1e-6;
     }
-    let capture_limit_s = value["calibration"]["capture_limit_s"].as_f64();
+    // NOTE: a limit that is only a lower bound (the deviation still fell at the longest averaging
+    // time the recording allowed) caps nothing.
+    let lower_bound = value["calibration"]["capture_limit_is_lower_bound"].as_bool().unwrap_or(false);
+    let capture_limit_s = value["calibration"]["capture_limit_s"].as_f64().filter(|_| !lower_bound);
     Ok(Noise::Report { white_noise_g, capture_limit_s })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rule(noise: Noise) -> StopRule {
+        StopRule { target_mg: 0.2, noise, rate_hz: 100 }
+    }
+
+    #[test]
+    fn each_mean_gets_its_share_of_the_target_and_the_board_judges_it() {
+        // 0.2 mg over sqrt(9 / 10): 0.2108 mg per axis; 0.5 s to 8 s at 100 Hz.
+        let goal = rule(Noise::Measured).goal();
+        assert!((goal.mean_std_g - 0.2108e-3).abs() < 1e-7, "{goal:?}");
+        assert_eq!((goal.min_samples, goal.max_samples), (50, 800));
+        assert!((rule(Noise::Measured).verification_goal().mean_std_g - 0.1e-3).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_noise_report_fixes_the_length_within_its_useful_averaging_time() {
+        // Allan N of 283 ug/sqrt(Hz) (400 ug/sqrt(Hz) one-sided): (0.283 / 0.2108)^2 = 1.80 s.
+        let report = |capture_limit_s| Noise::Report { white_noise_g: [200e-6, 283e-6, 250e-6], capture_limit_s };
+        let goal = rule(report(None)).goal();
+        assert_eq!((goal.min_samples, goal.max_samples), (180, 180));
+        let goal = rule(report(Some(1.2))).goal();
+        assert_eq!((goal.min_samples, goal.max_samples), (120, 120), "capped where longer stops helping");
+    }
+
+    #[test]
+    fn a_noise_report_is_read_from_noise_json_or_refused_by_name() {
+        let dir = std::env::temp_dir().join(format!("accelcal-stop-rule-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("noise.json");
+        let axis = |n: f64| format!("{{\"white_noise_density\": {n}}}");
+        let json = format!(
+            "{{\"accel_x\": {}, \"accel_y\": {}, \"accel_z\": {}, \"calibration\": {{\"capture_limit_s\": 40.0}}}}",
+            axis(280.0),
+            axis(290.0),
+            axis(300.0)
+        );
+        std::fs::write(&path, json).unwrap();
+        let expected = Noise::Report { white_noise_g: [280e-6, 290e-6, 300e-6], capture_limit_s: Some(40.0) };
+        assert_eq!(noise_from_report(&path).unwrap(), expected);
+        let bound = json.replace("40.0}", "40.0, \"capture_limit_is_lower_bound\": true}");
+        std::fs::write(&path, bound).unwrap();
+        let Noise::Report { capture_limit_s, .. } = noise_from_report(&path).unwrap() else { panic!() };
+        assert_eq!(capture_limit_s, None, "a lower bound caps nothing");
+        std::fs::write(&path, "{\"accel_x\": {}}").unwrap();
+        let error = noise_from_report(&path).unwrap_err().to_string();
+        assert!(error.contains("it has no accel_x.white_noise_density"), "{error}");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }
