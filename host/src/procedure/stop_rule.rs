@@ -185,7 +185,7 @@ mod tests {
             axis(290.0),
             axis(300.0)
         );
-        std::fs::write(&path, json).unwrap();
+        std::fs::write(&path, &json).unwrap();
         let expected = Noise::Report { white_noise_g: [280e-6, 290e-6, 300e-6], capture_limit_s: Some(40.0) };
         assert_eq!(noise_from_report(&path).unwrap(), expected);
         let bound = json.replace("40.0}", "40.0, \"capture_limit_is_lower_bound\": true}");
