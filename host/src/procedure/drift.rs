@@ -180,7 +180,7 @@ mod tests {
 
     /// A noise-free capture of a sensor with M^-1 = diag(1.01, 0.99, 1.02) plus a cross term, offset
     /// o(T) = o + c (T - 22), at `up` and die temperature `temp_c`.
-    fn capture(target: &Orientation, temp_c: f64, slope: Vec3<f64>) -> CaptureRecord {
+    fn capture(target: &Orientation, temp_c: f64, slope: Vec3<f64>, std_g: f32) -> CaptureRecord {
         let sensor = [[1.01, 0.002, -0.004], [0.0, 0.99, 0.003], [0.0, 0.0, 1.02]];
         let offset = [0.03, -0.01, -0.08];
         let reading =
@@ -189,7 +189,7 @@ mod tests {
             samples: 200,
             seconds: 2.0,
             mean_g: reading.map(|v| v as f32),
-            std_g: [2.8e-3; 3],
+            std_g: [std_g; 3],
             gyro_mean_dps: [0.0; 3],
             gyro_std_dps: [0.05; 3],
             temp_c: temp_c as f32,
@@ -199,17 +199,19 @@ mod tests {
         CaptureRecord::now(&target.name, Some(target.clone()), None, stats)
     }
 
-    fn warming_session(slope: Vec3<f64>) -> Session {
+    /// Noise-free captures that state a scatter of `std_g` per sample (200 samples each).
+    fn warming_session(slope: Vec3<f64>, std_g: f32) -> Session {
         let mut targets = order(&[faces(), corners()].concat());
         targets.push(closing(&targets[0]));
-        let captures = targets.iter().enumerate().map(|(i, t)| capture(t, 21.5 + 0.07 * i as f64, slope));
+        let captures = targets.iter().enumerate().map(|(i, t)| capture(t, 21.5 + 0.07 * i as f64, slope, std_g));
         Session { captures: captures.collect(), ..Session::default() }
     }
 
     #[test]
     fn the_fitted_drift_is_the_sensor_s_own_and_the_corrected_fit_its_static_calibration() {
+        // Captures that say they are known to 0.07 ug: the prior weighs nothing beside them.
         let slope = [0.75e-3, -0.7e-3, 1.4e-3];
-        let session = warming_session(slope);
+        let session = warming_session(slope, 1e-6);
         let drift = fitted(&session).expect("a drift over 1 degC");
         for k in 0..3 {
             assert!((drift.slope_g_per_c[k] - slope[k]).abs() < 2e-6, "{:?} vs {slope:?}", drift.slope_g_per_c);
@@ -222,11 +224,24 @@ mod tests {
     }
 
     #[test]
+    fn the_prior_draws_a_slope_from_captures_of_ordinary_noise_towards_zero() {
+        // Means known to 0.2 mg, as the default session's: the prior of 1 mg/degC weighs as much as
+        // a spare capture or two, so the same slopes come out smaller (measured 0.83, 0.48, 0.91 of
+        // the truth), never larger or reversed.
+        let slope = [0.75e-3, -0.7e-3, 1.4e-3];
+        let drift = fitted(&warming_session(slope, 2.8e-3)).unwrap();
+        for k in 0..3 {
+            let ratio = drift.slope_g_per_c[k] / slope[k];
+            assert!((0.4..0.95).contains(&ratio), "{:?} vs {slope:?}", drift.slope_g_per_c);
+        }
+    }
+
+    #[test]
     fn no_drift_is_fitted_when_the_temperature_stayed_or_the_captures_are_too_few() {
-        let mut still = warming_session([1e-3; 3]);
+        let mut still = warming_session([1e-3; 3], 2.8e-3);
         still.captures.iter_mut().for_each(|c| c.stats.temp_c = 25.0);
         assert_eq!(fitted(&still), None);
-        let mut few = warming_session([1e-3; 3]);
+        let mut few = warming_session([1e-3; 3], 2.8e-3);
         few.captures.truncate(MIN_CAPTURES - 1);
         assert_eq!(fitted(&few), None);
     }
