@@ -1,12 +1,13 @@
-//! The capture engine: averages the still sensor over 5-20 s, exactly, from FIFO samples.
+//! The capture engine: averages the still sensor over 5-20 s, or until its mean is known well enough
+//! (a [`CaptureGoal`]), exactly, from FIFO samples.
 //!
 //! Sums and sums of squares are kept in integers, so the statistics do not depend on the order or
 //! the number of samples; the result carries mean and scatter, and the capture is refused when the
 //! scatter shows motion or a sample hit the end of the range.
 
 use shared::protocol::{
-    CaptureProgress, CaptureStats, DeviceError, SensorConfig, MAX_CAPTURE_SECONDS, MAX_STILL_ACCEL_STD_G,
-    MAX_STILL_GYRO_STD_DPS, MIN_CAPTURE_SECONDS,
+    CaptureGoal, CaptureProgress, CaptureStats, DeviceError, SensorConfig, MAX_CAPTURE_SECONDS, MAX_STILL_ACCEL_STD_G,
+    MAX_STILL_GYRO_STD_DPS, MIN_CAPTURE_SECONDS, MIN_GOAL_SAMPLES,
 };
 
 use crate::sensor::registers::{GYRO_LSB_PER_DPS, TEMP_LSB_PER_C, TEMP_OFFSET_C};
@@ -55,6 +56,20 @@ impl Sums {
         let numerator = n * i128::from(squares) - i128::from(sum) * i128::from(sum);
         libm::sqrtf(numerator as f32 / (n * (n - 1)) as f32)
     }
+
+    /// Whether every accelerometer axis' mean has a standard error (std / sqrt(n)) of at most
+    /// `mean_std_lsb`.
+    fn means_known(&self, mean_std_lsb: f32) -> bool {
+        let bound = mean_std_lsb * libm::sqrtf(self.count as f32);
+        (0..3).all(|k| self.std(self.accel[k], self.accel_squares[k]) <= bound)
+    }
+}
+
+/// A stop rule: the standard error of the means to reach, in LSB, from `min_samples` on.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct StopRule {
+    mean_std_lsb: f32,
+    min_samples: u32,
 }
 
 /// A capture in progress.
@@ -63,6 +78,7 @@ pub struct Capture {
     sums: Sums,
     total_samples: u32,
     config: SensorConfig,
+    rule: Option<StopRule>,
 }
 
 impl Capture {
@@ -72,7 +88,20 @@ impl Capture {
             return Err(DeviceError::InvalidDuration { seconds });
         }
         let total_samples = u32::from(seconds) * u32::from(config.sample_rate_hz);
-        Ok(Capture { sums: Sums::default(), total_samples, config })
+        Ok(Capture { sums: Sums::default(), total_samples, config, rule: None })
+    }
+
+    /// A capture that stops at `goal` (at most [`MAX_CAPTURE_SECONDS`] at the configured rate).
+    pub fn until(goal: CaptureGoal, config: SensorConfig) -> Result<Self, DeviceError> {
+        let most = u32::from(MAX_CAPTURE_SECONDS) * u32::from(config.sample_rate_hz);
+        let CaptureGoal { mean_std_g, min_samples, max_samples } = goal;
+        // NOTE: written so that a NaN goal fails the test too.
+        let positive = mean_std_g > 0.0;
+        if !positive || min_samples < MIN_GOAL_SAMPLES || max_samples > most || min_samples > max_samples {
+            return Err(DeviceError::InvalidGoal);
+        }
+        let rule = StopRule { mean_std_lsb: mean_std_g * config.range.lsb_per_g(), min_samples };
+        Ok(Capture { sums: Sums::default(), total_samples: max_samples, config, rule: Some(rule) })
     }
 
     /// Samples the capture averages in all: rate x seconds.
@@ -85,7 +114,9 @@ impl Capture {
         self.sums.count
     }
 
-    /// Takes samples until the capture is complete; returns how many it took.
+    /// Takes samples up to the capture's most; returns how many it took. A stop rule is judged
+    /// after each call ([`Self::is_complete`]): the engine hands over one FIFO read (at most 16
+    /// samples) at a time.
     pub fn take(&mut self, samples: &[RawSample]) -> usize {
         let room = (self.total_samples - self.sums.count) as usize;
         let taken = samples.len().min(room);
@@ -93,9 +124,10 @@ impl Capture {
         taken
     }
 
-    /// Whether every sample has been taken.
+    /// Whether every sample has been taken, or the stop rule is met.
     pub fn is_complete(&self) -> bool {
-        self.sums.count >= self.total_samples
+        let known = |r: &StopRule| self.sums.count >= r.min_samples && self.sums.means_known(r.mean_std_lsb);
+        self.sums.count >= self.total_samples || self.rule.as_ref().is_some_and(known)
     }
 
     /// Progress for the host's display.
@@ -184,6 +216,55 @@ mod tests {
         assert_eq!(capture.take(&samples), 200);
         assert_eq!(capture.take(&samples), 0);
         assert_eq!(capture.samples(), 500);
+    }
+
+    /// Samples alternating +-`half` LSB about 1 g on z: standard deviation `half` (a little more).
+    fn alternating(count: usize, half: i16) -> Vec<RawSample> {
+        (0..count).map(|i| sample([0, 0, 16384 + if i % 2 == 0 { half } else { -half }], [0; 3])).collect()
+    }
+
+    #[test]
+    fn a_goal_stops_the_capture_once_every_mean_is_known_that_well() {
+        // Scatter 48 LSB (2.93 mg): the standard error of the mean reaches 0.25 mg = 4.096 LSB when
+        // sqrt(n) >= 48 * sqrt(n / (n - 1)) / 4.096, at n = 139.
+        // Fed 16 at a time, as the engine reads the FIFO: it stops with the read that gets there.
+        let goal = CaptureGoal { mean_std_g: 0.25e-3, min_samples: 20, max_samples: 2000 };
+        let mut capture = Capture::until(goal, SensorConfig::default()).unwrap();
+        let samples = alternating(1000, 48);
+        let mut batches = samples.chunks(16);
+        while !capture.is_complete() {
+            capture.take(batches.next().unwrap());
+        }
+        assert_eq!(capture.samples(), 144);
+        let stats = capture.finish().unwrap();
+        assert!(stats.std_g[2] / (stats.samples as f32).sqrt() <= 0.25e-3, "{stats:?}");
+    }
+
+    #[test]
+    fn a_goal_waits_for_its_minimum_and_stops_at_its_maximum() {
+        let config = SensorConfig::default();
+        let still = CaptureGoal { mean_std_g: 1.0, min_samples: 50, max_samples: 60 };
+        let mut capture = Capture::until(still, config).unwrap();
+        capture.take(&alternating(49, 48));
+        assert!(!capture.is_complete(), "49 samples, before the minimum");
+        capture.take(&alternating(1, 48));
+        assert!(capture.is_complete(), "50 samples, the minimum");
+        let unreachable = CaptureGoal { mean_std_g: 1e-6, min_samples: 20, max_samples: 60 };
+        let mut capture = Capture::until(unreachable, config).unwrap();
+        assert_eq!(capture.take(&alternating(100, 48)), 60);
+        assert!(capture.is_complete());
+    }
+
+    #[test]
+    fn goals_outside_their_limits_are_refused() {
+        let config = SensorConfig::default();
+        for (mean_std_g, min_samples, max_samples) in
+            [(0.0, 20, 100), (f32::NAN, 20, 100), (1e-4, 19, 100), (1e-4, 101, 100), (1e-4, 20, 2001)]
+        {
+            let goal = CaptureGoal { mean_std_g, min_samples, max_samples };
+            assert_eq!(Capture::until(goal, config), Err(DeviceError::InvalidGoal), "{goal:?}");
+        }
+        assert!(Capture::until(CaptureGoal { mean_std_g: 1e-4, min_samples: 20, max_samples: 2000 }, config).is_ok());
     }
 
     #[test]

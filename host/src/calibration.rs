@@ -160,6 +160,14 @@ fn narrow(matrix: [[f64; 3]; 3]) -> [[f32; 3]; 3] {
     matrix.map(|row| row.map(|v| v as f32))
 }
 
+/// `calibration` with an offset drift of `slope_g_per_c` (g/degC) about `ref_c` degC, measured
+/// within one session: the chip then moves the offset with the die temperature.
+pub fn with_offset_drift(calibration: &Calibration, ref_c: f64, slope_g_per_c: [f64; 3]) -> Calibration {
+    let mut model = shared::calibration::TemperatureModel::flat(ref_c as f32);
+    model.offset_g[0] = slope_g_per_c.map(|v| v as f32);
+    Calibration { temperature: Some(model), ..*calibration }
+}
+
 /// The device calibration from a host fit over a session's captures (in g) taken with `config`: the fit's M and o, the
 /// captures' mean gyro reading as the gyro bias, their mean temperature, and the fit's RMS residual.
 pub fn from_fit(fit: &Fit, session: &Session, config: SensorConfig) -> Result<Calibration, CalibrationRecordError> {

@@ -102,7 +102,11 @@ fn calibrate_sim_json_has_calibration_truth_and_verification() {
         }
     }
     let verification = &json["verification"];
-    assert_eq!(verification["positions"], 6);
+    // The default session verifies at three orientations, each as long as the 0.2 mg target needs;
+    // the board's time from the first capture to the end: measured 95.8 s for this seed.
+    assert_eq!(verification["positions"], 3);
+    let board_seconds = json["board_seconds"].as_f64().unwrap();
+    assert!((60.0..120.0).contains(&board_seconds), "board_seconds {board_seconds}");
     assert!(verification["before_rms_mg"].as_f64().unwrap() > 10.0, "{verification}");
     assert!(verification["after_rms_mg"].as_f64().unwrap() < 1.0, "{verification}");
     assert!(verification["after_max_mg"].as_f64().unwrap() < 1.0, "{verification}");
@@ -111,8 +115,9 @@ fn calibrate_sim_json_has_calibration_truth_and_verification() {
 #[test]
 fn calibrate_sim_on_the_realistic_sensor_that_warms_during_the_session_verifies_within_2_5_mg() {
     // The default simulated board has just been powered on: its die warms from 20 degC during the
-    // session, so the offsets drift while the faces are captured. Measured: 1.07-1.63 mg rms after
-    // calibration over seeds 1-5 (0.07 mg on the settled sensor).
+    // session, so the offsets drift while the positions are captured. Measured with the adaptive
+    // session and its fitted drift: 0.13-0.71 mg rms after calibration over seeds 1-5 at 3 fresh
+    // orientations (1.07-1.63 mg with 14 fixed 10 s captures and no drift model before issue 16).
     let output = accelcal(&["calibrate", "--sim", "--json", "--seed", "1"]);
     assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
     let json: serde_json::Value = serde_json::from_slice(&output.stdout).expect("one JSON object");
@@ -321,7 +326,8 @@ fn calibrate_json_on_a_port_without_yes_is_refused_at_once_naming_the_missing_fl
 
 #[test]
 fn every_out_of_range_argument_is_refused_when_parsed_naming_the_allowed_range() {
-    let cases: [(&[&str], &str); 8] = [
+    let cases: [(&[&str], &str); 9] = [
+        (&["calibrate", "--sim", "--target-mg", "0.01"], "not in 0.05-10 mg"),
         (&["calibrate", "--sim", "--seconds", "4"], "5..=20"),
         (&["calibrate", "--sim", "--seconds", "21"], "5..=20"),
         (&["capture", "--sim", "--session", "s", "--seconds", "0"], "5..=20"),

@@ -16,8 +16,11 @@ where
     pub async fn handle(&mut self, request_id: u16, request: Request) {
         // `Ok(None)`: a long operation started, and `poll` or `Cancel` sends its final response.
         let answer = match request {
-            Request::Capture { .. } | Request::Stream { .. } if self.is_busy() => Err(DeviceError::Busy),
+            Request::Capture { .. } | Request::Stream { .. } | Request::CaptureUntil(_) if self.is_busy() => {
+                Err(DeviceError::Busy)
+            }
             Request::Capture { seconds } => self.start_capture(request_id, seconds).map(|()| None),
+            Request::CaptureUntil(goal) => self.start_capture_until(request_id, goal).map(|()| None),
             Request::Stream { kind, rate_hz, count } => {
                 self.start_stream(request_id, kind, rate_hz, count).map(|()| None)
             }
@@ -52,7 +55,7 @@ where
             Request::EraseCalibration => self.erase().await,
             Request::FitOrtho9 => self.fit_ortho9(),
             // NOTE: `handle` starts these itself; listed so that a new request cannot be forgotten.
-            Request::Capture { .. } | Request::Stream { .. } => Err(DeviceError::Busy),
+            Request::Capture { .. } | Request::Stream { .. } | Request::CaptureUntil(_) => Err(DeviceError::Busy),
         }
     }
 

@@ -4,7 +4,7 @@
 use embedded_hal::blocking::i2c::{Write, WriteRead};
 use embedded_storage_async::nor_flash::NorFlash;
 use shared::orientation::DEFAULT_FACE_TOLERANCE_DEG;
-use shared::protocol::{ActiveCalibration, CaptureStats, DeviceError, Response, StreamKind};
+use shared::protocol::{ActiveCalibration, CaptureGoal, CaptureStats, DeviceError, Response, StreamKind};
 use shared::Position;
 
 use super::{sample_message, Device, OUTBOX_LEN};
@@ -63,6 +63,16 @@ where
 
     pub(super) fn start_capture(&mut self, request_id: u16, seconds: u8) -> Result<(), DeviceError> {
         let capture = Capture::new(seconds, self.config)?;
+        self.run_capture(request_id, capture)
+    }
+
+    /// Starts a capture that stops at `goal`.
+    pub(super) fn start_capture_until(&mut self, request_id: u16, goal: CaptureGoal) -> Result<(), DeviceError> {
+        let capture = Capture::until(goal, self.config)?;
+        self.run_capture(request_id, capture)
+    }
+
+    fn run_capture(&mut self, request_id: u16, capture: Capture) -> Result<(), DeviceError> {
         self.with_sensor(|sensor, bus| sensor.start_fifo(bus))?;
         let next_progress = u32::from(self.config.sample_rate_hz);
         self.job = Job::Capturing { request_id, capture, next_progress };

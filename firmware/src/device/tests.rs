@@ -4,7 +4,7 @@ use embassy_futures::block_on;
 use shared::calibration::{GyroCalibration, ModelTag, Origin, Procedure};
 use shared::linalg;
 use shared::protocol::{
-    ActiveCalibration, CalibrationSlot, DeviceError, Request, Response, StreamKind, PROTOCOL_VERSION,
+    ActiveCalibration, CalibrationSlot, CaptureGoal, DeviceError, Request, Response, StreamKind, PROTOCOL_VERSION,
 };
 use shared::{AccelRange, Calibration, CalibrationError, Position, SixPositionError};
 
@@ -88,6 +88,24 @@ fn a_capture_reports_progress_every_second_then_one_final_result_with_its_positi
     let Response::Captured { stats, position } = last else { panic!("{last:?}") };
     assert_eq!(position, Some(Position::NegY));
     assert_eq!(stats.samples, 1000);
+}
+
+#[test]
+fn a_capture_until_its_mean_is_known_stops_where_the_sensor_noise_says() {
+    // NOTE: the settled sensor's white noise, 400 ug/sqrt(Hz) at 100 Hz: 2.83 mg per sample, so a
+    // mean known to 0.2 mg needs (2.83 / 0.2)^2 = 200 samples, within the scatter's own uncertainty.
+    let mut device = boot(SimMpu6050::settled(6), Flash::new());
+    device.bus_mut().place([0.0, 0.0, 1.0]);
+    let goal = CaptureGoal { mean_std_g: 0.2e-3, min_samples: 50, max_samples: 2000 };
+    let (last, _) = run(&mut device, 9, Request::CaptureUntil(goal));
+    let Response::Captured { stats, position } = last else { panic!("{last:?}") };
+    assert_eq!(position, Some(Position::PosZ));
+    assert!((170..=235).contains(&stats.samples), "{} samples", stats.samples);
+    let known = stats.std_g.iter().fold(0.0f32, |m, s| m.max(*s)) / (stats.samples as f32).sqrt();
+    assert!(known <= 0.2e-3, "mean known to {known} g");
+    let refused = CaptureGoal { max_samples: 2001, ..goal };
+    let answer = ask(&mut device, 10, Request::CaptureUntil(refused));
+    assert_eq!(answer, Response::Error(DeviceError::InvalidGoal));
 }
 
 #[test]

@@ -73,12 +73,15 @@ pub struct CalibrateArgs {
     /// Ten positions (six faces, four corners), fitted on the chip: no fit on the host.
     #[arg(long)]
     pub quick: bool,
-    #[arg(long, value_parser = seconds(),
-          help = format!("{}; default {DEFAULT_CAPTURE_SECONDS}, --quick {}", seconds_help("Seconds to average each position"), crate::procedure::QUICK_CAPTURE_SECONDS))]
+    #[arg(long, value_parser = seconds(), help = format!("{}, fixed; default: until its mean is known well \
+          enough for --target-mg ({} with --quick)", seconds_help("Seconds to average each position"),
+          crate::procedure::QUICK_CAPTURE_SECONDS))]
     pub seconds: Option<u8>,
-    /// Fresh orientations to verify at (1-20).
-    #[arg(long, default_value_t = 6, value_parser = clap::value_parser!(u8).range(1..=MAX_VERIFY_POSITIONS))]
-    pub verify: u8,
+    /// Fresh orientations to verify at (1-20); default 6 with fixed lengths, else 3, each as long as the target needs.
+    #[arg(long, value_parser = clap::value_parser!(u8).range(1..=MAX_VERIFY_POSITIONS))]
+    pub verify: Option<u8>,
+    #[command(flatten)]
+    pub length: super::length::LengthArgs,
     /// Upload and save without asking.
     #[arg(long)]
     pub yes: bool,
@@ -241,14 +244,12 @@ pub enum Command {
 }
 
 /// Most fresh orientations a verification asks for.
-///
-/// NOTE: the simulated hand keeps its orientations 30 degrees apart, and about 20 such fit on the
-/// sphere with room to spare; a person would not turn the board more often than that anyway.
+// NOTE: the simulated hand keeps its orientations 30 degrees apart, and about 20 such fit on the
+// sphere with room to spare; a person would not turn the board more often than that anyway.
 const MAX_VERIFY_POSITIONS: i64 = 20;
 /// Largest placement error of the simulated hand, in degrees.
-///
-/// NOTE: beyond 10 degrees a face is no longer reliably within the face tolerance's reach after
-/// the sensor's own offset tilts it, and the run would wait for a face it never reaches.
+// NOTE: beyond 10 degrees a face is no longer reliably within the face tolerance's reach after
+// the sensor's own offset tilts it, and the run would wait for a face it never reaches.
 const MAX_PLACEMENT_DEG: f64 = 10.0;
 
 /// The capture lengths the device accepts, refused when parsed.

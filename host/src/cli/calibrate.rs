@@ -8,6 +8,7 @@ use std::sync::Arc;
 use shared::protocol::{DeviceInfo, SensorConfig};
 use shared::Calibration;
 
+use super::adaptive;
 use super::args::CalibrateArgs;
 use super::device::Opened;
 use super::terminal::feedback;
@@ -48,8 +49,10 @@ pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
     let mut kept = start_session(args, &opened.connection.info, feedback.as_mut())?;
     let interrupt = interrupt_on_ctrl_c();
     opened.connection.client.interrupt_on(interrupt.clone());
-    collect(args, &mut opened, &mut kept, feedback.as_mut())?;
-    let fitted = choose(&mut opened.connection.client, &kept, opened.connection.info.config)?;
+    let first_capture_s = collect(args, &mut opened, &mut kept, feedback.as_mut())?;
+    let adaptive = adaptive::is_adaptive(args, &kept.session);
+    let fitted =
+        choose(&mut opened.connection.client, &kept, opened.connection.info.config, adaptive, feedback.as_mut())?;
     show_choice(feedback.as_mut(), &fitted);
     let client = &mut opened.connection.client;
     if interrupt.load(Ordering::SeqCst) {
@@ -58,27 +61,35 @@ pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
     if !upload_if_confirmed(client, &fitted.chosen, feedback.as_mut())? {
         return Ok(());
     }
-    finish(args, &mut opened, &fitted, kept.path.as_deref(), feedback.as_mut())
+    let first_capture_s = first_capture_s.unwrap_or(0.0);
+    finish(args, &mut opened, &fitted, kept.path.as_deref(), (adaptive, first_capture_s), feedback.as_mut())
 }
 
 /// The captures the session lacks, written after each one; an error names where they are kept.
+/// The board's clock when the first capture started (when collection started, with fixed lengths).
 fn collect(
     args: &CalibrateArgs,
     opened: &mut Opened,
     kept: &mut Kept,
     feedback: &mut dyn Feedback,
-) -> Result<(), Error> {
+) -> Result<Option<f64>, Error> {
     let (mut hand, wait_limit) = opened.hand(args.sim_placement_deg, args.device.seed);
-    let seconds = args.seconds.unwrap_or_else(|| procedure::capture_seconds(kept.session.quick));
-    let options = CollectOptions { seconds, wait_limit };
-    let targets = procedure::targets(kept.session.quick);
     let path = kept.path.clone();
     let mut keep = |session: &Session| path.as_deref().map_or(Ok(()), |p| session.save(p));
-    let client = &mut opened.connection.client;
-    let result =
-        procedure::collect_into(client, hand.as_mut(), &targets, &options, feedback, &mut kept.session, &mut keep);
+    let result = if adaptive::is_adaptive(args, &kept.session) {
+        adaptive::collect(args, opened, hand.as_mut(), wait_limit, &mut kept.session, &mut keep, feedback)
+    } else {
+        let options = CollectOptions {
+            seconds: args.seconds.unwrap_or_else(|| procedure::capture_seconds(kept.session.quick)),
+            wait_limit,
+        };
+        let (targets, started) = (procedure::targets(kept.session.quick), opened.clock()());
+        let client = &mut opened.connection.client;
+        procedure::collect_into(client, hand.as_mut(), &targets, &options, feedback, &mut kept.session, &mut keep)
+            .map(|()| Some(started))
+    };
     match (result, &kept.path) {
-        (Ok(()), _) => Ok(()),
+        (Ok(first), _) => Ok(first),
         (Err(source), Some(path)) if !kept.session.captures.is_empty() => Err(Error::Stopped {
             source: Box::new(source),
             captures: kept.session.captures.len(),
@@ -95,20 +106,24 @@ fn finish(
     opened: &mut Opened,
     fitted: &Fitted,
     kept_at: Option<&Path>,
+    (adaptive, first_capture_s): (bool, f64),
     feedback: &mut dyn Feedback,
 ) -> Result<(), Error> {
     let (mut hand, wait_limit) = opened.hand(args.sim_placement_deg, args.device.seed);
+    let (positions, length) = adaptive::verification(args, adaptive, opened.connection.info.config.sample_rate_hz)?;
     let client = &mut opened.connection.client;
     let calibrated: Vec<[f64; 3]> = fitted.session.captures.iter().map(|c| c.stats.mean_g.map(f64::from)).collect();
-    let positions = usize::from(args.verify);
-    let verification = procedure::verify_clear_of(client, hand.as_mut(), positions, wait_limit, feedback, &calibrated)?;
+    let hand = hand.as_mut();
+    let verification = procedure::verify_with(client, hand, positions, wait_limit, feedback, &calibrated, length)?;
+    let board_seconds = opened.clock()() - first_capture_s;
     if let Some(stem) = kept_at {
         keep_with_report(&fitted.session, &verification, stem, feedback)?;
     }
     let truth = opened.sim.as_ref().map(|board| board.truth());
     let captures = fitted.session.captures.len();
     let chip = fitted.chip.as_ref().map(|c| &c.calibration);
-    let report = CalibrateReport::new(&fitted.chosen, chip, fitted.host.as_ref(), truth, verification, captures);
+    let mut report = CalibrateReport::new(&fitted.chosen, chip, fitted.host.as_ref(), truth, verification, captures);
+    report.board_seconds = Some(board_seconds);
     print_report(&report, args.json);
     Ok(())
 }
@@ -201,11 +216,23 @@ fn upload_if_confirmed<P: Port>(
     Ok(true)
 }
 
-/// The chip's `ortho9` fit (of captures all taken in this run), which a `--quick` calibration takes
-/// as it is (no host fit at all), and for a full calibration the host's fit, which is then the one
-/// chosen; a resumed `--quick` session is fitted by the same solver on the host.
-fn choose<P: Port>(client: &mut Client<P>, kept: &Kept, config: SensorConfig) -> Result<Fitted, Error> {
+/// The on-chip fit (of captures all taken in this run), and for a full calibration the host's fit,
+/// which is then the one chosen; a resumed `--quick` session is fitted by the same solver on the
+/// host.
+fn choose<P: Port>(
+    client: &mut Client<P>,
+    kept: &Kept,
+    config: SensorConfig,
+    adaptive: bool,
+    feedback: &mut dyn Feedback,
+) -> Result<Fitted, Error> {
     let session = kept.session.clone();
+    if adaptive {
+        // NOTE: the chip's own ortho9 fit of its latest captures, only for comparison.
+        let chip = if kept.resumed { None } else { client.fit_ortho9().ok() };
+        let (chosen, fit) = adaptive::calibration(&session, config, feedback)?;
+        return Ok(Fitted { session, chip, host: Some(fit), chosen });
+    }
     let chip = if kept.resumed { None } else { Some(client.fit_ortho9()?) };
     match (session.quick, chip) {
         (true, Some(chip)) => Ok(Fitted { session, chip: Some(chip), host: None, chosen: chip.calibration }),

@@ -1,12 +1,13 @@
 //! Opening the device a command names: a serial port, or a simulated board in this process (with
 //! the tool's own hand on it).
 
+use std::sync::Arc;
 use std::time::Duration;
 
 use super::args::Device;
 use crate::error::Error;
 use crate::link::{open_port, resolve_port, serial_ports, Connection};
-use crate::procedure::{Hand, PersonHand, SimulatedHand};
+use crate::procedure::{BoardClock, Hand, PersonHand, SimulatedHand, PERSON_TURN_SECONDS};
 use crate::sim::SimBoard;
 
 /// How long the tool waits for the simulated board (which it turns itself) to settle.
@@ -35,11 +36,26 @@ impl Device {
 }
 
 impl Opened {
+    /// The board's clock: the simulated board's own time, or the wall clock from now for a real one.
+    pub(super) fn clock(&self) -> BoardClock {
+        match &self.sim {
+            Some(board) => Arc::new(board.clock()),
+            None => {
+                let start = std::time::Instant::now();
+                Arc::new(move || start.elapsed().as_secs_f64())
+            }
+        }
+    }
+
     /// Who turns the board, and how long to wait for it: a person (as long as they take), or the
-    /// tool's own hand on the simulated board, off by `placement_deg`, seeded by `seed`.
+    /// tool's own hand on the simulated board, off by `placement_deg`, seeded by `seed`, turning it
+    /// as a person does.
     pub(super) fn hand(&self, placement_deg: f64, seed: u64) -> (Box<dyn Hand>, Option<Duration>) {
         match &self.sim {
-            Some(board) => (Box::new(SimulatedHand::new(board.controls(), placement_deg, seed)), Some(SIM_WAIT_LIMIT)),
+            Some(board) => {
+                let hand = SimulatedHand::new(board.controls(), placement_deg, seed).turning(PERSON_TURN_SECONDS);
+                (Box::new(hand), Some(SIM_WAIT_LIMIT))
+            }
             None => (Box::new(PersonHand), None),
         }
     }

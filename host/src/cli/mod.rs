@@ -2,11 +2,13 @@
 //! ([`fit`]), the guided procedure ([`procedure`]), moving calibrations to and from the board
 //! ([`transfer`]), the board itself ([`board`]), noise of a recording ([`noise`]); [`device`] opens the board each command names.
 
+mod adaptive;
 pub mod args;
 mod board;
 mod calibrate;
 mod device;
 mod fit;
+mod length;
 mod noise;
 mod procedure;
 mod record;

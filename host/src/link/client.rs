@@ -184,6 +184,7 @@ pub(super) fn request_name(request: &Request) -> &'static str {
         Request::Stream { .. } => "Stream",
         Request::TakeTemperatureBins => "TakeTemperatureBins",
         Request::FitOrtho9 => "FitOrtho9",
+        Request::CaptureUntil(_) => "CaptureUntil",
     }
 }
 

@@ -103,6 +103,12 @@ fn board(error: &DeviceError) -> String {
         DeviceError::UnsupportedVersion { device, host } => {
             format!("protocol version mismatch: device {device}, host {host}")
         }
+        DeviceError::InvalidGoal => format!(
+            "the device refused the capture's stop rule (it takes {} samples to {} s at the sample rate, and a \
+             positive goal): update the host tool to the firmware's version",
+            shared::protocol::MIN_GOAL_SAMPLES,
+            shared::protocol::MAX_CAPTURE_SECONDS
+        ),
         _ => format!("the device reported {error:?}"),
     }
 }

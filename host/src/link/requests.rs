@@ -1,8 +1,8 @@
 //! One typed method per request: what the device answers, or why not.
 
 use shared::protocol::{
-    CalibrationSlot, CaptureProgress, CaptureStats, DeviceInfo, Request, Response, Sample, SensorConfig, StreamKind,
-    TempBin, PROTOCOL_VERSION, TEMP_BINS_PER_MESSAGE,
+    CalibrationSlot, CaptureGoal, CaptureProgress, CaptureStats, DeviceInfo, Request, Response, Sample, SensorConfig,
+    StreamKind, TempBin, PROTOCOL_VERSION, TEMP_BINS_PER_MESSAGE,
 };
 use shared::{Calibration, Position};
 
@@ -52,6 +52,25 @@ impl<P: Port> Client<P> {
         mut on_progress: impl FnMut(&CaptureProgress),
     ) -> Result<(CaptureStats, Option<Position>), LinkError> {
         let request = Request::Capture { seconds };
+        let response = self.run(request.clone(), |update| {
+            if let Response::Progress(progress) = update {
+                on_progress(progress)
+            }
+        })?;
+        match response {
+            Response::Captured { stats, position } => Ok((stats, position)),
+            other => Err(unexpected(&request, &other)),
+        }
+    }
+
+    /// Averages the still sensor until `goal` stops it, reporting progress; the statistics and the
+    /// face the device detected.
+    pub fn capture_until(
+        &mut self,
+        goal: CaptureGoal,
+        mut on_progress: impl FnMut(&CaptureProgress),
+    ) -> Result<(CaptureStats, Option<Position>), LinkError> {
+        let request = Request::CaptureUntil(goal);
         let response = self.run(request.clone(), |update| {
             if let Response::Progress(progress) = update {
                 on_progress(progress)

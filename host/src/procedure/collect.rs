@@ -4,6 +4,7 @@
 use shared::protocol::{CaptureStats, DeviceError};
 use shared::Position;
 
+use super::stop_rule::CaptureLength;
 use super::wait::wait_for_target;
 use super::{CollectOptions, Feedback, Hand, Orientation, ProcedureError};
 use crate::link::{explain, Client, LinkError, Port};
@@ -44,7 +45,8 @@ pub fn collect_into<P: Port>(
         hand.present(&remaining[0], feedback)?;
         let index = wait_for_target(client, &remaining, &done, options.wait_limit, feedback)?;
         feedback.say(&format!("{} found; averaging for {} s", remaining[index].name, options.seconds));
-        let Some((stats, face)) = capture_at(client, &remaining[index], options.seconds, feedback)? else {
+        let length = CaptureLength::Seconds(options.seconds);
+        let Some((stats, face)) = capture_at(client, &remaining[index], length, feedback)? else {
             moved_in_a_row += 1;
             if moved_in_a_row >= CAPTURE_ATTEMPTS {
                 return Err(ProcedureError::KeptMoving { attempts: CAPTURE_ATTEMPTS });
@@ -64,13 +66,13 @@ pub fn collect_into<P: Port>(
 /// One capture at `target`; `None` when the board moved during it or its mean lies outside the
 /// target's tolerance (the person turned it elsewhere and held it there): the wait starts again, so
 /// a capture is never kept under the name of an orientation it was not taken at.
-fn capture_at<P: Port>(
+pub(super) fn capture_at<P: Port>(
     client: &mut Client<P>,
     target: &Orientation,
-    seconds: u8,
+    length: CaptureLength,
     feedback: &mut dyn Feedback,
 ) -> Result<Option<(CaptureStats, Option<Position>)>, ProcedureError> {
-    let result = client.capture(seconds, |p| feedback.progress(p.samples, p.total_samples));
+    let result = length.capture(client, feedback);
     feedback.progress_done();
     let (stats, face) = match result {
         Err(LinkError::Device(error @ DeviceError::Moved { .. })) => {
@@ -90,11 +92,11 @@ fn capture_at<P: Port>(
 /// One capture with its progress shown, retried while the board moves.
 pub(super) fn capture<P: Port>(
     client: &mut Client<P>,
-    seconds: u8,
+    length: CaptureLength,
     feedback: &mut dyn Feedback,
 ) -> Result<(CaptureStats, Option<Position>), ProcedureError> {
     for attempt in 1..=CAPTURE_ATTEMPTS {
-        let result = client.capture(seconds, |p| feedback.progress(p.samples, p.total_samples));
+        let result = length.capture(client, feedback);
         feedback.progress_done();
         match result {
             Err(LinkError::Device(error @ DeviceError::Moved { .. })) if attempt < CAPTURE_ATTEMPTS => {

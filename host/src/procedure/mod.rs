@@ -2,10 +2,13 @@
 //! capture, and verify a calibration at fresh orientations. Who turns the board is a [`Hand`]: a
 //! person following instructions, or the tool's own hand on the simulated board.
 
+mod adaptive;
 mod collect;
+pub mod drift;
 mod feedback;
 mod hand;
 mod simulated_hand;
+pub mod stop_rule;
 pub mod thermal;
 mod verify;
 mod wait;
@@ -13,11 +16,12 @@ mod wait;
 use std::time::Duration;
 
 pub use crate::orientation::{corners, faces, quick_set, Orientation};
+pub use adaptive::{adaptive_calibration, adaptive_fit, collect_adaptive, AdaptiveOptions, BoardClock, Collected};
 pub use collect::{collect, collect_into};
 pub use feedback::{Feedback, Silent};
 pub use hand::{Hand, PersonHand};
-pub use simulated_hand::SimulatedHand;
-pub use verify::{verify, verify_clear_of, Verification, VERIFY_SECONDS};
+pub use simulated_hand::{SimulatedHand, PERSON_TURN_SECONDS};
+pub use verify::{verify, verify_clear_of, verify_with, Verification, VERIFY_SECONDS};
 
 use crate::fit::{self, Fit, FitError, FitOptions, ModelChoice};
 use crate::link::LinkError;
@@ -42,12 +46,16 @@ pub enum ProcedureError {
         "the temperature spanned only {:.1} degC ({low_c:.1} to {high_c:.1} degC); a temperature model needs at least {needed_c} degC: start with the board cold (rested in a cool place or just powered on) and let it warm, or move it between a cool and a warm place", high_c - low_c
     )]
     SpanTooSmall { low_c: f64, high_c: f64, needed_c: f64 },
+    #[error("the noise report {path} cannot be used ({reason}): write one with `accelcal noise RECORDING --json`")]
+    NoiseReport { path: std::path::PathBuf, reason: String },
     #[error("the simulated board stopped; run the command again")]
     SimulatedBoardStopped,
     #[error(transparent)]
     Fit(#[from] FitError),
     #[error(transparent)]
     Session(#[from] crate::session::SessionError),
+    #[error(transparent)]
+    Calibration(crate::calibration::CalibrationRecordError),
 }
 
 /// How the captures of [`collect`] run.

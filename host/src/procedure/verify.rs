@@ -9,6 +9,7 @@ use shared::protocol::{CalibrationSlot, CaptureStats, StreamKind};
 use shared::Calibration;
 
 use super::collect::capture;
+use super::stop_rule::CaptureLength;
 use super::wait::{wait_for_fresh, LIVE_WINDOW};
 use super::{Feedback, Hand, ProcedureError};
 use crate::link::{Client, Port, StreamRequest};
@@ -77,6 +78,20 @@ pub fn verify_clear_of<P: Port>(
     feedback: &mut dyn Feedback,
     calibrated: &[[f64; 3]],
 ) -> Result<Verification, ProcedureError> {
+    let length = CaptureLength::Seconds(VERIFY_SECONDS);
+    verify_with(client, hand, positions, wait_limit, feedback, calibrated, length)
+}
+
+/// [`verify_clear_of`] with captures of `length` (an adaptive session's: as long as its target needs).
+pub fn verify_with<P: Port>(
+    client: &mut Client<P>,
+    hand: &mut dyn Hand,
+    positions: usize,
+    wait_limit: Option<Duration>,
+    feedback: &mut dyn Feedback,
+    calibrated: &[[f64; 3]],
+    length: CaptureLength,
+) -> Result<Verification, ProcedureError> {
     let calibration = client.calibration(CalibrationSlot::Active)?.ok_or(ProcedureError::NoActiveCalibration)?;
     hand.avoid(calibrated);
     let mut checks = Vec::with_capacity(positions);
@@ -85,7 +100,7 @@ pub fn verify_clear_of<P: Port>(
         hand.fresh(index, feedback)?;
         // NOTE: `used` holds the calibration's directions first, then each one verified.
         used.push(wait_for_fresh(client, &used, wait_limit, feedback)?);
-        let check = check(client, &calibration, feedback)?;
+        let check = check(client, &calibration, length, feedback)?;
         feedback.say(&format!(
             "verification {}: | |a| - 1 g | {:.2} mg raw, {:.3} mg calibrated",
             index + 1,
@@ -101,10 +116,12 @@ pub fn verify_clear_of<P: Port>(
 fn check<P: Port>(
     client: &mut Client<P>,
     calibration: &Calibration,
+    length: CaptureLength,
     feedback: &mut dyn Feedback,
 ) -> Result<Check, ProcedureError> {
-    let (stats, _) = capture(client, VERIFY_SECONDS, feedback)?;
-    let corrected = calibration.apply(stats.mean_g);
+    let (stats, _) = capture(client, length, feedback)?;
+    // NOTE: at the capture's temperature, as the chip corrects it (a session's drift model moves o).
+    let corrected = calibration.apply_at(stats.mean_g, stats.temp_c);
     let chip_mean = chip_corrected_mean(client)?;
     Ok(Check {
         before_mg: (f64::from(linalg::norm(stats.mean_g)) - 1.0) * 1000.0,

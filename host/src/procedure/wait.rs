@@ -29,11 +29,24 @@ pub(super) fn wait_for_target<P: Port>(
     limit: Option<Duration>,
     feedback: &mut dyn Feedback,
 ) -> Result<usize, ProcedureError> {
+    wait_for_target_settled(client, remaining, done, limit, SETTLE_SECONDS, feedback)
+}
+
+/// [`wait_for_target`] with the board at rest for `settle_seconds` (rounded up to whole windows).
+pub(super) fn wait_for_target_settled<P: Port>(
+    client: &mut Client<P>,
+    remaining: &[Orientation],
+    done: &[Orientation],
+    limit: Option<Duration>,
+    settle_seconds: f64,
+    feedback: &mut dyn Feedback,
+) -> Result<usize, ProcedureError> {
     let gave_up = || {
         let wanted: Vec<&str> = remaining.iter().map(|t| t.name.as_str()).collect();
         ProcedureError::NeverAtTarget { wanted: wanted.join(", ") }
     };
-    wait_for_rest(client, limit, feedback, gave_up, |window| judge_target(window, remaining, done))
+    let streak = Streak::over(settle_seconds);
+    wait_for_rest(client, limit, feedback, gave_up, streak, |window| judge_target(window, remaining, done))
 }
 
 /// What a window says about the remaining targets: a line for the user, and the index of the
@@ -79,6 +92,7 @@ pub(super) fn wait_for_fresh<P: Port>(
         limit,
         feedback,
         || ProcedureError::NeverFresh,
+        Streak::over(SETTLE_SECONDS),
         |window| {
             let fresh = used.iter().all(|u| angle_between_deg(window.mean, *u) >= FRESH_DEG);
             let line = match (window.still, fresh) {
@@ -99,10 +113,10 @@ fn wait_for_rest<P: Port, R>(
     limit: Option<Duration>,
     feedback: &mut dyn Feedback,
     gave_up: impl Fn() -> ProcedureError,
+    mut streak: Streak,
     mut judge: impl FnMut(Window) -> (String, Option<R>),
 ) -> Result<R, ProcedureError> {
     let started = Instant::now();
-    let mut streak = Streak::default();
     loop {
         if limit.is_some_and(|l| started.elapsed() > l) {
             return Err(gave_up());
@@ -144,22 +158,34 @@ fn not_gravity(window: &Window) -> Option<String> {
 pub const SETTLE_SECONDS: f64 = 2.0;
 
 /// Accepted live windows in a row that make [`SETTLE_SECONDS`].
-pub(super) fn settle_windows() -> usize {
-    (SETTLE_SECONDS * f64::from(LIVE_WINDOW.rate_hz) / f64::from(LIVE_WINDOW.count)).ceil() as usize
+#[cfg(test)]
+fn settle_windows() -> usize {
+    windows_for(SETTLE_SECONDS)
 }
 
-/// Windows accepted in a row: a board counts as at rest only after [`settle_windows`] accepted
-/// windows in a row, so that one lucky half second while it is being turned does not count.
-#[derive(Debug, Default)]
-struct Streak {
+/// Live windows that cover `seconds` (at least one).
+fn windows_for(seconds: f64) -> usize {
+    ((seconds * f64::from(LIVE_WINDOW.rate_hz) / f64::from(LIVE_WINDOW.count)).ceil() as usize).max(1)
+}
+
+/// Windows accepted in a row: a board counts as at rest only after `needed` accepted windows in a
+/// row, so that one lucky half second while it is being turned does not count.
+#[derive(Debug)]
+pub(super) struct Streak {
     accepted_in_a_row: usize,
+    needed: usize,
 }
 
 impl Streak {
+    /// A streak of the windows that cover `seconds`.
+    fn over(seconds: f64) -> Self {
+        Streak { accepted_in_a_row: 0, needed: windows_for(seconds) }
+    }
+
     /// Counts one window's verdict; the value once it completes the run of accepted windows.
     fn settled<R>(&mut self, verdict: Option<R>) -> Option<R> {
         match verdict {
-            Some(value) if self.accepted_in_a_row + 1 >= settle_windows() => return Some(value),
+            Some(value) if self.accepted_in_a_row + 1 >= self.needed => return Some(value),
             Some(_) => self.accepted_in_a_row += 1,
             None => self.accepted_in_a_row = 0,
         }
@@ -202,7 +228,7 @@ mod tests {
     #[test]
     fn the_board_is_at_rest_only_after_two_seconds_of_accepted_windows_in_a_row() {
         assert_eq!(settle_windows(), 4, "2 s of half-second windows");
-        let mut streak = Streak::default();
+        let mut streak = Streak::over(SETTLE_SECONDS);
         assert_eq!(streak.settled(Some(1)), None);
         assert_eq!(streak.settled(None::<i32>), None);
         assert_eq!([2, 3, 4].map(|v| streak.settled(Some(v))), [None; 3]);

@@ -27,6 +27,9 @@ pub struct CalibrateReport {
     pub chip_fit: Option<CalibrationJson>,
     /// The host's fit, when it made the calibration.
     pub host_fit: Option<HostFitSummary>,
+    /// Seconds of the board's time from the first capture's start to the last verification
+    /// capture's end (the simulated board's own clock with `--sim`, the wall clock otherwise).
+    pub board_seconds: Option<f64>,
 }
 
 /// The simulated sensor's true calibration: a = matrix (m - offset), in g.
@@ -70,6 +73,7 @@ impl CalibrateReport {
             captures,
             chip_fit: chip.map(CalibrationJson::from_device),
             host_fit: host.map(HostFitSummary::new),
+            board_seconds: None,
         }
     }
 }

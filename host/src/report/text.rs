@@ -115,9 +115,12 @@ fn write_comparison(out: &mut String, comparison: &Comparison) {
 /// The result of a calibration: the verification line.
 pub fn calibrate_report(report: &CalibrateReport) -> String {
     let v = &report.verification;
+    let board = report.board_seconds.map_or(String::new(), |s| {
+        format!("the board was kept {s:.1} s from the first capture to the end of the verification\n")
+    });
     format!(
         "verified at {} fresh orientations: | |a| - 1 g | rms {:.2} mg before, {:.3} mg after (worst {:.3} mg); \
-         the captures' own noise {:.3} mg, error without it {:.3} mg\n",
+         the captures' own noise {:.3} mg, error without it {:.3} mg\n{board}",
         v.positions, v.before_rms_mg, v.after_rms_mg, v.after_max_mg, v.noise_floor_mg, v.after_rms_without_noise_mg
     )
 }

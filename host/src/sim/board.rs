@@ -1,6 +1,8 @@
 //! A running simulated board and the commands that turn it.
 
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc::{channel, Sender};
+use std::sync::Arc;
 use std::thread::JoinHandle;
 
 use embassy_futures::block_on;
@@ -53,6 +55,7 @@ pub struct SimBoard {
     thread: Option<JoinHandle<SimFlash>>,
     truth: TrueErrors,
     kind: SimSensor,
+    now_us: Arc<AtomicU64>,
 }
 
 impl SimBoard {
@@ -71,15 +74,17 @@ impl SimBoard {
         };
         let truth = sensor.physics.truth;
         let (commands, inbox) = channel();
+        let now_us = Arc::new(AtomicU64::new(0));
+        let clock = now_us.clone();
         let thread = std::thread::spawn(move || {
             // NOTE: boot fails only for a flash range that does not fit the flash, and
             // SIM_FLASH_RANGE is the whole of SimFlash; the board then simply never answers.
             match block_on(Device::boot(sensor, flash, SIM_FLASH_RANGE, sim_serial_number(seed))) {
-                Ok(device) => serve(port, Server::new(device), inbox, pace),
+                Ok(device) => serve(port, Server::new(device), inbox, pace, clock),
                 Err(_) => SimFlash::default(),
             }
         });
-        SimBoard { commands, thread: Some(thread), truth, kind }
+        SimBoard { commands, thread: Some(thread), truth, kind, now_us }
     }
 
     /// A fresh simulated board in this process, behind an in-memory pipe, and a session with it; its
@@ -93,6 +98,12 @@ impl SimBoard {
     /// A handle that turns the board: for the procedure's simulated hand, and for tests.
     pub fn controls(&self) -> Sender<SimCommand> {
         self.commands.clone()
+    }
+
+    /// A reader of the simulated time since power-on, in seconds (it moves while the board serves).
+    pub fn clock(&self) -> impl Fn() -> f64 + Send + Sync + 'static {
+        let now_us = self.now_us.clone();
+        move || now_us.load(Ordering::Relaxed) as f64 * 1e-6
     }
 
     /// The simulated sensor's true errors at 25 degC (its true static calibration).

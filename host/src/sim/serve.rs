@@ -6,7 +6,9 @@
 //! never drops a frame because the host is slow.
 
 use std::io::ErrorKind;
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc::{Receiver, TryRecvError};
+use std::sync::Arc;
 
 use embassy_futures::block_on;
 use firmware::device::Device;
@@ -29,11 +31,20 @@ struct Service {
     outgoing: Outgoing,
     /// Simulated time at which a timed motion stops, in microseconds.
     motion_ends_us: Option<u64>,
+    /// The simulated time now, in microseconds, for the board's owner.
+    now_us: Arc<AtomicU64>,
 }
 
 /// Serves `port` until told to stop or the host end goes away; returns the flash.
-pub(super) fn serve<P: Port>(mut port: P, mut server: SimServer, inbox: Receiver<SimCommand>, pace: Pace) -> SimFlash {
-    let mut service = Service { clock: Clock::new(pace), outgoing: Outgoing::default(), motion_ends_us: None };
+pub(super) fn serve<P: Port>(
+    mut port: P,
+    mut server: SimServer,
+    inbox: Receiver<SimCommand>,
+    pace: Pace,
+    now_us: Arc<AtomicU64>,
+) -> SimFlash {
+    let (clock, outgoing) = (Clock::new(pace), Outgoing::default());
+    let mut service = Service { clock, outgoing, motion_ends_us: None, now_us };
     let mut buffer = [0u8; 256];
     'serving: while let Some(received) = service.read(&mut port, &server, &mut buffer) {
         // NOTE: the owner's commands are applied after the read and before the bytes are handled, so
@@ -139,5 +150,6 @@ impl Service {
             self.motion_ends_us = None;
             sensor.stop_motion();
         }
+        self.now_us.store(sensor.now_us(), Ordering::Relaxed);
     }
 }

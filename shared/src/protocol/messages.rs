@@ -47,6 +47,22 @@ pub enum Request {
     /// kept (the latest [`super::MAX_KEPT_CAPTURES`] since [`Request::ClearPositions`]), wherever they
     /// were taken, and returns it as [`Response::Ortho9Fitted`]; the active calibration is untouched.
     FitOrtho9,
+    /// Averages the still sensor until its mean is known well enough (see [`CaptureGoal`]); progress,
+    /// then [`Response::Captured`], whose `samples` tell whether the goal or the maximum ended it.
+    CaptureUntil(CaptureGoal),
+}
+
+/// When a [`Request::CaptureUntil`] stops: once at least `min_samples` are averaged and the standard
+/// error of the mean (sample standard deviation / sqrt(n)) of every accelerometer axis is at most
+/// `mean_std_g`, or at `max_samples` whatever it shows. `min_samples == max_samples` is a fixed length.
+#[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq)]
+pub struct CaptureGoal {
+    /// Standard error of each axis' mean to reach, in g.
+    pub mean_std_g: f32,
+    /// Fewest samples to average (at least [`super::MIN_GOAL_SAMPLES`]).
+    pub min_samples: u32,
+    /// Most samples to average (at most [`super::MAX_CAPTURE_SECONDS`] at the sample rate).
+    pub max_samples: u32,
 }
 
 /// What the device answers.
@@ -303,4 +319,7 @@ pub enum DeviceError {
     UnsupportedVersion { device: u8, host: u8 },
     /// The chip's 9-parameter fit cannot run on the captures it kept: too few, or too alike.
     Ortho9(Ortho9Error),
+    /// A [`CaptureGoal`] outside its limits: a goal that is not positive, fewer than
+    /// [`super::MIN_GOAL_SAMPLES`], more than [`super::MAX_CAPTURE_SECONDS`] at the rate, or min above max.
+    InvalidGoal,
 }

@@ -15,9 +15,11 @@ pub use temperature::{TempBin, TEMP_BINS_PER_MESSAGE};
 ///
 /// NOTE: 2 from issue 9: the calibration record (origin tag, gyro matrix, temperature model) and the
 /// board's serial number in [`DeviceInfo`]. 3 from issue 10: samples carry the sensor's sample time,
-/// and the end of a stream says how many samples the board dropped. 4 from issue 16: the chip's own
-/// 9-parameter fit (`FitOrtho9`, `Ortho9Fitted`, `DeviceError::Ortho9`); a host of version 3 would read
-/// the new messages as garbled frames, so the version names the mismatch instead.
+/// and the end of a stream says how many samples the board dropped. 4 from issue 16 and issue 12: the
+/// chip's own 9-parameter fit (`FitOrtho9`, `Ortho9Fitted`, `DeviceError::Ortho9`), captures that stop when
+/// their mean is known well enough ([`Request::CaptureUntil`]) and the chip's temperature bins
+/// (`TakeTemperatureBins`); a host of version 3 would read the new messages as garbled frames, so the version
+/// names the mismatch instead.
 pub const PROTOCOL_VERSION: u8 = 4;
 
 /// Largest postcard payload of one message, in bytes.
@@ -48,6 +50,11 @@ pub const MAX_KEPT_CAPTURES: usize = 16;
 pub const MIN_CAPTURE_SECONDS: u8 = 5;
 /// Longest capture the device accepts, in seconds.
 pub const MAX_CAPTURE_SECONDS: u8 = 20;
+/// Fewest samples a [`Request::CaptureUntil`] averages.
+///
+/// NOTE: a standard deviation from fewer than about 20 samples is itself uncertain by more than 15 %
+/// (1/sqrt(2(n-1))), so a stop rule judged on it would stop early by chance.
+pub const MIN_GOAL_SAMPLES: u32 = 20;
 /// Capture length used when the user does not choose one, in seconds.
 pub const DEFAULT_CAPTURE_SECONDS: u8 = 10;
 

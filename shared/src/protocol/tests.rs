@@ -68,6 +68,7 @@ fn every_request() -> Vec<Request> {
         Request::Stream { kind: StreamKind::Calibrated, rate_hz: u16::MAX, count: u32::MAX },
         Request::TakeTemperatureBins,
         Request::FitOrtho9,
+        Request::CaptureUntil(CaptureGoal { mean_std_g: f32::MAX, min_samples: u32::MAX, max_samples: u32::MAX }),
     ];
     // NOTE: the match fails to compile when a variant is added without being listed above.
     for request in &all {
@@ -84,7 +85,8 @@ fn every_request() -> Vec<Request> {
             | Request::EraseCalibration
             | Request::Stream { .. }
             | Request::TakeTemperatureBins
-            | Request::FitOrtho9 => {}
+            | Request::FitOrtho9
+            | Request::CaptureUntil(_) => {}
         }
     }
     all
@@ -112,6 +114,7 @@ fn every_error() -> Vec<DeviceError> {
         DeviceError::Ortho9(Ortho9Error::TooFewReadings(255)),
         DeviceError::Ortho9(Ortho9Error::IllConditioned(8)),
         DeviceError::Ortho9(Ortho9Error::NotConverged),
+        DeviceError::InvalidGoal,
     ]
 }
 

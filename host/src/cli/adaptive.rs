@@ -1,0 +1,81 @@
+//! `calibrate`'s adaptive session (the default for a full calibration): positions in
+//! drift-cancelling order, each averaged until its mean is known well enough, no more positions once
+//! the fit predicts the target, the drift the temperature caused fitted and said, verification as
+//! long as the target needs.
+
+use shared::protocol::SensorConfig;
+use shared::Calibration;
+
+use super::args::CalibrateArgs;
+use super::device::Opened;
+use super::length::{ADAPTIVE_VERIFY_POSITIONS, FIXED_VERIFY_POSITIONS};
+use crate::error::Error;
+use crate::fit::Fit;
+use crate::procedure::stop_rule::CaptureLength;
+use crate::procedure::{self, drift, AdaptiveOptions, Feedback, Hand, VERIFY_SECONDS};
+use crate::session::{Session, SessionError};
+
+/// Whether this run's session is adaptive: a full calibration without a fixed `--seconds`.
+pub(super) fn is_adaptive(args: &CalibrateArgs, session: &Session) -> bool {
+    !session.quick && args.seconds.is_none()
+}
+
+/// Collects an adaptive session; the board's clock at its first capture.
+pub(super) fn collect(
+    args: &CalibrateArgs,
+    opened: &mut Opened,
+    hand: &mut dyn Hand,
+    wait_limit: Option<std::time::Duration>,
+    session: &mut Session,
+    keep: &mut dyn FnMut(&Session) -> Result<(), SessionError>,
+    feedback: &mut dyn Feedback,
+) -> Result<Option<f64>, procedure::ProcedureError> {
+    let rule = args.length.rule(opened.connection.info.config.sample_rate_hz)?;
+    let options = AdaptiveOptions { rule, wait_limit, clock: Some(opened.clock()) };
+    let client = &mut opened.connection.client;
+    let targets = procedure::targets(false);
+    let collected = procedure::collect_adaptive(client, hand, &targets, &options, feedback, session, keep)?;
+    Ok(collected.first_capture_s)
+}
+
+/// The calibration of an adaptive session, with what the temperature did during it said.
+pub(super) fn calibration(
+    session: &Session,
+    config: SensorConfig,
+    feedback: &mut dyn Feedback,
+) -> Result<(Calibration, Fit), Error> {
+    let (calibration, fit, fitted_drift) = procedure::adaptive_calibration(session, config)?;
+    let (low, high) = drift::span_c(session);
+    match fitted_drift {
+        Some(d) => feedback.say(&format!(
+            "the temperature moved {:.2} degC during the session ({low:.2} to {high:.2} degC); the offset drift it \
+             caused ({:+.2}, {:+.2}, {:+.2} mg/degC) was fitted with the calibration and goes with it to the board",
+            high - low,
+            d.slope_g_per_c[0] * 1e3,
+            d.slope_g_per_c[1] * 1e3,
+            d.slope_g_per_c[2] * 1e3
+        )),
+        None if high - low >= 0.1 => feedback.say(&format!(
+            "the temperature moved {:.2} degC during the session; too few positions to fit the drift it caused",
+            high - low
+        )),
+        None => {}
+    }
+    Ok((calibration, fit))
+}
+
+/// How many fresh orientations to verify at, and how long each capture runs.
+pub(super) fn verification(
+    args: &CalibrateArgs,
+    adaptive: bool,
+    rate_hz: u16,
+) -> Result<(usize, CaptureLength), Error> {
+    if !adaptive {
+        return Ok((
+            usize::from(args.verify.unwrap_or(FIXED_VERIFY_POSITIONS)),
+            CaptureLength::Seconds(VERIFY_SECONDS),
+        ));
+    }
+    let goal = args.length.rule(rate_hz)?.verification_goal();
+    Ok((usize::from(args.verify.unwrap_or(ADAPTIVE_VERIFY_POSITIONS)), CaptureLength::Goal(goal)))
+}

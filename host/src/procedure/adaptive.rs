@@ -1,0 +1,156 @@
+//! A calibration that stops when it knows enough: positions in drift-cancelling order (A ... Z ... A),
+//! each averaged until its mean is known well enough ([`StopRule`]), and no more positions once the
+//! fit predicts the target accuracy at a fresh orientation.
+
+use std::sync::Arc;
+use std::time::Duration;
+
+use super::collect::capture_at;
+use super::drift::{self, Drift};
+use super::stop_rule::{CaptureLength, StopRule};
+use super::wait::wait_for_target_settled;
+use super::{Feedback, Hand, Orientation, ProcedureError};
+use crate::calibration;
+use crate::fit::{Fit, FitError};
+use crate::link::{Client, Port};
+use crate::session::{CaptureRecord, Session, SessionError};
+use shared::protocol::SensorConfig;
+use shared::Calibration;
+
+/// Captures of a position tried before giving up on a board that keeps moving.
+const CAPTURE_ATTEMPTS: usize = 5;
+/// How long the board must rest at a position before its capture starts, in seconds.
+// NOTE: shorter than the guided procedure's 2 s: the capture refuses a board that still moves (the
+// chip's scatter check) and a mean away from the position (the tilt check), and a person told the
+// next position once needs no time to read it again.
+const SETTLE_SECONDS: f64 = 0.5;
+/// Fewest positions before the prediction may end the session: the nine parameters and one more,
+/// so that the fit has a residual to check itself by.
+const MIN_POSITIONS: usize = 10;
+
+/// A reader of the board's clock, in seconds (the simulated board's own time).
+pub type BoardClock = Arc<dyn Fn() -> f64 + Send + Sync>;
+
+/// How an adaptive calibration runs.
+#[derive(Clone)]
+pub struct AdaptiveOptions {
+    /// When each capture stops.
+    pub rule: StopRule,
+    /// Give up waiting for a position after this long (`None`: wait for the person).
+    pub wait_limit: Option<Duration>,
+    /// The board's clock, when it has one the host can read (the simulated board).
+    pub clock: Option<BoardClock>,
+}
+
+/// What an adaptive collection measured besides its captures.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Collected {
+    /// The board's clock when the first capture started, in seconds.
+    pub first_capture_s: Option<f64>,
+}
+
+/// Captures positions of `targets` in drift-cancelling order until the fit predicts `rule`'s target
+/// (or every target is taken), then the first position again; hands the session to `keep` after
+/// every capture.
+pub fn collect_adaptive<P: Port>(
+    client: &mut Client<P>,
+    hand: &mut dyn Hand,
+    targets: &[Orientation],
+    options: &AdaptiveOptions,
+    feedback: &mut dyn Feedback,
+    session: &mut Session,
+    keep: &mut dyn FnMut(&Session) -> Result<(), SessionError>,
+) -> Result<Collected, ProcedureError> {
+    client.clear_positions()?;
+    let order = drift::order(targets);
+    let mut collected = Collected::default();
+    for target in &order {
+        if session.captures.iter().any(|c| c.name == target.name) {
+            continue;
+        }
+        if enough(session, options.rule.target_mg, feedback) {
+            break;
+        }
+        take(client, hand, target, options, feedback, session, &mut collected)?;
+        keep(session)?;
+    }
+    let closing = drift::closing(&order[0]);
+    if !session.captures.iter().any(|c| c.name == closing.name) {
+        take(client, hand, &closing, options, feedback, session, &mut collected)?;
+        keep(session)?;
+    }
+    Ok(collected)
+}
+
+/// Whether the session's fit already predicts the target at a fresh orientation (said when it does).
+fn enough(session: &Session, target_mg: f64, feedback: &mut dyn Feedback) -> bool {
+    if session.captures.len() < MIN_POSITIONS {
+        return false;
+    }
+    let Some(predicted) = adaptive_fit(session).ok().and_then(|(f, _)| f.prediction) else {
+        return false;
+    };
+    let reached = predicted.norm_error_mg <= target_mg;
+    if reached {
+        let (n, p) = (session.captures.len(), predicted.norm_error_mg);
+        feedback.say(&format!("{n} positions predict {p:.3} mg at a fresh orientation, the {target_mg} mg wanted"));
+    }
+    reached
+}
+
+/// One position: presented, waited for, captured until its rule stops it (again while the board
+/// moves), recorded with why it stopped.
+fn take<P: Port>(
+    client: &mut Client<P>,
+    hand: &mut dyn Hand,
+    target: &Orientation,
+    options: &AdaptiveOptions,
+    feedback: &mut dyn Feedback,
+    session: &mut Session,
+    collected: &mut Collected,
+) -> Result<(), ProcedureError> {
+    let length = CaptureLength::Goal(options.rule.goal());
+    for _ in 0..CAPTURE_ATTEMPTS {
+        hand.present(target, feedback)?;
+        let only = std::slice::from_ref(target);
+        wait_for_target_settled(client, only, &[], options.wait_limit, SETTLE_SECONDS, feedback)?;
+        let started = options.clock.as_ref().map(|clock| clock());
+        collected.first_capture_s = collected.first_capture_s.or(started);
+        if let Some((stats, face)) = capture_at(client, target, length, feedback)? {
+            feedback.say(&format!("{}: {}", target.name, options.rule.why_stopped(&stats)));
+            session.captures.push(CaptureRecord::now(&target.name, Some(target.clone()), face, stats));
+            return Ok(());
+        }
+    }
+    Err(ProcedureError::KeptMoving { attempts: CAPTURE_ATTEMPTS })
+}
+
+/// The device calibration of an adaptive session: its fit, at the session's mean temperature, with
+/// the measured offset drift as a temperature model; the fit and the drift beside it.
+pub fn adaptive_calibration(
+    session: &Session,
+    config: SensorConfig,
+) -> Result<(Calibration, Fit, Option<Drift>), ProcedureError> {
+    let (fit, drift) = adaptive_fit(session)?;
+    let fitted = match &drift {
+        Some(d) => drift::corrected(session, d, drift::mean_temp_c(session)),
+        None => session.clone(),
+    };
+    let calibration = calibration::from_fit(&fit, &fitted, config).map_err(ProcedureError::Calibration)?;
+    let calibration = match &drift {
+        Some(d) => calibration::with_offset_drift(&calibration, drift::mean_temp_c(session), d.slope_g_per_c),
+        None => calibration,
+    };
+    Ok((calibration, fit, drift))
+}
+
+/// The orientation-free fit of an adaptive session, its captures first corrected for the drift
+/// that the first and the closing capture show (to the session's mean temperature); the drift.
+pub fn adaptive_fit(session: &Session) -> Result<(Fit, Option<Drift>), FitError> {
+    let drift = drift::fitted(session);
+    let fitted = match &drift {
+        Some(d) => drift::corrected(session, d, drift::mean_temp_c(session)),
+        None => session.clone(),
+    };
+    Ok((drift::ortho9(&fitted)?, drift))
+}

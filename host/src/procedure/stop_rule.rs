@@ -1,0 +1,200 @@
+//! How long a position is averaged: until its mean is known well enough for the calibration's
+//! target accuracy. The board judges that itself from the scatter of the capture so far
+//! ([`CaptureGoal`]); with a noise report (`accelcal noise --json`) the host fixes the length instead.
+
+use std::path::Path;
+
+use shared::protocol::{CaptureGoal, CaptureStats, MIN_GOAL_SAMPLES};
+use shared::Position;
+
+use super::{Feedback, ProcedureError};
+use crate::link::{Client, LinkError, Port};
+
+/// Shortest capture, in seconds.
+// NOTE: half a second holds 50 samples at 100 Hz: enough for a scatter to judge motion by (the
+// chip's motion check), and short next to the 1.5-2 s a person takes to turn the board.
+pub const MIN_SECONDS: f64 = 0.5;
+/// Longest capture, in seconds: beyond it a drifting sensor's mean stops meaning one temperature.
+pub const MAX_SECONDS: f64 = 8.0;
+/// Positions a session is planned to take, for the share of the target each position's mean gets.
+// NOTE: nine parameters need nine positions; one more gives the fit a residual to judge it by.
+pub const PLANNED_POSITIONS: f64 = 10.0;
+/// Parameters of the orientation-free fit.
+const FIT_PARAMETERS: f64 = 9.0;
+
+/// How long one capture runs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum CaptureLength {
+    /// A fixed number of seconds (5-20, the classic request).
+    Seconds(u8),
+    /// Until the board's stop rule ends it.
+    Goal(CaptureGoal),
+}
+
+impl CaptureLength {
+    /// Runs the capture, showing its progress.
+    pub(super) fn capture<P: Port>(
+        self,
+        client: &mut Client<P>,
+        feedback: &mut dyn Feedback,
+    ) -> Result<(CaptureStats, Option<Position>), LinkError> {
+        let mut progress = |p: &shared::protocol::CaptureProgress| feedback.progress(p.samples, p.total_samples);
+        match self {
+            CaptureLength::Seconds(seconds) => client.capture(seconds, &mut progress),
+            CaptureLength::Goal(goal) => client.capture_until(goal, &mut progress),
+        }
+    }
+}
+
+/// Where the noise that sets the capture length comes from.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Noise {
+    /// The scatter the board measures during each capture.
+    Measured,
+    /// A noise report: the white noise of each accelerometer axis (Allan N, g/sqrt(Hz): a mean over
+    /// T seconds errs by N / sqrt(T)) and the averaging time beyond which longer stops helping.
+    Report { white_noise_g: [f64; 3], capture_limit_s: Option<f64> },
+}
+
+/// The rule each position's capture stops by.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StopRule {
+    /// The wanted | |a| - g | error at a fresh orientation, in mg.
+    pub target_mg: f64,
+    /// Where the noise comes from.
+    pub noise: Noise,
+    /// The sensor's sample rate, in Hz.
+    pub rate_hz: u16,
+}
+
+impl StopRule {
+    /// The standard error each axis' mean must reach, in g: a least-squares fit of p parameters
+    /// from n equally good positions predicts at a fresh orientation about sigma sqrt(p / n).
+    pub fn mean_std_g(&self) -> f64 {
+        self.target_mg * 1e-3 * (PLANNED_POSITIONS / FIT_PARAMETERS).sqrt()
+    }
+
+    /// The request for one capture.
+    pub fn goal(&self) -> CaptureGoal {
+        let samples = |seconds: f64| ((seconds * f64::from(self.rate_hz)).round() as u32).max(MIN_GOAL_SAMPLES);
+        let mean_std_g = self.mean_std_g() as f32;
+        match &self.noise {
+            Noise::Measured => {
+                CaptureGoal { mean_std_g, min_samples: samples(MIN_SECONDS), max_samples: samples(MAX_SECONDS) }
+            }
+            Noise::Report { .. } => {
+                let fixed = samples(self.report_seconds());
+                CaptureGoal { mean_std_g, min_samples: fixed, max_samples: fixed }
+            }
+        }
+    }
+
+    /// The request for one verification capture: its mean known to half the target, so that the
+    /// noise floor of the check stays below the error it is to resolve.
+    pub fn verification_goal(&self) -> CaptureGoal {
+        let half =
+            StopRule { target_mg: self.target_mg / 2.0 / (PLANNED_POSITIONS / FIT_PARAMETERS).sqrt(), ..self.clone() };
+        half.goal()
+    }
+
+    /// The capture length a noise report asks for: the worst axis' (N / sigma)^2, within the limits
+    /// and no longer than the report's useful averaging time.
+    fn report_seconds(&self) -> f64 {
+        let Noise::Report { white_noise_g, capture_limit_s } = &self.noise else {
+            return MAX_SECONDS;
+        };
+        let worst = white_noise_g.iter().copied().fold(0.0, f64::max);
+        let longest = capture_limit_s.unwrap_or(MAX_SECONDS).clamp(MIN_SECONDS, MAX_SECONDS);
+        (worst / self.mean_std_g()).powi(2).clamp(MIN_SECONDS, longest)
+    }
+
+    /// Why a capture stopped when it did, in words.
+    pub fn why_stopped(&self, stats: &CaptureStats) -> String {
+        let known_mg = 1e3 * stats.std_g.iter().copied().fold(0.0, f32::max) / (stats.samples.max(1) as f32).sqrt();
+        let goal_mg = self.mean_std_g() * 1e3;
+        let seconds = stats.seconds;
+        match &self.noise {
+            Noise::Report { .. } => {
+                format!("{seconds:.1} s, as the noise report asks for a mean known to {goal_mg:.3} mg")
+            }
+            Noise::Measured if stats.samples < self.goal().max_samples => {
+                format!("{seconds:.1} s: its mean is known to {known_mg:.3} mg ({goal_mg:.3} mg wanted)")
+            }
+            Noise::Measured => format!(
+                "{seconds:.1} s, the longest capture: its mean is known to {known_mg:.3} mg ({goal_mg:.3} mg wanted)"
+            ),
+        }
+    }
+}
+
+/// The accelerometer's noise from an `accelcal noise --json` report: white noise per axis (ug/sqrt(Hz)
+/// there) and the capture limit.
+pub fn noise_from_report(path: &Path) -> Result<Noise, ProcedureError> {
+    let unreadable = |reason: String| ProcedureError::NoiseReport { path: path.to_owned(), reason };
+    let text = std::fs::read_to_string(path).map_err(|e| unreadable(e.to_string()))?;
+    let value: serde_json::Value = serde_json::from_str(&text).map_err(|e| unreadable(e.to_string()))?;
+    let mut white_noise_g = [0.0; 3];
+    for (axis, name) in ["accel_x", "accel_y", "accel_z"].iter().enumerate() {
+        let density = value[name]["white_noise_density"].as_f64().filter(|d| *d > 0.0 && d.is_finite());
+        let density = density.ok_or_else(|| unreadable(format!("it has no {name}.white_noise_density")))?;
+        white_noise_g[axis] = density * 1e-6;
+    }
+    // NOTE: a limit that is only a lower bound (the deviation still fell at the longest averaging
+    // time the recording allowed) caps nothing.
+    let lower_bound = value["calibration"]["capture_limit_is_lower_bound"].as_bool().unwrap_or(false);
+    let capture_limit_s = value["calibration"]["capture_limit_s"].as_f64().filter(|_| !lower_bound);
+    Ok(Noise::Report { white_noise_g, capture_limit_s })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rule(noise: Noise) -> StopRule {
+        StopRule { target_mg: 0.2, noise, rate_hz: 100 }
+    }
+
+    #[test]
+    fn each_mean_gets_its_share_of_the_target_and_the_board_judges_it() {
+        // 0.2 mg over sqrt(9 / 10): 0.2108 mg per axis; 0.5 s to 8 s at 100 Hz.
+        let goal = rule(Noise::Measured).goal();
+        assert!((goal.mean_std_g - 0.2108e-3).abs() < 1e-7, "{goal:?}");
+        assert_eq!((goal.min_samples, goal.max_samples), (50, 800));
+        assert!((rule(Noise::Measured).verification_goal().mean_std_g - 0.1e-3).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_noise_report_fixes_the_length_within_its_useful_averaging_time() {
+        // Allan N of 283 ug/sqrt(Hz) (400 ug/sqrt(Hz) one-sided): (0.283 / 0.2108)^2 = 1.80 s.
+        let report = |capture_limit_s| Noise::Report { white_noise_g: [200e-6, 283e-6, 250e-6], capture_limit_s };
+        let goal = rule(report(None)).goal();
+        assert_eq!((goal.min_samples, goal.max_samples), (180, 180));
+        let goal = rule(report(Some(1.2))).goal();
+        assert_eq!((goal.min_samples, goal.max_samples), (120, 120), "capped where longer stops helping");
+    }
+
+    #[test]
+    fn a_noise_report_is_read_from_noise_json_or_refused_by_name() {
+        let dir = std::env::temp_dir().join(format!("accelcal-stop-rule-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("noise.json");
+        let axis = |n: f64| format!("{{\"white_noise_density\": {n}}}");
+        let json = format!(
+            "{{\"accel_x\": {}, \"accel_y\": {}, \"accel_z\": {}, \"calibration\": {{\"capture_limit_s\": 40.0}}}}",
+            axis(280.0),
+            axis(290.0),
+            axis(300.0)
+        );
+        std::fs::write(&path, &json).unwrap();
+        let expected = Noise::Report { white_noise_g: [280e-6, 290e-6, 300e-6], capture_limit_s: Some(40.0) };
+        assert_eq!(noise_from_report(&path).unwrap(), expected);
+        let bound = json.replace("40.0}", "40.0, \"capture_limit_is_lower_bound\": true}");
+        std::fs::write(&path, bound).unwrap();
+        let Noise::Report { capture_limit_s, .. } = noise_from_report(&path).unwrap() else { panic!() };
+        assert_eq!(capture_limit_s, None, "a lower bound caps nothing");
+        std::fs::write(&path, "{\"accel_x\": {}}").unwrap();
+        let error = noise_from_report(&path).unwrap_err().to_string();
+        assert!(error.contains("it has no accel_x.white_noise_density"), "{error}");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
