@@ -128,7 +128,7 @@ impl StopRule {
 }
 
 /// The accelerometer's noise from an `accelcal noise --json` report: white noise per axis (ug/sqrt(Hz)
-/// there) and the capture limit.
+/// there, one-sided as datasheets give it) and the capture limit.
 pub fn noise_from_report(path: &Path) -> Result<Noise, ProcedureError> {
     let unreadable = |reason: String| ProcedureError::NoiseReport { path: path.to_owned(), reason };
     let text = std::fs::read_to_string(path).map_err(|e| unreadable(e.to_string()))?;
@@ -137,7 +137,8 @@ pub fn noise_from_report(path: &Path) -> Result<Noise, ProcedureError> {
     for (axis, name) in ["accel_x", "accel_y", "accel_z"].iter().enumerate() {
         let density = value[name]["white_noise_density"].as_f64().filter(|d| *d > 0.0 && d.is_finite());
         let density = density.ok_or_else(|| unreadable(format!("it has no {name}.white_noise_density")))?;
-        white_noise_g[axis] = density * 1e-6;
+        // NOTE: the report's density is one-sided (noise/fit.rs); a mean errs by the two-sided N / sqrt(T).
+        white_noise_g[axis] = density * 1e-6 / std::f64::consts::SQRT_2;
     }
     // NOTE: a limit that is only a lower bound (the deviation still fell at the longest averaging
     // time the recording allowed) caps nothing.
@@ -186,8 +187,10 @@ mod tests {
             axis(300.0)
         );
         std::fs::write(&path, &json).unwrap();
-        let expected = Noise::Report { white_noise_g: [280e-6, 290e-6, 300e-6], capture_limit_s: Some(40.0) };
-        assert_eq!(noise_from_report(&path).unwrap(), expected);
+        let Noise::Report { white_noise_g, capture_limit_s } = noise_from_report(&path).unwrap() else { panic!() };
+        let two_sided = [280e-6, 290e-6, 300e-6].map(|d: f64| d / std::f64::consts::SQRT_2);
+        assert!(white_noise_g.iter().zip(two_sided).all(|(n, e)| (n - e).abs() < 1e-12), "{white_noise_g:?}");
+        assert_eq!(capture_limit_s, Some(40.0));
         let bound = json.replace("40.0}", "40.0, \"capture_limit_is_lower_bound\": true}");
         std::fs::write(&path, bound).unwrap();
         let Noise::Report { capture_limit_s, .. } = noise_from_report(&path).unwrap() else { panic!() };
