@@ -8,6 +8,7 @@ use shared::linalg;
 use shared::protocol::{LowPassFilter, SensorConfig};
 use shared::{AccelRange, Calibration, CalibrationError};
 
+use crate::fit::gyro::GyroFit;
 use crate::fit::thermal::ThermalReference;
 use crate::fit::{self, Fit};
 use crate::link::calibration_reason;
@@ -222,6 +223,14 @@ pub fn with_temperature(
     let combined = Calibration { temperature: Some(model), ..*calibration };
     let implausible = |reason| CalibrationRecordError::ImplausibleFit { model: "temperature", reason };
     combined.validate().map_err(implausible)?;
+    Ok(combined)
+}
+
+/// The calibration with the gyro matrix G of `fit` (w = G (w_raw - b)), checked like any other.
+pub fn with_gyro(calibration: &Calibration, fit: &GyroFit) -> Result<Calibration, CalibrationRecordError> {
+    let gyro = GyroCalibration { matrix: narrow(fit.matrix), ..calibration.gyro };
+    let combined = Calibration { gyro, ..*calibration };
+    combined.validate().map_err(|reason| CalibrationRecordError::ImplausibleFit { model: "gyro", reason })?;
     Ok(combined)
 }
 

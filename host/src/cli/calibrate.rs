@@ -15,7 +15,8 @@ use crate::calibration::{self, describe};
 use crate::error::Error;
 use crate::fit::Fit;
 use crate::link::{Client, LinkError, Port};
-use crate::procedure::{self, CollectOptions, Feedback, Verification};
+use crate::procedure::{self, CollectOptions, Feedback, Moves, Verification};
+use crate::report::gyro::GyroOutcome;
 use crate::report::{self, CalibrateReport};
 use crate::session::{unix_time_s, BoardRecord, Session};
 
@@ -48,8 +49,10 @@ pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
     let mut kept = start_session(args, &opened.connection.info, feedback.as_mut())?;
     let interrupt = interrupt_on_ctrl_c();
     opened.connection.client.interrupt_on(interrupt.clone());
-    collect(args, &mut opened, &mut kept, feedback.as_mut())?;
-    let fitted = choose(&mut opened.connection.client, &kept, opened.connection.info.config)?;
+    let moves = collect(args, &mut opened, &mut kept, feedback.as_mut())?;
+    let mut fitted = choose(&mut opened.connection.client, &kept, opened.connection.info.config)?;
+    let (chosen, gyro) = super::gyro::fit(&moves, &fitted.session, &fitted.chosen, feedback.as_mut());
+    fitted.chosen = chosen;
     show_choice(feedback.as_mut(), &fitted);
     let client = &mut opened.connection.client;
     if interrupt.load(Ordering::SeqCst) {
@@ -58,26 +61,29 @@ pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
     if !upload_if_confirmed(client, &fitted.chosen, feedback.as_mut())? {
         return Ok(());
     }
-    finish(args, &mut opened, &fitted, kept.path.as_deref(), feedback.as_mut())
+    finish(args, &mut opened, (&fitted, &gyro), kept.path.as_deref(), feedback.as_mut())
 }
 
-/// The captures the session lacks, written after each one; an error names where they are kept.
+/// The captures the session lacks, written after each one, and the moves between them; an error
+/// names where the captures are kept.
 fn collect(
     args: &CalibrateArgs,
     opened: &mut Opened,
     kept: &mut Kept,
     feedback: &mut dyn Feedback,
-) -> Result<(), Error> {
+) -> Result<Moves, Error> {
     let (mut hand, wait_limit) = opened.hand(args.sim_placement_deg, args.device.seed);
     let options = CollectOptions { seconds: args.seconds, wait_limit };
     let targets = procedure::targets(kept.session.quick);
     let path = kept.path.clone();
     let mut keep = |session: &Session| path.as_deref().map_or(Ok(()), |p| session.save(p));
     let client = &mut opened.connection.client;
+    let mut moves = Moves::at(opened.connection.info.config.sample_rate_hz);
+    let session = &mut kept.session;
     let result =
-        procedure::collect_into(client, hand.as_mut(), &targets, &options, feedback, &mut kept.session, &mut keep);
+        procedure::collect_into(client, hand.as_mut(), &targets, &options, feedback, session, &mut moves, &mut keep);
     match (result, &kept.path) {
-        (Ok(()), _) => Ok(()),
+        (Ok(()), _) => Ok(moves),
         (Err(source), Some(path)) if !kept.session.captures.is_empty() => Err(Error::Stopped {
             source: Box::new(source),
             captures: kept.session.captures.len(),
@@ -92,22 +98,27 @@ fn collect(
 fn finish(
     args: &CalibrateArgs,
     opened: &mut Opened,
-    fitted: &Fitted,
+    (fitted, gyro): (&Fitted, &GyroOutcome),
     kept_at: Option<&Path>,
     feedback: &mut dyn Feedback,
 ) -> Result<(), Error> {
     let (mut hand, wait_limit) = opened.hand(args.sim_placement_deg, args.device.seed);
+    let rate_hz = opened.connection.info.config.sample_rate_hz;
     let client = &mut opened.connection.client;
     let calibrated: Vec<[f64; 3]> = fitted.session.captures.iter().map(|c| c.stats.mean_g.map(f64::from)).collect();
     let positions = usize::from(args.verify);
     let verification = procedure::verify_clear_of(client, hand.as_mut(), positions, wait_limit, feedback, &calibrated)?;
+    let check = super::gyro::check(client, hand.as_mut(), rate_hz, gyro, feedback)?;
     if let Some(stem) = kept_at {
         keep_with_report(&fitted.session, &verification, stem, feedback)?;
     }
     let truth = opened.sim.as_ref().map(|board| board.truth());
+    let session_temp_c = calibration::thermal_reference(&fitted.chosen).ref_temp_c;
+    let truth_gyro = opened.sim.as_ref().map(|board| board.truth_at(session_temp_c));
     let captures = fitted.session.captures.len();
     let report =
-        CalibrateReport::new(&fitted.chosen, fitted.chip.as_ref(), fitted.host.as_ref(), truth, verification, captures);
+        CalibrateReport::new(&fitted.chosen, fitted.chip.as_ref(), fitted.host.as_ref(), truth, verification, captures)
+            .with_gyro(gyro, truth_gyro.as_ref(), check);
     print_report(&report, args.json);
     Ok(())
 }

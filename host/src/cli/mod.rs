@@ -7,6 +7,7 @@ mod board;
 mod calibrate;
 mod device;
 mod fit;
+mod gyro;
 mod noise;
 mod procedure;
 mod record;

@@ -4,9 +4,12 @@
 
 mod collect;
 mod feedback;
+mod gyro_check;
 mod hand;
+mod moves;
 mod simulated_hand;
 pub mod thermal;
+mod turns;
 mod verify;
 mod wait;
 
@@ -15,8 +18,11 @@ use std::time::Duration;
 pub use crate::orientation::{corners, faces, Orientation};
 pub use collect::{collect, collect_into};
 pub use feedback::{Feedback, Silent};
+pub use gyro_check::{check_turn, TurnCheck};
 pub use hand::{Hand, PersonHand};
+pub use moves::{Moves, RecordedMove};
 pub use simulated_hand::SimulatedHand;
+pub use turns::{fit_moves, turns_of};
 pub use verify::{verify, verify_clear_of, Verification, VERIFY_SECONDS};
 
 use crate::fit::{self, Fit, FitError, FitOptions, ModelChoice};

@@ -5,6 +5,7 @@
 mod calibrate;
 mod comparison;
 mod figure;
+pub mod gyro;
 pub mod html;
 pub mod json;
 mod plot;
@@ -12,7 +13,7 @@ mod session;
 pub mod text;
 pub mod thermal;
 
-pub use calibrate::{CalibrateReport, HostFitSummary, TruthJson};
+pub use calibrate::{CalibrateReport, ChosenJson, HostFitSummary, TruthJson};
 pub use comparison::{ComparedModel, Comparison};
 pub use figure::{Figure, Role, Series, SeriesStyle};
 pub use plot::PlotError;

@@ -115,11 +115,12 @@ fn write_comparison(out: &mut String, comparison: &Comparison) {
 /// The result of a calibration: the verification line.
 pub fn calibrate_report(report: &CalibrateReport) -> String {
     let v = &report.verification;
-    format!(
+    let accel = format!(
         "verified at {} fresh orientations: | |a| - 1 g | rms {:.2} mg before, {:.3} mg after (worst {:.3} mg); \
          the captures' own noise {:.3} mg, error without it {:.3} mg\n",
         v.positions, v.before_rms_mg, v.after_rms_mg, v.after_max_mg, v.noise_floor_mg, v.after_rms_without_noise_mg
-    )
+    );
+    accel + &super::gyro::text(&report.calibration.gyro, report.gyro_check.as_ref())
 }
 
 /// A number right-aligned in `width` with `digits` decimals, or `-`.

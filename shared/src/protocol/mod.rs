@@ -38,6 +38,9 @@ pub const USB_PRODUCT: &str = "accelcal MPU-6050 calibrator";
 pub const MIN_CAPTURE_SECONDS: u8 = 5;
 /// Longest capture the device accepts, in seconds.
 pub const MAX_CAPTURE_SECONDS: u8 = 20;
+/// The range raw gyro samples span, in deg/s: the firmware sets the MPU-6050 to +-1000 deg/s, so
+/// that a hand turning the board between positions does not saturate it.
+pub const GYRO_FULL_SCALE_DPS: f32 = 1000.0;
 /// Capture length used when the user does not choose one, in seconds.
 pub const DEFAULT_CAPTURE_SECONDS: u8 = 10;
 

@@ -12,7 +12,7 @@ use std::fmt;
 use serde::Serialize;
 use shared::linalg::{Mat3, Vec3};
 
-pub use integrate::{rotate_up, Turn};
+pub use integrate::{rotate_up, turned_deg, Turn};
 pub use observability::{informative_turn_deg, MIN_INFORMATIVE_TURN_DEG};
 pub use solve::fit_gyro;
 
