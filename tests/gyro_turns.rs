@@ -5,9 +5,11 @@
 
 use accelcal::calibration;
 use accelcal::fit::gyro::GyroFitError;
-use accelcal::procedure::{self, CollectOptions, Moves, Orientation, Silent, SimulatedHand, TurnCheck};
+use accelcal::procedure::{
+    self, CollectOptions, Feedback, Hand, Moves, Orientation, ProcedureError, Silent, SimulatedHand, TurnCheck,
+};
 use accelcal::session::Session;
-use accelcal::sim::{SimBoard, SimSensor};
+use accelcal::sim::{SimBoard, SimCommand, SimSensor};
 use nalgebra::Matrix3;
 use std::time::Duration;
 
@@ -141,4 +143,51 @@ fn a_session_turned_only_about_one_axis_is_told_which_turns_to_add() {
         assert!(text.contains(&advice), "{text}");
     }
     assert!(!text.contains("about the board's X axis"), "{text}");
+}
+
+/// The tool's hand, with a cable that loses three samples of the stream after the third turn.
+struct LossyCable {
+    hand: SimulatedHand,
+    controls: std::sync::mpsc::Sender<SimCommand>,
+    presented: usize,
+}
+
+impl Hand for LossyCable {
+    fn present(&mut self, target: &Orientation, feedback: &mut dyn Feedback) -> Result<(), ProcedureError> {
+        self.presented += 1;
+        self.hand.present(target, feedback)?;
+        if self.presented == 4 {
+            let _ = self.controls.send(SimCommand::LoseSamples(3));
+        }
+        Ok(())
+    }
+    fn fresh(&mut self, index: usize, feedback: &mut dyn Feedback) -> Result<(), ProcedureError> {
+        self.hand.fresh(index, feedback)
+    }
+    fn turn_quarter(&mut self, feedback: &mut dyn Feedback) -> Result<(), ProcedureError> {
+        self.hand.turn_quarter(feedback)
+    }
+}
+
+#[test]
+fn a_move_with_lost_samples_is_named_and_dropped_and_the_session_goes_on() {
+    let (mut connection, board) = SimBoard::in_process(5, SimSensor::Realistic).unwrap();
+    let hand = SimulatedHand::new(board.controls(), PLACEMENT_DEG, 5);
+    let mut cable = LossyCable { hand, controls: board.controls(), presented: 0 };
+    let (mut session, mut moves) = (Session::default(), Moves::at(connection.info.config.sample_rate_hz));
+    let client = &mut connection.client;
+    let targets = procedure::targets(false);
+    let feedback = &mut Silent { yes: true };
+    procedure::collect_into(client, &mut cable, &targets, &options(), feedback, &mut session, &mut moves, &mut |_| {
+        Ok(())
+    })
+    .unwrap();
+    assert_eq!(session.captures.len(), 14, "the session is complete");
+    assert_eq!(moves.recorded.len(), 12, "every other move is recorded");
+    let to = &session.captures[3].name;
+    assert_eq!(
+        moves.dropped,
+        [format!("move to {to}: 3 gyro samples lost on the way (a gap corrupts the turn); dropped")]
+    );
+    assert!(moves.recorded.iter().all(|m| m.to != 3), "the gapped move is not among the turns");
 }

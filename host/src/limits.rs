@@ -129,6 +129,12 @@ pub const MOVE_STARTED_DPS: f64 = 10.0;
 /// Gyro rate, in deg/s away from the bias at the pose before, below which the board counts as still
 /// again at the end of a move (the end of a turn drifts a little as the hand lets go).
 pub const MOVE_STILL_DPS: f64 = 3.0;
+/// Change of the accelerometer's direction, in degrees, that counts as a move even when the gyro saw
+/// no turn (then the move is dropped, not waited for).
+///
+/// NOTE: ten times the direction noise of one raw sample at 100 Hz (2.8 mg, 0.16 degrees), and far
+/// below the tolerance of any wanted orientation.
+pub const MOVE_TILTED_DEG: f64 = 5.0;
 /// Still time, in seconds, that ends a recorded move: long enough that the turn has ended, short
 /// enough not to lengthen the session (the wait for the next position asks for 2 s more).
 pub const MOVE_STILL_SECONDS: f64 = 0.5;

@@ -53,6 +53,7 @@ pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
     let mut fitted = choose(&mut opened.connection.client, &kept, opened.connection.info.config)?;
     let (chosen, gyro) = super::gyro::fit(&moves, &fitted.session, &fitted.chosen, feedback.as_mut());
     fitted.chosen = chosen;
+    fitted.session.gyro_turns = super::gyro::summaries(&moves, &fitted.session, &chosen, &gyro);
     show_choice(feedback.as_mut(), &fitted);
     let client = &mut opened.connection.client;
     if interrupt.load(Ordering::SeqCst) {
@@ -157,7 +158,7 @@ fn start_session(args: &CalibrateArgs, info: &DeviceInfo, feedback: &mut dyn Fee
     let kept = match &args.resume {
         Some(path) => resumed(path, &board, feedback)?,
         None => Kept {
-            session: Session { board: Some(board), quick: args.quick, captures: Vec::new(), verification: None },
+            session: Session { board: Some(board), quick: args.quick, ..Session::default() },
             path: args.session.clone().or_else(|| default_session_path(args)),
             resumed: false,
         },

@@ -4,6 +4,7 @@
 use shared::Calibration;
 
 use crate::calibration;
+use crate::fit::gyro::TurnSummary;
 use crate::link::{Client, Port};
 use crate::procedure::{self, Feedback, Hand, Moves, ProcedureError, TurnCheck};
 use crate::report::gyro::GyroOutcome;
@@ -34,6 +35,19 @@ pub(super) fn fit(
             (*chosen, outcome)
         }
     }
+}
+
+/// The recorded turns as the session keeps them for its report, calibrated with the fitted G (the
+/// identity without one); `None` when no move was recorded.
+pub(super) fn summaries(
+    moves: &Moves,
+    session: &Session,
+    chosen: &Calibration,
+    outcome: &GyroOutcome,
+) -> Option<Vec<TurnSummary>> {
+    let g = outcome.fit.as_ref().map_or(shared::linalg::identity(), |f| f.matrix);
+    let summaries = procedure::turn_summaries(&moves.recorded, session, chosen, &g);
+    (!summaries.is_empty()).then_some(summaries)
 }
 
 /// The verification turn on the uploaded calibration; `None` (said) when it could not be measured.

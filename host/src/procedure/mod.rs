@@ -22,7 +22,7 @@ pub use gyro_check::{check_turn, TurnCheck};
 pub use hand::{Hand, PersonHand};
 pub use moves::{Moves, RecordedMove};
 pub use simulated_hand::SimulatedHand;
-pub use turns::{fit_moves, turns_of};
+pub use turns::{fit_moves, turn_summaries, turns_of};
 pub use verify::{verify, verify_clear_of, Verification, VERIFY_SECONDS};
 
 use crate::fit::{self, Fit, FitError, FitOptions, ModelChoice};

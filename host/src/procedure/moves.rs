@@ -8,7 +8,8 @@ use shared::protocol::{Sample, StreamKind, GYRO_FULL_SCALE_DPS};
 
 use super::{Feedback, Hand, Orientation, ProcedureError};
 use crate::limits::{
-    GYRO_CLIPPED_FRACTION, MAX_MOVE_SECONDS, MOVED_AFTER_TURN_DEG, MOVE_STARTED_DPS, MOVE_STILL_DPS, MOVE_STILL_SECONDS,
+    GYRO_CLIPPED_FRACTION, MAX_MOVE_SECONDS, MOVED_AFTER_TURN_DEG, MOVE_STARTED_DPS, MOVE_STILL_DPS,
+    MOVE_STILL_SECONDS, MOVE_TILTED_DEG,
 };
 use crate::link::{Client, Port, StreamRequest};
 use crate::session::Session;
@@ -113,6 +114,7 @@ pub(super) enum Problem {
     Clipped(usize),
     AlreadyMoving,
     NeverStill,
+    NoTurnSeen,
 }
 
 impl std::fmt::Display for Problem {
@@ -124,6 +126,7 @@ impl std::fmt::Display for Problem {
             }
             Problem::AlreadyMoving => write!(f, "the board was already turning when the recording began"),
             Problem::NeverStill => write!(f, "the board did not turn and come to rest within {MAX_MOVE_SECONDS} s"),
+            Problem::NoTurnSeen => write!(f, "the board came to rest elsewhere without the gyro seeing it turn"),
         }
     }
 }
@@ -148,6 +151,7 @@ pub(super) struct Watch {
     still_needed: usize,
     samples: Vec<Sample>,
     started: bool,
+    turn_seen: bool,
     already_moving: bool,
     still_run: usize,
     /// The move has ended: samples still queued after the stream's cancel are ignored.
@@ -161,6 +165,7 @@ impl Watch {
             still_needed,
             samples: Vec::new(),
             started: false,
+            turn_seen: false,
             already_moving: false,
             still_run: 0,
             done: false,
@@ -175,10 +180,19 @@ impl Watch {
         let rate = self.rate_off_bias(sample);
         self.already_moving = self.samples.is_empty() && rate > MOVE_STARTED_DPS;
         self.samples.push(*sample);
-        self.started |= rate > MOVE_STARTED_DPS;
+        self.turn_seen |= rate > MOVE_STARTED_DPS;
+        self.started |= self.turn_seen || self.tilted_deg(sample) > MOVE_TILTED_DEG;
         self.still_run = if self.started && rate < MOVE_STILL_DPS { self.still_run + 1 } else { 0 };
         self.done = self.already_moving || self.still_run >= self.still_needed;
         !self.done
+    }
+
+    /// How far, in degrees, the accelerometer's direction has moved since the first sample: a
+    /// board put down elsewhere without the gyro seeing a turn (the simulator's `place`) ends
+    /// the move too.
+    fn tilted_deg(&self, sample: &Sample) -> f64 {
+        let first = self.samples.first().map_or(sample.accel_g, |s| s.accel_g);
+        angle_between_deg(first.map(f64::from), sample.accel_g.map(f64::from))
     }
 
     fn rate_off_bias(&self, sample: &Sample) -> f64 {
@@ -195,6 +209,7 @@ impl Watch {
             _ if lost > 0 => Err(Problem::Lost(lost)),
             _ if clipped > 0 => Err(Problem::Clipped(clipped)),
             _ if self.still_run < self.still_needed => Err(Problem::NeverStill),
+            _ if !self.turn_seen => Err(Problem::NoTurnSeen),
             _ => Ok(self.recording(target)),
         }
     }

@@ -5,7 +5,7 @@
 use shared::Calibration;
 
 use super::RecordedMove;
-use crate::fit::gyro::{fit_gyro, GyroFit, GyroFitError, Turn};
+use crate::fit::gyro::{fit_gyro, summarise_turn, GyroFit, GyroFitError, Turn, TurnSummary};
 use crate::session::Session;
 
 /// The turns of `moves`, their poses taken from `session` and corrected by `calibration`.
@@ -40,4 +40,18 @@ pub fn fit_moves(
     calibration: &Calibration,
 ) -> Result<GyroFit, GyroFitError> {
     fit_gyro(&turns_of(moves, session, calibration))
+}
+
+/// Each move's turn as the report shows it, calibrated with `g` (the identity when G was not
+/// fitted), its positions named as captured.
+pub fn turn_summaries(
+    moves: &[RecordedMove],
+    session: &Session,
+    calibration: &Calibration,
+    g: &shared::linalg::Mat3<f64>,
+) -> Vec<TurnSummary> {
+    let name = |i: usize| session.captures.get(i).map_or("?", |c| c.name.as_str());
+    let summary =
+        |m: &RecordedMove| turn_of(m, session, calibration).map(|t| summarise_turn(&t, g, (name(m.from), name(m.to))));
+    moves.iter().filter_map(summary).collect()
 }

@@ -6,8 +6,9 @@ use firmware::sim::physics::TrueErrors;
 use serde::Serialize;
 use shared::linalg::{identity, Mat3, Vec3};
 
+use super::figure::{Figure, Role, Series, SeriesStyle};
 use crate::calibration::CalibrationJson;
-use crate::fit::gyro::GyroFit;
+use crate::fit::gyro::{GyroFit, TurnSummary};
 use crate::procedure::TurnCheck;
 
 /// `calibration.gyro` of `accelcal calibrate --json`: w = matrix (w_raw - bias_dps).
@@ -96,4 +97,41 @@ pub fn text(gyro: &GyroJson, check: Option<&TurnCheck>) -> String {
         out.push_str(&format!("{}\n", check.line()));
     }
     out
+}
+
+/// The session report's gyro figure: each turn's angle by the gyro minus the accelerometer's, raw
+/// and calibrated, against the turn's number.
+pub fn turns_figure(turns: &[TurnSummary]) -> Figure {
+    let series = |name: &str, role, angle: fn(&TurnSummary) -> f64| Series {
+        name: name.to_owned(),
+        style: SeriesStyle::Points,
+        role,
+        points: turns.iter().enumerate().map(|(i, t)| [(i + 1) as f64, angle(t) - t.expected_deg]).collect(),
+    };
+    Figure {
+        id: "gyro-turns",
+        title: "Each turn between positions: the gyro's angle minus the accelerometer's".to_owned(),
+        x_label: "turn".to_owned(),
+        y_label: "gyro - accelerometer (degrees)".to_owned(),
+        equal_axes: false,
+        series: vec![
+            series("raw gyro", Role::Raw, |t| t.raw_deg),
+            series("calibrated gyro", Role::Calibrated, |t| t.calibrated_deg),
+        ],
+    }
+}
+
+/// The gyro's line in the session's text report.
+pub fn turns_line(turns: &[TurnSummary]) -> String {
+    let rms = |f: fn(&TurnSummary) -> f64| {
+        (turns.iter().map(|t| f(t).powi(2)).sum::<f64>() / turns.len().max(1) as f64).sqrt()
+    };
+    format!(
+        "gyro turns: {}; gyro - accelerometer angle rms {:.3} degrees raw, {:.3} calibrated; residual rms {:.3} degrees raw, {:.3} calibrated",
+        turns.len(),
+        rms(|t| t.raw_deg - t.expected_deg),
+        rms(|t| t.calibrated_deg - t.expected_deg),
+        rms(|t| t.residual_raw_deg),
+        rms(|t| t.residual_calibrated_deg)
+    )
 }

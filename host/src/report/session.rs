@@ -7,6 +7,7 @@ use shared::linalg;
 
 use super::figure::{self, Figure};
 use super::{Comparison, FitReport};
+use crate::fit::gyro::TurnSummary;
 use crate::fit::{FitError, FitOptions, Parameter};
 use crate::procedure::Verification;
 use crate::session::Session;
@@ -31,6 +32,8 @@ pub struct SessionReport {
     pub verification: Option<Verification>,
     /// The plots, each with the numbers it is drawn from.
     pub figures: Figures,
+    /// The gyro's turns between the positions, when the session recorded them.
+    pub gyro_turns: Option<Vec<TurnSummary>>,
 }
 
 /// What the session records of the board; `None` where it records nothing.
@@ -114,10 +117,13 @@ impl SessionReport {
         let positions = positions(session, &fit_report);
         let fit = summary(&fit_report, &positions);
         let verification = session.verification.clone();
+        let mut figures = Figures::new(&positions, &fit_report, verification.as_ref());
+        figures.gyro_turns = session.gyro_turns.as_deref().map(super::gyro::turns_figure);
         Ok(SessionReport {
             board: Board::of(session),
             verdict: Verdict::new(&fit, verification.as_ref()),
-            figures: Figures::new(&positions, &fit_report, verification.as_ref()),
+            figures,
+            gyro_turns: session.gyro_turns.clone(),
             positions,
             fit,
             comparison: fit_report.comparison,

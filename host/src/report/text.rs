@@ -154,6 +154,9 @@ pub fn session_report(report: &SessionReport) -> String {
     if let Some(comparison) = &report.comparison {
         write_comparison(&mut out, comparison);
     }
+    if let Some(turns) = &report.gyro_turns {
+        let _ = writeln!(out, "{}", super::gyro::turns_line(turns));
+    }
     out
 }
 

@@ -6,6 +6,7 @@
 mod integrate;
 mod observability;
 mod solve;
+mod summary;
 
 use std::fmt;
 
@@ -15,6 +16,7 @@ use shared::linalg::{Mat3, Vec3};
 pub use integrate::{rotate_up, turned_deg, Turn};
 pub use observability::{informative_turn_deg, MIN_INFORMATIVE_TURN_DEG};
 pub use solve::fit_gyro;
+pub use summary::{summarise_turn, TurnSummary};
 
 /// Turns needed at least: nine parameters, two constraints per turn, with room to judge the residuals.
 pub const MIN_TURNS: usize = 6;

@@ -49,3 +49,19 @@ fn a_clipped_or_gapped_or_unfinished_move_is_named_and_not_recorded() {
     let (watch, taken) = watched(&turn(0, 20, 90.0, 100), 50);
     assert_eq!((watch.finish(0, "+X").unwrap_err(), taken), (Problem::AlreadyMoving, 0));
 }
+
+#[test]
+fn a_board_put_down_elsewhere_without_a_turn_ends_the_move_which_is_dropped() {
+    let mut watch = Watch::new([0.0; 3], 50);
+    let tilted = |index: u32, deg: f64| Sample {
+        accel_g: [deg.to_radians().sin() as f32, 0.0, deg.to_radians().cos() as f32],
+        ..sample(index, 0.0)
+    };
+    // 4.9 degrees from where it began does not start it; 6 degrees does, and 50 still samples
+    // there end it.
+    assert!((0..10).all(|i| watch.push(&tilted(i, 0.0))));
+    assert!((10..100).all(|i| watch.push(&tilted(i, 4.9))));
+    let taken = (100..300).take_while(|&i| watch.push(&tilted(i, 6.0))).count();
+    assert_eq!(taken, 49);
+    assert_eq!(watch.finish(0, "+X").unwrap_err(), Problem::NoTurnSeen);
+}
