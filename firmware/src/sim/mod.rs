@@ -112,8 +112,9 @@ impl SimMpu6050 {
         self.pose_since_us = self.now_us;
     }
 
-    /// Starts a motion from the current orientation.
+    /// Starts a motion from the current orientation (where any motion before it brought the board).
     pub fn set_motion(&mut self, motion: Motion) {
+        self.stop_motion();
         self.physics.motion = motion;
         self.pose_since_us = self.now_us;
     }

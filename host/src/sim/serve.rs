@@ -81,7 +81,11 @@ impl Service {
     /// Applies a command to the simulated sensor or link.
     fn obey(&mut self, server: &mut SimServer, command: SimCommand) {
         let sensor = server.device_mut().bus_mut();
-        self.motion_ends_us = None;
+        // NOTE: only a new motion replaces a timed one; a lost sample or a change of the
+        // surroundings during a turn leaves the turn to end where it would have.
+        if matches!(command, SimCommand::Place(_) | SimCommand::Move(_) | SimCommand::MoveFor { .. }) {
+            self.motion_ends_us = None;
+        }
         match command {
             SimCommand::Place(up) => sensor.place(up),
             SimCommand::Move(motion) => sensor.set_motion(motion),
