@@ -45,7 +45,7 @@ pub fn collect_into<P: Port>(
     let mut moved_in_a_row = 0;
     while !remaining.is_empty() {
         moves.present(client, hand, &remaining[0], feedback)?;
-        let index = wait_for_target(client, &remaining, &done, options.wait_limit, feedback)?;
+        let index = wait_for_target(client, (&remaining, &done), options.wait_limit, feedback, moves.rested_s())?;
         feedback.say(&format!("{} found; averaging for {} s", remaining[index].name, options.seconds));
         let Some((stats, face)) = capture_at(client, &remaining[index], options.seconds, feedback)? else {
             moved_in_a_row += 1;

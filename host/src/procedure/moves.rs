@@ -87,6 +87,16 @@ impl Moves {
         Ok(())
     }
 
+    /// How long, in seconds, the board was just seen at rest: the still end of the move recorded
+    /// since the last capture (the wait for the position counts it), else 0.
+    pub fn rested_s(&self) -> f64 {
+        if self.pending.is_some() {
+            MOVE_STILL_SECONDS
+        } else {
+            0.0
+        }
+    }
+
     /// The last capture of `session` was just taken: it ends the pending move and starts the next.
     pub fn captured(&mut self, session: &Session) {
         let Some(to) = session.captures.len().checked_sub(1) else { return };

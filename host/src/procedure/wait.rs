@@ -21,19 +21,22 @@ struct Window {
 }
 
 /// Waits until the board rests within tolerance of one of the remaining targets; says how far it
-/// is and refuses a position already captured. Returns the index in `remaining`.
+/// is and refuses a position already captured. Returns the index in `remaining`. `rested_s`: how
+/// long the board was seen still just before (the end of a recorded move), counted towards
+/// [`SETTLE_SECONDS`] when the first window finds it where it should be.
 pub(super) fn wait_for_target<P: Port>(
     client: &mut Client<P>,
-    remaining: &[Orientation],
-    done: &[Orientation],
+    (remaining, done): (&[Orientation], &[Orientation]),
     limit: Option<Duration>,
     feedback: &mut dyn Feedback,
+    rested_s: f64,
 ) -> Result<usize, ProcedureError> {
     let gave_up = || {
         let wanted: Vec<&str> = remaining.iter().map(|t| t.name.as_str()).collect();
         ProcedureError::NeverAtTarget { wanted: wanted.join(", ") }
     };
-    wait_for_rest(client, limit, feedback, gave_up, |window| judge_target(window, remaining, done))
+    let streak = Streak::after_rest(rested_s);
+    wait_for_rest(client, (limit, streak), feedback, gave_up, |window| judge_target(window, remaining, done))
 }
 
 /// What a window says about the remaining targets: a line for the user, and the index of the
@@ -76,7 +79,7 @@ pub(super) fn wait_for_fresh<P: Port>(
 ) -> Result<[f64; 3], ProcedureError> {
     wait_for_rest(
         client,
-        limit,
+        (limit, Streak::default()),
         feedback,
         || ProcedureError::NeverFresh,
         |window| {
@@ -96,13 +99,12 @@ pub(super) fn wait_for_fresh<P: Port>(
 /// `limit` with the error `gave_up` makes.
 fn wait_for_rest<P: Port, R>(
     client: &mut Client<P>,
-    limit: Option<Duration>,
+    (limit, mut streak): (Option<Duration>, Streak),
     feedback: &mut dyn Feedback,
     gave_up: impl Fn() -> ProcedureError,
     mut judge: impl FnMut(Window) -> (String, Option<R>),
 ) -> Result<R, ProcedureError> {
     let started = Instant::now();
-    let mut streak = Streak::default();
     loop {
         if limit.is_some_and(|l| started.elapsed() > l) {
             return Err(gave_up());
@@ -156,6 +158,13 @@ struct Streak {
 }
 
 impl Streak {
+    /// A streak that counts `rested_s` seconds of rest already seen as accepted windows (whole
+    /// windows only); the first window rejected resets it like any other.
+    fn after_rest(rested_s: f64) -> Self {
+        let window_s = f64::from(LIVE_WINDOW.count) / f64::from(LIVE_WINDOW.rate_hz);
+        Streak { accepted_in_a_row: (rested_s / window_s + 1e-9).floor() as usize }
+    }
+
     /// Counts one window's verdict; the value once it completes the run of accepted windows.
     fn settled<R>(&mut self, verdict: Option<R>) -> Option<R> {
         match verdict {
@@ -207,6 +216,13 @@ mod tests {
         assert_eq!(streak.settled(None::<i32>), None);
         assert_eq!([2, 3, 4].map(|v| streak.settled(Some(v))), [None; 3]);
         assert_eq!(streak.settled(Some(5)), Some(5));
+        // Half a second of rest seen before (a recorded move's end) counts as one window.
+        let mut rested = Streak::after_rest(0.5);
+        assert_eq!([1, 2].map(|v| rested.settled(Some(v))), [None; 2]);
+        assert_eq!(rested.settled(Some(3)), Some(3));
+        let mut rested = Streak::after_rest(0.5);
+        assert_eq!(rested.settled(None::<i32>), None);
+        assert_eq!([1, 2, 3].map(|v| rested.settled(Some(v))), [None; 3], "a rejected window resets the credit");
     }
 
     #[test]
