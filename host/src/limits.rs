@@ -109,18 +109,6 @@ pub const THERMAL_STALL_C: f64 = 0.3;
 /// Rounds of captures over which a stall is judged.
 pub const THERMAL_STALL_ROUNDS: usize = 10;
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_face_and_corner_regions_do_not_overlap() {
-        let corner_to_face_deg = (1.0 / 3f64.sqrt()).acos().to_degrees();
-        assert!((corner_to_face_deg - 54.7356).abs() < 1e-3);
-        assert!(FACE_TOLERANCE_DEG + CORNER_TOLERANCE_DEG < corner_to_face_deg);
-    }
-}
-
 /// Gyro rate, in deg/s away from the bias at the pose before, above which a recorded move has begun.
 ///
 /// NOTE: a hand's turn between positions runs at tens to hundreds of deg/s; a board resting in a
@@ -154,3 +142,15 @@ pub const GYRO_CLIPPED_FRACTION: f64 = 0.995;
 /// angle between the two rests is the reference (400 ug noise per sample at 100 Hz averages to
 /// 0.02 degrees over a second at each end).
 pub const TURN_CHECK_REST_SECONDS: f64 = 1.0;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_face_and_corner_regions_do_not_overlap() {
+        let corner_to_face_deg = (1.0 / 3f64.sqrt()).acos().to_degrees();
+        assert!((corner_to_face_deg - 54.7356).abs() < 1e-3);
+        assert!(FACE_TOLERANCE_DEG + CORNER_TOLERANCE_DEG < corner_to_face_deg);
+    }
+}
