@@ -34,7 +34,11 @@ pub struct TurnCheck {
 impl TurnCheck {
     /// The line shown to the user.
     pub fn line(&self) -> String {
-        let raw = self.raw_deg.map_or(String::new(), |r| format!(" (uncalibrated {r:.2})"));
+        let raw = self
+            .raw_deg
+            .map_or(" (the gyro's scale is not calibrated: the uncertainty is its noise alone)".to_owned(), |r| {
+                format!(" (uncalibrated {r:.2})")
+            });
         format!(
             "gyro check: a {:.2} +- {:.2} degree turn (by the accelerometer) now reads {:.2} +- {:.2} degrees{raw}",
             self.accel_deg, self.accel_uncertainty_deg, self.gyro_deg, self.gyro_uncertainty_deg
