@@ -10,7 +10,7 @@ use serde::Serialize;
 use shared::orientation::angle_between_deg;
 use shared::protocol::{Sample, StreamKind};
 
-use super::moves::Watch;
+use super::moves::{Problem, Recording, Watch};
 use super::{Feedback, Hand, ProcedureError};
 use crate::fit::gyro::{turned_deg, GyroFit, Turn};
 use crate::limits::{MAX_MOVE_SECONDS, TURN_CHECK_REST_SECONDS};
@@ -55,6 +55,20 @@ pub fn check_turn<P: Port>(
     fit: Option<&GyroFit>,
     feedback: &mut dyn Feedback,
 ) -> Result<Result<TurnCheck, String>, ProcedureError> {
+    let (head, recorded) = stream_turn(client, hand, rate_hz, feedback)?;
+    Ok(match recorded {
+        Ok(recording) => Ok(measure(&head, &recording.samples, rate_hz, fit)),
+        Err(problem) => Err(format!("gyro check: {problem}")),
+    })
+}
+
+/// The rest before the turn (its samples), and the turn with the rest after it, or why not.
+fn stream_turn<P: Port>(
+    client: &mut Client<P>,
+    hand: &mut dyn Hand,
+    rate_hz: u16,
+    feedback: &mut dyn Feedback,
+) -> Result<(Vec<Sample>, Result<Recording, Problem>), ProcedureError> {
     let rest = (TURN_CHECK_REST_SECONDS * f64::from(rate_hz)).ceil() as usize;
     let request = StreamRequest { kind: StreamKind::Calibrated, rate_hz, count: MAX_MOVE_SECONDS * u32::from(rate_hz) };
     // NOTE: the rest after the turn is taken from a still run a quarter longer than it, so that the
@@ -62,21 +76,17 @@ pub fn check_turn<P: Port>(
     let mut watch = Watch::new([0.0; 3], rest + rest / 4);
     let (mut head, mut asked) = (Vec::with_capacity(rest), None);
     let tally = client.stream_while(request, |sample| {
-        if head.len() < rest {
-            head.push(*sample);
-            if head.len() == rest {
-                asked = Some(hand.turn_quarter(feedback));
-            }
-            return true;
+        if head.len() == rest {
+            return watch.push(sample);
         }
-        watch.push(sample)
+        head.push(*sample);
+        if head.len() == rest {
+            asked = Some(hand.turn_quarter(feedback));
+        }
+        true
     })?;
     asked.transpose()?;
-    let recording = match watch.finish(tally.lost(), "the verification turn") {
-        Ok(recording) => recording,
-        Err(problem) => return Ok(Err(format!("gyro check: {problem}"))),
-    };
-    Ok(Ok(measure(&head, &recording.samples, rate_hz, fit)))
+    Ok((head, watch.finish(tally.lost(), "the verification turn")))
 }
 
 /// The turn's angle both ways, from the rest before (`head`), the move and the rest after.

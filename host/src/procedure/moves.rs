@@ -80,6 +80,7 @@ impl Moves {
         let start = self.start.take();
         hand.present(target, feedback)?;
         let Some((from, bias)) = start.filter(|_| self.rate_hz > 0) else { return Ok(()) };
+        feedback.live(&format!("recording the gyro while you turn the board to {}, until it rests", target.name));
         match record(client, self.rate_hz, bias, &target.name)? {
             Ok(recording) => self.pending = Some((from, recording)),
             Err(problem) => self.dropped.push(format!("move to {}: {problem}; dropped", target.name)),
