@@ -31,8 +31,8 @@ pub struct RecordedMove {
 #[derive(Debug, Default)]
 pub struct Moves {
     rate_hz: u16,
-    /// The last capture (index, its gyro bias): where the next move starts.
-    start: Option<(usize, [f64; 3])>,
+    /// The last capture (index, its gyro bias, its mean accel): where the next move starts.
+    start: Option<(usize, Pose)>,
     /// A move recorded, waiting for the capture that ends it, with its mean raw accel at the end.
     pending: Option<(usize, Recording)>,
     /// The moves recorded whole, in order.
@@ -79,9 +79,9 @@ impl Moves {
         }
         let start = self.start.take();
         hand.present(target, feedback)?;
-        let Some((from, bias)) = start.filter(|_| self.rate_hz > 0) else { return Ok(()) };
+        let Some((from, pose)) = start.filter(|_| self.rate_hz > 0) else { return Ok(()) };
         feedback.live(&format!("recording the gyro while you turn the board to {}, until it rests", target.name));
-        match record(client, self.rate_hz, bias, &target.name)? {
+        match record(client, self.rate_hz, pose, &target.name)? {
             Ok(recording) => self.pending = Some((from, recording)),
             Err(problem) => self.dropped.push(format!("move to {}: {problem}; dropped", target.name)),
         }
@@ -114,8 +114,16 @@ impl Moves {
                 self.recorded.push(RecordedMove { from, to, rates_dps: recording.rates_dps(), interval_s });
             }
         }
-        self.start = Some((to, stats.gyro_mean_dps.map(f64::from)));
+        self.start =
+            Some((to, Pose { bias_dps: stats.gyro_mean_dps.map(f64::from), mean_g: stats.mean_g.map(f64::from) }));
     }
+}
+
+/// A still pose a move starts from, as its capture measured it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Pose {
+    bias_dps: [f64; 3],
+    mean_g: [f64; 3],
 }
 
 /// Why a move was not recorded whole.
@@ -146,11 +154,12 @@ impl std::fmt::Display for Problem {
 fn record<P: Port>(
     client: &mut Client<P>,
     rate_hz: u16,
-    bias: [f64; 3],
+    pose: Pose,
     target: &str,
 ) -> Result<Result<Recording, Problem>, ProcedureError> {
     let request = StreamRequest { kind: StreamKind::Raw, rate_hz, count: MAX_MOVE_SECONDS * u32::from(rate_hz) };
-    let mut watch = Watch::new(bias, (MOVE_STILL_SECONDS * f64::from(rate_hz)).ceil() as usize);
+    let mut watch = Watch::new(pose.bias_dps, (MOVE_STILL_SECONDS * f64::from(rate_hz)).ceil() as usize);
+    watch.rest_g = Some(pose.mean_g);
     let tally = client.stream_while(request, |sample| watch.push(sample))?;
     Ok(watch.finish(tally.lost(), target))
 }
@@ -167,6 +176,8 @@ pub(super) struct Watch {
     still_run: usize,
     /// The move has ended: samples still queued after the stream's cancel are ignored.
     done: bool,
+    /// The accelerometer at the rest the move starts from (else its first sample).
+    pub(super) rest_g: Option<[f64; 3]>,
 }
 
 impl Watch {
@@ -180,6 +191,7 @@ impl Watch {
             already_moving: false,
             still_run: 0,
             done: false,
+            rest_g: None,
         }
     }
 
@@ -198,12 +210,12 @@ impl Watch {
         !self.done
     }
 
-    /// How far, in degrees, the accelerometer's direction has moved since the first sample: a
-    /// board put down elsewhere without the gyro seeing a turn (the simulator's `place`) ends
-    /// the move too.
+    /// How far, in degrees, the accelerometer's direction has moved from the rest the move starts
+    /// at: a board put down elsewhere without the gyro seeing a turn (the simulator's `place`,
+    /// perhaps before the first sample) ends the move too.
     fn tilted_deg(&self, sample: &Sample) -> f64 {
-        let first = self.samples.first().map_or(sample.accel_g, |s| s.accel_g);
-        angle_between_deg(first.map(f64::from), sample.accel_g.map(f64::from))
+        let first = self.samples.first().map_or(sample.accel_g, |s| s.accel_g).map(f64::from);
+        angle_between_deg(self.rest_g.unwrap_or(first), sample.accel_g.map(f64::from))
     }
 
     fn rate_off_bias(&self, sample: &Sample) -> f64 {

@@ -65,3 +65,13 @@ fn a_board_put_down_elsewhere_without_a_turn_ends_the_move_which_is_dropped() {
     assert_eq!(taken, 49);
     assert_eq!(watch.finish(0, "+X").unwrap_err(), Problem::NoTurnSeen);
 }
+
+#[test]
+fn a_board_put_down_elsewhere_before_the_recording_began_ends_the_move_too() {
+    let mut watch = Watch::new([0.0; 3], 50);
+    watch.rest_g = Some([0.0, 0.0, 1.0]);
+    let elsewhere = |index: u32| Sample { accel_g: [1.0, 0.0, 0.0], ..sample(index, 0.0) };
+    let taken = (0..300).take_while(|&i| watch.push(&elsewhere(i))).count();
+    assert_eq!(taken, 49, "the rest elsewhere ends it after 50 samples, not at the 30 s limit");
+    assert_eq!(watch.finish(0, "+X").unwrap_err(), Problem::NoTurnSeen);
+}
