@@ -150,6 +150,9 @@ impl Hand for Stubborn {
     fn fresh(&mut self, _: usize, _: &mut dyn Feedback) -> Result<(), ProcedureError> {
         Ok(())
     }
+    fn turn_quarter(&mut self, _: &mut dyn Feedback) -> Result<(), ProcedureError> {
+        Ok(())
+    }
 }
 
 #[test]

@@ -10,7 +10,7 @@ use std::time::Duration;
 use accelcal::calibration::from_fit;
 use accelcal::link::{pipe, Client, PipeEnd, StreamRequest};
 use accelcal::procedure::stop_rule::{CaptureLength, Noise, StopRule};
-use accelcal::procedure::{self, AdaptiveOptions, Silent, SimulatedHand, PERSON_TURN_SECONDS};
+use accelcal::procedure::{self, AdaptiveOptions, Moves, Silent, SimulatedHand};
 use accelcal::session::Session;
 use accelcal::sim::{Pace, SimBoard, SimSensor};
 use firmware::sim::SimFlash;
@@ -79,14 +79,14 @@ fn session(seed: u64, kind: SimSensor) -> Outcome {
     let (host, device) = pipe();
     let board = SimBoard::spawn_with(device, SimFlash::new(), seed, kind, Pace::Lockstep);
     let (mut client, _) = Client::connect(host).unwrap();
-    let mut hand = SimulatedHand::new(board.controls(), PLACEMENT_DEG, seed).turning(PERSON_TURN_SECONDS);
+    let mut hand = SimulatedHand::new(board.controls(), PLACEMENT_DEG, seed);
     let rule = StopRule { target_mg: TARGET_MG, noise: Noise::Measured, rate_hz: 100 };
     let options = AdaptiveOptions { rule: rule.clone(), wait_limit: WAIT, clock: Some(Arc::new(board.clock())) };
     let (mut session, mut feedback) = (Session::default(), Silent { yes: true });
     let targets = procedure::targets(false);
     let collected = procedure::collect_adaptive(
         &mut client,
-        &mut hand,
+        (&mut hand, &mut Moves::off()),
         &targets,
         &options,
         &mut feedback,

@@ -194,7 +194,7 @@ mod tests {
         let mut capture = Capture::new(5, SensorConfig::default()).unwrap();
         // Alternating 16384 +- 100 on z: mean 1 g, std 100 LSB * sqrt(n / (n - 1)).
         let samples: Vec<_> =
-            (0..500).map(|i| sample([0, 1, 16384 + if i % 2 == 0 { 100 } else { -100 }], [131, 0, -262])).collect();
+            (0..500).map(|i| sample([0, 1, 16384 + if i % 2 == 0 { 100 } else { -100 }], [164, 0, -328])).collect();
         assert_eq!(capture.take(&samples), 500);
         assert!(capture.is_complete());
         let stats = capture.finish().unwrap();
@@ -204,7 +204,8 @@ mod tests {
         let expected_std = 100.0 * (500.0f32 / 499.0).sqrt() / 16384.0;
         assert!((stats.std_g[2] - expected_std).abs() < 1e-7, "{}", stats.std_g[2]);
         assert_eq!(stats.std_g[0], 0.0);
-        assert_eq!(stats.gyro_mean_dps, [1.0, 0.0, -2.0]);
+        // 32.8 LSB per deg/s at +-1000 deg/s (Product Specification 6.1).
+        assert_eq!(stats.gyro_mean_dps, [5.0, 0.0, -10.0]);
         assert!((stats.temp_c - 26.13).abs() < 0.01);
     }
 

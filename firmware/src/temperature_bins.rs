@@ -119,7 +119,7 @@ mod tests {
         let bin = taken[1];
         assert!((bin.temp_c - 25.5).abs() < 0.01, "{bin:?}");
         assert_eq!(bin.accel_g, [0.0, 0.0, 16434.0 / 16384.0]);
-        assert_eq!(bin.gyro_dps, [2.0, 0.0, 0.0]);
+        assert_eq!(bin.gyro_dps, [262.0 / GYRO_LSB_PER_DPS, 0.0, 0.0]);
         assert!(bins.take(AccelRange::G2).is_empty(), "taking empties the bins");
     }
 
@@ -131,7 +131,7 @@ mod tests {
         let taken = bins.take(AccelRange::G2);
         assert_eq!(
             (taken[0].samples, taken[0].accel_g[2], taken[0].gyro_dps[0]),
-            (MAX_BIN_SAMPLES, -2.0, -32768.0 / 131.0)
+            (MAX_BIN_SAMPLES, -2.0, -32768.0 / GYRO_LSB_PER_DPS)
         );
     }
 

@@ -8,6 +8,7 @@ use shared::linalg;
 use shared::protocol::{LowPassFilter, SensorConfig};
 use shared::{AccelRange, Calibration, CalibrationError};
 
+use crate::fit::gyro::GyroFit;
 use crate::fit::thermal::ThermalReference;
 use crate::fit::{self, Fit};
 use crate::link::calibration_reason;
@@ -227,10 +228,19 @@ pub fn with_temperature(
     calibration: &Calibration,
     model: TemperatureModel,
 ) -> Result<Calibration, CalibrationRecordError> {
-    let combined = Calibration { temperature: Some(model), ..*calibration };
-    let implausible = |reason| CalibrationRecordError::ImplausibleFit { model: "temperature", reason };
-    combined.validate().map_err(implausible)?;
-    Ok(combined)
+    checked(Calibration { temperature: Some(model), ..*calibration }, "temperature")
+}
+
+/// The calibration with the gyro matrix G of `fit` (w = G (w_raw - b)), checked like any other.
+pub fn with_gyro(calibration: &Calibration, fit: &GyroFit) -> Result<Calibration, CalibrationRecordError> {
+    let gyro = GyroCalibration { matrix: narrow(fit.matrix), ..calibration.gyro };
+    checked(Calibration { gyro, ..*calibration }, "gyro")
+}
+
+/// `calibration` when it is plausible, else the `model` fit that made it named as implausible.
+fn checked(calibration: Calibration, model: &'static str) -> Result<Calibration, CalibrationRecordError> {
+    calibration.validate().map_err(|reason| CalibrationRecordError::ImplausibleFit { model, reason })?;
+    Ok(calibration)
 }
 
 /// One line: model, scales, offset in mg, residual, and the temperature model when there is one.
@@ -245,7 +255,7 @@ pub fn describe(calibration: &Calibration) -> String {
         )
     });
     format!(
-        "{}: scale {:.5} {:.5} {:.5}, offset {:+.2} {:+.2} {:+.2} mg, residual {:.3} mg{temperature}",
+        "{}: scale {:.5} {:.5} {:.5}, offset {:+.2} {:+.2} {:+.2} mg, residual {:.3} mg{}{temperature}",
         calibration.origin.model.as_str(),
         m[0][0],
         m[1][1],
@@ -253,43 +263,18 @@ pub fn describe(calibration: &Calibration) -> String {
         o[0],
         o[1],
         o[2],
-        calibration.residual_mg
+        calibration.residual_mg,
+        gyro_text(&calibration.gyro)
     )
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn a_device_calibration_survives_its_json_form_bit_for_bit() {
-        let mut calibration = Calibration::identity(AccelRange::G4);
-        calibration.matrix[0][1] = 0.0023;
-        calibration.offset_g = [0.012, -0.034, 0.056];
-        calibration.mean_temp_c = 27.5;
-        calibration.filter = LowPassFilter::Hz10;
-        let json = CalibrationJson::from_device(&calibration);
-        assert_eq!(json.matrix[0][1], f64::from(0.0023f32));
-        let text = serde_json::to_string(&json).unwrap();
-        assert_eq!(CalibrationJson::from_text(&text).unwrap().to_device(AccelRange::G2).unwrap(), calibration);
-    }
-
-    #[test]
-    fn the_description_names_the_temperature_model_when_there_is_one() {
-        let mut calibration = Calibration::identity(AccelRange::G2);
-        assert!(!describe(&calibration).contains("temperature"));
-        let mut model = TemperatureModel::flat(25.0);
-        model.offset_g[0] = [0.75e-3, -0.7e-3, 1.4e-3];
-        calibration.temperature = Some(model);
-        let text = describe(&calibration);
-        assert!(text.ends_with("; temperature model around 25.0 degC (offset +0.75 -0.70 +1.40 mg/degC)"), "{text}");
-    }
-
-    #[test]
-    fn an_offset_that_rounds_to_zero_is_described_without_a_minus() {
-        let calibration =
-            Calibration { offset_g: [-0.000_004, 0.012_34, -0.000_001], ..Calibration::identity(AccelRange::G2) };
-        let line = describe(&calibration);
-        assert!(line.contains("offset +0.00 +12.34 +0.00 mg"), "{line}");
-    }
+/// The gyro part of [`describe`]: G's diagonal when it is not the identity, and the bias.
+fn gyro_text(gyro: &GyroCalibration) -> String {
+    let g = gyro.matrix;
+    let scale = (g != linalg::identity::<f32>()).then(|| format!("G {:.5} {:.5} {:.5}, ", g[0][0], g[1][1], g[2][2]));
+    let [x, y, z] = gyro.bias_dps;
+    format!("; gyro {}bias {x:+.3} {y:+.3} {z:+.3} deg/s", scale.unwrap_or_default())
 }
+
+#[cfg(test)]
+mod tests;

@@ -109,6 +109,40 @@ pub const THERMAL_STALL_C: f64 = 0.3;
 /// Rounds of captures over which a stall is judged.
 pub const THERMAL_STALL_ROUNDS: usize = 10;
 
+/// Gyro rate, in deg/s away from the bias at the pose before, above which a recorded move has begun.
+///
+/// NOTE: a hand's turn between positions runs at tens to hundreds of deg/s; a board resting in a
+/// hand trembles at about a deg/s; the rate noise at 100 Hz is 0.035 deg/s (sim::physics).
+pub const MOVE_STARTED_DPS: f64 = 10.0;
+/// Gyro rate, in deg/s away from the bias at the pose before, below which the board counts as still
+/// again at the end of a move (the end of a turn drifts a little as the hand lets go).
+pub const MOVE_STILL_DPS: f64 = 3.0;
+/// Change of the accelerometer's direction, in degrees, that counts as a move even when the gyro saw
+/// no turn (then the move is dropped, not waited for).
+///
+/// NOTE: ten times the direction noise of one raw sample at 100 Hz (2.8 mg, 0.16 degrees), and far
+/// below the tolerance of any wanted orientation.
+pub const MOVE_TILTED_DEG: f64 = 5.0;
+/// Still time, in seconds, that ends a recorded move: long enough that the turn has ended, short
+/// enough not to lengthen the session (the wait for the next position asks for 2 s more).
+pub const MOVE_STILL_SECONDS: f64 = 0.5;
+/// Longest move recorded, in seconds: a person reads the instruction and turns the board.
+pub const MAX_MOVE_SECONDS: u32 = 30;
+/// Largest angle, in degrees, between where a move ended and where the next capture was taken: the
+/// board was moved again after the recording ended, so the turn does not reach that pose.
+///
+/// NOTE: the accelerometer's direction over half a second of samples is good to 0.03 degrees; a
+/// tenth of a degree is already a 0.1 % scale error on a 90 degree turn.
+pub const MOVED_AFTER_TURN_DEG: f64 = 0.2;
+/// A raw gyro sample within this fraction of the full-scale range counts as clipped.
+///
+/// NOTE: the largest count, 32767 at 32.8 LSB per deg/s, reads 999.0 deg/s of a 1000 deg/s range.
+pub const GYRO_CLIPPED_FRACTION: f64 = 0.995;
+/// Rest, in seconds, streamed before and after the gyro's verification turn: the accelerometer's
+/// angle between the two rests is the reference (400 ug noise per sample at 100 Hz averages to
+/// 0.02 degrees over a second at each end).
+pub const TURN_CHECK_REST_SECONDS: f64 = 1.0;
+
 #[cfg(test)]
 mod tests {
     use super::*;

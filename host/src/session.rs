@@ -9,6 +9,7 @@ use shared::protocol::{CaptureStats, DeviceInfo, FirmwareVersion, SensorConfig};
 use shared::Position;
 
 use crate::data::{Dataset, Row};
+use crate::fit::gyro::TurnSummary;
 use crate::orientation::Orientation;
 use crate::procedure::Verification;
 
@@ -116,6 +117,9 @@ pub struct Session {
     /// The check of the calibration at fresh orientations, when one was made.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub verification: Option<Verification>,
+    /// The gyro's turns between the positions, when `calibrate` recorded them.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gyro_turns: Option<Vec<TurnSummary>>,
 }
 
 impl Session {
@@ -202,7 +206,7 @@ mod tests {
             board: None,
             quick: false,
             captures: vec![record(Position::PosZ, 1.0, 1.5), record(Position::NegZ, -1.0, 20.0)],
-            verification: None,
+            ..Session::default()
         };
         let stem = std::env::temp_dir().join(format!("accelcal-session-{}", std::process::id()));
         session.save(&stem).unwrap();

@@ -103,6 +103,15 @@ fn required_pointers(json: &Value) -> BTreeSet<String> {
     for i in 0..json["fit"]["parameters"].as_array().unwrap().len() {
         wanted.extend(["value", "std_error"].map(|key| format!("/fit/parameters/{i}/{key}")));
     }
+    // The gyro's turns: a calibration on the simulated board records the 13 between its 14 positions.
+    let turns = json["gyro_turns"].as_array().expect("the session records its gyro turns");
+    assert_eq!(turns.len(), 13);
+    for i in 0..turns.len() {
+        wanted.extend(
+            ["expected_deg", "raw_deg", "calibrated_deg", "residual_raw_deg", "residual_calibrated_deg"]
+                .map(|key| format!("/gyro_turns/{i}/{key}")),
+        );
+    }
     for i in 0..json["positions"].as_array().unwrap().len() {
         wanted.extend(["residual_before_mg", "residual_after_mg"].map(|key| format!("/positions/{i}/{key}")));
         wanted.extend(
@@ -180,8 +189,9 @@ fn the_page_stands_alone_and_names_what_the_session_does_not_hold() {
         assert!(!html.contains(outside), "the page reaches outside itself: {outside}");
     }
     assert!(html.replace("http://www.w3.org/2000/svg", "").find("http:").is_none(), "the page links out");
-    // Verification, temperature, Allan deviation, gyro turns: none is in this session.
-    assert_eq!(html.matches("not part of this session").count(), 4);
+    // Verification, temperature, Allan deviation: none is in this session; its gyro turns are.
+    assert_eq!(html.matches("not part of this session").count(), 3);
+    assert!(html.contains("<figure id=\"gyro-turns\">"), "the page draws the gyro's turns");
     assert_eq!(html.matches("not recorded").count(), 3, "serial, firmware and configuration are not in this session");
     assert!(!html.contains("id=\"verification"));
 }
@@ -247,7 +257,7 @@ fn the_page_loads_in_headless_chromium_without_console_errors_and_draws_every_pl
     let plots: Vec<Value> = probed_attribute(&dom, "data-plots");
     let ids: Vec<&str> = plots.iter().map(|p| p["id"].as_str().unwrap()).collect();
     let all = ["sphere-xy", "sphere-xz", "residuals-raw", "residuals-calibrated"];
-    let later = ["verification-raw", "verification-calibrated", "temperature", "allan-deviation"];
+    let later = ["verification-raw", "verification-calibrated", "temperature", "allan-deviation", "gyro-turns"];
     assert_eq!(ids, [&all[..], &later[..]].concat());
     let figures = figures_by_id(&report_json_with(&session, &given)["figures"]);
     for plot in &plots {

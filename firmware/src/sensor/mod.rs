@@ -133,7 +133,7 @@ impl Sensor {
         let mut chip = self.chip(bus);
         chip.write_byte(reg::PWR_MGMT_1, reg::PWR_MGMT_1_AWAKE_PLL_X)?;
         chip.set_accel_range(chip_range(config.range))?;
-        chip.set_gyro_range(GyroRange::D250)?;
+        chip.set_gyro_range(GyroRange::D1000)?;
         chip.write_byte(reg::CONFIG, filter_setting(config.filter))?;
         chip.write_byte(reg::SMPLRT_DIV, divider)?;
         chip.write_byte(reg::INT_ENABLE, reg::FIFO_OFLOW)?;

@@ -54,8 +54,15 @@ pub const FIFO_SAMPLE_LEN: usize = 14;
 pub const FIFO_LEN: usize = 1024;
 /// Gyro output rate with the digital low-pass filter on, in Hz (section 4.2).
 pub const GYRO_OUTPUT_RATE_HZ: u32 = 1000;
-/// Gyro sensitivity at +-250 deg/s, LSB per deg/s (Product Specification section 6.1).
-pub const GYRO_LSB_PER_DPS: f32 = 131.0;
+/// Gyro sensitivity by FS_SEL (+-250, 500, 1000, 2000 deg/s), LSB per deg/s (Product Specification
+/// section 6.1; the table's own rounded figures, not 131 halved).
+pub const GYRO_LSB_PER_DPS_BY_FS_SEL: [f32; 4] = [131.0, 65.5, 32.8, 16.4];
+/// Gyro sensitivity at +-1000 deg/s (FS_SEL = 2), LSB per deg/s (Product Specification section 6.1).
+///
+/// NOTE: +-1000 deg/s, because a hand turning the board between positions reaches several hundred
+/// deg/s and a clipped sample corrupts the turn's integral; the 0.03 deg/s step stays below the
+/// rate noise at any sample rate the tool uses (0.035 deg/s at 100 Hz).
+pub const GYRO_LSB_PER_DPS: f32 = GYRO_LSB_PER_DPS_BY_FS_SEL[2];
 /// Temperature: degC = raw / 340 + 36.53 (section 4.18).
 pub const TEMP_LSB_PER_C: f32 = 340.0;
 /// Temperature offset in degC.

@@ -71,7 +71,7 @@ fn configure_wakes_the_chip_and_sets_range_filter_and_rate() {
         T::write_read(0x69, vec![0x1C], vec![0x00]), // ACCEL_CONFIG read ...
         T::write(0x69, vec![0x1C, 0x10]),            // ... AFS_SEL = 2 (+-8 g)
         T::write_read(0x69, vec![0x1B], vec![0x00]), // GYRO_CONFIG read ...
-        T::write(0x69, vec![0x1B, 0x00]),            // ... FS_SEL = 0 (+-250 deg/s)
+        T::write(0x69, vec![0x1B, 0x10]),            // ... FS_SEL = 2 (+-1000 deg/s)
         T::write(0x69, vec![0x1A, 0x04]),            // CONFIG: DLPF_CFG = 4 (21 Hz)
         T::write(0x69, vec![0x19, 0x04]),            // SMPLRT_DIV: 1 kHz / (1 + 4) = 200 Hz
         T::write(0x69, vec![0x38, 0x10]),            // INT_ENABLE: FIFO_OFLOW_EN

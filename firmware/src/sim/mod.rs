@@ -112,8 +112,9 @@ impl SimMpu6050 {
         self.pose_since_us = self.now_us;
     }
 
-    /// Starts a motion from the current orientation.
+    /// Starts a motion from the current orientation (where any motion before it brought the board).
     pub fn set_motion(&mut self, motion: Motion) {
+        self.stop_motion();
         self.physics.motion = motion;
         self.pose_since_us = self.now_us;
     }
@@ -185,7 +186,7 @@ impl SimMpu6050 {
         let rate = self.sample_rate_hz();
         let sample = self.physics.sample(seconds, rate);
         let accel_lsb = f32::from(16384u16 >> ((self.register(ACCEL_CONFIG) >> 3) & 0x03));
-        let gyro_lsb = reg::GYRO_LSB_PER_DPS / f32::from(1u8 << ((self.register(GYRO_CONFIG) >> 3) & 0x03));
+        let gyro_lsb = reg::GYRO_LSB_PER_DPS_BY_FS_SEL[usize::from((self.register(GYRO_CONFIG) >> 3) & 0x03)];
         let words = [
             quantise(sample.accel_g[0] * accel_lsb),
             quantise(sample.accel_g[1] * accel_lsb),

@@ -41,6 +41,9 @@ pub struct TrueErrors {
     pub offset_g: Vec3<f32>,
     /// The true gyro bias, in deg/s.
     pub gyro_bias_dps: Vec3<f32>,
+    /// The true gyro correction G of `w = G (w_raw - b)`: the inverse of the scale and
+    /// misalignment the gyro reads the true rate through.
+    pub gyro_matrix: Mat3<f32>,
 }
 
 impl TrueErrors {
@@ -56,18 +59,30 @@ impl TrueErrors {
             // NOTE: no gyro figures were published; a bias of about a degree per second is typical
             // of the datasheet's +-20 deg/s initial tolerance on good parts.
             gyro_bias_dps: [-1.2, 0.8, 0.35],
+            gyro_matrix: linalg::identity(),
         }
     }
 
     /// A perfect sensor.
     pub fn ideal() -> Self {
-        TrueErrors { matrix: linalg::identity(), offset_g: [0.0; 3], gyro_bias_dps: [0.0; 3] }
+        TrueErrors {
+            matrix: linalg::identity(),
+            offset_g: [0.0; 3],
+            gyro_bias_dps: [0.0; 3],
+            gyro_matrix: linalg::identity(),
+        }
     }
 
     /// What the uncalibrated sensor reads for a true specific force: m = M^-1 a + o.
     pub fn reading_g(&self, specific_force_g: Vec3<f32>) -> Vec3<f32> {
         let sensor_matrix = linalg::inverse(&self.matrix).unwrap_or(linalg::identity());
         linalg::add(linalg::mul_vec(&sensor_matrix, specific_force_g), self.offset_g)
+    }
+
+    /// What the gyro reads for a true rate, before bias and noise: w_raw - b = G^-1 w.
+    pub fn gyro_reading_dps(&self, rate_dps: Vec3<f32>) -> Vec3<f32> {
+        let sensor_matrix = linalg::inverse(&self.gyro_matrix).unwrap_or(linalg::identity());
+        linalg::mul_vec(&sensor_matrix, rate_dps)
     }
 }
 
@@ -80,6 +95,9 @@ pub enum Motion {
     Rotating { axis: Vec3<f32>, rate_dps: f32 },
     /// Shaken sinusoidally along body x with an amplitude in g, as a hand's tremor.
     Vibrating { amplitude_g: f32, frequency_hz: f32 },
+    /// A hand's turn about a body axis (unit vector) by an angle in degrees over `seconds`: the
+    /// rate rises and falls smoothly (a raised cosine, zero at both ends), then the board rests.
+    Turning { axis: Vec3<f32>, angle_deg: f32, seconds: f32 },
 }
 
 /// The board's state and the sensor's imperfections, evolving with time.
@@ -95,8 +113,6 @@ pub struct Physics {
     pub drift: ThermalDrift,
     /// The die's temperature and surroundings.
     pub environment: Environment,
-    /// The gyro's true scale and misalignment: it reads this matrix times the true rate (before bias).
-    pub gyro_sensor_matrix: Mat3<f32>,
     /// Gyro g-sensitivity in deg/s per g, per axis.
     pub gyro_g_sensitivity: f32,
     /// Whether white noise and bias wander are added.
@@ -136,13 +152,13 @@ impl Physics {
         // misalignments of 0.1-0.35 degrees (a few mrad), typical of the cross-axis sensitivity of
         // +-2 % being mostly package alignment.
         let gyro_sensor_matrix = [[1.021, 0.004, -0.003], [-0.005, 0.984, 0.006], [0.002, -0.004, 1.012]];
+        let gyro_matrix = linalg::inverse(&gyro_sensor_matrix).unwrap_or(linalg::identity());
         Physics {
             up: [0.0, 0.0, 1.0],
             motion: Motion::Still,
-            truth: TrueErrors::published_mpu6050(),
+            truth: TrueErrors { gyro_matrix, ..TrueErrors::published_mpu6050() },
             drift: ThermalDrift::typical(),
             environment: Environment::powered_on_at(20.0),
-            gyro_sensor_matrix,
             gyro_g_sensitivity: GYRO_G_SENSITIVITY_DPS_PER_G,
             noisy: true,
             wandering: true,
@@ -157,7 +173,7 @@ impl Physics {
         Physics {
             drift: ThermalDrift::none(),
             environment: Environment::fixed(super::thermal::TRUTH_REF_TEMP_C),
-            gyro_sensor_matrix: linalg::identity(),
+            truth: TrueErrors::published_mpu6050(),
             gyro_g_sensitivity: 0.0,
             wandering: false,
             ..Physics::new(seed)
@@ -188,7 +204,7 @@ impl Physics {
         let band = libm::sqrtf(rate_hz / 2.0);
         let accel_noise = linalg::add(self.noise(ACCEL_NOISE_DENSITY_G * band), self.accel_wander());
         let gyro_noise = linalg::add(self.noise(GYRO_NOISE_DENSITY_DPS * band), self.gyro_wander());
-        let felt = linalg::mul_vec(&self.gyro_sensor_matrix, rotation_dps);
+        let felt = truth.gyro_reading_dps(rotation_dps);
         let g_effect = linalg::scale(force, self.gyro_g_sensitivity);
         let gyro = linalg::add(linalg::add(felt, truth.gyro_bias_dps), linalg::add(g_effect, gyro_noise));
         PhysicalSample {
@@ -202,7 +218,7 @@ impl Physics {
     /// the board about its resting orientation, so only a turn changes it).
     pub fn up_at(&self, seconds: f32) -> Vec3<f32> {
         match self.motion {
-            Motion::Rotating { .. } => self.kinematics(seconds).0,
+            Motion::Rotating { .. } | Motion::Turning { .. } => self.kinematics(seconds).0,
             Motion::Still | Motion::Vibrating { .. } => self.up,
         }
     }
@@ -239,6 +255,10 @@ impl Physics {
                 let angle = -(rate_dps * seconds).to_radians();
                 (rotate(self.up, axis, angle), linalg::scale(axis, rate_dps))
             }
+            Motion::Turning { axis, angle_deg, seconds: span } => {
+                let (angle, rate_dps) = turning_at(angle_deg, span, seconds);
+                (rotate(self.up, axis, -angle.to_radians()), linalg::scale(axis, rate_dps))
+            }
             Motion::Vibrating { amplitude_g, frequency_hz } => {
                 let shake = amplitude_g * libm::sinf(2.0 * core::f32::consts::PI * frequency_hz * seconds);
                 (linalg::add(self.up, [shake, 0.0, 0.0]), [0.0; 3])
@@ -253,6 +273,18 @@ impl Physics {
         let mut draw = || sigma * <StandardNormal as Distribution<f32>>::sample(&StandardNormal, &mut self.rng);
         [draw(), draw(), draw()]
     }
+}
+
+/// A hand's turn by `angle_deg` over `span_s`, `seconds` after it began: the angle turned so far
+/// in degrees and the rate in deg/s, rate = (angle / span) (1 - cos(2 pi t / span)).
+fn turning_at(angle_deg: f32, span_s: f32, seconds: f32) -> (f32, f32) {
+    if span_s <= 0.0 || seconds >= span_s {
+        return (angle_deg, 0.0);
+    }
+    let phase = 2.0 * core::f32::consts::PI * seconds.max(0.0) / span_s;
+    let mean_rate = angle_deg / span_s;
+    let turned = mean_rate * (seconds.max(0.0) - span_s * libm::sinf(phase) / (2.0 * core::f32::consts::PI));
+    (turned, mean_rate * (1.0 - libm::cosf(phase)))
 }
 
 /// Rodrigues' rotation of v about a unit axis by an angle in radians.

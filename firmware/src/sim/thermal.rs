@@ -139,6 +139,7 @@ impl ThermalDrift {
             matrix,
             offset_g: linalg::add(truth.offset_g, poly(&self.offset_g)),
             gyro_bias_dps: linalg::add(truth.gyro_bias_dps, poly(&self.gyro_bias_dps)),
+            gyro_matrix: truth.gyro_matrix,
         }
     }
 }

@@ -12,7 +12,7 @@ use super::length::{ADAPTIVE_VERIFY_POSITIONS, FIXED_VERIFY_POSITIONS};
 use crate::error::Error;
 use crate::fit::Fit;
 use crate::procedure::stop_rule::CaptureLength;
-use crate::procedure::{self, drift, AdaptiveOptions, Feedback, Hand, VERIFY_SECONDS};
+use crate::procedure::{self, drift, AdaptiveOptions, Feedback, Hand, Moves, VERIFY_SECONDS};
 use crate::session::{Session, SessionError};
 
 /// Whether this run's session is adaptive: a full calibration without a fixed `--seconds`.
@@ -24,7 +24,7 @@ pub(super) fn is_adaptive(args: &CalibrateArgs, session: &Session) -> bool {
 pub(super) fn collect(
     args: &CalibrateArgs,
     opened: &mut Opened,
-    hand: &mut dyn Hand,
+    hands: (&mut dyn Hand, &mut Moves),
     wait_limit: Option<std::time::Duration>,
     session: &mut Session,
     keep: &mut dyn FnMut(&Session) -> Result<(), SessionError>,
@@ -34,7 +34,7 @@ pub(super) fn collect(
     let options = AdaptiveOptions { rule, wait_limit, clock: Some(opened.clock()) };
     let client = &mut opened.connection.client;
     let targets = procedure::targets(false);
-    let collected = procedure::collect_adaptive(client, hand, &targets, &options, feedback, session, keep)?;
+    let collected = procedure::collect_adaptive(client, hands, &targets, &options, feedback, session, keep)?;
     Ok(collected.first_capture_s)
 }
 

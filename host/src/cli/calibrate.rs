@@ -16,7 +16,8 @@ use crate::calibration::{self, describe};
 use crate::error::Error;
 use crate::fit::Fit;
 use crate::link::{ChipOrtho9, Client, LinkError, Port};
-use crate::procedure::{self, CollectOptions, Feedback, Verification};
+use crate::procedure::{self, CollectOptions, Feedback, Moves, Verification};
+use crate::report::gyro::GyroOutcome;
 use crate::report::{self, CalibrateReport};
 use crate::session::{unix_time_s, BoardRecord, Session};
 
@@ -49,10 +50,13 @@ pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
     let mut kept = start_session(args, &opened.connection.info, feedback.as_mut())?;
     let interrupt = interrupt_on_ctrl_c();
     opened.connection.client.interrupt_on(interrupt.clone());
-    let first_capture_s = collect(args, &mut opened, &mut kept, feedback.as_mut())?;
+    let (moves, first_capture_s) = collect(args, &mut opened, &mut kept, feedback.as_mut())?;
     let adaptive = adaptive::is_adaptive(args, &kept.session);
-    let fitted =
-        choose(&mut opened.connection.client, &kept, opened.connection.info.config, adaptive, feedback.as_mut())?;
+    let config = opened.connection.info.config;
+    let mut fitted = choose(&mut opened.connection.client, &kept, config, adaptive, feedback.as_mut())?;
+    let (chosen, gyro) = super::gyro::fit(&moves, &fitted.session, &fitted.chosen, feedback.as_mut());
+    fitted.chosen = chosen;
+    fitted.session.gyro_turns = super::gyro::summaries(&moves, &fitted.session, &chosen, &gyro);
     show_choice(feedback.as_mut(), &fitted);
     let client = &mut opened.connection.client;
     if interrupt.load(Ordering::SeqCst) {
@@ -62,22 +66,26 @@ pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
         return Ok(());
     }
     let first_capture_s = first_capture_s.unwrap_or(0.0);
-    finish(args, &mut opened, &fitted, kept.path.as_deref(), (adaptive, first_capture_s), feedback.as_mut())
+    let fitted = (&fitted, &gyro);
+    finish(args, &mut opened, fitted, kept.path.as_deref(), (adaptive, first_capture_s), feedback.as_mut())
 }
 
-/// The captures the session lacks, written after each one; an error names where they are kept.
-/// The board's clock when the first capture started (when collection started, with fixed lengths).
+/// The captures the session lacks, written after each one, and the moves between them; an error
+/// names where the captures are kept. Also the board's clock when the first capture started (when
+/// collection started, with fixed lengths).
 fn collect(
     args: &CalibrateArgs,
     opened: &mut Opened,
     kept: &mut Kept,
     feedback: &mut dyn Feedback,
-) -> Result<Option<f64>, Error> {
+) -> Result<(Moves, Option<f64>), Error> {
     let (mut hand, wait_limit) = opened.hand(args.sim_placement_deg, args.device.seed);
+    let hand = hand.as_mut();
     let path = kept.path.clone();
     let mut keep = |session: &Session| path.as_deref().map_or(Ok(()), |p| session.save(p));
+    let mut moves = Moves::at(opened.connection.info.config.sample_rate_hz);
     let result = if adaptive::is_adaptive(args, &kept.session) {
-        adaptive::collect(args, opened, hand.as_mut(), wait_limit, &mut kept.session, &mut keep, feedback)
+        adaptive::collect(args, opened, (hand, &mut moves), wait_limit, &mut kept.session, &mut keep, feedback)
     } else {
         let options = CollectOptions {
             seconds: args.seconds.unwrap_or_else(|| procedure::capture_seconds(kept.session.quick)),
@@ -85,11 +93,12 @@ fn collect(
         };
         let (targets, started) = (procedure::targets(kept.session.quick), opened.clock()());
         let client = &mut opened.connection.client;
-        procedure::collect_into(client, hand.as_mut(), &targets, &options, feedback, &mut kept.session, &mut keep)
+        let session = &mut kept.session;
+        procedure::collect_into(client, hand, &targets, &options, feedback, session, &mut moves, &mut keep)
             .map(|()| Some(started))
     };
     match (result, &kept.path) {
-        (Ok(first), _) => Ok(first),
+        (Ok(first), _) => Ok((moves, first)),
         (Err(source), Some(path)) if !kept.session.captures.is_empty() => Err(Error::Stopped {
             source: Box::new(source),
             captures: kept.session.captures.len(),
@@ -104,25 +113,30 @@ fn collect(
 fn finish(
     args: &CalibrateArgs,
     opened: &mut Opened,
-    fitted: &Fitted,
+    (fitted, gyro): (&Fitted, &GyroOutcome),
     kept_at: Option<&Path>,
     (adaptive, first_capture_s): (bool, f64),
     feedback: &mut dyn Feedback,
 ) -> Result<(), Error> {
     let (mut hand, wait_limit) = opened.hand(args.sim_placement_deg, args.device.seed);
     let (positions, length) = adaptive::verification(args, adaptive, opened.connection.info.config.sample_rate_hz)?;
+    let (rate_hz, clock) = (opened.connection.info.config.sample_rate_hz, opened.clock());
     let client = &mut opened.connection.client;
     let calibrated: Vec<[f64; 3]> = fitted.session.captures.iter().map(|c| c.stats.mean_g.map(f64::from)).collect();
-    let hand = hand.as_mut();
-    let verification = procedure::verify_with(client, hand, positions, wait_limit, feedback, &calibrated, length)?;
-    let board_seconds = opened.clock()() - first_capture_s;
+    let verification =
+        procedure::verify_with(client, hand.as_mut(), positions, wait_limit, feedback, &calibrated, length)?;
+    let board_seconds = clock() - first_capture_s;
+    let check = super::gyro::check(client, hand.as_mut(), rate_hz, gyro, feedback)?;
     if let Some(stem) = kept_at {
         keep_with_report(&fitted.session, &verification, stem, feedback)?;
     }
     let truth = opened.sim.as_ref().map(|board| board.truth());
+    let session_temp_c = calibration::thermal_reference(&fitted.chosen).ref_temp_c;
+    let truth_gyro = opened.sim.as_ref().map(|board| board.truth_at(session_temp_c));
     let captures = fitted.session.captures.len();
     let chip = fitted.chip.as_ref().map(|c| &c.calibration);
-    let mut report = CalibrateReport::new(&fitted.chosen, chip, fitted.host.as_ref(), truth, verification, captures);
+    let mut report = CalibrateReport::new(&fitted.chosen, chip, fitted.host.as_ref(), truth, verification, captures)
+        .with_gyro(gyro, truth_gyro.as_ref(), check);
     report.board_seconds = Some(board_seconds);
     print_report(&report, args.json);
     Ok(())
@@ -162,7 +176,7 @@ fn start_session(args: &CalibrateArgs, info: &DeviceInfo, feedback: &mut dyn Fee
     let kept = match &args.resume {
         Some(path) => resumed(path, &board, feedback)?,
         None => Kept {
-            session: Session { board: Some(board), quick: args.quick, captures: Vec::new(), verification: None },
+            session: Session { board: Some(board), quick: args.quick, ..Session::default() },
             path: args.session.clone().or_else(|| default_session_path(args)),
             resumed: false,
         },

@@ -7,7 +7,7 @@ use std::time::Duration;
 use super::args::Device;
 use crate::error::Error;
 use crate::link::{open_port, resolve_port, serial_ports, Connection};
-use crate::procedure::{BoardClock, Hand, PersonHand, SimulatedHand, PERSON_TURN_SECONDS};
+use crate::procedure::{BoardClock, Hand, PersonHand, SimulatedHand};
 use crate::sim::SimBoard;
 
 /// How long the tool waits for the simulated board (which it turns itself) to settle.
@@ -53,7 +53,7 @@ impl Opened {
     pub(super) fn hand(&self, placement_deg: f64, seed: u64) -> (Box<dyn Hand>, Option<Duration>) {
         match &self.sim {
             Some(board) => {
-                let hand = SimulatedHand::new(board.controls(), placement_deg, seed).turning(PERSON_TURN_SECONDS);
+                let hand = SimulatedHand::new(board.controls(), placement_deg, seed);
                 (Box::new(hand), Some(SIM_WAIT_LIMIT))
             }
             None => (Box::new(PersonHand), None),

@@ -8,6 +8,7 @@ mod board;
 mod calibrate;
 mod device;
 mod fit;
+mod gyro;
 mod length;
 mod noise;
 mod procedure;

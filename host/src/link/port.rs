@@ -3,7 +3,9 @@
 //! them.
 
 use std::io::{self, Read, Write};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::mpsc::{channel, Receiver, RecvTimeoutError, Sender};
+use std::sync::Arc;
 use std::time::Duration;
 
 use serialport::SerialPort;
@@ -12,6 +14,13 @@ use serialport::SerialPort;
 pub trait Port: Read + Write + Send {
     /// How long a read waits for the first byte.
     fn set_read_timeout(&mut self, timeout: Duration) -> io::Result<()>;
+
+    /// Whether the other end has read everything this end wrote, this end has read everything it
+    /// wrote, and it now waits to read: it has acted on all it was sent. Only an in-memory pipe
+    /// can tell; a simulated board in lockstep waits for it before letting time pass.
+    fn peer_settled(&self) -> bool {
+        true
+    }
 }
 
 impl Port for dyn SerialPort {
@@ -23,6 +32,10 @@ impl Port for dyn SerialPort {
 impl<P: Port + ?Sized> Port for Box<P> {
     fn set_read_timeout(&mut self, timeout: Duration) -> io::Result<()> {
         (**self).set_read_timeout(timeout)
+    }
+
+    fn peer_settled(&self) -> bool {
+        (**self).peer_settled()
     }
 }
 
@@ -47,21 +60,41 @@ pub struct PipeEnd {
     outgoing: Sender<Vec<u8>>,
     pending: Vec<u8>,
     timeout: Duration,
+    shared: Arc<PipeState>,
+    side: usize,
+}
+
+/// What both ends of a pipe see: per end, the bytes written to it and not yet read, and whether it
+/// is blocked waiting to read.
+#[derive(Debug, Default)]
+struct PipeState {
+    unread: [AtomicUsize; 2],
+    waiting: [AtomicBool; 2],
 }
 
 /// Two connected pipe ends: what one writes, the other reads.
 pub fn pipe() -> (PipeEnd, PipeEnd) {
     let (a_to_b, b_from_a) = channel();
     let (b_to_a, a_from_b) = channel();
-    let end =
-        |incoming, outgoing| PipeEnd { incoming, outgoing, pending: Vec::new(), timeout: Duration::from_millis(100) };
-    (end(a_from_b, a_to_b), end(b_from_a, b_to_a))
+    let shared = Arc::new(PipeState::default());
+    let end = |incoming, outgoing, side| PipeEnd {
+        incoming,
+        outgoing,
+        pending: Vec::new(),
+        timeout: Duration::from_millis(100),
+        shared: shared.clone(),
+        side,
+    };
+    (end(a_from_b, a_to_b, 0), end(b_from_a, b_to_a, 1))
 }
 
 impl Read for PipeEnd {
     fn read(&mut self, buffer: &mut [u8]) -> io::Result<usize> {
         if self.pending.is_empty() {
-            self.pending = match self.incoming.recv_timeout(self.timeout) {
+            self.shared.waiting[self.side].store(true, Ordering::SeqCst);
+            let received = self.incoming.recv_timeout(self.timeout);
+            self.shared.waiting[self.side].store(false, Ordering::SeqCst);
+            self.pending = match received {
                 Ok(bytes) => bytes,
                 Err(RecvTimeoutError::Timeout) => return Err(io::ErrorKind::TimedOut.into()),
                 Err(RecvTimeoutError::Disconnected) => return Err(io::ErrorKind::BrokenPipe.into()),
@@ -70,12 +103,14 @@ impl Read for PipeEnd {
         let n = buffer.len().min(self.pending.len());
         buffer[..n].copy_from_slice(&self.pending[..n]);
         self.pending.drain(..n);
+        self.shared.unread[self.side].fetch_sub(n, Ordering::SeqCst);
         Ok(n)
     }
 }
 
 impl Write for PipeEnd {
     fn write(&mut self, bytes: &[u8]) -> io::Result<usize> {
+        self.shared.unread[1 - self.side].fetch_add(bytes.len(), Ordering::SeqCst);
         self.outgoing.send(bytes.to_vec()).map_err(|_| io::Error::from(io::ErrorKind::BrokenPipe))?;
         Ok(bytes.len())
     }
@@ -89,6 +124,14 @@ impl Port for PipeEnd {
     fn set_read_timeout(&mut self, timeout: Duration) -> io::Result<()> {
         self.timeout = timeout;
         Ok(())
+    }
+
+    fn peer_settled(&self) -> bool {
+        let (own, peer) = (self.side, 1 - self.side);
+        let state = &self.shared;
+        state.unread[own].load(Ordering::SeqCst) == 0
+            && state.unread[peer].load(Ordering::SeqCst) == 0
+            && state.waiting[peer].load(Ordering::SeqCst)
     }
 }
 

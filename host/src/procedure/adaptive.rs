@@ -9,7 +9,7 @@ use super::collect::capture_at;
 use super::drift::{self, Drift};
 use super::stop_rule::{CaptureLength, StopRule};
 use super::wait::wait_for_target_settled;
-use super::{Feedback, Hand, Orientation, ProcedureError};
+use super::{Feedback, Hand, Moves, Orientation, ProcedureError};
 use crate::calibration;
 use crate::fit::{Fit, FitError};
 use crate::link::{Client, Port};
@@ -54,7 +54,7 @@ pub struct Collected {
 /// every capture.
 pub fn collect_adaptive<P: Port>(
     client: &mut Client<P>,
-    hand: &mut dyn Hand,
+    (hand, moves): (&mut dyn Hand, &mut Moves),
     targets: &[Orientation],
     options: &AdaptiveOptions,
     feedback: &mut dyn Feedback,
@@ -71,12 +71,12 @@ pub fn collect_adaptive<P: Port>(
         if enough(session, options.rule.target_mg, feedback) {
             break;
         }
-        take(client, hand, target, options, feedback, session, &mut collected)?;
+        take(client, (hand, moves), target, options, feedback, session, &mut collected)?;
         keep(session)?;
     }
     let closing = drift::closing(&order[0]);
     if !session.captures.iter().any(|c| c.name == closing.name) {
-        take(client, hand, &closing, options, feedback, session, &mut collected)?;
+        take(client, (hand, moves), &closing, options, feedback, session, &mut collected)?;
         keep(session)?;
     }
     Ok(collected)
@@ -102,7 +102,7 @@ fn enough(session: &Session, target_mg: f64, feedback: &mut dyn Feedback) -> boo
 /// moves), recorded with why it stopped.
 fn take<P: Port>(
     client: &mut Client<P>,
-    hand: &mut dyn Hand,
+    (hand, moves): (&mut dyn Hand, &mut Moves),
     target: &Orientation,
     options: &AdaptiveOptions,
     feedback: &mut dyn Feedback,
@@ -111,14 +111,16 @@ fn take<P: Port>(
 ) -> Result<(), ProcedureError> {
     let length = CaptureLength::Goal(options.rule.goal());
     for _ in 0..CAPTURE_ATTEMPTS {
-        hand.present(target, feedback)?;
+        moves.present(client, hand, target, feedback)?;
         let only = std::slice::from_ref(target);
-        wait_for_target_settled(client, only, &[], options.wait_limit, SETTLE_SECONDS, feedback)?;
+        let settle = (SETTLE_SECONDS, moves.rested_s());
+        wait_for_target_settled(client, (only, &[]), options.wait_limit, settle, feedback)?;
         let started = options.clock.as_ref().map(|clock| clock());
         collected.first_capture_s = collected.first_capture_s.or(started);
         if let Some((stats, face)) = capture_at(client, target, length, feedback)? {
             feedback.say(&format!("{}: {}", target.name, options.rule.why_stopped(&stats)));
             session.captures.push(CaptureRecord::now(&target.name, Some(target.clone()), face, stats));
+            moves.captured(session);
             return Ok(());
         }
     }

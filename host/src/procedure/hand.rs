@@ -9,6 +9,8 @@ pub trait Hand {
     fn present(&mut self, target: &Orientation, feedback: &mut dyn Feedback) -> Result<(), ProcedureError>;
     /// Turns (or asks to turn) the board to a fresh orientation for verification.
     fn fresh(&mut self, index: usize, feedback: &mut dyn Feedback) -> Result<(), ProcedureError>;
+    /// Turns (or asks to turn) the board a quarter turn over an edge, for the gyro's verification.
+    fn turn_quarter(&mut self, feedback: &mut dyn Feedback) -> Result<(), ProcedureError>;
     /// Orientations (directions of up, any length) the fresh ones must keep away from; a person
     /// is told by the live line instead.
     fn avoid(&mut self, _orientations: &[[f64; 3]]) {}
@@ -24,6 +26,11 @@ impl Hand for PersonHand {
             target.name,
             describe(target)
         ));
+        Ok(())
+    }
+
+    fn turn_quarter(&mut self, feedback: &mut dyn Feedback) -> Result<(), ProcedureError> {
+        feedback.say("Now turn the board a quarter turn (90 degrees) over one of its edges, and hold it still.");
         Ok(())
     }
 

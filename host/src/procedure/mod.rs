@@ -6,10 +6,13 @@ mod adaptive;
 mod collect;
 pub mod drift;
 mod feedback;
+mod gyro_check;
 mod hand;
+mod moves;
 mod simulated_hand;
 pub mod stop_rule;
 pub mod thermal;
+mod turns;
 mod verify;
 mod wait;
 
@@ -19,8 +22,11 @@ pub use crate::orientation::{corners, faces, quick_set, Orientation};
 pub use adaptive::{adaptive_calibration, adaptive_fit, collect_adaptive, AdaptiveOptions, BoardClock, Collected};
 pub use collect::{collect, collect_into};
 pub use feedback::{Feedback, Silent};
+pub use gyro_check::{check_turn, TurnCheck};
 pub use hand::{Hand, PersonHand};
-pub use simulated_hand::{SimulatedHand, PERSON_TURN_SECONDS};
+pub use moves::{Moves, RecordedMove};
+pub use simulated_hand::SimulatedHand;
+pub use turns::{fit_moves, turn_summaries, turns_of};
 pub use verify::{verify, verify_clear_of, verify_with, Verification, VERIFY_SECONDS};
 
 use crate::fit::{self, Fit, FitError, FitOptions, ModelChoice};

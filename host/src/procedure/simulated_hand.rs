@@ -1,30 +1,35 @@
 //! The tool's own hand on the simulated board: it turns the board through the board's controls
 //! handle to each wanted orientation, a few degrees off at random as a person's hand would, and to
-//! random orientations for verification.
+//! random orientations for verification. Once the board rests somewhere, it turns it on from there
+//! as a hand does (a real rotation at a smoothly rising and falling rate), so that the gyro sees
+//! the turn.
 
 use std::sync::mpsc::Sender;
 
+use firmware::sim::physics::Motion;
 use rand_xoshiro::rand_core::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
 use shared::linalg::{add, cross, norm, scale};
+use shared::orientation::angle_between_deg;
 
 use super::{Feedback, Hand, Orientation, ProcedureError};
 use crate::limits::FRESH_DEG;
 use crate::sim::random::{gaussian, random_unit};
 use crate::sim::SimCommand;
-use firmware::sim::physics::Motion;
 
 /// How far beyond [`FRESH_DEG`], in degrees, the hand keeps its verification orientations apart,
 /// so that its own placement error never makes one look like a repeat.
 const FRESH_MARGIN_DEG: f64 = 10.0;
 /// Random orientations tried for one clear of those verified before (14 of them fit easily).
 const FRESH_TRIES: usize = 1000;
-/// How long a person takes to turn the board to a new orientation and let it settle, in seconds.
-// NOTE: the estimate (1.5-2 s); the procedure's own stillness check (two half-second windows)
-// comes on top.
-pub const PERSON_TURN_SECONDS: f64 = 1.5;
-/// A turn of this many degrees or more takes the whole turn time; smaller ones proportionally less.
-const FULL_TURN_DEG: f64 = 45.0;
+/// How long the hand takes for a turn: this many seconds, plus one per [`HAND_TURN_DPS`] degrees.
+///
+/// NOTE: a quarter turn in 1.2 s peaks at 150 deg/s, a half turn in 1.8 s at 200 deg/s: the brisk
+/// but unhurried turn of a person following instructions.
+const HAND_TURN_BASE_S: f64 = 0.6;
+const HAND_TURN_DPS: f64 = 150.0;
+/// A verification turn, in degrees: the quarter turn the user is shown.
+pub const VERIFICATION_TURN_DEG: f64 = 90.0;
 
 /// The tool's hand on a simulated board.
 pub struct SimulatedHand {
@@ -32,10 +37,8 @@ pub struct SimulatedHand {
     rng: Xoshiro256PlusPlus,
     placement_deg: f64,
     verified: Vec<[f64; 3]>,
-    /// Where up pointed when the hand last put the board down.
-    last_up: [f64; 3],
-    /// Seconds a turn takes (0: the board is put down at once).
-    turn_seconds: f64,
+    /// Where the board rests (the up direction in the body frame), once the hand has put it down.
+    resting: Option<[f64; 3]>,
 }
 
 impl SimulatedHand {
@@ -43,46 +46,39 @@ impl SimulatedHand {
     /// angle), repeatable by `seed`.
     pub fn new(controls: Sender<SimCommand>, placement_deg: f64, seed: u64) -> Self {
         let rng = Xoshiro256PlusPlus::seed_from_u64(seed);
-        SimulatedHand {
-            controls,
-            rng,
-            placement_deg,
-            verified: Vec::new(),
-            last_up: [0.0, 0.0, 1.0],
-            turn_seconds: 0.0,
-        }
+        SimulatedHand { controls, rng, placement_deg, verified: Vec::new(), resting: None }
     }
 
-    /// The hand turning the board over `seconds` of the board's time (a steady turn from where it
-    /// rests), as a person does, instead of putting it down at once.
-    pub fn turning(self, seconds: f64) -> Self {
-        SimulatedHand { turn_seconds: seconds, ..self }
-    }
-
-    /// Moves the board to rest with `up` pointing up: at once, or by a steady turn.
-    fn turn(&mut self, up: [f64; 3]) -> Result<(), ProcedureError> {
-        let from = std::mem::replace(&mut self.last_up, up);
-        let angle_deg = shared::orientation::angle_between_deg(from, up);
-        if self.turn_seconds <= 0.0 || angle_deg < 1e-3 {
-            return self.place(up);
-        }
-        // The board turns about up x from: gravity turns back about it, from `from` to `up`.
-        let mut axis = cross(up, from);
-        if norm(axis) < 1e-9 {
-            axis = cross(from, random_unit(&mut self.rng));
-        }
-        let axis = scale(axis, 1.0 / norm(axis)).map(|v| v as f32);
-        // NOTE: a small correction is quick; a turn to another position (45 degrees or more) takes
-        // the whole time. A slow creep would pass the stillness windows and spoil the capture.
-        let seconds = self.turn_seconds * (angle_deg / FULL_TURN_DEG).min(1.0);
-        let motion = Motion::Rotating { axis, rate_dps: (angle_deg / seconds) as f32 };
-        self.place(from)?;
-        let command = SimCommand::MoveFor { motion, seconds: seconds as f32 };
+    /// Brings the board to rest with `up` up: turned there from where it rests, else put there.
+    fn place(&mut self, up: [f64; 3]) -> Result<(), ProcedureError> {
+        let command = match self.resting.replace(up) {
+            Some(from) => self.turn_command(from, up),
+            None => SimCommand::Place(up.map(|v| v as f32)),
+        };
         self.controls.send(command).map_err(|_| ProcedureError::SimulatedBoardStopped)
     }
 
-    fn place(&mut self, up: [f64; 3]) -> Result<(), ProcedureError> {
-        let command = SimCommand::Place(up.map(|v| v as f32));
+    /// The turn that carries the body's up from `from` to `to`, about the line perpendicular to
+    /// both (horizontal all the way); a half turn goes about a random horizontal line.
+    fn turn_command(&mut self, from: [f64; 3], to: [f64; 3]) -> SimCommand {
+        let mut axis = cross(to, from);
+        if norm(axis) < 1e-6 {
+            axis = cross(from, random_unit(&mut self.rng));
+        }
+        let angle_deg = angle_between_deg(from, to);
+        turning(scale(axis, 1.0 / norm(axis)), angle_deg)
+    }
+
+    /// A quarter turn about a random horizontal line, from where the board rests.
+    fn quarter_turn(&mut self) -> Result<(), ProcedureError> {
+        let from = self.resting.unwrap_or([0.0, 0.0, 1.0]);
+        let axis = cross(from, random_unit(&mut self.rng));
+        let axis = scale(axis, 1.0 / norm(axis));
+        let angle = VERIFICATION_TURN_DEG.to_radians();
+        // Gravity turns the other way in the body frame: up goes to from cos - (axis x from) sin.
+        let to = add(scale(from, angle.cos()), scale(cross(axis, from), -angle.sin()));
+        self.resting = Some(to);
+        let command = turning(axis, VERIFICATION_TURN_DEG);
         self.controls.send(command).map_err(|_| ProcedureError::SimulatedBoardStopped)
     }
 
@@ -114,16 +110,27 @@ impl SimulatedHand {
 impl Hand for SimulatedHand {
     fn present(&mut self, target: &Orientation, _: &mut dyn Feedback) -> Result<(), ProcedureError> {
         let up = self.misplaced(target.up);
-        self.turn(up)
+        self.place(up)
     }
 
     fn fresh(&mut self, _: usize, _: &mut dyn Feedback) -> Result<(), ProcedureError> {
         let up = self.new_orientation();
         self.verified.push(up);
-        self.turn(up)
+        self.place(up)
+    }
+
+    fn turn_quarter(&mut self, _: &mut dyn Feedback) -> Result<(), ProcedureError> {
+        self.quarter_turn()
     }
 
     fn avoid(&mut self, orientations: &[[f64; 3]]) {
         self.verified.extend(orientations.iter().map(|&up| scale(up, 1.0 / norm(up))));
     }
+}
+
+/// The board turned by `angle_deg` about the body `axis` (unit), at a hand's pace, then at rest.
+fn turning(axis: [f64; 3], angle_deg: f64) -> SimCommand {
+    let seconds = (HAND_TURN_BASE_S + angle_deg / HAND_TURN_DPS) as f32;
+    let motion = Motion::Turning { axis: axis.map(|v| v as f32), angle_deg: angle_deg as f32, seconds };
+    SimCommand::MoveFor { motion, seconds }
 }

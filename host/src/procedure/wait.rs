@@ -21,31 +21,33 @@ struct Window {
 }
 
 /// Waits until the board rests within tolerance of one of the remaining targets; says how far it
-/// is and refuses a position already captured. Returns the index in `remaining`.
+/// is and refuses a position already captured. Returns the index in `remaining`. `rested_s`: how
+/// long the board was seen still just before (the end of a recorded move), counted towards
+/// [`SETTLE_SECONDS`] when the first window finds it where it should be.
 pub(super) fn wait_for_target<P: Port>(
     client: &mut Client<P>,
-    remaining: &[Orientation],
-    done: &[Orientation],
+    (remaining, done): (&[Orientation], &[Orientation]),
     limit: Option<Duration>,
     feedback: &mut dyn Feedback,
+    rested_s: f64,
 ) -> Result<usize, ProcedureError> {
-    wait_for_target_settled(client, remaining, done, limit, SETTLE_SECONDS, feedback)
+    wait_for_target_settled(client, (remaining, done), limit, (SETTLE_SECONDS, rested_s), feedback)
 }
 
-/// [`wait_for_target`] with the board at rest for `settle_seconds` (rounded up to whole windows).
+/// [`wait_for_target`] with the board at rest for `settle_seconds` (rounded up to whole windows),
+/// `rested_s` of it already seen.
 pub(super) fn wait_for_target_settled<P: Port>(
     client: &mut Client<P>,
-    remaining: &[Orientation],
-    done: &[Orientation],
+    (remaining, done): (&[Orientation], &[Orientation]),
     limit: Option<Duration>,
-    settle_seconds: f64,
+    (settle_seconds, rested_s): (f64, f64),
     feedback: &mut dyn Feedback,
 ) -> Result<usize, ProcedureError> {
     let gave_up = || {
         let wanted: Vec<&str> = remaining.iter().map(|t| t.name.as_str()).collect();
         ProcedureError::NeverAtTarget { wanted: wanted.join(", ") }
     };
-    let streak = Streak::over(settle_seconds);
+    let streak = Streak::over(settle_seconds).after_rest(rested_s);
     wait_for_rest(client, limit, feedback, gave_up, streak, |window| judge_target(window, remaining, done))
 }
 
@@ -182,6 +184,13 @@ impl Streak {
         Streak { accepted_in_a_row: 0, needed: windows_for(seconds) }
     }
 
+    /// The same streak with `rested_s` seconds of rest already seen counted as accepted windows
+    /// (whole windows only); the first window rejected resets it like any other.
+    fn after_rest(self, rested_s: f64) -> Self {
+        let window_s = f64::from(LIVE_WINDOW.count) / f64::from(LIVE_WINDOW.rate_hz);
+        Streak { accepted_in_a_row: (rested_s / window_s + 1e-9).floor() as usize, ..self }
+    }
+
     /// Counts one window's verdict; the value once it completes the run of accepted windows.
     fn settled<R>(&mut self, verdict: Option<R>) -> Option<R> {
         match verdict {
@@ -233,6 +242,13 @@ mod tests {
         assert_eq!(streak.settled(None::<i32>), None);
         assert_eq!([2, 3, 4].map(|v| streak.settled(Some(v))), [None; 3]);
         assert_eq!(streak.settled(Some(5)), Some(5));
+        // Half a second of rest seen before (a recorded move's end) counts as one window.
+        let mut rested = Streak::over(SETTLE_SECONDS).after_rest(0.5);
+        assert_eq!([1, 2].map(|v| rested.settled(Some(v))), [None; 2]);
+        assert_eq!(rested.settled(Some(3)), Some(3));
+        let mut rested = Streak::over(SETTLE_SECONDS).after_rest(0.5);
+        assert_eq!(rested.settled(None::<i32>), None);
+        assert_eq!([1, 2, 3].map(|v| rested.settled(Some(v))), [None; 3], "a rejected window resets the credit");
     }
 
     #[test]

@@ -7,15 +7,16 @@ use firmware::sim::physics::TrueErrors;
 use serde::Serialize;
 use shared::Calibration;
 
+use super::gyro::{GyroJson, GyroOutcome, TruthGyroJson};
 use crate::calibration::CalibrationJson;
 use crate::fit::Fit;
-use crate::procedure::Verification;
+use crate::procedure::{TurnCheck, Verification};
 
 /// The object `accelcal calibrate --json` prints.
 #[derive(Debug, Clone, Serialize)]
 pub struct CalibrateReport {
     /// The calibration uploaded and saved.
-    pub calibration: CalibrationJson,
+    pub calibration: ChosenJson,
     /// The simulated sensor's true errors, under the same convention (only with `--sim`).
     pub truth: Option<TruthJson>,
     /// The errors at fresh orientations before and after.
@@ -30,6 +31,18 @@ pub struct CalibrateReport {
     /// Seconds of the board's time from the first capture's start to the last verification
     /// capture's end (the simulated board's own clock with `--sim`, the wall clock otherwise).
     pub board_seconds: Option<f64>,
+    /// The gyro's verification turn, when it was measured.
+    pub gyro_check: Option<TurnCheck>,
+}
+
+/// The calibration uploaded, with its gyro part and what its fit gave.
+#[derive(Debug, Clone, Serialize)]
+pub struct ChosenJson {
+    /// The calibration as `download` writes it.
+    #[serde(flatten)]
+    pub device: CalibrationJson,
+    /// G and b, with standard errors.
+    pub gyro: GyroJson,
 }
 
 /// The simulated sensor's true calibration: a = matrix (m - offset), in g.
@@ -41,6 +54,8 @@ pub struct TruthJson {
     pub offset: [f32; 3],
     /// True gyro bias, in deg/s.
     pub gyro_bias_dps: [f32; 3],
+    /// The true gyro correction at the session's temperature.
+    pub gyro: Option<TruthGyroJson>,
 }
 
 /// The host fit's statistics.
@@ -67,14 +82,38 @@ impl CalibrateReport {
         captures: usize,
     ) -> Self {
         CalibrateReport {
-            calibration: CalibrationJson::from_device(chosen),
-            truth: truth.map(|t| TruthJson { matrix: t.matrix, offset: t.offset_g, gyro_bias_dps: t.gyro_bias_dps }),
+            calibration: ChosenJson::new(chosen, &GyroOutcome::default()),
+            truth: truth.map(|t| TruthJson {
+                matrix: t.matrix,
+                offset: t.offset_g,
+                gyro_bias_dps: t.gyro_bias_dps,
+                gyro: None,
+            }),
             verification,
             captures,
             chip_fit: chip.map(CalibrationJson::from_device),
             host_fit: host.map(HostFitSummary::new),
             board_seconds: None,
+            gyro_check: None,
         }
+    }
+
+    /// The report with what the gyro fit gave, the true gyro correction at the session's
+    /// temperature (with `--sim`) and the verification turn.
+    pub fn with_gyro(mut self, outcome: &GyroOutcome, truth: Option<&TrueErrors>, check: Option<TurnCheck>) -> Self {
+        self.calibration.gyro = GyroJson::new(&self.calibration.device, outcome);
+        if let (Some(json), Some(truth)) = (self.truth.as_mut(), truth) {
+            json.gyro = Some(TruthGyroJson::new(truth));
+        }
+        self.gyro_check = check;
+        self
+    }
+}
+
+impl ChosenJson {
+    fn new(chosen: &Calibration, outcome: &GyroOutcome) -> Self {
+        let device = CalibrationJson::from_device(chosen);
+        ChosenJson { gyro: GyroJson::new(&device, outcome), device }
     }
 }
 

@@ -30,10 +30,9 @@ pub fn page(report: &SessionReport) -> Result<String, PlotError> {
         models(&mut out, comparison);
     }
     verification(&mut out, report)?;
-    let figures = &report.figures;
     super::html_sections::temperature(&mut out, report)?;
     super::html_sections::allan_deviation(&mut out, report)?;
-    optional(&mut out, "Gyro turns", figures.gyro_turns.as_ref())?;
+    gyro_turns(&mut out, report)?;
     out.push_str("</main></body></html>\n");
     Ok(out)
 }
@@ -171,6 +170,34 @@ fn optional(out: &mut String, title: &str, figure: Option<&Figure>) -> Result<()
         None => out.push_str(&absent(ABSENT)),
     }
     out.push_str("</section>");
+    Ok(())
+}
+
+/// The gyro's turns: the figure, and per turn its angle three ways and its residual before and
+/// after G; "not part of this session" without them.
+fn gyro_turns(out: &mut String, report: &SessionReport) -> Result<(), PlotError> {
+    let (Some(turns), Some(plot)) = (&report.gyro_turns, &report.figures.gyro_turns) else {
+        return optional(out, "Gyro turns", None);
+    };
+    out.push_str("<section><h2>Gyro turns</h2>");
+    figure(out, plot)?;
+    out.push_str("<div class=\"table-wrap\"><table><tr><th>turn</th><th>accelerometer (&deg;)</th>");
+    out.push_str("<th>raw gyro (&deg;)</th><th>calibrated gyro (&deg;)</th><th>residual raw (&deg;)</th>");
+    out.push_str("<th>residual calibrated (&deg;)</th></tr>");
+    for (i, t) in turns.iter().enumerate() {
+        let _ = write!(out, "<tr><td>{} &rarr; {}</td>", escape(&t.from), escape(&t.to));
+        for (key, value) in [
+            ("expected_deg", t.expected_deg),
+            ("raw_deg", t.raw_deg),
+            ("calibrated_deg", t.calibrated_deg),
+            ("residual_raw_deg", t.residual_raw_deg),
+            ("residual_calibrated_deg", t.residual_calibrated_deg),
+        ] {
+            let _ = write!(out, "<td class=\"num\">{}</td>", span(&format!("/gyro_turns/{i}/{key}"), value, 3));
+        }
+        out.push_str("</tr>");
+    }
+    out.push_str("</table></div></section>");
     Ok(())
 }
 

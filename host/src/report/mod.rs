@@ -6,6 +6,7 @@ pub mod allan;
 mod calibrate;
 mod comparison;
 mod figure;
+pub mod gyro;
 pub mod html;
 mod html_sections;
 pub mod json;
@@ -15,7 +16,7 @@ pub mod temperature;
 pub mod text;
 pub mod thermal;
 
-pub use calibrate::{CalibrateReport, HostFitSummary, TruthJson};
+pub use calibrate::{CalibrateReport, ChosenJson, HostFitSummary, TruthJson};
 pub use comparison::{ComparedModel, Comparison};
 pub use figure::{axis_role, Figure, Role, Series, SeriesStyle};
 pub use plot::PlotError;

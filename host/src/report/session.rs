@@ -9,6 +9,7 @@ use super::allan::AllanSection;
 use super::figure::{self, Figure};
 use super::temperature::TemperatureSection;
 use super::{Comparison, FitReport};
+use crate::fit::gyro::TurnSummary;
 use crate::fit::{FitError, FitOptions, Parameter};
 use crate::procedure::Verification;
 use crate::session::Session;
@@ -37,6 +38,8 @@ pub struct SessionReport {
     pub allan_deviation: Option<AllanSection>,
     /// The plots, each with the numbers it is drawn from.
     pub figures: Figures,
+    /// The gyro's turns between the positions, when the session recorded them.
+    pub gyro_turns: Option<Vec<TurnSummary>>,
 }
 
 /// What the session records of the board; `None` where it records nothing.
@@ -120,10 +123,13 @@ impl SessionReport {
         let positions = positions(session, &fit_report);
         let fit = summary(&fit_report, &positions);
         let verification = session.verification.clone();
+        let mut figures = Figures::new(&positions, &fit_report, verification.as_ref());
+        figures.gyro_turns = session.gyro_turns.as_deref().map(super::gyro::turns_figure);
         Ok(SessionReport {
             board: Board::of(session),
             verdict: Verdict::new(&fit, verification.as_ref()),
-            figures: Figures::new(&positions, &fit_report, verification.as_ref()),
+            figures,
+            gyro_turns: session.gyro_turns.clone(),
             positions,
             fit,
             comparison: fit_report.comparison,

@@ -118,11 +118,12 @@ pub fn calibrate_report(report: &CalibrateReport) -> String {
     let board = report.board_seconds.map_or(String::new(), |s| {
         format!("the board was kept {s:.1} s from the first capture to the end of the verification\n")
     });
-    format!(
+    let accel = format!(
         "verified at {} fresh orientations: | |a| - 1 g | rms {:.2} mg before, {:.3} mg after (worst {:.3} mg); \
          the captures' own noise {:.3} mg, error without it {:.3} mg\n{board}",
         v.positions, v.before_rms_mg, v.after_rms_mg, v.after_max_mg, v.noise_floor_mg, v.after_rms_without_noise_mg
-    )
+    );
+    accel + &super::gyro::text(&report.calibration.gyro, report.gyro_check.as_ref())
 }
 
 /// A number right-aligned in `width` with `digits` decimals, or `-`.
@@ -157,6 +158,9 @@ pub fn session_report(report: &SessionReport) -> String {
         write_comparison(&mut out, comparison);
     }
     write_extras(&mut out, report);
+    if let Some(turns) = &report.gyro_turns {
+        let _ = writeln!(out, "{}", super::gyro::turns_line(turns));
+    }
     out
 }
 

@@ -15,7 +15,8 @@ pub enum Pace {
     /// 10 ms of simulated time per service loop: as fast as the loop runs while the board works,
     /// about real speed while it is idle.
     Fast,
-    /// As `Fast` while the board works; while it is idle, time stands still, so the samples a run
+    /// As `Fast` while the board works, each step only once the host has acted on everything sent
+    /// to it (over an in-memory pipe); while it is idle, time stands still, so the samples a run
     /// sees depend on its seed and its requests alone, never on how fast the host happens to be.
     Lockstep,
     /// Simulated time follows the wall clock.
@@ -52,6 +53,11 @@ impl Clock {
     /// Simulated time stands still (the board waits for the host to read what it wrote).
     pub(super) fn hold(&mut self) {
         self.last = Instant::now();
+    }
+
+    /// Whether time steps only once the host has caught up.
+    pub(super) fn in_lockstep(&self) -> bool {
+        self.pace == Pace::Lockstep
     }
 
     /// How long a read waits for the host: no wait while the board works and time is fast-forwarded.

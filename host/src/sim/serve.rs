@@ -22,6 +22,8 @@ use super::Port;
 
 type SimServer = Server<SimMpu6050, SimFlash>;
 
+/// How long a read waits while the board in lockstep waits for the host to catch up.
+const HOST_CATCH_UP: std::time::Duration = std::time::Duration::from_micros(100);
 /// How long to wait before reading a pseudo-terminal again that has no one on the other side yet.
 const PTY_RETRY: std::time::Duration = std::time::Duration::from_millis(10);
 
@@ -90,7 +92,11 @@ impl Service {
     /// Applies a command to the simulated sensor or link.
     fn obey(&mut self, server: &mut SimServer, command: SimCommand) {
         let sensor = server.device_mut().bus_mut();
-        self.motion_ends_us = None;
+        // NOTE: only a new motion replaces a timed one; a lost sample or a change of the
+        // surroundings during a turn leaves the turn to end where it would have.
+        if matches!(command, SimCommand::Place(_) | SimCommand::Move(_) | SimCommand::MoveFor { .. }) {
+            self.motion_ends_us = None;
+        }
         match command {
             SimCommand::Place(up) => sensor.place(up),
             SimCommand::Move(motion) => sensor.set_motion(motion),
@@ -110,7 +116,11 @@ impl Service {
     /// end is gone.
     fn read<P: Port>(&self, port: &mut P, server: &SimServer, buffer: &mut [u8]) -> Option<usize> {
         let working = server.device().is_busy() && self.outgoing.is_empty();
-        let _ = port.set_read_timeout(self.clock.read_wait(working));
+        let wait = match self.waits_for_host(port, server) {
+            true => HOST_CATCH_UP,
+            false => self.clock.read_wait(working),
+        };
+        let _ = port.set_read_timeout(wait);
         match port.read(buffer) {
             Ok(n) => Some(n),
             Err(e) if matches!(e.kind(), ErrorKind::TimedOut | ErrorKind::WouldBlock | ErrorKind::Interrupted) => {
@@ -135,10 +145,20 @@ impl Service {
             self.clock.hold();
             return true;
         }
+        if self.waits_for_host(port, server) {
+            return true;
+        }
         self.let_time_pass(server);
         server.poll();
         server.drain(|frame| self.outgoing.queue(frame));
         self.outgoing.write(port)
+    }
+
+    /// Whether the board, in lockstep and working, must let the host act on all it was sent (a
+    /// cancel, say) before time moves on: so that how far a stream runs past the sample the host
+    /// stopped at depends on the requests alone, never on how fast the host happens to be.
+    fn waits_for_host<P: Port>(&self, port: &P, server: &SimServer) -> bool {
+        self.clock.in_lockstep() && server.device().is_busy() && !port.peer_settled()
     }
 
     /// Advances the sensor's time, ending a timed motion when it is due.

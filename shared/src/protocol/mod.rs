@@ -55,6 +55,10 @@ pub const MAX_CAPTURE_SECONDS: u8 = 20;
 /// NOTE: a standard deviation from fewer than about 20 samples is itself uncertain by more than 15 %
 /// (1/sqrt(2(n-1))), so a stop rule judged on it would stop early by chance.
 pub const MIN_GOAL_SAMPLES: u32 = 20;
+
+/// The range raw gyro samples span, in deg/s: the firmware sets the MPU-6050 to +-1000 deg/s, so
+/// that a hand turning the board between positions does not saturate it.
+pub const GYRO_FULL_SCALE_DPS: f32 = 1000.0;
 /// Capture length used when the user does not choose one, in seconds.
 pub const DEFAULT_CAPTURE_SECONDS: u8 = 10;
 

@@ -36,6 +36,7 @@ pub fn run(report: &mut impl FnMut(Result<'_>)) -> bool {
         && thermal_correction(report)
         && ortho9_session(report)
         && device_ortho9(report)
+        && gyro_turn_correction(report)
 }
 
 /// The quick calibration's ten orientations (six faces, four tetrahedron corners), each tilted about
@@ -84,6 +85,44 @@ fn device_ortho9(report: &mut impl FnMut(Result<'_>)) -> bool {
         name: "device-ortho9-residual-captures-iterations",
         values: &[c.residual_mg, f32::from(captures), f32::from(iterations)],
     });
+    true
+}
+
+/// Samples of the turn in [`gyro_turn_raw`].
+pub const GYRO_TURN_SAMPLES: usize = 100;
+
+/// A hand's fast turn as raw counts at +-1000 deg/s (32.8 LSB per deg/s), one second at 100 Hz: a
+/// parabolic rate profile about a tilted axis peaking at 24000 counts (732 deg/s) on z, on top of
+/// the simulated sensor's bias. Integers only, so chip and host start from the same samples.
+pub fn gyro_turn_raw() -> [RawSample; GYRO_TURN_SAMPLES] {
+    let (peak, bias) = ([12_000i32, -18_000, 24_000], [-39i32, 26, 11]);
+    let n = GYRO_TURN_SAMPLES as i32;
+    let mut raw = [RawSample { accel: [0, 0, 16384], temp: -3920, gyro: [0; 3] }; GYRO_TURN_SAMPLES];
+    for (i, sample) in raw.iter_mut().enumerate() {
+        let i = i as i32;
+        sample.gyro = [0, 1, 2].map(|k| (peak[k] * 4 * i * (n - i) / (n * n) + bias[k]) as i16);
+    }
+    raw
+}
+
+/// A calibration carrying the realistic simulated sensor's true gyro correction (its G, computed by
+/// the sim's own inverse, here on the chip) and its bias at 25 degC.
+pub fn gyro_calibration() -> Calibration {
+    let truth = firmware::sim::physics::Physics::new(0).truth;
+    let gyro = GyroCalibration { matrix: truth.gyro_matrix, bias_dps: truth.gyro_bias_dps };
+    Calibration { gyro, ..Calibration::identity(AccelRange::G2) }
+}
+
+/// The firmware's one raw-sample-to-message conversion on the turn: w = G (w_raw - b) per sample.
+fn gyro_turn_correction(report: &mut impl FnMut(Result<'_>)) -> bool {
+    let calibration = gyro_calibration();
+    let mut values = [0.0f32; 3 * GYRO_TURN_SAMPLES];
+    for (i, raw) in gyro_turn_raw().iter().enumerate() {
+        let sample = sample_message(raw, i as u32, 0, SensorConfig::default(), Some(&calibration));
+        values[3 * i..3 * i + 3].copy_from_slice(&sample.gyro_dps);
+    }
+    report(Result { name: "gyro-turn-corrected", values: &values });
+    report(Result { name: "gyro-matrix", values: calibration.gyro.matrix.as_flattened() });
     true
 }
 

@@ -124,7 +124,7 @@ fn host_thermal_correction(raw: &firmware::sensor::RawSample) -> [f64; 7] {
         .collect();
     let rate: Vec<f64> = (0..3)
         .map(|k| {
-            f64::from(raw.gyro[k]) / 131.0 - f64::from(calibration.gyro.bias_dps[k]) - poly(&model.gyro_bias_dps, k)
+            f64::from(raw.gyro[k]) / 32.8 - f64::from(calibration.gyro.bias_dps[k]) - poly(&model.gyro_bias_dps, k)
         })
         .collect();
     let row = |m: &[[f32; 3]; 3], v: &[f64], i: usize| (0..3).map(|j| f64::from(m[i][j]) * v[j]).sum::<f64>();
@@ -210,4 +210,49 @@ fn the_chip_s_fit_on_request_equals_the_host_s_f64_fit_of_the_same_captures() {
          M within {worst_m:.1e}, o within {worst_o:.1e} g",
         host.iterations
     );
+}
+
+/// The chip's gyro correction of a fast turn against the host's: per sample against w = G (w_raw -
+/// b) in f64 (32.8 LSB per deg/s at +-1000 deg/s, Product Specification 6.1), and the turn's angle
+/// integrated by the host's gyro fit from the chip's corrected rates against the same from the raw
+/// rates with the host applying G and b.
+#[test]
+fn the_chip_s_gyro_correction_of_a_fast_turn_equals_the_host_s() {
+    let Some(target) = on_target() else { return };
+    let on_chip: Vec<f64> = target["gyro-turn-corrected"].iter().map(|&b| f64::from(f32::from_bits(b))).collect();
+    let calibration = qemu_tests::gyro_calibration();
+    // G as the chip computed it (the sim's f32 inverse) equals the host's build of the same truth.
+    let chip_g: Vec<f32> = target["gyro-matrix"].iter().map(|&b| f32::from_bits(b)).collect();
+    assert_eq!(chip_g, calibration.gyro.matrix.as_flattened(), "the chip's G and the host's");
+    let g = nalgebra::Matrix3::from_fn(|i, j| f64::from(calibration.gyro.matrix[i][j]));
+    let bias = calibration.gyro.bias_dps.map(f64::from);
+    let raw: Vec<[f64; 3]> = qemu_tests::gyro_turn_raw().iter().map(|s| s.gyro.map(|c| f64::from(c) / 32.8)).collect();
+    for (i, w) in raw.iter().enumerate() {
+        let want = g * nalgebra::Vector3::from_fn(|k, _| w[k] - bias[k]);
+        for k in 0..3 {
+            let got = on_chip[3 * i + k];
+            // f32 on the chip against f64: rates up to 750 deg/s to a few units in f32's last place.
+            assert!(
+                (got - want[k]).abs() <= 2e-6 * want[k].abs().max(1.0),
+                "sample {i} axis {k}: chip {got} vs host {}",
+                want[k]
+            );
+        }
+    }
+    let turn = |rates_dps: Vec<[f64; 3]>, bias_dps: [f64; 3]| accelcal::fit::gyro::Turn {
+        rates_dps,
+        interval_s: 0.01,
+        bias_before_dps: bias_dps,
+        bias_after_dps: bias_dps,
+        up_before: [0.0, 0.0, 1.0],
+        up_after: [0.0, 0.0, 1.0],
+    };
+    let chip_rates: Vec<[f64; 3]> = on_chip.chunks(3).map(|c| [c[0], c[1], c[2]]).collect();
+    let chip_deg = accelcal::fit::gyro::turned_deg(&turn(chip_rates, [0.0; 3]), &nalgebra::Matrix3::identity());
+    let host_deg = accelcal::fit::gyro::turned_deg(&turn(raw.clone(), bias), &g);
+    assert!((chip_deg - host_deg).abs() < 1e-4, "chip {chip_deg} deg vs host {host_deg} deg");
+    // Not a no-op: G moves this turn's angle by tenths of a degree from the raw one.
+    let uncorrected = accelcal::fit::gyro::turned_deg(&turn(raw, bias), &nalgebra::Matrix3::identity());
+    assert!((host_deg - uncorrected).abs() > 0.1, "G changed the turn from {uncorrected} to {host_deg} deg only");
+    println!("the fast turn: {chip_deg:.5} deg on the chip, {host_deg:.5} deg on the host, {uncorrected:.5} deg raw");
 }

@@ -47,3 +47,8 @@ pub(super) fn integrate(turn: &Turn, g: &Matrix3<f64>) -> UnitQuaternion<f64> {
 pub fn rotate_up(turn: &Turn, g: &Matrix3<f64>) -> Vector3<f64> {
     integrate(turn, g).inverse_transform_vector(&Vector3::from(turn.up_before))
 }
+
+/// The angle, in degrees, the body turned through over `turn`, with `g` applied.
+pub fn turned_deg(turn: &Turn, g: &Matrix3<f64>) -> f64 {
+    integrate(turn, g).angle().to_degrees()
+}

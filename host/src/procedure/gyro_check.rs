@@ -1,0 +1,169 @@
+//! The gyro's verification: after the calibration is on the chip, one fresh quarter turn, streamed
+//! corrected by the chip (w = G (w_raw - b(T))) and integrated on the host, set beside the angle the
+//! calibrated accelerometer measured between the rests before and after it. As anyone using a gyro
+//! does, what the rate reads at rest just before and after the turn is taken as zero: the bias
+//! stored at calibration has drifted since by a few hundredths of a deg/s, which over a turn of
+//! seconds would hide the scale error being checked.
+
+use nalgebra::Matrix3;
+use serde::Serialize;
+use shared::orientation::angle_between_deg;
+use shared::protocol::{Sample, StreamKind};
+
+use super::moves::{Problem, Recording, Watch};
+use super::{Feedback, Hand, ProcedureError};
+use crate::fit::gyro::{turned_deg, GyroFit, Turn};
+use crate::limits::{MAX_MOVE_SECONDS, TURN_CHECK_REST_SECONDS};
+use crate::link::{Client, Port, StreamRequest};
+
+/// What the verification turn measured, in degrees.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct TurnCheck {
+    /// The turn's angle by the calibrated accelerometer (between the rests before and after).
+    pub accel_deg: f64,
+    /// Its standard uncertainty (the accelerometer's noise over the rests).
+    pub accel_uncertainty_deg: f64,
+    /// The turn's angle by the calibrated gyro, integrated.
+    pub gyro_deg: f64,
+    /// Its standard uncertainty: the rate noise integrated, and G's standard errors along the turn.
+    pub gyro_uncertainty_deg: f64,
+    /// The same turn through the raw gyro (bias removed, G undone), when G was fitted.
+    pub raw_deg: Option<f64>,
+}
+
+impl TurnCheck {
+    /// The line shown to the user.
+    pub fn line(&self) -> String {
+        let raw = self
+            .raw_deg
+            .map_or(" (the gyro's scale is not calibrated: the uncertainty is its noise alone)".to_owned(), |r| {
+                format!(" (uncalibrated {r:.2})")
+            });
+        format!(
+            "gyro check: a {:.2} +- {:.2} degree turn (by the accelerometer) now reads {:.2} +- {:.2} degrees{raw}",
+            self.accel_deg, self.accel_uncertainty_deg, self.gyro_deg, self.gyro_uncertainty_deg
+        )
+    }
+}
+
+/// Streams the board at rest, asks `hand` for a quarter turn, and streams until it rests again;
+/// `Ok(Err(why))` when the turn could not be measured.
+pub fn check_turn<P: Port>(
+    client: &mut Client<P>,
+    hand: &mut dyn Hand,
+    rate_hz: u16,
+    fit: Option<&GyroFit>,
+    feedback: &mut dyn Feedback,
+) -> Result<Result<TurnCheck, String>, ProcedureError> {
+    let (head, recorded) = stream_turn(client, hand, rate_hz, feedback)?;
+    Ok(match recorded {
+        Ok(recording) => Ok(measure(&head, &recording.samples, rate_hz, fit)),
+        Err(problem) => Err(format!("gyro check: {problem}")),
+    })
+}
+
+/// The rest before the turn (its samples), and the turn with the rest after it, or why not.
+fn stream_turn<P: Port>(
+    client: &mut Client<P>,
+    hand: &mut dyn Hand,
+    rate_hz: u16,
+    feedback: &mut dyn Feedback,
+) -> Result<(Vec<Sample>, Result<Recording, Problem>), ProcedureError> {
+    let rest = (TURN_CHECK_REST_SECONDS * f64::from(rate_hz)).ceil() as usize;
+    let request = StreamRequest { kind: StreamKind::Calibrated, rate_hz, count: MAX_MOVE_SECONDS * u32::from(rate_hz) };
+    // NOTE: the rest after the turn is taken from a still run a quarter longer than it, so that the
+    // last instants of the turn (below the stillness threshold, not yet zero) stay out of it.
+    let mut watch = Watch::new([0.0; 3], rest + rest / 4);
+    let (mut head, mut asked) = (Vec::with_capacity(rest), None);
+    let tally = client.stream_while(request, |sample| {
+        if head.len() == rest {
+            return watch.push(sample);
+        }
+        head.push(*sample);
+        if head.len() == rest {
+            asked = Some(hand.turn_quarter(feedback));
+        }
+        true
+    })?;
+    asked.transpose()?;
+    Ok((head, watch.finish(tally.lost(), "the verification turn")))
+}
+
+/// The turn's angle both ways, from the rest before (`head`), the move and the rest after.
+fn measure(head: &[Sample], moved: &[Sample], rate_hz: u16, fit: Option<&GyroFit>) -> TurnCheck {
+    let tail = &moved[moved.len().saturating_sub(head.len())..];
+    let (before, after) = (mean_accel(head), mean_accel(tail));
+    let turn = Turn {
+        rates_dps: moved.iter().map(|s| s.gyro_dps.map(f64::from)).collect(),
+        interval_s: 1.0 / f64::from(rate_hz),
+        bias_before_dps: mean_gyro(head),
+        bias_after_dps: mean_gyro(tail),
+        up_before: before,
+        up_after: after,
+    };
+    let gyro_deg = turned_deg(&turn, &Matrix3::identity());
+    let undo = fit.and_then(|f| Matrix3::from(f.matrix).transpose().try_inverse());
+    TurnCheck {
+        accel_deg: angle_between_deg(before, after),
+        accel_uncertainty_deg: accel_uncertainty_deg(head, tail),
+        gyro_deg,
+        gyro_uncertainty_deg: gyro_uncertainty_deg(head, &turn, gyro_deg, fit),
+        raw_deg: undo.map(|g| turned_deg(&turn, &g)),
+    }
+}
+
+fn mean_accel(samples: &[Sample]) -> [f64; 3] {
+    mean_of(samples, |s| s.accel_g)
+}
+
+fn mean_gyro(samples: &[Sample]) -> [f64; 3] {
+    mean_of(samples, |s| s.gyro_dps)
+}
+
+fn mean_of(samples: &[Sample], pick: impl Fn(&Sample) -> [f32; 3]) -> [f64; 3] {
+    let n = samples.len().max(1) as f64;
+    [0, 1, 2].map(|k| samples.iter().map(|s| f64::from(pick(s)[k])).sum::<f64>() / n)
+}
+
+/// Standard deviation of one axis over `samples`, from `pick`.
+fn scatter(samples: &[Sample], pick: impl Fn(&Sample) -> f64) -> f64 {
+    let n = samples.len().max(2) as f64;
+    let mean = samples.iter().map(&pick).sum::<f64>() / n;
+    (samples.iter().map(|s| (pick(s) - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt()
+}
+
+/// The angle between two mean directions of 1 g, each over n samples of scatter s per axis:
+/// each mean is off by s / sqrt(n) across it, so the angle by sqrt(2) s / sqrt(n) radians.
+fn accel_uncertainty_deg(head: &[Sample], tail: &[Sample]) -> f64 {
+    let per_end = |samples: &[Sample]| {
+        let s = (0..3).map(|k| scatter(samples, |x| f64::from(x.accel_g[k]))).fold(0.0, f64::max);
+        s * s / samples.len().max(1) as f64
+    };
+    (per_end(head) + per_end(tail)).sqrt().to_degrees()
+}
+
+/// The integrated rate noise (per-sample scatter at rest times dt times sqrt(samples)), the error
+/// of the bias taken at rest (scatter / sqrt(rest samples), over the turn's duration), and G's
+/// standard errors projected on the turn's axis, added in quadrature.
+fn gyro_uncertainty_deg(head: &[Sample], turn: &Turn, turned: f64, fit: Option<&GyroFit>) -> f64 {
+    let rate_noise = (0..3).map(|k| scatter(head, |x| f64::from(x.gyro_dps[k]))).fold(0.0, f64::max);
+    let samples = turn.rates_dps.len() as f64;
+    let white_deg = rate_noise * turn.interval_s * samples.sqrt();
+    let bias_deg = rate_noise / (head.len().max(1) as f64).sqrt() * turn.interval_s * samples;
+    let noise_deg = white_deg.hypot(bias_deg);
+    let axis = turn_axis(turn);
+    let scale_var = fit.map_or(0.0, |f| {
+        (0..3)
+            .flat_map(|i| (0..3).map(move |j| (i, j)))
+            .map(|(i, j)| (axis[i] * axis[j] * f.std_errors[i][j]).powi(2))
+            .sum()
+    });
+    (noise_deg * noise_deg + turned * turned * scale_var).sqrt()
+}
+
+/// The unit direction of the summed rate: the axis of a turn about one line.
+fn turn_axis(turn: &Turn) -> [f64; 3] {
+    let sum = turn.rates_dps.iter().fold([0.0; 3], |a, r| shared::linalg::add(a, *r));
+    let n = shared::linalg::norm(sum).max(1e-12);
+    sum.map(|v| v / n)
+}
