@@ -5,8 +5,10 @@
 
 use accelcal::calibration;
 use accelcal::fit::gyro::GyroFitError;
+use accelcal::procedure::stop_rule::{Noise, StopRule};
 use accelcal::procedure::{
-    self, CollectOptions, Feedback, Hand, Moves, Orientation, ProcedureError, Silent, SimulatedHand, TurnCheck,
+    self, AdaptiveOptions, CollectOptions, Feedback, Hand, Moves, Orientation, ProcedureError, Silent, SimulatedHand,
+    TurnCheck,
 };
 use accelcal::session::Session;
 use accelcal::sim::{SimBoard, SimCommand, SimSensor};
@@ -15,6 +17,8 @@ use std::time::Duration;
 
 /// The tool's hand is this many degrees off, as `calibrate --sim` places it by default.
 const PLACEMENT_DEG: f64 = 3.0;
+/// `calibrate`'s default --target-mg.
+const DEFAULT_TARGET_MG: f64 = 0.2;
 /// The bounds: scale within 0.2 %, misalignment within 0.1 degree.
 const SCALE_BOUND: f64 = 0.002;
 const MISALIGNMENT_BOUND_DEG: f64 = 0.1;
@@ -29,11 +33,13 @@ struct Recovered {
     misalignment_deg: f64,
     largest_std_error: f64,
     turns: usize,
+    captures: usize,
     check: TurnCheck,
 }
 
-/// A default calibration (14 positions) on the realistic sensor, G fitted to its moves, uploaded,
-/// and a verification turn on the chip's correction.
+/// A default calibration (adaptive: positions until the fit predicts 0.2 mg, each captured until
+/// its mean is known) on the realistic sensor, G fitted to its moves, uploaded, and a verification
+/// turn on the chip's correction.
 fn default_session(seed: u64) -> Recovered {
     let (mut connection, board) = SimBoard::in_process(seed, SimSensor::Realistic).unwrap();
     let mut hand = SimulatedHand::new(board.controls(), PLACEMENT_DEG, seed);
@@ -42,13 +48,20 @@ fn default_session(seed: u64) -> Recovered {
     let client = &mut connection.client;
     let targets = procedure::targets(false);
     let feedback = &mut Silent { yes: true };
-    procedure::collect_into(client, &mut hand, &targets, &options(), feedback, &mut session, &mut moves, &mut |_| {
-        Ok(())
-    })
+    let rule = StopRule { target_mg: DEFAULT_TARGET_MG, noise: Noise::Measured, rate_hz };
+    let options = AdaptiveOptions { rule, wait_limit: Some(Duration::from_secs(60)), clock: None };
+    procedure::collect_adaptive(
+        client,
+        (&mut hand, &mut moves),
+        &targets,
+        &options,
+        feedback,
+        &mut session,
+        &mut |_| Ok(()),
+    )
     .unwrap();
     assert!(moves.dropped.is_empty(), "{:?}", moves.dropped);
-    let fit = procedure::host_fit(&session).unwrap();
-    let accel = calibration::from_fit(&fit, &session, connection.info.config).unwrap();
+    let (accel, _, _) = procedure::adaptive_calibration(&session, connection.info.config).unwrap();
     let gyro = procedure::fit_moves(&moves.recorded, &session, &accel).unwrap();
     let chosen = calibration::with_gyro(&accel, &gyro).unwrap();
     client.set_calibration(chosen).unwrap();
@@ -61,7 +74,14 @@ fn default_session(seed: u64) -> Recovered {
     let off = (0..3).flat_map(|i| (0..3).filter(move |&j| j != i).map(move |j| (i, j)));
     let misalignment_deg = off.map(|(i, j)| residual[(i, j)].abs()).fold(0.0, f64::max).to_degrees();
     let largest_std_error = (0..3).map(|k| gyro.std_errors[k][k]).fold(0.0, f64::max);
-    Recovered { scale_error, misalignment_deg, largest_std_error, turns: gyro.turns, check }
+    Recovered {
+        scale_error,
+        misalignment_deg,
+        largest_std_error,
+        turns: gyro.turns,
+        captures: session.captures.len(),
+        check,
+    }
 }
 
 fn widen(m: [[f32; 3]; 3]) -> Matrix3<f64> {
@@ -86,7 +106,7 @@ fn default_sessions_recover_the_gyro_matrix_within_0_2_percent_and_0_1_degree() 
             c.gyro_uncertainty_deg,
             c.raw_deg.unwrap_or(f64::NAN)
         );
-        assert_eq!(r.turns, 13, "every move between the 14 positions is used");
+        assert_eq!(r.turns, r.captures - 1, "every move between the positions is used");
         assert!(r.scale_error <= SCALE_BOUND, "seed {seed}: scale error {}", r.scale_error);
         assert!(r.misalignment_deg <= MISALIGNMENT_BOUND_DEG, "seed {seed}: misalignment {}", r.misalignment_deg);
         // The check turn: the gyro's angle agrees with the accelerometer's within 4 combined
