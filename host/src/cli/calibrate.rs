@@ -5,36 +5,28 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
-use shared::protocol::{DeviceInfo, SensorConfig};
+use shared::protocol::DeviceInfo;
 use shared::Calibration;
 
 use super::adaptive;
 use super::args::CalibrateArgs;
+use super::choice::{fit_with_gyro, show_choice, Fitted};
 use super::device::Opened;
 use super::terminal::feedback;
-use crate::calibration::{self, describe};
+use crate::calibration;
 use crate::error::Error;
-use crate::fit::Fit;
-use crate::link::{ChipOrtho9, Client, LinkError, Port};
-use crate::procedure::{self, CollectOptions, Feedback, Moves, Verification};
+use crate::link::{Client, LinkError, Port};
+use crate::procedure::{self, CollectOptions, Feedback, Hand, Moves, ProcedureError, TurnCheck, Verification};
 use crate::report::gyro::GyroOutcome;
 use crate::report::{self, CalibrateReport};
-use crate::session::{unix_time_s, BoardRecord, Session};
-
-/// The calibrations a calibration chooses between.
-struct Fitted {
-    session: Session,
-    chip: Option<ChipOrtho9>,
-    host: Option<Fit>,
-    chosen: Calibration,
-}
+use crate::session::{unix_time_s, BoardRecord, Session, SessionError};
 
 /// The session of this run and where it is kept.
-struct Kept {
-    session: Session,
-    path: Option<PathBuf>,
+pub(super) struct Kept {
+    pub(super) session: Session,
+    pub(super) path: Option<PathBuf>,
     /// Whether it continues a session begun in an earlier run.
-    resumed: bool,
+    pub(super) resumed: bool,
 }
 
 /// `accelcal calibrate`: captures, fit, upload, save, verification.
@@ -52,11 +44,7 @@ pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
     opened.connection.client.interrupt_on(interrupt.clone());
     let (moves, first_capture_s) = collect(args, &mut opened, &mut kept, feedback.as_mut())?;
     let adaptive = adaptive::is_adaptive(args, &kept.session);
-    let config = opened.connection.info.config;
-    let mut fitted = choose(&mut opened.connection.client, &kept, config, adaptive, feedback.as_mut())?;
-    let (chosen, gyro) = super::gyro::fit(&moves, &fitted.session, &fitted.chosen, feedback.as_mut());
-    fitted.chosen = chosen;
-    fitted.session.gyro_turns = super::gyro::summaries(&moves, &fitted.session, &chosen, &gyro);
+    let (fitted, gyro) = fit_with_gyro(&mut opened, &kept, &moves, adaptive, feedback.as_mut())?;
     show_choice(feedback.as_mut(), &fitted);
     let client = &mut opened.connection.client;
     if interrupt.load(Ordering::SeqCst) {
@@ -80,22 +68,14 @@ fn collect(
     feedback: &mut dyn Feedback,
 ) -> Result<(Moves, Option<f64>), Error> {
     let (mut hand, wait_limit) = opened.hand(args.sim_placement_deg, args.device.seed);
-    let hand = hand.as_mut();
     let path = kept.path.clone();
     let mut keep = |session: &Session| path.as_deref().map_or(Ok(()), |p| session.save(p));
     let mut moves = Moves::at(opened.connection.info.config.sample_rate_hz);
-    let result = if adaptive::is_adaptive(args, &kept.session) {
-        adaptive::collect(args, opened, (hand, &mut moves), wait_limit, &mut kept.session, &mut keep, feedback)
+    let (hand, session) = (hand.as_mut(), &mut kept.session);
+    let result = if adaptive::is_adaptive(args, session) {
+        adaptive::collect(args, opened, (hand, &mut moves), wait_limit, session, &mut keep, feedback)
     } else {
-        let options = CollectOptions {
-            seconds: args.seconds.unwrap_or_else(|| procedure::capture_seconds(kept.session.quick)),
-            wait_limit,
-        };
-        let (targets, started) = (procedure::targets(kept.session.quick), opened.clock()());
-        let client = &mut opened.connection.client;
-        let session = &mut kept.session;
-        procedure::collect_into(client, hand, &targets, &options, feedback, session, &mut moves, &mut keep)
-            .map(|()| Some(started))
+        collect_fixed(args, opened, (hand, &mut moves), wait_limit, session, &mut keep, feedback)
     };
     match (result, &kept.path) {
         (Ok(first), _) => Ok((moves, first)),
@@ -107,6 +87,24 @@ fn collect(
         }),
         (Err(source), _) => Err(source.into()),
     }
+}
+
+/// Collects with a fixed capture length (`--seconds`, or `--quick`'s); the board's clock when the
+/// collection started.
+fn collect_fixed(
+    args: &CalibrateArgs,
+    opened: &mut Opened,
+    (hand, moves): (&mut dyn Hand, &mut Moves),
+    wait_limit: Option<std::time::Duration>,
+    session: &mut Session,
+    keep: &mut dyn FnMut(&Session) -> Result<(), SessionError>,
+    feedback: &mut dyn Feedback,
+) -> Result<Option<f64>, ProcedureError> {
+    let seconds = args.seconds.unwrap_or_else(|| procedure::capture_seconds(session.quick));
+    let options = CollectOptions { seconds, wait_limit };
+    let (targets, started) = (procedure::targets(session.quick), opened.clock()());
+    let client = &mut opened.connection.client;
+    procedure::collect_into(client, hand, &targets, &options, feedback, session, moves, keep).map(|()| Some(started))
 }
 
 /// The verification, the session kept with it and its report beside it, then the result.
@@ -130,16 +128,30 @@ fn finish(
     if let Some(stem) = kept_at {
         keep_with_report(&fitted.session, &verification, stem, feedback)?;
     }
+    let mut report = report_of(opened, (fitted, gyro), verification, check);
+    report.board_seconds = Some(board_seconds);
+    print_report(&report, args.json);
+    Ok(())
+}
+
+/// The run's report: the calibration chosen, the fits beside it, the verification and the gyro's
+/// check, and with `--sim` the simulated sensor's truth (the gyro's at the session's temperature).
+fn report_of(
+    opened: &Opened,
+    (fitted, gyro): (&Fitted, &GyroOutcome),
+    verification: Verification,
+    check: Option<TurnCheck>,
+) -> CalibrateReport {
     let truth = opened.sim.as_ref().map(|board| board.truth());
     let session_temp_c = calibration::thermal_reference(&fitted.chosen).ref_temp_c;
     let truth_gyro = opened.sim.as_ref().map(|board| board.truth_at(session_temp_c));
     let captures = fitted.session.captures.len();
     let chip = fitted.chip.as_ref().map(|c| &c.calibration);
-    let mut report = CalibrateReport::new(&fitted.chosen, chip, fitted.host.as_ref(), truth, verification, captures)
-        .with_gyro(gyro, truth_gyro.as_ref(), check);
-    report.board_seconds = Some(board_seconds);
-    print_report(&report, args.json);
-    Ok(())
+    CalibrateReport::new(&fitted.chosen, chip, fitted.host.as_ref(), truth, verification, captures).with_gyro(
+        gyro,
+        truth_gyro.as_ref(),
+        check,
+    )
 }
 
 /// Saves the session again with its verification, writes its report beside it, and says where.
@@ -228,55 +240,6 @@ fn upload_if_confirmed<P: Port>(
     client.save_calibration()?;
     feedback.say("uploaded and saved; now checking it at fresh orientations");
     Ok(true)
-}
-
-/// The on-chip fit (of captures all taken in this run), and for a full calibration the host's fit,
-/// which is then the one chosen; a resumed `--quick` session is fitted by the same solver on the
-/// host.
-fn choose<P: Port>(
-    client: &mut Client<P>,
-    kept: &Kept,
-    config: SensorConfig,
-    adaptive: bool,
-    feedback: &mut dyn Feedback,
-) -> Result<Fitted, Error> {
-    let session = kept.session.clone();
-    if adaptive {
-        // NOTE: the chip's own ortho9 fit of its latest captures, only for comparison.
-        let chip = if kept.resumed { None } else { client.fit_ortho9().ok() };
-        let (chosen, fit) = adaptive::calibration(&session, config, feedback)?;
-        return Ok(Fitted { session, chip, host: Some(fit), chosen });
-    }
-    let chip = if kept.resumed { None } else { Some(client.fit_ortho9()?) };
-    match (session.quick, chip) {
-        (true, Some(chip)) => Ok(Fitted { session, chip: Some(chip), host: None, chosen: chip.calibration }),
-        (quick, chip) => {
-            let fit = if quick { procedure::host_quick_fit(&session)? } else { procedure::host_fit(&session)? };
-            let chosen = calibration::from_fit(&fit, &session, config)?;
-            Ok(Fitted { session, chip, host: Some(fit), chosen })
-        }
-    }
-}
-
-/// The chosen calibration, the host fit's parameters, and the chip's fit beside them.
-fn show_choice(feedback: &mut dyn Feedback, fitted: &Fitted) {
-    feedback.say(&describe(&fitted.chosen));
-    if let Some(fit) = &fitted.host {
-        for p in &fit.parameters {
-            let error = p.std_error.map_or(String::new(), |e| format!(" +- {e:.1e}"));
-            feedback.say(&format!("  {:<5} {:+.6}{error}", p.name, crate::report::shown(p.value, 6)));
-        }
-    }
-    match (&fitted.chip, &fitted.host) {
-        (Some(chip), Some(_)) => {
-            feedback.say(&format!("on-chip ortho9 fit for comparison: {}", describe(&chip.calibration)))
-        }
-        (Some(chip), None) => feedback.say(&format!(
-            "fitted on the chip (ortho9, f32): {} captures, | |a| - 1 g | rms {:.3} mg over them, {} iterations",
-            chip.captures, chip.calibration.residual_mg, chip.iterations
-        )),
-        _ => {}
-    }
 }
 
 fn print_report(report: &CalibrateReport, json: bool) {

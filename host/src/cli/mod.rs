@@ -6,6 +6,7 @@ mod adaptive;
 pub mod args;
 mod board;
 mod calibrate;
+mod choice;
 mod device;
 mod fit;
 mod gyro;

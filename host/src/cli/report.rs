@@ -34,14 +34,7 @@ pub struct ReportArgs {
 
 /// Reads the session, builds its report, writes the page and prints the text (or the JSON).
 pub(super) fn report(args: &ReportArgs) -> Result<(), Error> {
-    let session = Session::load(&args.session)?;
-    let mut report = build(&session, &args.session)?;
-    if let Some(path) = &args.thermal {
-        report = report.with_temperature(thermal_section(path)?);
-    }
-    if let Some(path) = &args.noise {
-        report = report.with_allan_deviation(noise_section(path)?);
-    }
+    let report = with_given(args)?;
     if args.json {
         println!("{}", report::json::session_report(&report));
         if let Some(path) = &args.output {
@@ -54,6 +47,19 @@ pub(super) fn report(args: &ReportArgs) -> Result<(), Error> {
     print!("{}", report::text::session_report(&report));
     println!("report written to {}", path.display());
     Ok(())
+}
+
+/// The session's report with the temperature and noise sections given on the command line.
+fn with_given(args: &ReportArgs) -> Result<SessionReport, Error> {
+    let session = Session::load(&args.session)?;
+    let mut report = build(&session, &args.session)?;
+    if let Some(path) = &args.thermal {
+        report = report.with_temperature(thermal_section(path)?);
+    }
+    if let Some(path) = &args.noise {
+        report = report.with_allan_deviation(noise_section(path)?);
+    }
+    Ok(report)
 }
 
 /// The temperature section from the output of `accelcal thermal --json` at `path`.

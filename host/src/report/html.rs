@@ -16,13 +16,7 @@ const STYLE: &str = include_str!("report.css");
 
 /// The report as an HTML page.
 pub fn page(report: &SessionReport) -> Result<String, PlotError> {
-    let mut out = String::from("<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">");
-    out.push_str("<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">");
-    let _ = write!(out, "<title>accelcal report</title><style>{STYLE}</style></head><body><main>");
-    out.push_str("<h1>accelcal calibration report</h1>");
-    let class = if report.verdict.trusted { "trusted" } else { "untrusted" };
-    let _ =
-        write!(out, "<p class=\"verdict {class}\" data-json=\"/verdict/line\">{}</p>", escape(&report.verdict.line));
+    let mut out = head(report);
     board(&mut out, &report.board);
     sphere(&mut out, report)?;
     parameters(&mut out, report);
@@ -35,6 +29,18 @@ pub fn page(report: &SessionReport) -> Result<String, PlotError> {
     gyro_turns(&mut out, report)?;
     out.push_str("</main></body></html>\n");
     Ok(out)
+}
+
+/// The page's head, title and verdict line.
+fn head(report: &SessionReport) -> String {
+    let mut out = String::from("<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">");
+    out.push_str("<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">");
+    let _ = write!(out, "<title>accelcal report</title><style>{STYLE}</style></head><body><main>");
+    out.push_str("<h1>accelcal calibration report</h1>");
+    let class = if report.verdict.trusted { "trusted" } else { "untrusted" };
+    let _ =
+        write!(out, "<p class=\"verdict {class}\" data-json=\"/verdict/line\">{}</p>", escape(&report.verdict.line));
+    out
 }
 
 fn board(out: &mut String, board: &Board) {

@@ -144,6 +144,16 @@ fn number(value: f64) -> String {
 pub fn session_report(report: &SessionReport) -> String {
     let mut out = format!("{}\n", report.verdict.line);
     write_board(&mut out, &report.board);
+    write_session_fit(&mut out, report);
+    if let Some(comparison) = &report.comparison {
+        write_comparison(&mut out, comparison);
+    }
+    write_extras(&mut out, report);
+    out
+}
+
+/// The fit's parameters, and each position's residual before and after.
+fn write_session_fit(out: &mut String, report: &SessionReport) {
     let fit = &report.fit;
     let _ = writeln!(out, "model {}: cost {:.3e}, | |a| - 1 g | rms {:.3} mg", fit.model, fit.cost, fit.rms_mg);
     for p in &fit.parameters {
@@ -154,17 +164,9 @@ pub fn session_report(report: &SessionReport) -> String {
         let (before, after) = (p.residual_before_mg, p.residual_after_mg);
         let _ = writeln!(out, "  {:<8} |v| - 1 g: {before:>9.2} mg raw {after:>8.3} mg calibrated", p.name);
     }
-    if let Some(comparison) = &report.comparison {
-        write_comparison(&mut out, comparison);
-    }
-    write_extras(&mut out, report);
-    if let Some(turns) = &report.gyro_turns {
-        let _ = writeln!(out, "{}", super::gyro::turns_line(turns));
-    }
-    out
 }
 
-/// The temperature model and the noise, one line each, when given.
+/// The temperature model, the noise and the gyro's turns, one line each, when given.
 fn write_extras(out: &mut String, report: &SessionReport) {
     if let Some(t) = &report.temperature {
         let [x, y, z] = t.offset_change_mg;
@@ -176,15 +178,15 @@ fn write_extras(out: &mut String, report: &SessionReport) {
     }
     if let Some(a) = &report.allan_deviation {
         let density = |i: usize| a.axes[i].white_noise_density.map_or("-".to_owned(), |d| format!("{d:.1}"));
+        let (x, y, z) = (density(0), density(1), density(2));
+        let (n, rate) = (a.samples, a.sample_rate_hz);
         let _ = writeln!(
             out,
-            "noise: white noise density {} / {} / {} ug/sqrt(Hz) (x y z, one-sided); {} samples at {} Hz",
-            density(0),
-            density(1),
-            density(2),
-            a.samples,
-            a.sample_rate_hz
+            "noise: white noise density {x} / {y} / {z} ug/sqrt(Hz) (x y z, one-sided); {n} samples at {rate} Hz"
         );
+    }
+    if let Some(turns) = &report.gyro_turns {
+        let _ = writeln!(out, "{}", super::gyro::turns_line(turns));
     }
 }
 

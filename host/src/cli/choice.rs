@@ -1,0 +1,90 @@
+//! What `calibrate` uploads: the chip's fit or the host's, chosen and shown, with the gyro's G
+//! fitted to the moves between the positions.
+
+use shared::protocol::SensorConfig;
+use shared::Calibration;
+
+use super::adaptive;
+use super::calibrate::Kept;
+use super::device::Opened;
+use crate::calibration::{self, describe};
+use crate::error::Error;
+use crate::fit::Fit;
+use crate::link::{ChipOrtho9, Client, Port};
+use crate::procedure::{self, Feedback, Moves};
+use crate::report::gyro::GyroOutcome;
+use crate::session::Session;
+
+/// The calibrations a calibration chooses between.
+pub(super) struct Fitted {
+    pub session: Session,
+    pub chip: Option<ChipOrtho9>,
+    pub host: Option<Fit>,
+    pub chosen: Calibration,
+}
+
+/// The accelerometer's calibration chosen, and the gyro's G fitted to the moves and put into it;
+/// the session keeps the turns.
+pub(super) fn fit_with_gyro(
+    opened: &mut Opened,
+    kept: &Kept,
+    moves: &Moves,
+    adaptive: bool,
+    feedback: &mut dyn Feedback,
+) -> Result<(Fitted, GyroOutcome), Error> {
+    let config = opened.connection.info.config;
+    let mut fitted = choose(&mut opened.connection.client, kept, config, adaptive, feedback)?;
+    let (chosen, gyro) = super::gyro::fit(moves, &fitted.session, &fitted.chosen, feedback);
+    fitted.chosen = chosen;
+    fitted.session.gyro_turns = super::gyro::summaries(moves, &fitted.session, &chosen, &gyro);
+    Ok((fitted, gyro))
+}
+
+/// The on-chip fit (of captures all taken in this run), and for a full calibration the host's fit,
+/// which is then the one chosen; a resumed `--quick` session is fitted by the same solver on the
+/// host.
+fn choose<P: Port>(
+    client: &mut Client<P>,
+    kept: &Kept,
+    config: SensorConfig,
+    adaptive: bool,
+    feedback: &mut dyn Feedback,
+) -> Result<Fitted, Error> {
+    let session = kept.session.clone();
+    if adaptive {
+        // NOTE: the chip's own ortho9 fit of its latest captures, only for comparison.
+        let chip = if kept.resumed { None } else { client.fit_ortho9().ok() };
+        let (chosen, fit) = adaptive::calibration(&session, config, feedback)?;
+        return Ok(Fitted { session, chip, host: Some(fit), chosen });
+    }
+    let chip = if kept.resumed { None } else { Some(client.fit_ortho9()?) };
+    match (session.quick, chip) {
+        (true, Some(chip)) => Ok(Fitted { session, chip: Some(chip), host: None, chosen: chip.calibration }),
+        (quick, chip) => {
+            let fit = if quick { procedure::host_quick_fit(&session)? } else { procedure::host_fit(&session)? };
+            let chosen = calibration::from_fit(&fit, &session, config)?;
+            Ok(Fitted { session, chip, host: Some(fit), chosen })
+        }
+    }
+}
+
+/// The chosen calibration, the host fit's parameters, and the chip's fit beside them.
+pub(super) fn show_choice(feedback: &mut dyn Feedback, fitted: &Fitted) {
+    feedback.say(&describe(&fitted.chosen));
+    if let Some(fit) = &fitted.host {
+        for p in &fit.parameters {
+            let error = p.std_error.map_or(String::new(), |e| format!(" +- {e:.1e}"));
+            feedback.say(&format!("  {:<5} {:+.6}{error}", p.name, crate::report::shown(p.value, 6)));
+        }
+    }
+    match (&fitted.chip, &fitted.host) {
+        (Some(chip), Some(_)) => {
+            feedback.say(&format!("on-chip ortho9 fit for comparison: {}", describe(&chip.calibration)))
+        }
+        (Some(chip), None) => feedback.say(&format!(
+            "fitted on the chip (ortho9, f32): {} captures, | |a| - 1 g | rms {:.3} mg over them, {} iterations",
+            chip.captures, chip.calibration.residual_mg, chip.iterations
+        )),
+        _ => {}
+    }
+}
