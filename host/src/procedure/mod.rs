@@ -78,7 +78,8 @@ pub struct CollectOptions {
 /// NOTE: a board just powered on warms, and its offsets drift with it (about 0.03 mg/s, simulated
 /// sensor); the shorter session drifts less, and a 5 s mean still carries only 0.13 mg of noise per
 /// axis (400 ug/sqrt(Hz), Product Specification 6.2). Measured (tests/quick_mode.rs, 20 seeds):
-/// 5 s captures 0.320 mg rms true error, 68 s on the board; 10 s captures 0.454 mg, 118 s.
+/// 5 s captures 0.320 mg rms true error, 68 s on the board; 10 s captures 0.454 mg, 118 s (with a hand
+/// that put the board down at once; turning at a person's pace, 5 s: 0.361 mg, 82 s).
 pub const QUICK_CAPTURE_SECONDS: u8 = shared::protocol::MIN_CAPTURE_SECONDS;
 
 /// The capture length when the user does not choose one, in seconds.
