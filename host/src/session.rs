@@ -112,6 +112,10 @@ pub struct Session {
     /// Whether the calibration asked for the six faces only (`--quick`).
     #[serde(default)]
     pub quick: bool,
+    /// Whether the calibration was adaptive (captures until their means were known, the offset's
+    /// drift with the temperature fitted with it): its report fits the same way.
+    #[serde(default)]
+    pub adaptive: bool,
     /// The captures used for fitting.
     pub captures: Vec<CaptureRecord>,
     /// The check of the calibration at fresh orientations, when one was made.

@@ -297,3 +297,26 @@ fn the_report_of_a_quick_session_shows_the_ortho9_calibration_the_chip_fitted() 
     let json = report_json(&stem.with_extension("json"));
     assert_eq!(json.pointer("/fit/model").and_then(Value::as_str), Some("ortho9"), "{json:#}");
 }
+
+#[test]
+fn the_report_of_a_default_session_fits_as_the_upload_did_with_the_drift_taken_out() {
+    let dir = scratch("adaptive");
+    let stem = dir.join("adaptive");
+    let output =
+        accelcal(&["calibrate", "--sim", "--yes", "--json", "--seed", "2", "--session", stem.to_str().unwrap()]);
+    assert!(output.status.success(), "{}", text(&output.stderr));
+    let uploaded: Value = serde_json::from_slice(&output.stdout).unwrap();
+    let json = report_json(&stem.with_extension("json"));
+    let parameter = |name: &str| {
+        let parameters = json.pointer("/fit/parameters").and_then(Value::as_array).unwrap();
+        parameters.iter().find(|p| p["name"] == name).and_then(|p| p["value"].as_f64()).unwrap()
+    };
+    let calibration = &uploaded["calibration"];
+    for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+        // The uploaded record holds f32: its offsets agree with the report's f64 fit to f32 rounding.
+        let offset = calibration["offset"][k].as_f64().unwrap();
+        assert!((parameter(&format!("o_{axis}")) - offset).abs() < 1e-7, "o_{axis}: {offset} uploaded, {json:#}");
+        let scale = calibration["matrix"][k][k].as_f64().unwrap();
+        assert!((parameter(&format!("s_{axis}")) - scale).abs() < 1e-6, "s_{axis}: {scale} uploaded");
+    }
+}

@@ -188,7 +188,12 @@ fn start_session(args: &CalibrateArgs, info: &DeviceInfo, feedback: &mut dyn Fee
     let kept = match &args.resume {
         Some(path) => resumed(path, &board, feedback)?,
         None => Kept {
-            session: Session { board: Some(board), quick: args.quick, ..Session::default() },
+            session: Session {
+                board: Some(board),
+                quick: args.quick,
+                adaptive: !args.quick && args.seconds.is_none(),
+                ..Session::default()
+            },
             path: args.session.clone().or_else(|| default_session_path(args)),
             resumed: false,
         },

@@ -134,10 +134,7 @@ pub fn adaptive_calibration(
     config: SensorConfig,
 ) -> Result<(Calibration, Fit, Option<Drift>), ProcedureError> {
     let (fit, drift) = adaptive_fit(session)?;
-    let fitted = match &drift {
-        Some(d) => drift::corrected(session, d, drift::mean_temp_c(session)),
-        None => session.clone(),
-    };
+    let fitted = drift::at_mean_temperature(session, drift.as_ref());
     let calibration = calibration::from_fit(&fit, &fitted, config).map_err(ProcedureError::Calibration)?;
     let calibration = match &drift {
         Some(d) => calibration::with_offset_drift(&calibration, drift::mean_temp_c(session), d.slope_g_per_c),
@@ -150,9 +147,6 @@ pub fn adaptive_calibration(
 /// that the first and the closing capture show (to the session's mean temperature); the drift.
 pub fn adaptive_fit(session: &Session) -> Result<(Fit, Option<Drift>), FitError> {
     let drift = drift::fitted(session);
-    let fitted = match &drift {
-        Some(d) => drift::corrected(session, d, drift::mean_temp_c(session)),
-        None => session.clone(),
-    };
+    let fitted = drift::at_mean_temperature(session, drift.as_ref());
     Ok((drift::ortho9(&fitted)?, drift))
 }

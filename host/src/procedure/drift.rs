@@ -157,6 +157,11 @@ pub fn corrected(session: &Session, drift: &Drift, ref_c: f64) -> Session {
     Session { captures: session.captures.iter().map(shift).collect(), ..session.clone() }
 }
 
+/// The session's captures corrected for `drift`, if any, to their mean temperature.
+pub fn at_mean_temperature(session: &Session, drift: Option<&Drift>) -> Session {
+    drift.map_or_else(|| session.clone(), |d| corrected(session, d, mean_temp_c(session)))
+}
+
 /// The mean die temperature of the session's captures, in degC.
 pub fn mean_temp_c(session: &Session) -> f64 {
     let n = session.captures.len().max(1) as f64;

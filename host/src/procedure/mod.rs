@@ -120,6 +120,14 @@ pub fn session_model(session: &Session) -> ModelChoice {
     match session.quick {
         true if session.captures.len() < shared::ortho9::MIN_READINGS => ModelChoice::Only(fit::Model::SixPosition),
         true => ModelChoice::Only(fit::Model::Ortho9),
+        false if session.adaptive => ModelChoice::Only(fit::Model::Ortho9),
         false => ModelChoice::Auto,
     }
+}
+
+/// The captures a session's calibration was fitted to: an adaptive session's corrected for the
+/// offset drift fitted with them (to their mean temperature), any other's as taken.
+pub fn fitted_captures(session: &Session) -> Session {
+    let drift = session.adaptive.then(|| drift::fitted(session)).flatten();
+    drift::at_mean_temperature(session, drift.as_ref())
 }

@@ -116,11 +116,12 @@ pub struct Figures {
 }
 
 impl SessionReport {
-    /// Fits the session (`auto`, every model compared) and gathers the report.
+    /// Fits the session as its calibration was fitted (every model compared) and gathers the report.
     pub fn new(session: &Session) -> Result<Self, FitError> {
         let model = crate::procedure::session_model(session);
-        let fit_report = FitReport::new(&session.dataset(), model, &FitOptions::default())?;
-        let positions = positions(session, &fit_report);
+        let fitted = crate::procedure::fitted_captures(session);
+        let fit_report = FitReport::new(&fitted.dataset(), model, &FitOptions::default())?;
+        let positions = positions(&fitted, &fit_report);
         let fit = summary(&fit_report, &positions);
         let verification = session.verification.clone();
         let mut figures = Figures::new(&positions, &fit_report, verification.as_ref());
