@@ -65,8 +65,9 @@ fn draw(figure: &Figure, area: DrawingArea<SVGBackend, Shift>) -> Result<(), Str
     // the values themselves: one chart type for every figure.
     let drawn = if figure.log_axes { in_log10(figure) } else { figure.clone() };
     let figure = &drawn;
-    let label: &dyn Fn(&f64) -> String = if figure.log_axes { &power_of_ten } else { &short };
     let (x, y) = ranges(figure);
+    let (x_label, y_label) =
+        (tick_label(figure.log_axes, x.end - x.start), tick_label(figure.log_axes, y.end - y.start));
     let mut chart = ChartBuilder::on(&area)
         .margin(12)
         .x_label_area_size(52)
@@ -79,8 +80,8 @@ fn draw(figure: &Figure, area: DrawingArea<SVGBackend, Shift>) -> Result<(), Str
         .axis_style(INK)
         .label_style(("sans-serif", 20).into_font().color(&INK))
         .axis_desc_style(("sans-serif", 20).into_font().color(&INK))
-        .x_label_formatter(label)
-        .y_label_formatter(label)
+        .x_label_formatter(&x_label)
+        .y_label_formatter(&y_label)
         .x_desc(figure.x_label.as_str())
         .y_desc(figure.y_label.as_str())
         .draw()
@@ -125,6 +126,16 @@ fn ranges(figure: &Figure) -> (std::ops::Range<f64>, std::ops::Range<f64>) {
         return (-reach..reach, -reach..reach);
     }
     (padded(x), padded(y))
+}
+
+/// The tick labels of an axis spanning `span`: on a log axis the whole decades; else [`short`],
+/// with a tick within a billionth of the span of zero read as 0 (the ticks' own arithmetic left
+/// -2.78e-17 where 0 was meant).
+fn tick_label(log_axes: bool, span: f64) -> Box<dyn Fn(&f64) -> String> {
+    if log_axes {
+        return Box::new(power_of_ten);
+    }
+    Box::new(move |value: &f64| short(&if value.abs() < span * 1e-9 { 0.0 } else { *value }))
 }
 
 /// A tick label: the shortest form that reads back as the tick (2, 0.5, -60), in scientific
@@ -179,6 +190,9 @@ mod tests {
         assert_eq!(short(&-0.0), "0");
         assert_eq!(short(&0.5), "0.5");
         assert_eq!(short(&-60.0), "-60");
+        // A zero tick off by the ticks' rounding reads 0; a tick of a 1e-13-wide axis keeps its digits.
+        assert_eq!(tick_label(false, 0.4)(&-2.78e-17), "0");
+        assert_eq!(tick_label(false, 4e-13)(&1e-13), "1e-13");
         assert_eq!(power_of_ten(&-2.0), "0.01");
         assert_eq!(power_of_ten(&3.0), "1000");
         assert_eq!(power_of_ten(&0.5), "");

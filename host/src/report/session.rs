@@ -199,7 +199,12 @@ impl Board {
             firmware: board.map(|b| format!("{}.{}.{}", b.firmware.major, b.firmware.minor, b.firmware.patch)),
             sensor_config: board.map(|b| {
                 let c = b.config;
-                format!("+-{} g, {} Hz, low-pass {:?}", c.range.full_scale_g(), c.sample_rate_hz, c.filter)
+                format!(
+                    "+-{} g, {} Hz, low-pass {} Hz",
+                    c.range.full_scale_g(),
+                    c.sample_rate_hz,
+                    c.filter.bandwidth_hz()
+                )
             }),
             range_g: first.map(|c| c.stats.range.full_scale_g()),
             date_utc: first.map(|c| utc_minutes(c.unix_time_s)),

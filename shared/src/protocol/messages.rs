@@ -139,6 +139,21 @@ pub enum LowPassFilter {
     Hz5,
 }
 
+impl LowPassFilter {
+    /// The accelerometer bandwidth, in Hz (Register Map 4.3).
+    pub fn bandwidth_hz(self) -> u16 {
+        match self {
+            LowPassFilter::Hz260 => 260,
+            LowPassFilter::Hz184 => 184,
+            LowPassFilter::Hz94 => 94,
+            LowPassFilter::Hz44 => 44,
+            LowPassFilter::Hz21 => 21,
+            LowPassFilter::Hz10 => 10,
+            LowPassFilter::Hz5 => 5,
+        }
+    }
+}
+
 /// Sensor settings.
 #[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq, Eq)]
 pub struct SensorConfig {
