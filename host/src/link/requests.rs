@@ -51,16 +51,7 @@ impl<P: Port> Client<P> {
         seconds: u8,
         mut on_progress: impl FnMut(&CaptureProgress),
     ) -> Result<(CaptureStats, Option<Position>), LinkError> {
-        let request = Request::Capture { seconds };
-        let response = self.run(request.clone(), |update| {
-            if let Response::Progress(progress) = update {
-                on_progress(progress)
-            }
-        })?;
-        match response {
-            Response::Captured { stats, position } => Ok((stats, position)),
-            other => Err(unexpected(&request, &other)),
-        }
+        self.captured_by(Request::Capture { seconds }, &mut on_progress)
     }
 
     /// Averages the still sensor until `goal` stops it, reporting progress; the statistics and the
@@ -70,7 +61,15 @@ impl<P: Port> Client<P> {
         goal: CaptureGoal,
         mut on_progress: impl FnMut(&CaptureProgress),
     ) -> Result<(CaptureStats, Option<Position>), LinkError> {
-        let request = Request::CaptureUntil(goal);
+        self.captured_by(Request::CaptureUntil(goal), &mut on_progress)
+    }
+
+    /// Runs a capture request, reporting its progress; the statistics and the face detected.
+    fn captured_by(
+        &mut self,
+        request: Request,
+        on_progress: &mut dyn FnMut(&CaptureProgress),
+    ) -> Result<(CaptureStats, Option<Position>), LinkError> {
         let response = self.run(request.clone(), |update| {
             if let Response::Progress(progress) = update {
                 on_progress(progress)
