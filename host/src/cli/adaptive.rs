@@ -15,9 +15,11 @@ use crate::procedure::stop_rule::CaptureLength;
 use crate::procedure::{self, drift, AdaptiveOptions, Feedback, Hand, Moves, VERIFY_SECONDS};
 use crate::session::{Session, SessionError};
 
-/// Whether this run's session is adaptive: a full calibration without a fixed `--seconds`.
-pub(super) fn is_adaptive(args: &CalibrateArgs, session: &Session) -> bool {
-    !session.quick && args.seconds.is_none()
+/// Whether a new session is adaptive: a full calibration without a fixed `--seconds`. A resumed
+/// session keeps what it was begun as (its `adaptive`), so that its collection, its fit and its
+/// report agree.
+pub(super) fn begins_adaptive(args: &CalibrateArgs) -> bool {
+    !args.quick && args.seconds.is_none()
 }
 
 /// Collects an adaptive session; the board's clock at its first capture.

@@ -43,7 +43,7 @@ pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
     let interrupt = interrupt_on_ctrl_c();
     opened.connection.client.interrupt_on(interrupt.clone());
     let (moves, first_capture_s) = collect(args, &mut opened, &mut kept, feedback.as_mut())?;
-    let adaptive = adaptive::is_adaptive(args, &kept.session);
+    let adaptive = kept.session.adaptive;
     let (fitted, gyro) = fit_with_gyro(&mut opened, &kept, &moves, adaptive, feedback.as_mut())?;
     show_choice(feedback.as_mut(), &fitted);
     let client = &mut opened.connection.client;
@@ -72,7 +72,7 @@ fn collect(
     let mut keep = |session: &Session| path.as_deref().map_or(Ok(()), |p| session.save(p));
     let mut moves = Moves::at(opened.connection.info.config.sample_rate_hz);
     let (hand, session) = (hand.as_mut(), &mut kept.session);
-    let result = if adaptive::is_adaptive(args, session) {
+    let result = if session.adaptive {
         adaptive::collect(args, opened, (hand, &mut moves), wait_limit, session, &mut keep, feedback)
     } else {
         collect_fixed(args, opened, (hand, &mut moves), wait_limit, session, &mut keep, feedback)
@@ -191,7 +191,7 @@ fn start_session(args: &CalibrateArgs, info: &DeviceInfo, feedback: &mut dyn Fee
             session: Session {
                 board: Some(board),
                 quick: args.quick,
-                adaptive: !args.quick && args.seconds.is_none(),
+                adaptive: adaptive::begins_adaptive(args),
                 ..Session::default()
             },
             path: args.session.clone().or_else(|| default_session_path(args)),
