@@ -319,4 +319,17 @@ fn the_report_of_a_default_session_fits_as_the_upload_did_with_the_drift_taken_o
         let scale = calibration["matrix"][k][k].as_f64().unwrap();
         assert!((parameter(&format!("s_{axis}")) - scale).abs() < 1e-6, "s_{axis}: {scale} uploaded");
     }
+    // The positions' raw readings are the ones taken (the drift is taken out of the fit's input only).
+    let session: Value = serde_json::from_str(&std::fs::read_to_string(stem.with_extension("json")).unwrap()).unwrap();
+    let captures = session["captures"].as_array().unwrap();
+    let positions = json["positions"].as_array().unwrap();
+    assert_eq!(captures.len(), positions.len());
+    for (capture, position) in captures.iter().zip(positions) {
+        for k in 0..3 {
+            let (taken, shown) =
+                (capture["stats"]["mean_g"][k].as_f64().unwrap(), position["raw_g"][k].as_f64().unwrap());
+            // The session keeps f32 readings as JSON text: equal to its printed digits.
+            assert!((taken - shown).abs() < 1e-6, "{}: raw {shown} vs taken {taken}", capture["name"]);
+        }
+    }
 }

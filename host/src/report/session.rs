@@ -121,7 +121,7 @@ impl SessionReport {
         let model = crate::procedure::session_model(session);
         let fitted = crate::procedure::fitted_captures(session);
         let fit_report = FitReport::new(&fitted.dataset(), model, &FitOptions::default())?;
-        let positions = positions(&fitted, &fit_report);
+        let positions = positions(session, &fitted, &fit_report);
         let fit = summary(&fit_report, &positions);
         let verification = session.verification.clone();
         let mut figures = Figures::new(&positions, &fit_report, verification.as_ref());
@@ -155,16 +155,20 @@ impl SessionReport {
     }
 }
 
-fn positions(session: &Session, report: &FitReport) -> Vec<PositionResult> {
+/// Each position's reading as taken and calibrated by the fit; `fitted` holds the readings the fit
+/// took (an adaptive session's with the drift taken out, as the chip's temperature model does).
+fn positions(session: &Session, fitted: &Session, report: &FitReport) -> Vec<PositionResult> {
     let (matrix, offset) = (&report.fit.matrix, &report.fit.offset);
     session
         .captures
         .iter()
-        .map(|capture| {
-            let raw_g = capture.stats.mean_g.map(f64::from);
-            let calibrated_g = linalg::mul_vec(matrix, linalg::sub(raw_g, *offset));
+        .zip(&fitted.captures)
+        .map(|(taken, corrected)| {
+            let raw_g = taken.stats.mean_g.map(f64::from);
+            let input_g = corrected.stats.mean_g.map(f64::from);
+            let calibrated_g = linalg::mul_vec(matrix, linalg::sub(input_g, *offset));
             PositionResult {
-                name: capture.name.clone(),
+                name: taken.name.clone(),
                 raw_g,
                 calibrated_g,
                 residual_before_mg: residual_mg(raw_g),
