@@ -22,6 +22,27 @@ pub(super) fn begins_adaptive(args: &CalibrateArgs) -> bool {
     !args.quick && args.seconds.is_none()
 }
 
+/// What a resumed session makes of `--quick` and `--seconds` given differently from when it was
+/// begun, in words: it goes on as it was begun (its captures, fit and report must agree).
+pub(super) fn resumed_as_begun(args: &CalibrateArgs, session: &Session) -> Vec<String> {
+    let kind = |quick: bool| if quick { "a quick calibration" } else { "a full calibration" };
+    let mut lines = Vec::new();
+    if args.quick != session.quick {
+        lines.push(format!(
+            "this session was begun as {}; it goes on as one ({} is not used: start a new session for the other)",
+            kind(session.quick),
+            if args.quick { "--quick" } else { "leaving out --quick" }
+        ));
+    }
+    if let (true, Some(seconds)) = (session.adaptive, args.seconds) {
+        lines.push(format!(
+            "this session was begun adaptive (each position captured until its mean is known); it goes on so and \
+             --seconds {seconds} is not used (start a new session for captures of a fixed length)"
+        ));
+    }
+    lines
+}
+
 /// Collects an adaptive session; the board's clock at its first capture.
 pub(super) fn collect(
     args: &CalibrateArgs,

@@ -186,7 +186,11 @@ pub(super) fn interrupt_on_ctrl_c() -> Arc<AtomicBool> {
 fn start_session(args: &CalibrateArgs, info: &DeviceInfo, feedback: &mut dyn Feedback) -> Result<Kept, Error> {
     let board = BoardRecord::of(info);
     let kept = match &args.resume {
-        Some(path) => resumed(path, &board, feedback)?,
+        Some(path) => {
+            let kept = resumed(path, &board, feedback)?;
+            adaptive::resumed_as_begun(args, &kept.session).iter().for_each(|line| feedback.say(line));
+            kept
+        }
         None => Kept {
             session: Session {
                 board: Some(board),

@@ -2,7 +2,7 @@
 
 use std::io::{BufRead, IsTerminal, Write};
 
-use indicatif::{ProgressBar, ProgressStyle};
+use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 
 use crate::procedure::{Feedback, Silent};
 
@@ -12,20 +12,24 @@ pub struct Terminal {
     pub assume_yes: bool,
     bar: Option<ProgressBar>,
     live: ProgressBar,
+    /// The live line and the capture's bar drawn as one block.
+    // NOTE: drawn apart, each redraw of one left a stale copy of the other in the scrollback.
+    lines: MultiProgress,
 }
 
 impl Terminal {
     /// Feedback on the terminal; `assume_yes` for `--yes`.
     pub fn new(assume_yes: bool) -> Self {
-        let live = ProgressBar::new_spinner();
+        let lines = MultiProgress::new();
+        let live = lines.add(ProgressBar::new_spinner());
         live.set_style(
             ProgressStyle::with_template("{spinner} {msg}").unwrap_or_else(|_| ProgressStyle::default_spinner()),
         );
-        Terminal { assume_yes, bar: None, live }
+        Terminal { assume_yes, bar: None, live, lines }
     }
 
     fn ask(&mut self, question: &str) -> bool {
-        self.live.suspend(|| {
+        self.lines.suspend(|| {
             eprint!("{question} [y/N] ");
             let _ = std::io::stderr().flush();
             let mut answer = String::new();
@@ -37,7 +41,7 @@ impl Terminal {
 
 impl Feedback for Terminal {
     fn say(&mut self, line: &str) {
-        self.live.suspend(|| eprintln!("{line}"));
+        self.lines.suspend(|| eprintln!("{line}"));
     }
 
     fn live(&mut self, line: &str) {
@@ -46,8 +50,10 @@ impl Feedback for Terminal {
     }
 
     fn progress(&mut self, samples: u32, total: u32) {
+        let (lines, live) = (&self.lines, &self.live);
         let bar = self.bar.get_or_insert_with(|| {
-            let bar = ProgressBar::new(u64::from(total));
+            live.set_message("averaging: hold the board still");
+            let bar = lines.add(ProgressBar::new(u64::from(total)));
             bar.set_style(
                 ProgressStyle::with_template("averaging [{bar:40}] {pos}/{len} samples")
                     .unwrap_or_else(|_| ProgressStyle::default_bar()),

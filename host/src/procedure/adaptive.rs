@@ -19,11 +19,6 @@ use shared::Calibration;
 
 /// Captures of a position tried before giving up on a board that keeps moving.
 const CAPTURE_ATTEMPTS: usize = 5;
-/// How long the board must rest at a position before its capture starts, in seconds.
-// NOTE: shorter than the guided procedure's 2 s: the capture refuses a board that still moves (the
-// chip's scatter check) and a mean away from the position (the tilt check), and a person told the
-// next position once needs no time to read it again.
-const SETTLE_SECONDS: f64 = 0.5;
 /// Fewest positions before the prediction may end the session: the nine parameters and one more,
 /// so that the fit has a residual to check itself by.
 const MIN_POSITIONS: usize = 10;
@@ -112,9 +107,11 @@ fn take<P: Port>(
     let length = CaptureLength::Goal(options.rule.goal());
     for _ in 0..CAPTURE_ATTEMPTS {
         moves.present(client, hand, target, feedback)?;
-        let only = std::slice::from_ref(target);
-        let settle = (SETTLE_SECONDS, moves.rested_s());
-        wait_for_target_settled(client, (only, &[]), options.wait_limit, settle, feedback)?;
+        if !moves.rests_at(target, length.settle_seconds()) {
+            let only = std::slice::from_ref(target);
+            let settle = (length.settle_seconds(), moves.rested_s());
+            wait_for_target_settled(client, (only, &[]), options.wait_limit, settle, feedback)?;
+        }
         let started = options.clock.as_ref().map(|clock| clock());
         collected.first_capture_s = collected.first_capture_s.or(started);
         if let Some((stats, face)) = capture_at(client, target, length, feedback)? {

@@ -98,6 +98,13 @@ impl Moves {
         }
     }
 
+    /// Whether the move just recorded ended at rest within `target`'s tolerance for at least
+    /// `settle_s`: then the board was seen where it should be, still, and the wait for it is done.
+    pub fn rests_at(&self, target: &Orientation, settle_s: f64) -> bool {
+        let at_target = |r: &Recording| target.tilt_deg(r.end_mean_g) <= target.tolerance_deg;
+        MOVE_STILL_SECONDS >= settle_s && self.pending.as_ref().is_some_and(|(_, r)| at_target(r))
+    }
+
     /// The last capture of `session` was just taken: it ends the pending move and starts the next.
     pub fn captured(&mut self, session: &Session) {
         let Some(to) = session.captures.len().checked_sub(1) else { return };

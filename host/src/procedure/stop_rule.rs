@@ -7,6 +7,7 @@ use std::path::Path;
 use shared::protocol::{CaptureGoal, CaptureStats, MIN_GOAL_SAMPLES};
 use shared::Position;
 
+use super::wait::SETTLE_SECONDS;
 use super::{Feedback, ProcedureError};
 use crate::link::{Client, LinkError, Port};
 
@@ -16,11 +17,16 @@ use crate::link::{Client, LinkError, Port};
 pub const MIN_SECONDS: f64 = 0.5;
 /// Longest capture, in seconds: beyond it a drifting sensor's mean stops meaning one temperature.
 pub const MAX_SECONDS: f64 = 8.0;
-/// Positions a session is planned to take, for the share of the target each position's mean gets.
-// NOTE: nine parameters need nine positions; one more gives the fit a residual to judge it by.
-pub const PLANNED_POSITIONS: f64 = 10.0;
-/// Parameters of the orientation-free fit.
-const FIT_PARAMETERS: f64 = 9.0;
+/// Captures a default session is planned to take, for the share of the target each mean gets: its
+/// fourteen positions and the first one again.
+pub const PLANNED_CAPTURES: f64 = 15.0;
+/// Parameters fitted to them: the nine of the orientation-free fit and an offset drift per axis.
+const FITTED_PARAMETERS: f64 = 12.0;
+/// How long the board must rest before a capture that stops by its rule starts, in seconds.
+// NOTE: shorter than the guided procedure's 2 s: such a capture refuses a board that still moves
+// (the chip's scatter check) and a mean away from the position (the tilt check), and a person told
+// the next position once needs no time to read it again.
+const GOAL_SETTLE_SECONDS: f64 = 0.5;
 
 /// How long one capture runs.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -42,6 +48,14 @@ impl CaptureLength {
         match self {
             CaptureLength::Seconds(seconds) => client.capture(seconds, &mut progress),
             CaptureLength::Goal(goal) => client.capture_until(goal, &mut progress),
+        }
+    }
+
+    /// How long the board must rest where it should before this capture starts, in seconds.
+    pub fn settle_seconds(self) -> f64 {
+        match self {
+            CaptureLength::Seconds(_) => SETTLE_SECONDS,
+            CaptureLength::Goal(_) => GOAL_SETTLE_SECONDS,
         }
     }
 }
@@ -69,43 +83,47 @@ pub struct StopRule {
 
 impl StopRule {
     /// The standard error each axis' mean must reach, in g: a least-squares fit of p parameters
-    /// from n equally good positions predicts at a fresh orientation about sigma sqrt(p / n).
+    /// from n equally good captures predicts at a fresh orientation about sigma sqrt(p / n).
     pub fn mean_std_g(&self) -> f64 {
-        self.target_mg * 1e-3 * (PLANNED_POSITIONS / FIT_PARAMETERS).sqrt()
+        self.target_mg * 1e-3 * (PLANNED_CAPTURES / FITTED_PARAMETERS).sqrt()
     }
 
     /// The request for one capture.
     pub fn goal(&self) -> CaptureGoal {
-        let samples = |seconds: f64| ((seconds * f64::from(self.rate_hz)).round() as u32).max(MIN_GOAL_SAMPLES);
-        let mean_std_g = self.mean_std_g() as f32;
-        match &self.noise {
-            Noise::Measured => {
-                CaptureGoal { mean_std_g, min_samples: samples(MIN_SECONDS), max_samples: samples(MAX_SECONDS) }
-            }
-            Noise::Report { .. } => {
-                let fixed = samples(self.report_seconds());
-                CaptureGoal { mean_std_g, min_samples: fixed, max_samples: fixed }
-            }
-        }
+        self.goal_for(self.mean_std_g())
     }
 
-    /// The request for one verification capture: its mean known to half the target, so that the
-    /// noise floor of the check stays below the error it is to resolve.
+    /// The request for one verification capture: its mean known to the target itself, so that the
+    /// check's noise floor (the RMS of that noise over its orientations) is the target, which the
+    /// verification then takes out of its figure (`after_rms_without_noise_mg`).
+    // NOTE: half the target, as before, made each check four times as long: 25 s of a one-minute
+    // session, for a floor that the figure without noise makes up for.
     pub fn verification_goal(&self) -> CaptureGoal {
-        let half =
-            StopRule { target_mg: self.target_mg / 2.0 / (PLANNED_POSITIONS / FIT_PARAMETERS).sqrt(), ..self.clone() };
-        half.goal()
+        self.goal_for(self.target_mg * 1e-3)
+    }
+
+    /// The request for a capture whose mean each axis must know to `mean_std_g`.
+    fn goal_for(&self, mean_std_g: f64) -> CaptureGoal {
+        let samples = |seconds: f64| ((seconds * f64::from(self.rate_hz)).round() as u32).max(MIN_GOAL_SAMPLES);
+        let (min_samples, max_samples) = match &self.noise {
+            Noise::Measured => (samples(MIN_SECONDS), samples(MAX_SECONDS)),
+            Noise::Report { .. } => {
+                let fixed = samples(self.report_seconds(mean_std_g));
+                (fixed, fixed)
+            }
+        };
+        CaptureGoal { mean_std_g: mean_std_g as f32, min_samples, max_samples }
     }
 
     /// The capture length a noise report asks for: the worst axis' (N / sigma)^2, within the limits
     /// and no longer than the report's useful averaging time.
-    fn report_seconds(&self) -> f64 {
+    fn report_seconds(&self, mean_std_g: f64) -> f64 {
         let Noise::Report { white_noise_g, capture_limit_s } = &self.noise else {
             return MAX_SECONDS;
         };
         let worst = white_noise_g.iter().copied().fold(0.0, f64::max);
         let longest = capture_limit_s.unwrap_or(MAX_SECONDS).clamp(MIN_SECONDS, MAX_SECONDS);
-        (worst / self.mean_std_g()).powi(2).clamp(MIN_SECONDS, longest)
+        (worst / mean_std_g).powi(2).clamp(MIN_SECONDS, longest)
     }
 
     /// Why a capture stopped when it did, in words.
@@ -157,19 +175,25 @@ mod tests {
 
     #[test]
     fn each_mean_gets_its_share_of_the_target_and_the_board_judges_it() {
-        // 0.2 mg over sqrt(9 / 10): 0.2108 mg per axis; 0.5 s to 8 s at 100 Hz.
+        // 0.2 mg over sqrt(12 / 15): 0.2236 mg per axis; 0.5 s to 8 s at 100 Hz.
         let goal = rule(Noise::Measured).goal();
-        assert!((goal.mean_std_g - 0.2108e-3).abs() < 1e-7, "{goal:?}");
+        assert!((goal.mean_std_g - 0.2236e-3).abs() < 1e-7, "{goal:?}");
         assert_eq!((goal.min_samples, goal.max_samples), (50, 800));
-        assert!((rule(Noise::Measured).verification_goal().mean_std_g - 0.1e-3).abs() < 1e-9);
+        assert!((rule(Noise::Measured).verification_goal().mean_std_g - 0.2e-3).abs() < 1e-9);
+        // Such a capture guards its own start; a fixed one waits for the person.
+        assert_eq!(CaptureLength::Goal(goal).settle_seconds(), 0.5);
+        assert_eq!(CaptureLength::Seconds(5).settle_seconds(), 2.0);
     }
 
     #[test]
     fn a_noise_report_fixes_the_length_within_its_useful_averaging_time() {
-        // Allan N of 283 ug/sqrt(Hz) (400 ug/sqrt(Hz) one-sided): (0.283 / 0.2108)^2 = 1.80 s.
+        // Allan N of 283 ug/sqrt(Hz) (400 ug/sqrt(Hz) one-sided): (0.283 / 0.2236)^2 = 1.60 s, and
+        // (0.283 / 0.2)^2 = 2.00 s for a verification.
         let report = |capture_limit_s| Noise::Report { white_noise_g: [200e-6, 283e-6, 250e-6], capture_limit_s };
         let goal = rule(report(None)).goal();
-        assert_eq!((goal.min_samples, goal.max_samples), (180, 180));
+        assert_eq!((goal.min_samples, goal.max_samples), (160, 160));
+        let verification = rule(report(None)).verification_goal();
+        assert_eq!((verification.min_samples, verification.max_samples), (200, 200));
         let goal = rule(report(Some(1.2))).goal();
         assert_eq!((goal.min_samples, goal.max_samples), (120, 120), "capped where longer stops helping");
     }

@@ -99,7 +99,7 @@ pub fn verify_with<P: Port>(
     for index in 0..positions {
         hand.fresh(index, feedback)?;
         // NOTE: `used` holds the calibration's directions first, then each one verified.
-        used.push(wait_for_fresh(client, &used, wait_limit, feedback)?);
+        used.push(wait_for_fresh(client, &used, (wait_limit, length.settle_seconds()), feedback)?);
         let check = check(client, &calibration, length, feedback)?;
         feedback.say(&format!(
             "verification {}: | |a| - 1 g | {:.2} mg raw, {:.3} mg calibrated",
@@ -122,7 +122,7 @@ fn check<P: Port>(
     let (stats, _) = capture(client, length, feedback)?;
     // NOTE: at the capture's temperature, as the chip corrects it (a session's drift model moves o).
     let corrected = calibration.apply_at(stats.mean_g, stats.temp_c);
-    let chip_mean = chip_corrected_mean(client)?;
+    let chip_mean = chip_corrected_mean(client, sample_rate_hz(&stats))?;
     Ok(Check {
         before_mg: (f64::from(linalg::norm(stats.mean_g)) - 1.0) * 1000.0,
         after_mg: (f64::from(linalg::norm(corrected)) - 1.0) * 1000.0,
@@ -162,9 +162,22 @@ fn summary(checks: &[Check]) -> Verification {
     }
 }
 
-/// Mean of samples corrected by the chip itself.
-fn chip_corrected_mean<P: Port>(client: &mut Client<P>) -> Result<[f32; 3], ProcedureError> {
-    let request = StreamRequest { kind: StreamKind::Calibrated, rate_hz: LIVE_WINDOW.rate_hz, count: CHIP_SAMPLES };
+/// The sensor's sample rate a capture ran at, in Hz (the chip counts its seconds as samples / rate);
+/// the live window's for a capture without samples.
+fn sample_rate_hz(stats: &CaptureStats) -> u16 {
+    let rate = (stats.samples as f32 / stats.seconds).round();
+    if stats.samples > 0 && rate.is_finite() && (1.0..=f32::from(u16::MAX)).contains(&rate) {
+        rate as u16
+    } else {
+        LIVE_WINDOW.rate_hz
+    }
+}
+
+/// Mean of samples corrected by the chip itself, streamed at the sensor's rate.
+// NOTE: at the sensor's rate rather than the live window's 20 Hz, the 20 samples take a fifth of a
+// second of the person's time instead of a whole one, for the same noise.
+fn chip_corrected_mean<P: Port>(client: &mut Client<P>, rate_hz: u16) -> Result<[f32; 3], ProcedureError> {
+    let request = StreamRequest { kind: StreamKind::Calibrated, rate_hz, count: CHIP_SAMPLES };
     let (mut sum, mut count) = ([0.0f32; 3], 0u32);
     client.stream(request, |sample| {
         sum = linalg::add(sum, sample.accel_g);
@@ -182,6 +195,14 @@ mod tests {
         let (gyro_mean_dps, gyro_std_dps) = ([0.0; 3], [0.0; 3]);
         let (seconds, temp_c, clipped, range) = (5.0, 25.0, 0, AccelRange::G2);
         CaptureStats { samples, seconds, mean_g, std_g, gyro_mean_dps, gyro_std_dps, temp_c, clipped, range }
+    }
+
+    #[test]
+    fn the_chip_s_samples_stream_at_the_rate_the_capture_ran_at() {
+        let stats = |samples, seconds| CaptureStats { seconds, ..capture([0.0, 0.0, 1.0], [0.003; 3], samples) };
+        assert_eq!(sample_rate_hz(&stats(213, 2.13)), 100);
+        assert_eq!(sample_rate_hz(&stats(1000, 1.0)), 1000);
+        assert_eq!(sample_rate_hz(&stats(0, 0.0)), LIVE_WINDOW.rate_hz, "no samples, no rate: the live window's");
     }
 
     #[test]

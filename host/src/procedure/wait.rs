@@ -81,12 +81,12 @@ fn judge_target(window: Window, remaining: &[Orientation], done: &[Orientation])
     (line, (window.still && tilt(target) <= target.tolerance_deg).then_some(index))
 }
 
-/// Waits until the board rests at an orientation at least [`FRESH_DEG`] from every one in `used`;
-/// returns it.
+/// Waits until the board rests for `settle_seconds` at an orientation at least [`FRESH_DEG`] from
+/// every one in `used`; returns it.
 pub(super) fn wait_for_fresh<P: Port>(
     client: &mut Client<P>,
     used: &[[f64; 3]],
-    limit: Option<Duration>,
+    (limit, settle_seconds): (Option<Duration>, f64),
     feedback: &mut dyn Feedback,
 ) -> Result<[f64; 3], ProcedureError> {
     wait_for_rest(
@@ -94,7 +94,7 @@ pub(super) fn wait_for_fresh<P: Port>(
         limit,
         feedback,
         || ProcedureError::NeverFresh,
-        Streak::over(SETTLE_SECONDS),
+        Streak::over(settle_seconds),
         |window| {
             let fresh = used.iter().all(|u| angle_between_deg(window.mean, *u) >= FRESH_DEG);
             let line = match (window.still, fresh) {

@@ -75,3 +75,18 @@ fn a_board_put_down_elsewhere_before_the_recording_began_ends_the_move_too() {
     assert_eq!(taken, 49, "the rest elsewhere ends it after 50 samples, not at the 30 s limit");
     assert_eq!(watch.finish(0, "+X").unwrap_err(), Problem::NoTurnSeen);
 }
+
+#[test]
+fn a_move_that_came_to_rest_at_the_target_ends_the_wait_for_it_and_no_other_does() {
+    let faces = crate::orientation::faces();
+    let (plus_z, plus_x) =
+        (faces.iter().find(|f| f.name == "+Z").unwrap(), faces.iter().find(|f| f.name == "+X").unwrap());
+    let mut moves = Moves::at(100);
+    assert!(!moves.rests_at(plus_z, 0.5), "no move recorded yet");
+    let (watch, _) = watched(&turn(5, 20, 90.0, 200), 50);
+    moves.pending = Some((0, watch.finish(0, "+Z").unwrap()));
+    // The recording ended at rest with 1 g on z: at +Z, for the half second a goal's capture needs.
+    assert!(moves.rests_at(plus_z, 0.5));
+    assert!(!moves.rests_at(plus_x, 0.5), "at rest, but at another position");
+    assert!(!moves.rests_at(plus_z, 2.0), "a rest shorter than the settle asked for");
+}
