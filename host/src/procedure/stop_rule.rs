@@ -96,8 +96,8 @@ impl StopRule {
     /// The request for one verification capture: its mean known to the target itself, so that the
     /// check's noise floor (the RMS of that noise over its orientations) is the target, which the
     /// verification then takes out of its figure (`after_rms_without_noise_mg`).
-    // NOTE: half the target, as before, made each check four times as long: 25 s of a one-minute
-    // session, for a floor that the figure without noise makes up for.
+    // NOTE: half the target, as before, made each check four times as long (about 8 s of averaging
+    // instead of 2, three times over, in a session of one minute).
     pub fn verification_goal(&self) -> CaptureGoal {
         self.goal_for(self.target_mg * 1e-3)
     }
