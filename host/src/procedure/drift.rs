@@ -89,6 +89,13 @@ pub fn fitted(session: &Session) -> Option<Drift> {
     Some(Drift { slope_g_per_c: p.slope.into(), span_c })
 }
 
+/// Whether the temperature moved enough for a drift, yet the captures would still be too few to fit
+/// it after `more` further captures.
+pub fn unfitted_after(session: &Session, more: usize) -> bool {
+    let span_c = span_c(session);
+    span_c.1 - span_c.0 >= MIN_CHANGE_C && session.captures.len() + more < MIN_CAPTURES
+}
+
 /// The twelve parameters of the joint fit.
 struct Joint {
     matrix: Matrix3<f64>,
@@ -256,6 +263,9 @@ mod tests {
         let mut few = warming_session([1e-3; 3], 2.8e-3);
         few.captures.truncate(MIN_CAPTURES - 1);
         assert_eq!(fitted(&few), None);
+        // One capture short: the closing one makes it fitted; a board that stayed needs none.
+        assert!(unfitted_after(&few, 0) && !unfitted_after(&few, 1));
+        assert!(!unfitted_after(&still, 0));
     }
 
     #[test]
