@@ -383,3 +383,28 @@ fn a_resumed_session_goes_on_as_it_was_begun_and_says_which_flags_it_does_not_us
     assert!(output.status.success() && !stderr.contains("is not used"), "{stderr}");
     std::fs::remove_file(&json).unwrap();
 }
+
+#[test]
+fn a_resumed_quick_session_says_it_stays_quick_and_a_fixed_length_one_is_not_called_adaptive() {
+    let resumed = |begun: &[&str], again: &[&str], name: &str| {
+        let stem = std::env::temp_dir().join(format!("accelcal-cli-{}-{name}", std::process::id()));
+        let session = stem.to_str().unwrap();
+        let first = accelcal(&[&["calibrate", "--sim", "--seed", "4", "--session", session, "--yes"], begun].concat());
+        assert!(first.status.success(), "{}", String::from_utf8_lossy(&first.stderr));
+        let json = stem.with_extension("json");
+        let resume = ["calibrate", "--sim", "--seed", "4", "--resume", json.to_str().unwrap(), "--yes"];
+        let output = accelcal(&[&resume[..], again].concat());
+        std::fs::remove_file(&json).unwrap();
+        let stderr = String::from_utf8_lossy(&output.stderr).into_owned();
+        assert!(output.status.success(), "{stderr}");
+        stderr
+    };
+    let quick = resumed(&["--quick"], &[], "quick");
+    assert!(
+        quick.contains("begun as a quick calibration; it goes on as one (leaving out --quick is not used"),
+        "{quick}"
+    );
+    // A fixed-length session was not begun adaptive: its --seconds is not refused in those words.
+    let fixed = resumed(&["--seconds", "5"], &["--seconds", "6"], "fixed");
+    assert!(!fixed.contains("begun adaptive") && !fixed.contains("is not used"), "{fixed}");
+}

@@ -90,3 +90,20 @@ fn a_move_that_came_to_rest_at_the_target_ends_the_wait_for_it_and_no_other_does
     assert!(!moves.rests_at(plus_x, 0.5), "at rest, but at another position");
     assert!(!moves.rests_at(plus_z, 2.0), "a rest shorter than the settle asked for");
 }
+
+#[test]
+fn a_move_that_came_to_rest_just_outside_the_target_s_tolerance_does_not_end_the_wait() {
+    let faces = crate::orientation::faces();
+    let plus_z = faces.iter().find(|f| f.name == "+Z").unwrap();
+    let mut moves = Moves::at(100);
+    // Tilted about y by the tolerance and 1 degree more, or 1 degree less: the edge is the target's own.
+    let tilted = |deg: f64| [deg.to_radians().sin(), 0.0, deg.to_radians().cos()];
+    let rest_at = |moves: &mut Moves, deg: f64| {
+        let (watch, _) = watched(&turn(5, 20, 90.0, 200), 50);
+        let recording = Recording { end_mean_g: tilted(deg), ..watch.finish(0, "+Z").unwrap() };
+        moves.pending = Some((0, recording));
+        moves.rests_at(plus_z, 0.5)
+    };
+    assert!(rest_at(&mut moves, plus_z.tolerance_deg - 1.0), "inside the tolerance");
+    assert!(!rest_at(&mut moves, plus_z.tolerance_deg + 1.0), "outside it: the wait must still judge the board");
+}
