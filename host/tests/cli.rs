@@ -378,9 +378,18 @@ fn a_resumed_session_goes_on_as_it_was_begun_and_says_which_flags_it_does_not_us
     assert!(output.status.success(), "{stderr}");
     assert!(stderr.contains("begun as a full calibration; it goes on as one (--quick is not used"), "{stderr}");
     assert!(stderr.contains("begun adaptive") && stderr.contains("--seconds 5 is not used"), "{stderr}");
+    // Thirteen positions and +Z again: the closing capture is no fourteenth position.
+    assert!(stderr.contains("13 of 14 positions captured") && stderr.contains("13 positions predict"), "{stderr}");
+    // Its moves were recorded in the first run only: the gyro advice says so, not "use a full calibration".
+    assert!(stderr.contains("a resumed session has only the turns of this run"), "{stderr}");
     let output = accelcal(&again);
-    let stderr = String::from_utf8_lossy(&output.stderr);
+    let (stdout, stderr) = (String::from_utf8_lossy(&output.stdout), String::from_utf8_lossy(&output.stderr));
     assert!(output.status.success() && !stderr.contains("is not used"), "{stderr}");
+    // Its first capture was taken in the other run: the board's time is not known, not this run's.
+    assert!(stdout.contains("verified at 3") && !stdout.contains("the board was kept"), "{stdout}");
+    let output = accelcal(&[&again[..], &["--json"]].concat());
+    let json_out: serde_json::Value = serde_json::from_slice(&output.stdout).expect("one JSON object");
+    assert!(json_out["board_seconds"].is_null(), "{}", json_out["board_seconds"]);
     std::fs::remove_file(&json).unwrap();
 }
 

@@ -53,7 +53,8 @@ pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
     if !upload_if_confirmed(client, &fitted.chosen, feedback.as_mut())? {
         return Ok(());
     }
-    let first_capture_s = first_capture_s.unwrap_or(0.0);
+    // NOTE: a resumed session's first capture was taken in another run: its board time is unknown.
+    let first_capture_s = first_capture_s.filter(|_| !kept.resumed);
     let fitted = (&fitted, &gyro);
     finish(args, &mut opened, fitted, kept.path.as_deref(), (adaptive, first_capture_s), feedback.as_mut())
 }
@@ -113,7 +114,7 @@ fn finish(
     opened: &mut Opened,
     (fitted, gyro): (&Fitted, &GyroOutcome),
     kept_at: Option<&Path>,
-    (adaptive, first_capture_s): (bool, f64),
+    (adaptive, first_capture_s): (bool, Option<f64>),
     feedback: &mut dyn Feedback,
 ) -> Result<(), Error> {
     let (mut hand, wait_limit) = opened.hand(args.sim_placement_deg, args.device.seed);
@@ -123,13 +124,13 @@ fn finish(
     let calibrated: Vec<[f64; 3]> = fitted.session.captures.iter().map(|c| c.stats.mean_g.map(f64::from)).collect();
     let verification =
         procedure::verify_with(client, hand.as_mut(), positions, wait_limit, feedback, &calibrated, length)?;
-    let board_seconds = clock() - first_capture_s;
+    let board_seconds = first_capture_s.map(|first| clock() - first);
     let check = super::gyro::check(client, hand.as_mut(), rate_hz, gyro, feedback)?;
     if let Some(stem) = kept_at {
         keep_with_report(&fitted.session, &verification, stem, feedback)?;
     }
     let mut report = report_of(opened, (fitted, gyro), verification, check);
-    report.board_seconds = Some(board_seconds);
+    report.board_seconds = board_seconds;
     print_report(&report, args.json);
     Ok(())
 }
@@ -216,8 +217,10 @@ fn resumed(path: &Path, board: &BoardRecord, feedback: &mut dyn Feedback) -> Res
     let session = Session::load(&json)?;
     let recorded = session.board.as_ref().ok_or(crate::session::SessionError::NoBoard { path: json.clone() })?;
     recorded.check_same(board, &json)?;
-    let total = procedure::targets(session.quick).len();
-    feedback.say(&format!("resuming {}: {} of {total} positions captured", json.display(), session.captures.len()));
+    let targets = procedure::targets(session.quick);
+    // NOTE: by name: an adaptive session's closing capture repeats its first position.
+    let captured = targets.iter().filter(|t| session.captures.iter().any(|c| c.name == t.name)).count();
+    feedback.say(&format!("resuming {}: {captured} of {} positions captured", json.display(), targets.len()));
     Ok(Kept { session, path: Some(stem), resumed: true })
 }
 

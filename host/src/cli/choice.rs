@@ -34,7 +34,7 @@ pub(super) fn fit_with_gyro(
 ) -> Result<(Fitted, GyroOutcome), Error> {
     let config = opened.connection.info.config;
     let mut fitted = choose(&mut opened.connection.client, kept, config, adaptive, feedback)?;
-    let (chosen, gyro) = super::gyro::fit(moves, &fitted.session, &fitted.chosen, feedback);
+    let (chosen, gyro) = super::gyro::fit((moves, kept.resumed), &fitted.session, &fitted.chosen, feedback);
     fitted.chosen = chosen;
     fitted.session.gyro_turns = super::gyro::summaries(moves, &fitted.session, &chosen, &gyro);
     Ok((fitted, gyro))

@@ -13,7 +13,7 @@ use crate::session::Session;
 /// `chosen` with G fitted to the recorded moves when they allow it, and what the fit gave; every
 /// dropped move and the reason for no fit (with the turns to add) are said.
 pub(super) fn fit(
-    moves: &Moves,
+    (moves, resumed): (&Moves, bool),
     session: &Session,
     chosen: &Calibration,
     feedback: &mut dyn Feedback,
@@ -30,6 +30,14 @@ pub(super) fn fit(
             (calibration, outcome)
         }
         Err(why) => {
+            // NOTE: the moves are recorded in memory only; a session's file keeps their summaries.
+            let why = match resumed {
+                true => format!(
+                    "{why}; a resumed session has only the turns of this run (those of earlier runs are not \
+                     kept): calibrate anew to fit the gyro"
+                ),
+                false => why,
+            };
             feedback.say(&format!("gyro: scale and misalignment not calibrated: {why}"));
             outcome.not_fitted = Some(why);
             (*chosen, outcome)

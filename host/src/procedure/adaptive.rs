@@ -7,7 +7,7 @@ use std::time::Duration;
 
 use super::collect::capture_at;
 use super::drift::{self, Drift};
-use super::stop_rule::{CaptureLength, StopRule};
+use super::stop_rule::{CaptureLength, StopRule, MAX_SECONDS};
 use super::wait::wait_for_target_settled;
 use super::{Feedback, Hand, Moves, Orientation, ProcedureError};
 use crate::calibration;
@@ -58,16 +58,20 @@ pub fn collect_adaptive<P: Port>(
 ) -> Result<Collected, ProcedureError> {
     client.clear_positions()?;
     let order = drift::order(targets);
-    let mut collected = Collected::default();
+    let (mut collected, mut reached) = (Collected::default(), false);
     for target in &order {
         if session.captures.iter().any(|c| c.name == target.name) {
             continue;
         }
-        if enough(session, options.rule.target_mg, feedback) {
+        reached = enough(session, options.rule.target_mg, feedback);
+        if reached {
             break;
         }
         take(client, (hand, moves), target, options, feedback, session, &mut collected)?;
         keep(session)?;
+    }
+    if !reached {
+        say_prediction(session, options.rule.target_mg, feedback);
     }
     let closing = drift::closing(&order[0]);
     if !session.captures.iter().any(|c| c.name == closing.name) {
@@ -91,10 +95,31 @@ fn enough(session: &Session, target_mg: f64, feedback: &mut dyn Feedback) -> boo
     };
     let reached = predicted.norm_error_mg <= target_mg;
     if reached {
-        let (n, p) = (session.captures.len(), predicted.norm_error_mg);
-        feedback.say(&format!("{n} positions predict {p:.3} mg at a fresh orientation, the {target_mg} mg wanted"));
+        feedback.say(&prediction_line(session, predicted.norm_error_mg, target_mg));
     }
     reached
+}
+
+/// Says what the fit of every position taken predicts, once no position is left to ask for.
+fn say_prediction(session: &Session, target_mg: f64, feedback: &mut dyn Feedback) {
+    if let Some(predicted) = adaptive_fit(session).ok().and_then(|(f, _)| f.prediction) {
+        feedback.say(&prediction_line(session, predicted.norm_error_mg, target_mg));
+    }
+}
+
+/// "N positions predict P mg ...", and why when P misses the target.
+fn prediction_line(session: &Session, predicted_mg: f64, target_mg: f64) -> String {
+    let n = drift::positions(session);
+    let head = format!("{n} positions predict {predicted_mg:.3} mg at a fresh orientation at their mean temperature");
+    if predicted_mg <= target_mg {
+        return format!("{head}, the {target_mg} mg wanted");
+    }
+    let longest = session.captures.iter().filter(|c| f64::from(c.stats.seconds) >= MAX_SECONDS - 0.01).count();
+    format!(
+        "{head}, not the {target_mg} mg wanted: every position is taken, {longest} of them averaged for the longest \
+         capture ({MAX_SECONDS} s): this sensor's noise allows no better in one session; a larger --target-mg \
+         ends sooner"
+    )
 }
 
 /// One position: presented, waited for, captured until its rule stops it (again while the board
@@ -150,4 +175,40 @@ pub fn adaptive_fit(session: &Session) -> Result<(Fit, Option<Drift>), FitError>
     let drift = drift::fitted(session);
     let fitted = drift::at_mean_temperature(session, drift.as_ref());
     Ok((drift::ortho9(&fitted)?, drift))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::session::CaptureRecord;
+    use shared::protocol::CaptureStats;
+    use shared::AccelRange;
+
+    fn captured(name: &str, seconds: f32) -> CaptureRecord {
+        let stats = CaptureStats {
+            samples: (seconds * 100.0) as u32,
+            seconds,
+            mean_g: [0.0, 0.0, 1.0],
+            std_g: [2.8e-3; 3],
+            gyro_mean_dps: [0.0; 3],
+            gyro_std_dps: [0.05; 3],
+            temp_c: 25.0,
+            clipped: 0,
+            range: AccelRange::G2,
+        };
+        CaptureRecord::now(name, None, None, stats)
+    }
+
+    #[test]
+    fn the_prediction_counts_positions_not_the_closing_capture_and_says_why_it_misses() {
+        let captures = vec![captured("+Z", 8.0), captured("-Z", 8.0), captured("+X", 2.0), captured("+Z again", 8.0)];
+        let session = Session { captures, ..Session::default() };
+        let reached = prediction_line(&session, 0.19, 0.2);
+        assert!(
+            reached.starts_with("3 positions predict 0.190 mg") && reached.ends_with("the 0.2 mg wanted"),
+            "{reached}"
+        );
+        let missed = prediction_line(&session, 0.081, 0.05);
+        assert!(missed.contains("not the 0.05 mg wanted: every position is taken, 3 of them averaged for the longest"));
+    }
 }

@@ -49,6 +49,11 @@ pub fn order(targets: &[Orientation]) -> Vec<Orientation> {
     ordered
 }
 
+/// The positions a session's captures were taken at: its captures but the closing one.
+pub fn positions(session: &Session) -> usize {
+    session.captures.iter().filter(|c| !c.name.ends_with(AGAIN)).count()
+}
+
 /// The closing capture: the first position again, under its own name.
 pub fn closing(first: &Orientation) -> Orientation {
     Orientation { name: format!("{}{AGAIN}", first.name), ..first.clone() }

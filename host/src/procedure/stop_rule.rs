@@ -17,8 +17,9 @@ use crate::link::{Client, LinkError, Port};
 pub const MIN_SECONDS: f64 = 0.5;
 /// Longest capture, in seconds: beyond it a drifting sensor's mean stops meaning one temperature.
 pub const MAX_SECONDS: f64 = 8.0;
-/// Captures a default session is planned to take, for the share of the target each mean gets: its
-/// fourteen positions and the first one again.
+/// Captures a default session plans for, for the share of the target each mean gets: its fourteen
+/// positions and the first one again (it stops sooner once the fit predicts the target: on the
+/// simulated sensor after thirteen).
 pub const PLANNED_CAPTURES: f64 = 15.0;
 /// Parameters fitted to them: the nine of the orientation-free fit and an offset drift per axis.
 const FITTED_PARAMETERS: f64 = 12.0;

@@ -118,10 +118,16 @@ pub fn calibrate_report(report: &CalibrateReport) -> String {
     let board = report.board_seconds.map_or(String::new(), |s| {
         format!("the board was kept {s:.1} s from the first capture to the end of the verification\n")
     });
+    let orientations = if v.positions == 1 { "orientation" } else { "orientations" };
+    // NOTE: an RMS within its noise floor says only that the error is below it, not that it is zero.
+    let without = match v.after_rms_without_noise_mg {
+        e if e > 0.0 => format!("error without it {e:.3} mg"),
+        _ => "the error is within that noise".to_owned(),
+    };
     let accel = format!(
-        "verified at {} fresh orientations: | |a| - 1 g | rms {:.2} mg before, {:.3} mg after (worst {:.3} mg); \
-         the captures' own noise {:.3} mg, error without it {:.3} mg\n{board}",
-        v.positions, v.before_rms_mg, v.after_rms_mg, v.after_max_mg, v.noise_floor_mg, v.after_rms_without_noise_mg
+        "verified at {} fresh {orientations}: | |a| - 1 g | rms {:.2} mg before, {:.3} mg after (worst {:.3} mg); \
+         the captures' own noise {:.3} mg, {without}\n{board}",
+        v.positions, v.before_rms_mg, v.after_rms_mg, v.after_max_mg, v.noise_floor_mg
     );
     accel + &super::gyro::text(&report.calibration.gyro, report.gyro_check.as_ref())
 }
@@ -196,4 +202,37 @@ fn write_board(out: &mut String, board: &Board) {
     let _ = writeln!(out, "board {serial}, firmware {firmware}, sensor {}", or_absent(&board.sensor_config));
     let range = board.range_g.map_or(NOT_RECORDED.to_owned(), |g| format!("+-{g} g"));
     let _ = writeln!(out, "captured {} UTC, range {range}", or_absent(&board.date_utc));
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::procedure::Verification;
+    use shared::{AccelRange, Calibration};
+
+    fn verified(positions: usize, after_rms_mg: f64, noise_floor_mg: f64) -> String {
+        let without = (after_rms_mg.powi(2) - noise_floor_mg.powi(2)).max(0.0).sqrt();
+        let verification = Verification {
+            positions,
+            before_rms_mg: 40.0,
+            after_rms_mg,
+            after_max_mg: after_rms_mg,
+            after_rms_without_noise_mg: without,
+            on_chip_difference_mg: 0.0,
+            noise_floor_mg,
+            before_mg: Vec::new(),
+            after_mg: Vec::new(),
+        };
+        let report = CalibrateReport::new(&Calibration::identity(AccelRange::G2), None, None, None, verification, 14);
+        calibrate_report(&report).lines().next().unwrap().to_owned()
+    }
+
+    #[test]
+    fn a_verification_within_its_noise_floor_says_so_instead_of_an_error_of_zero() {
+        let within = verified(3, 0.168, 0.190);
+        assert!(within.ends_with("the captures' own noise 0.190 mg, the error is within that noise"), "{within}");
+        let above = verified(1, 0.3, 0.18);
+        assert!(above.starts_with("verified at 1 fresh orientation:"), "{above}");
+        assert!(above.ends_with("error without it 0.240 mg"), "{above}");
+    }
 }
