@@ -115,11 +115,13 @@ fn prediction_line(session: &Session, predicted_mg: f64, target_mg: f64) -> Stri
         return format!("{head}, the {target_mg} mg wanted");
     }
     let longest = session.captures.iter().filter(|c| f64::from(c.stats.seconds) >= MAX_SECONDS - 0.01).count();
-    format!(
-        "{head}, not the {target_mg} mg wanted: every position is taken, {longest} of them averaged for the longest \
-         capture ({MAX_SECONDS} s): this sensor's noise allows no better in one session; a larger --target-mg \
-         ends sooner"
-    )
+    let why = match longest {
+        0 => String::new(),
+        k => format!(
+            ", {k} of them averaged for the longest capture ({MAX_SECONDS} s): this sensor's noise allows no better"
+        ),
+    };
+    format!("{head}, not the {target_mg} mg wanted: every position is taken{why}; a larger --target-mg ends sooner")
 }
 
 /// One position: presented, waited for, captured until its rule stops it (again while the board
@@ -210,5 +212,9 @@ mod tests {
         );
         let missed = prediction_line(&session, 0.081, 0.05);
         assert!(missed.contains("not the 0.05 mg wanted: every position is taken, 3 of them averaged for the longest"));
+        // Captures that stopped by their rule: no claim about the longest capture.
+        let short = Session { captures: vec![captured("+Z", 2.0), captured("-Z", 2.0)], ..Session::default() };
+        let missed = prediction_line(&short, 0.3, 0.2);
+        assert!(missed.ends_with("not the 0.2 mg wanted: every position is taken; a larger --target-mg ends sooner"));
     }
 }
