@@ -127,6 +127,11 @@ pub struct Session {
 }
 
 impl Session {
+    /// Whether a capture of this name was taken.
+    pub fn has_capture(&self, name: &str) -> bool {
+        self.captures.iter().any(|c| c.name == name)
+    }
+
     /// The captures as a data set in g, with their capture statistics.
     pub fn dataset(&self) -> Dataset {
         Dataset { rows: self.captures.iter().enumerate().map(|(i, c)| c.row(i + 2)).collect() }

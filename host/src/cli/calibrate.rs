@@ -219,7 +219,7 @@ fn resumed(path: &Path, board: &BoardRecord, feedback: &mut dyn Feedback) -> Res
     recorded.check_same(board, &json)?;
     let targets = procedure::targets(session.quick);
     // NOTE: by name: an adaptive session's closing capture repeats its first position.
-    let captured = targets.iter().filter(|t| session.captures.iter().any(|c| c.name == t.name)).count();
+    let captured = targets.iter().filter(|t| session.has_capture(&t.name)).count();
     feedback.say(&format!("resuming {}: {captured} of {} positions captured", json.display(), targets.len()));
     Ok(Kept { session, path: Some(stem), resumed: true })
 }

@@ -60,7 +60,7 @@ pub fn collect_adaptive<P: Port>(
     let order = drift::order(targets);
     let (mut collected, mut reached) = (Collected::default(), false);
     for target in &order {
-        if session.captures.iter().any(|c| c.name == target.name) {
+        if session.has_capture(&target.name) {
             continue;
         }
         reached = enough(session, options.rule.target_mg, feedback);
@@ -74,7 +74,7 @@ pub fn collect_adaptive<P: Port>(
         say_prediction(session, options.rule.target_mg, feedback);
     }
     let closing = drift::closing(&order[0]);
-    if !session.captures.iter().any(|c| c.name == closing.name) {
+    if !session.has_capture(&closing.name) {
         take(client, (hand, moves), &closing, options, feedback, session, &mut collected)?;
         keep(session)?;
     }
@@ -90,20 +90,25 @@ fn enough(session: &Session, target_mg: f64, feedback: &mut dyn Feedback) -> boo
     if session.captures.len() < MIN_POSITIONS || drift::unfitted_after(session, 1) {
         return false;
     }
-    let Some(predicted) = adaptive_fit(session).ok().and_then(|(f, _)| f.prediction) else {
+    let Some(predicted_mg) = predicted_mg(session) else {
         return false;
     };
-    let reached = predicted.norm_error_mg <= target_mg;
+    let reached = predicted_mg <= target_mg;
     if reached {
-        feedback.say(&prediction_line(session, predicted.norm_error_mg, target_mg));
+        feedback.say(&prediction_line(session, predicted_mg, target_mg));
     }
     reached
 }
 
+/// The error the session's fit predicts at a fresh orientation, in mg (`None` without a fit).
+fn predicted_mg(session: &Session) -> Option<f64> {
+    adaptive_fit(session).ok().and_then(|(f, _)| f.prediction).map(|p| p.norm_error_mg)
+}
+
 /// Says what the fit of every position taken predicts, once no position is left to ask for.
 fn say_prediction(session: &Session, target_mg: f64, feedback: &mut dyn Feedback) {
-    if let Some(predicted) = adaptive_fit(session).ok().and_then(|(f, _)| f.prediction) {
-        feedback.say(&prediction_line(session, predicted.norm_error_mg, target_mg));
+    if let Some(predicted_mg) = predicted_mg(session) {
+        feedback.say(&prediction_line(session, predicted_mg, target_mg));
     }
 }
 

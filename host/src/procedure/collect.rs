@@ -41,7 +41,7 @@ pub fn collect_into<P: Port>(
     keep: &mut dyn FnMut(&Session) -> Result<(), SessionError>,
 ) -> Result<(), ProcedureError> {
     client.clear_positions()?;
-    let captured = |t: &Orientation| session.captures.iter().any(|c| c.name == t.name);
+    let captured = |t: &Orientation| session.has_capture(&t.name);
     let (mut done, mut remaining): (Vec<Orientation>, Vec<Orientation>) = targets.iter().cloned().partition(captured);
     let mut moved_in_a_row = 0;
     while !remaining.is_empty() {
