@@ -28,13 +28,14 @@ pub struct Simulated {
     pub true_gyro_bias: [f64; 3],
 }
 
-/// `calibrate --sim --yes --json`, once per test binary.
+/// `calibrate --sim --sim-sensor settled --yes --json`, once per test binary: the settled sensor holds its
+/// true errors (the JSON's `truth`) at every temperature, so the truth is what every capture saw.
 pub fn simulated() -> &'static Simulated {
     static ONCE: OnceLock<Simulated> = OnceLock::new();
     ONCE.get_or_init(|| {
         let dir = std::env::temp_dir().join(format!("accelcal-export-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
-        let output = accelcal(&["calibrate", "--sim", "--yes", "--json"]);
+        let output = accelcal(&["calibrate", "--sim", "--sim-sensor", "settled", "--yes", "--json"]);
         assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
         let json = dir.join("cal.json");
         std::fs::write(&json, &output.stdout).unwrap();
