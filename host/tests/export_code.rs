@@ -91,7 +91,10 @@ fn fixed_point_header_compiled_by_gcc_is_within_its_stated_step_on_1000_raw_read
     let dir = header.parent().unwrap();
     std::fs::write(dir.join("q14_main.c"), C_FIXED_MAIN).unwrap();
     let binary = dir.join("q14_main");
-    run(Command::new("gcc").args(["-std=c99", "-Wall", "-Werror", "-O2", "-o"]).arg(&binary).arg(dir.join("q14_main.c")));
+    run(Command::new("gcc")
+        .args(["-std=c99", "-Wall", "-Werror", "-O2", "-o"])
+        .arg(&binary)
+        .arg(dir.join("q14_main.c")));
     let readings = raw_readings(1000);
     let mut rows = numbers(&run_with_input(&mut Command::new(&binary), &readings_text(&readings)));
     let step = rows.pop().unwrap();
@@ -101,8 +104,16 @@ fn fixed_point_header_compiled_by_gcc_is_within_its_stated_step_on_1000_raw_read
         for i in 0..3 {
             let accel_error = (row[i] - g[i] * ACCEL_LSB_PER_G).abs();
             let gyro_error = (row[3 + i] - dps[i] * GYRO_LSB_PER_DPS).abs();
-            assert!(accel_error <= step[i], "reading {raw:?} axis {i}: {accel_error:.3} counts off, stated step {}", step[i]);
-            assert!(gyro_error <= step[3 + i], "reading {raw:?} gyro axis {i}: {gyro_error:.3} counts off, stated {}", step[3 + i]);
+            assert!(
+                accel_error <= step[i],
+                "reading {raw:?} axis {i}: {accel_error:.3} counts off, stated step {}",
+                step[i]
+            );
+            assert!(
+                gyro_error <= step[3 + i],
+                "reading {raw:?} gyro axis {i}: {gyro_error:.3} counts off, stated {}",
+                step[3 + i]
+            );
         }
     }
 }
@@ -126,7 +137,10 @@ fn rust_module_builds_no_std_and_equals_accelcal_on_1000_raw_readings_within_1e_
     // no_std: the module alone as a #![no_std] library.
     std::fs::write(dir.join("nostd.rs"), "#![no_std]\npub mod calibration;\n").unwrap();
     let rustc = std::env::var("RUSTC").unwrap_or_else(|_| "rustc".to_owned());
-    run(Command::new(&rustc).args(["--edition", "2021", "--crate-type", "rlib", "-D", "warnings", "--out-dir"]).arg(dir).arg(dir.join("nostd.rs")));
+    run(Command::new(&rustc)
+        .args(["--edition", "2021", "--crate-type", "rlib", "-D", "warnings", "--out-dir"])
+        .arg(dir)
+        .arg(dir.join("nostd.rs")));
     std::fs::write(dir.join("rust_main.rs"), RUST_MAIN).unwrap();
     let binary = dir.join("rust_main");
     run(Command::new(&rustc).args(["--edition", "2021", "-O", "-o"]).arg(&binary).arg(dir.join("rust_main.rs")));
@@ -156,8 +170,13 @@ for line in sys.stdin:
 fn fusion_values_loaded_by_imufusion_equal_accelcal_on_1000_raw_readings_within_1e_6_g() {
     let found = Command::new("python3").args(["-c", "import imufusion, numpy"]).status().is_ok_and(|s| s.success());
     if !found {
-        assert!(std::env::var("CI").as_deref() != Ok("true"), "CI=true but imufusion is missing (pip install imufusion)");
-        eprintln!("SKIPPED: python3 with imufusion is not installed (pip install imufusion); CI=true makes this a failure");
+        assert!(
+            std::env::var("CI").as_deref() != Ok("true"),
+            "CI=true but imufusion is missing (pip install imufusion)"
+        );
+        eprintln!(
+            "SKIPPED: python3 with imufusion is not installed (pip install imufusion); CI=true makes this a failure"
+        );
         return;
     }
     let file = export("fusion", "fusion_calibration.h", &[]);
@@ -184,6 +203,7 @@ fn matlab_script_run_by_octave_equals_accelcal_on_1000_raw_readings_within_1e_6_
         script.display(),
         input.display()
     );
-    let rows = numbers(&run(Command::new("octave").args(["--no-gui", "--quiet", "--no-init-file", "--eval", &program])));
+    let rows =
+        numbers(&run(Command::new("octave").args(["--no-gui", "--quiet", "--no-init-file", "--eval", &program])));
     assert_float_rows(&rows, &readings, "MATLAB script (Octave)");
 }

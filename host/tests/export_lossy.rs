@@ -41,7 +41,10 @@ fn autopilot(text: &str, offset: &str, scale: &str, gyro: &str) -> Applied {
 fn integers(text: &str, prefix: &str) -> Vec<f64> {
     let line = text.lines().find(|l| l.contains(prefix)).unwrap_or_else(|| panic!("no {prefix:?}"));
     let tail = &line[line.find(prefix).unwrap() + prefix.len()..];
-    tail.split(|c: char| !(c.is_ascii_digit() || c == '-')).filter(|s| !s.is_empty() && *s != "-").map(|s| s.parse().unwrap()).collect()
+    tail.split(|c: char| !(c.is_ascii_digit() || c == '-'))
+        .filter(|s| !s.is_empty() && *s != "-")
+        .map(|s| s.parse().unwrap())
+        .collect()
 }
 
 fn read_back(target: &str, text: &str) -> Applied {
@@ -61,7 +64,11 @@ fn read_back(target: &str, text: &str) -> Applied {
             let accel = ["X", "Y", "Z"].map(|a| integers(text, &format!("get{a}AccelOffset() +"))[0]);
             let gyro = ["X", "Y", "Z"].map(|a| integers(text, &format!("get{a}GyroOffset() +"))[0]);
             // NOTE: the registers add to the reading: 2048 counts per g, 32.8 per deg/s.
-            Applied { scale: [1.0; 3], offset_g: accel.map(|c| -c / 2048.0), gyro_bias_dps: Some(gyro.map(|c| -c / 32.8)) }
+            Applied {
+                scale: [1.0; 3],
+                offset_g: accel.map(|c| -c / 2048.0),
+                gyro_bias_dps: Some(gyro.map(|c| -c / 32.8)),
+            }
         }
         "adafruit-json" => {
             let v: serde_json::Value = serde_json::from_str(text).unwrap();
@@ -107,11 +114,17 @@ fn directions(n: usize) -> Vec<[f64; 3]> {
 /// RMS and worst of |f(u) - u| over random unit u.
 fn spread(f: impl Fn([f64; 3]) -> [f64; 3]) -> (f64, f64) {
     let points = directions(20_000);
-    let errors: Vec<f64> = points.iter().map(|u| {
-        let a = f(*u);
-        ((a[0] - u[0]).powi(2) + (a[1] - u[1]).powi(2) + (a[2] - u[2]).powi(2)).sqrt()
-    }).collect();
-    ((errors.iter().map(|e| e * e).sum::<f64>() / errors.len() as f64).sqrt(), errors.iter().cloned().fold(0.0, f64::max))
+    let errors: Vec<f64> = points
+        .iter()
+        .map(|u| {
+            let a = f(*u);
+            ((a[0] - u[0]).powi(2) + (a[1] - u[1]).powi(2) + (a[2] - u[2]).powi(2)).sqrt()
+        })
+        .collect();
+    (
+        (errors.iter().map(|e| e * e).sum::<f64>() / errors.len() as f64).sqrt(),
+        errors.iter().cloned().fold(0.0, f64::max),
+    )
 }
 
 /// The loss the target's values leave on the true simulated sensor: (rms mg, worst mg, gyro rms %, gyro worst %).
@@ -152,7 +165,10 @@ fn assert_stated_loss_is_measured(target: &str, extra: &[&str]) {
     ];
     for (stated, measured, extra, what) in pairs {
         let tolerance = 0.1 * (measured + extra) + extra;
-        assert!((stated - measured).abs() <= tolerance, "{target}: stated {stated:.4} {what}, measured {measured:.4} on the true sensor");
+        assert!(
+            (stated - measured).abs() <= tolerance,
+            "{target}: stated {stated:.4} {what}, measured {measured:.4} on the true sensor"
+        );
     }
 }
 
@@ -207,9 +223,18 @@ fn autopilot_and_adafruit_offsets_are_in_m_s2_with_standard_gravity_and_offsets_
         let applied = read_back(target, &read(&export(target, &format!("{target}.g"), &[])));
         for i in 0..3 {
             let error = (applied.offset_g[i] - sim.offset[i]).abs();
-            assert!(error <= 1e-7 * sim.offset[i].abs() + 1e-12, "{target} axis {i}: offset {} g, calibration's {} g", applied.offset_g[i], sim.offset[i]);
+            assert!(
+                error <= 1e-7 * sim.offset[i].abs() + 1e-12,
+                "{target} axis {i}: offset {} g, calibration's {} g",
+                applied.offset_g[i],
+                sim.offset[i]
+            );
             let bias = applied.gyro_bias_dps.unwrap()[i];
-            assert!((bias - sim.gyro_bias[i]).abs() <= 1e-6, "{target} gyro axis {i}: {bias} deg/s, calibration's {}", sim.gyro_bias[i]);
+            assert!(
+                (bias - sim.gyro_bias[i]).abs() <= 1e-6,
+                "{target} gyro axis {i}: {bias} deg/s, calibration's {}",
+                sim.gyro_bias[i]
+            );
         }
     }
 }
@@ -238,7 +263,11 @@ fn adafruit_eeprom_image_is_accepted_by_the_library_layout_and_carries_the_offse
     let floats = adafruit_load(&image).expect("the image is refused by the library's reader");
     for i in 0..3 {
         let accel = f64::from(floats[i]) / G;
-        assert!((accel - sim.offset[i]).abs() <= 1e-7 * sim.offset[i].abs(), "accel_zerog[{i}] {accel} g, calibration's {}", sim.offset[i]);
+        assert!(
+            (accel - sim.offset[i]).abs() <= 1e-7 * sim.offset[i].abs(),
+            "accel_zerog[{i}] {accel} g, calibration's {}",
+            sim.offset[i]
+        );
         let gyro = f64::from(floats[3 + i]) / RAD_PER_DEG;
         assert!((gyro - sim.gyro_bias[i]).abs() <= 1e-6, "gyro_zerorate[{i}] {gyro} deg/s");
     }

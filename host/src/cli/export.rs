@@ -50,7 +50,9 @@ pub(super) fn export(args: &ExportArgs) -> Result<(), Error> {
             eprintln!("{shown}\nwrote {}", path.display());
         }
         None => {
-            std::io::stdout().write_all(&exported.bytes).map_err(|source| Error::WriteFile { path: "stdout".into(), source })?;
+            std::io::stdout()
+                .write_all(&exported.bytes)
+                .map_err(|source| Error::WriteFile { path: "stdout".into(), source })?;
         }
     }
     Ok(())
@@ -62,7 +64,8 @@ fn from_board(device: &Device) -> Result<Source, Error> {
     let connection = &mut opened.connection;
     let board = BoardRecord::of(&connection.info);
     let calibration = connection.client.calibration(CalibrationSlot::Active)?.ok_or(Error::NothingToDownload)?;
-    let from = device.port.clone().map_or_else(|| "the simulated board (--sim)".to_owned(), |p| format!("the board on {p}"));
+    let from =
+        device.port.clone().map_or_else(|| "the simulated board (--sim)".to_owned(), |p| format!("the board on {p}"));
     Ok(Source { calibration, serial: Some(board.serial), from, noise: None })
 }
 

@@ -5,7 +5,7 @@ use shared::linalg::{Mat3, Vec3};
 
 use super::loss::loss;
 use super::statement::{lines, Said};
-use super::{float, text, Export, C_BLOCK, SLASHES, Source, GYRO_LSB_PER_DPS, STANDARD_GRAVITY};
+use super::{float, text, Export, Source, C_BLOCK, GYRO_LSB_PER_DPS, SLASHES, STANDARD_GRAVITY};
 
 /// What both float code targets state.
 const CONVENTION: &[&str] = &[
@@ -21,7 +21,12 @@ const TEMPERATURE: &str = "not applied (M, o, G, b are the ones at the temperatu
 pub fn c(source: &Source) -> Export {
     let full = source.full();
     let loss = loss(&full, &full);
-    let said = Said { title: "C (float)", convention: CONVENTION, carries: "M, o, G, b in full (float32)", temperature: TEMPERATURE };
+    let said = Said {
+        title: "C (float)",
+        convention: CONVENTION,
+        carries: "M, o, G, b in full (float32)",
+        temperature: TEMPERATURE,
+    };
     let body = format!(
         "\n#ifndef ACCELCAL_CALIBRATION_H\n#define ACCELCAL_CALIBRATION_H\n\n#include <stdint.h>\n\n\
          #define ACCELCAL_ACCEL_LSB_PER_G {:?}f\n#define ACCELCAL_GYRO_LSB_PER_DPS {GYRO_LSB_PER_DPS}f\n\
@@ -71,7 +76,12 @@ static inline void accelcal_gyro_dps(const int16_t raw[3], float out_dps[3]) {
 pub fn rust(source: &Source) -> Export {
     let full = source.full();
     let loss = loss(&full, &full);
-    let said = Said { title: "Rust (no_std)", convention: CONVENTION, carries: "M, o, G, b in full (f32)", temperature: TEMPERATURE };
+    let said = Said {
+        title: "Rust (no_std)",
+        convention: CONVENTION,
+        carries: "M, o, G, b in full (f32)",
+        temperature: TEMPERATURE,
+    };
     let body = format!(
         "\n/// Raw accelerometer counts per g.\npub const ACCEL_LSB_PER_G: f32 = {:?};\n\
          /// Raw gyro counts per deg/s.\npub const GYRO_LSB_PER_DPS: f32 = {GYRO_LSB_PER_DPS:?};\n\

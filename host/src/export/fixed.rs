@@ -45,7 +45,12 @@ pub fn c_fixed(source: &Source) -> Result<Export, ExportError> {
         list(&accel.step_lsb),
         list(&gyro.step_lsb)
     );
-    let said = Said { title: "C (int16 fixed point, Q14)", convention: CONVENTION, carries: &step, temperature: "not applied" };
+    let said = Said {
+        title: "C (int16 fixed point, Q14)",
+        convention: CONVENTION,
+        carries: &step,
+        temperature: "not applied",
+    };
     let body = format!(
         "\n#ifndef ACCELCAL_CALIBRATION_Q14_H\n#define ACCELCAL_CALIBRATION_Q14_H\n\n#include <stdint.h>\n\n\
          #define ACCELCAL_ACCEL_LSB_PER_G {}\n#define ACCELCAL_GYRO_LSB_PER_DPS {GYRO_LSB_PER_DPS}f\n\

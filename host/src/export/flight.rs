@@ -47,7 +47,11 @@ pub fn ardupilot(source: &Source) -> Export {
         title: "ArduPilot (.param)",
         convention: ARDUPILOT_CONVENTION,
         carries: "accelerometer offsets and a scale per axis (no cross-axis terms); gyro offsets (no gyro scale)",
-        temperature: if model.is_some() { "TCAL carries the offset and gyro-bias terms (not a sensitivity drift)" } else { "none to carry" },
+        temperature: if model.is_some() {
+            "TCAL carries the offset and gyro-bias terms (not a sensitivity drift)"
+        } else {
+            "none to carry"
+        },
     };
     let mut params = Vec::new();
     for (axis, name) in ["X", "Y", "Z"].iter().enumerate() {
@@ -115,7 +119,11 @@ pub fn px4(source: &Source) -> Export {
         title: "PX4 (.params, QGroundControl)",
         convention: PX4_CONVENTION,
         carries: "accelerometer offsets and a scale per axis (no cross-axis terms); gyro offsets (no gyro scale)",
-        temperature: if model.is_some() { "TC_A0 and TC_G0 carry the offset and gyro-bias terms (not a sensitivity drift)" } else { "none to carry" },
+        temperature: if model.is_some() {
+            "TC_A0 and TC_G0 carry the offset and gyro-bias terms (not a sensitivity drift)"
+        } else {
+            "none to carry"
+        },
     };
     let mut params: Vec<(String, String, u8)> = Vec::new();
     for (axis, name) in ["X", "Y", "Z"].iter().enumerate() {
@@ -148,7 +156,8 @@ fn px4_thermal(model: &TemperatureModel) -> Vec<(String, String, u8)> {
         params.push((format!("TC_{sensor}0_TMAX"), high.to_string(), REAL32));
         for order in 0..=3 {
             for axis in 0..3 {
-                let value = if order == 0 { 0.0 } else { coefficients.get(order - 1).map_or(0.0, |c| f64::from(c[axis])) };
+                let value =
+                    if order == 0 { 0.0 } else { coefficients.get(order - 1).map_or(0.0, |c| f64::from(c[axis])) };
                 params.push((format!("TC_{sensor}0_X{order}_{axis}"), ((value * factor) as f32).to_string(), REAL32));
             }
         }

@@ -6,7 +6,7 @@
 use super::code::{c_matrix, c_vector};
 use super::loss::loss;
 use super::statement::{lines, Said};
-use super::{text, Export, Source, SLASHES, GYRO_LSB_PER_DPS};
+use super::{text, Export, Source, GYRO_LSB_PER_DPS, SLASHES};
 
 const CONVENTION: &[&str] = &[
     "FusionCalibrationInertial: calibrated = misalignment * ((uncalibrated - offset) .* sensitivity)",
@@ -20,7 +20,12 @@ pub fn fusion(source: &Source) -> Export {
     let full = source.full();
     let loss = loss(&full, &full);
     let lsb = source.lsb_per_g();
-    let said = Said { title: "xio Fusion (FusionCalibrationInertial)", convention: CONVENTION, carries: "M, o, G, b in full (float32)", temperature: "not applied" };
+    let said = Said {
+        title: "xio Fusion (FusionCalibrationInertial)",
+        convention: CONVENTION,
+        carries: "M, o, G, b in full (float32)",
+        temperature: "not applied",
+    };
     let flat = |m: &[[f64; 3]; 3]| c_matrix(m).replace("}, {", ", ").replace("{{", "{").replace("}}", "}");
     let body = format!(
         "\n#include \"Fusion.h\"\n\n\

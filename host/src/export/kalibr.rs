@@ -15,7 +15,12 @@ const CONVENTION: &[&str] = &[
 pub fn kalibr(source: &Source) -> Result<Export, ExportError> {
     let noise = source.noise.ok_or(ExportError::NeedsNoise)?;
     let full = source.full();
-    let nothing = Carried { matrix: diagonal([1.0; 3]), offset_g: [0.0; 3], gyro_matrix: diagonal([1.0; 3]), gyro_bias_dps: None };
+    let nothing = Carried {
+        matrix: diagonal([1.0; 3]),
+        offset_g: [0.0; 3],
+        gyro_matrix: diagonal([1.0; 3]),
+        gyro_bias_dps: None,
+    };
     let loss = loss(&full, &nothing);
     let said = Said {
         title: "Kalibr (imu.yaml)",
@@ -26,7 +31,11 @@ pub fn kalibr(source: &Source) -> Result<Export, ExportError> {
     let body = format!(
         "accelerometer_noise_density: {:e}\naccelerometer_random_walk: {:e}\n\
          gyroscope_noise_density: {:e}\ngyroscope_random_walk: {:e}\nrostopic: /imu0\nupdate_rate: {}\n",
-        noise.accel_noise_density, noise.accel_random_walk, noise.gyro_noise_density, noise.gyro_random_walk, noise.rate_hz
+        noise.accel_noise_density,
+        noise.accel_random_walk,
+        noise.gyro_noise_density,
+        noise.gyro_random_walk,
+        noise.rate_hz
     );
     Ok(text(lines(source, &said, &loss), &HASH, &body, loss))
 }

@@ -21,7 +21,12 @@ const CONVENTION: &[&str] = &[
 pub fn matlab(source: &Source) -> Export {
     let full = source.full();
     let loss = loss(&full, &full);
-    let said = Said { title: "MATLAB/Octave (magcal's convention)", convention: CONVENTION, carries: "M, o, G, b in full", temperature: "not applied" };
+    let said = Said {
+        title: "MATLAB/Octave (magcal's convention)",
+        convention: CONVENTION,
+        carries: "M, o, G, b in full",
+        temperature: "not applied",
+    };
     let c0 = linalg::scale(linalg::mul_vec(&full.matrix, full.offset_g), -1.0);
     let body = format!(
         "\naccel_lsb_per_g = {};\ngyro_lsb_per_dps = {GYRO_LSB_PER_DPS};\nstandard_gravity = {STANDARD_GRAVITY};\n\n\

@@ -9,9 +9,9 @@ mod flight;
 mod fusion;
 mod i2cdevlib;
 mod kalibr;
+pub mod loss;
 mod matlab;
 mod multiwii;
-pub mod loss;
 pub mod source;
 pub mod statement;
 
@@ -143,4 +143,3 @@ fn text(statement: Vec<String>, comment: &Comment, body: &str, loss: Loss) -> Ex
 fn float(value: f64) -> String {
     format!("{:e}", value as f32)
 }
-

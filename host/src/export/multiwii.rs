@@ -61,7 +61,8 @@ pub fn inav(source: &Source) -> Export {
     let said = Said {
         title: "INAV (CLI)",
         convention: INAV_CONVENTION,
-        carries: "accelerometer offsets and a scale per axis (no cross-axis terms, no gyro bias: INAV measures it at boot)",
+        carries:
+            "accelerometer offsets and a scale per axis (no cross-axis terms, no gyro bias: INAV measures it at boot)",
         temperature: "INAV has no temperature model: not carried",
     };
     let mut body = String::new();

@@ -26,7 +26,10 @@ pub fn lines(source: &Source, said: &Said, loss: &Loss) -> Vec<String> {
         format!("from: {}", source.from),
         format!("board serial: {}", serial(source)),
         sensor(source),
-        format!("made at: {:.1} degC die temperature (the mean of the captures it was fitted to)", source.calibration.mean_temp_c),
+        format!(
+            "made at: {:.1} degC die temperature (the mean of the captures it was fitted to)",
+            source.calibration.mean_temp_c
+        ),
         format!("temperature model: {}", temperature_model(source.calibration.temperature.as_ref())),
         format!("temperature model in this file: {}", said.temperature),
     ];
@@ -64,7 +67,10 @@ fn lost(loss: &Loss) -> Vec<String> {
              {:.4} mg rms, {:.4} mg worst",
             loss.rms_mg, loss.worst_mg
         ),
-        format!("lost, gyro scale and misalignment, of the rate: {:.3} % rms, {:.3} % worst", loss.gyro_rms_pct, loss.gyro_worst_pct),
+        format!(
+            "lost, gyro scale and misalignment, of the rate: {:.3} % rms, {:.3} % worst",
+            loss.gyro_rms_pct, loss.gyro_worst_pct
+        ),
     ]
 }
 

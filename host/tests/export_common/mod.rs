@@ -128,8 +128,12 @@ pub fn readings_text(readings: &[[i16; 3]]) -> String {
 /// Runs `command` with `input` on stdin; its stdout.
 pub fn run_with_input(command: &mut Command, input: &str) -> String {
     use std::io::Write;
-    let mut child = command.stdin(std::process::Stdio::piped()).stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped()).spawn().expect("the program runs");
+    let mut child = command
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("the program runs");
     child.stdin.take().unwrap().write_all(input.as_bytes()).unwrap();
     let output = child.wait_with_output().unwrap();
     assert!(output.status.success(), "{command:?} failed: {}", String::from_utf8_lossy(&output.stderr));
@@ -141,7 +145,10 @@ pub fn stated_loss(text: &str) -> (f64, f64, f64, f64) {
     let after = |key: &str| -> Vec<f64> {
         let line = text.lines().find(|l| l.contains(key)).unwrap_or_else(|| panic!("no {key:?} line"));
         let tail = &line[line.find(key).unwrap() + key.len()..];
-        tail.split(|c: char| !(c.is_ascii_digit() || c == '.')).filter(|s| !s.is_empty()).filter_map(|s| s.parse().ok()).collect()
+        tail.split(|c: char| !(c.is_ascii_digit() || c == '.'))
+            .filter(|s| !s.is_empty())
+            .filter_map(|s| s.parse().ok())
+            .collect()
     };
     let accel = after("orientations at 1 g:");
     let gyro = after("of the rate:");
