@@ -48,6 +48,10 @@ pub enum Error {
     WhichDevice,
     #[error("the device has no calibration to download: calibrate or upload one first")]
     NothingToDownload,
+    #[error("{source}; the bins learned so far (a span of {span_c:.1} degC) are kept in {}: go on from them with `accelcal thermal --port {device} --bins {}`", .path.display(), .path.display())]
+    ThermalStopped { source: Box<Error>, span_c: f64, path: PathBuf, device: String },
+    #[error(transparent)]
+    KeptBins(#[from] crate::procedure::thermal::kept::KeptBinsError),
     #[error(transparent)]
     NoiseInput(#[from] NoiseInputError),
     #[error(transparent)]

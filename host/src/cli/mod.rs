@@ -17,6 +17,7 @@ mod record;
 mod report;
 mod terminal;
 mod thermal;
+mod thermal_person;
 mod transfer;
 
 use std::process::ExitCode;
