@@ -156,7 +156,8 @@ pub struct StreamArgs {
 pub struct NoiseArgs {
     /// The recording: .npy from `accelcal record`, or CSV (ax_g ... gz_dps) from `accelcal stream`.
     pub file: PathBuf,
-    /// Samples per second of a CSV file (default 1000); a .npy recording names its own.
+    /// Samples per second of a CSV file without a time_s column (default 1000); a .npy recording
+    /// and a `stream` CSV (its time_s) name their own, which a given rate must agree with.
     #[arg(long)]
     pub rate: Option<f64>,
     /// Print one JSON object instead of the table.

@@ -49,8 +49,11 @@ pub(super) fn verify(device: &Device, positions: usize) -> Result<(), Error> {
     let client = &mut opened.connection.client;
     let v = procedure::verify(client, hand.as_mut(), positions, wait_limit, &mut feedback)?;
     println!(
-        "| |a| - 1 g | rms {:.2} mg raw, {:.3} mg calibrated (worst {:.3} mg); chip and host agree within {:.2} mg",
-        v.before_rms_mg, v.after_rms_mg, v.after_max_mg, v.on_chip_difference_mg
+        "| |a| - 1 g | rms {:.2} mg raw, {:.3} mg calibrated (worst {:.3} mg); {}",
+        v.before_rms_mg,
+        v.after_rms_mg,
+        v.after_max_mg,
+        v.chip_agreement()
     );
     Ok(())
 }

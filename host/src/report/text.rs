@@ -219,6 +219,7 @@ mod tests {
             after_max_mg: after_rms_mg,
             after_rms_without_noise_mg: without,
             on_chip_difference_mg: 0.0,
+            on_chip_noise_mg: 1.0,
             noise_floor_mg,
             before_mg: Vec::new(),
             after_mg: Vec::new(),
