@@ -264,4 +264,16 @@ mod tests {
             .starts_with("chip and host agree: they differ by 1.13 mg, within the 1.16 mg noise"));
         assert!(verification(5.0).chip_agreement().contains("does not apply the calibration verified"));
     }
+
+    #[test]
+    fn the_worst_error_counts_readings_below_1_g_as_well_as_above() {
+        // |a| of 0.9988 g is 1.2 mg short: the worst error is 1.2 mg, not the 0.5 mg above 1 g.
+        let check =
+            |before_mg, after_mg| Check { before_mg, after_mg, noise_mg: 0.1, on_chip_mg: 0.01, on_chip_noise_mg: 1.0 };
+        let result = summary(&[check(3.0, 0.3), check(-4.0, -1.2), check(2.0, 0.5)]);
+        assert_eq!(result.after_max_mg, 1.2);
+        // sqrt((0.09 + 1.44 + 0.25) / 3) = 0.770 mg
+        assert!((result.after_rms_mg - 0.770_281).abs() < 1e-6, "{}", result.after_rms_mg);
+        assert_eq!(result.positions, 3);
+    }
 }
