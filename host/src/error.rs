@@ -42,6 +42,12 @@ pub enum Error {
     BadGravity { g: f64 },
     #[error("{source}; {} so far {} kept in {}: continue with `accelcal calibrate {device} --resume {}`", count(*.captures, "capture"), if *.captures == 1 { "is" } else { "are" }, .path.display(), .path.display())]
     Stopped { source: Box<ProcedureError>, captures: usize, path: PathBuf, device: String },
+    #[error("{source}; the calibration is already uploaded and saved on the board: check it with `accelcal verify {device}`")]
+    AfterUpload { source: Box<ProcedureError>, device: String },
+    #[error(
+        "the calibration uploaded and saved misses --target-mg by more than its noise ({line}); it stays on the board"
+    )]
+    TargetMissed { line: String },
     #[error("--json cannot ask whether to upload the calibration: add --yes to upload and save it, or leave out --json to be asked")]
     JsonCannotAsk,
     #[error("which device? give --port PATH (see `accelcal ports`) or --sim")]
@@ -68,7 +74,18 @@ pub enum Error {
     ReportInput { path: PathBuf, reason: String },
 }
 
+/// The exit status of a calibration that was uploaded and saved but missed its target (documented).
+pub const TARGET_MISSED_EXIT: u8 = 2;
+
 impl Error {
+    /// The process's exit status for this error: [`TARGET_MISSED_EXIT`] for a missed target, else 1.
+    pub fn exit_code(&self) -> u8 {
+        match self {
+            Error::TargetMissed { .. } => TARGET_MISSED_EXIT,
+            _ => 1,
+        }
+    }
+
     /// A data file refused: a file that cannot be read is named once (the reader's message already
     /// holds the path), a bad one with the path before the line and cause.
     pub fn data_file(path: &std::path::Path, source: DataError) -> Self {

@@ -122,17 +122,24 @@ fn finish(
     let (rate_hz, clock) = (opened.connection.info.config.sample_rate_hz, opened.clock());
     let client = &mut opened.connection.client;
     let calibrated: Vec<[f64; 3]> = fitted.session.captures.iter().map(|c| c.stats.mean_g.map(f64::from)).collect();
+    let on_board = |source| Error::AfterUpload { source: Box::new(source), device: device_flags(args) };
     let verification =
-        procedure::verify_with(client, hand.as_mut(), positions, wait_limit, feedback, &calibrated, length)?;
+        procedure::verify_with(client, hand.as_mut(), positions, wait_limit, feedback, &calibrated, length)
+            .map_err(on_board)?;
     let board_seconds = first_capture_s.map(|first| clock() - first);
-    let check = super::gyro::check(client, hand.as_mut(), rate_hz, gyro, feedback)?;
+    let check = super::gyro::check(client, hand.as_mut(), rate_hz, gyro, feedback).map_err(on_board)?;
     if let Some(stem) = kept_at {
         keep_with_report(&fitted.session, &verification, stem, feedback)?;
     }
     let mut report = report_of(opened, (fitted, gyro), verification, check);
     report.board_seconds = board_seconds;
+    let target = report.verification.against(adaptive.then_some(args.length.target_mg));
+    report.target = Some(target.clone());
     print_report(&report, args.json);
-    Ok(())
+    match target.missed {
+        true => Err(Error::TargetMissed { line: target.line }),
+        false => Ok(()),
+    }
 }
 
 /// The run's report: the calibration chosen, the fits beside it, the verification and the gyro's

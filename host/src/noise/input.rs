@@ -32,8 +32,10 @@ pub enum NoiseInputError {
     Recording(#[from] RecordingError),
     #[error("--rate must be a positive number of samples per second, got {rate_hz}")]
     BadRate { rate_hz: f64 },
-    #[error("--rate {given_hz} differs from the {recorded_hz:.2} Hz the recording was taken at (by its own time stamps); leave --rate out")]
-    RateDiffers { given_hz: f64, recorded_hz: f64 },
+    #[error(
+        "--rate {given_hz} differs from the {recorded_hz} Hz the recording was taken at ({shown_by}); leave --rate out"
+    )]
+    RateDiffers { given_hz: f64, recorded_hz: f64, shown_by: &'static str },
 }
 
 /// Sample rate of a CSV file without time stamps when the caller names none, in Hz: the sensor's
@@ -53,17 +55,17 @@ pub fn read_path(path: &Path, rate_hz: Option<f64>) -> Result<RateSeries, NoiseI
     let opened = file.read(&mut magic).map_err(io)?;
     if is_npy(&magic[..opened]) {
         let recording = recording::read_path(path)?;
-        let recorded_hz = agreed_rate(rate_hz, f64::from(recording.rate_hz))?;
+        let recorded_hz = agreed_rate(rate_hz, f64::from(recording.rate_hz), "as its header names it")?;
         return from_samples(&recording.samples, recorded_hz);
     }
     read_csv(std::fs::File::open(path).map_err(io)?, rate_hz)
 }
 
 /// The rate a file shows, when `given` (if any) agrees with it.
-fn agreed_rate(given: Option<f64>, recorded_hz: f64) -> Result<f64, NoiseInputError> {
+fn agreed_rate(given: Option<f64>, recorded_hz: f64, shown_by: &'static str) -> Result<f64, NoiseInputError> {
     match given {
         Some(given_hz) if (given_hz - recorded_hz).abs() > RATE_AGREEMENT * recorded_hz => {
-            Err(NoiseInputError::RateDiffers { given_hz, recorded_hz })
+            Err(NoiseInputError::RateDiffers { given_hz, recorded_hz, shown_by })
         }
         _ => Ok(recorded_hz),
     }
@@ -125,7 +127,7 @@ pub fn read_csv(reader: impl Read, rate_hz: Option<f64>) -> Result<RateSeries, N
     }
     let [ax, ay, az, gx, gy, gz, times_s] = axes;
     let rate_hz = match rate_of_times(&times_s) {
-        Some(recorded_hz) => agreed_rate(rate_hz, recorded_hz)?,
+        Some(recorded_hz) => agreed_rate(rate_hz, recorded_hz, "as its time_s column shows")?,
         None => rate_hz.unwrap_or(CSV_DEFAULT_RATE_HZ),
     };
     check_length(RateSeries { rate_hz, axes: [ax, ay, az, gx, gy, gz] })
