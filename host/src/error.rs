@@ -59,6 +59,8 @@ pub enum Error {
     #[error(transparent)]
     KeptBins(#[from] crate::procedure::thermal::kept::KeptBinsError),
     #[error(transparent)]
+    Export(#[from] crate::export::ExportError),
+    #[error(transparent)]
     NoiseInput(#[from] NoiseInputError),
     #[error(transparent)]
     Recording(#[from] crate::recording::RecordingError),
@@ -72,6 +74,15 @@ pub enum Error {
     ReadFile { path: PathBuf, source: std::io::Error },
     #[error("{} cannot go into the report: {reason}", .path.display())]
     ReportInput { path: PathBuf, reason: String },
+}
+
+impl From<crate::session::OutcomeError> for Error {
+    fn from(error: crate::session::OutcomeError) -> Self {
+        match error {
+            crate::session::OutcomeError::Fit(e) => Error::Fit(e),
+            crate::session::OutcomeError::Calibration(e) => Error::Calibration(e),
+        }
+    }
 }
 
 /// The exit status of a calibration that was uploaded and saved but missed its target (documented).
