@@ -60,22 +60,31 @@ impl Verification {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn verified(after_rms_mg: f64, noise_floor_mg: f64) -> Verification {
+impl Verification {
+    /// A verification of six orientations at this rms and noise floor, in mg, for tests.
+    pub(crate) fn example(after_rms_mg: f64, noise_floor_mg: f64) -> Self {
         Verification {
-            positions: 3,
+            positions: 6,
             before_rms_mg: 40.0,
             after_rms_mg,
-            after_max_mg: after_rms_mg,
-            after_rms_without_noise_mg: 0.0,
+            after_max_mg: after_rms_mg * 2.0,
+            after_rms_without_noise_mg: (after_rms_mg.powi(2) - noise_floor_mg.powi(2)).max(0.0).sqrt(),
             on_chip_difference_mg: 0.5,
             on_chip_noise_mg: 1.0,
             noise_floor_mg,
             before_mg: vec![],
             after_mg: vec![],
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A verification of six orientations at this rms and noise floor, in mg.
+    fn verified(after_rms_mg: f64, noise_floor_mg: f64) -> Verification {
+        Verification::example(after_rms_mg, noise_floor_mg)
     }
 
     #[test]
