@@ -24,6 +24,11 @@ pub struct Verification {
     /// which `after_rms_mg` cannot resolve an error.
     #[serde(default)]
     pub noise_floor_mg: f64,
+    /// The size of the noise the chip's 20-sample mean carries (its samples' spread over the square
+    /// root of 20, through the calibration), at the orientation where it is largest, in mg: the
+    /// scale `on_chip_difference_mg` is judged against.
+    #[serde(default)]
+    pub on_chip_noise_mg: f64,
     /// |m| - 1 g at each orientation with the raw readings, in mg.
     #[serde(default)]
     pub before_mg: Vec<f64>,
