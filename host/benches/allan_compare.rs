@@ -28,7 +28,9 @@ fn main() {
     });
     let report = noise::analyse(&series);
     let Some((theirs_seconds, adev)) = allantools(&series, &factors) else {
-        println!("allantools comparison skipped: python3 with numpy and allantools is needed (pip install allantools numpy)");
+        println!(
+            "allantools comparison skipped: python3 with numpy and allantools is needed (pip install allantools numpy)"
+        );
         return;
     };
     let worst = report
@@ -37,12 +39,21 @@ fn main() {
         .zip(adev)
         .flat_map(|(axis, adev)| axis.curve.iter().zip(adev).map(|(p, a)| (p.adev / a - 1.0).abs()).collect::<Vec<_>>())
         .fold(0.0, f64::max);
-    println!("an hour at 1 kHz, six axes, {} averaging times each, median of {REPEATS} runs, one thread each:", factors.len());
+    println!(
+        "an hour at 1 kHz, six axes, {} averaging times each, median of {REPEATS} runs, one thread each:",
+        factors.len()
+    );
     println!("  accelcal Allan deviation                        {deviation:7.3} s CPU");
     println!("  accelcal noise analysis (deviation, intervals, fit) {analysis:7.3} s CPU");
     println!("  allantools oadev                                {theirs_seconds:7.3} s CPU");
-    println!("Allan deviation speedup vs allantools oadev, one thread each (CPU time): {:.1}x", theirs_seconds / deviation);
-    println!("noise analysis speedup vs allantools oadev, one thread each (CPU time): {:.1}x", theirs_seconds / analysis);
+    println!(
+        "Allan deviation speedup vs allantools oadev, one thread each (CPU time): {:.1}x",
+        theirs_seconds / deviation
+    );
+    println!(
+        "noise analysis speedup vs allantools oadev, one thread each (CPU time): {:.1}x",
+        theirs_seconds / analysis
+    );
     println!("largest relative difference from allantools: {worst:.2e}");
 }
 
@@ -75,6 +86,7 @@ fn allantools(series: &RateSeries, factors: &[usize]) -> Option<(f64, Vec<Vec<f6
         .output();
     let _ = std::fs::remove_file(&path);
     let theirs = serde_json::from_slice::<serde_json::Value>(&output.ok()?.stdout).ok()?;
-    let adev = theirs["adev"].as_array()?.iter().map(|a| a.as_array().map(|a| a.iter().filter_map(|v| v.as_f64()).collect()));
+    let adev =
+        theirs["adev"].as_array()?.iter().map(|a| a.as_array().map(|a| a.iter().filter_map(|v| v.as_f64()).collect()));
     Some((theirs["seconds"].as_f64()?, adev.collect::<Option<Vec<_>>>()?))
 }
