@@ -20,17 +20,24 @@ impl Real for f32 {
     /// before this). Both are correctly rounded, so the chip and the host agree bit for bit.
     #[cfg(all(target_arch = "arm", target_abi = "eabihf"))]
     fn root(self) -> f32 {
-        let root: f32;
-        // SAFETY: vsqrt.f32 reads and writes only the two named FPU registers; every eabihf target
-        // has the FPU it needs.
-        unsafe { core::arch::asm!("vsqrt.f32 {0}, {1}", out(sreg) root, in(sreg) self, options(pure, nomem, nostack)) };
-        root
+        vsqrt(self)
     }
 
     #[cfg(not(all(target_arch = "arm", target_abi = "eabihf")))]
     fn root(self) -> f32 {
         self.sqrt()
     }
+}
+
+/// The FPU's square root.
+///
+/// NOTE: a naked function, because inline assembly may name FPU registers only with the `vfp2`
+/// target feature, which the single-precision FPUs of the M4F and M33 lack; the hard-float ABI
+/// passes and returns the f32 in s0, and `.fpu` lets the assembler accept the instruction.
+#[cfg(all(target_arch = "arm", target_abi = "eabihf"))]
+#[unsafe(naked)]
+extern "C" fn vsqrt(x: f32) -> f32 {
+    core::arch::naked_asm!(".fpu fpv4-sp-d16", "vsqrt.f32 s0, s0", "bx lr")
 }
 
 #[cfg(test)]

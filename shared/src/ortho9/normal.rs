@@ -33,9 +33,7 @@ impl<T: Float> Normal<T> {
 /// Accumulates the normal equations at `p` over the readings into `normal`; `false` when a value is
 /// not finite.
 pub(super) fn accumulate<T: Real>(readings: &[Vec3<T>], p: &Params<T>, normal: &mut Normal<T>) -> bool {
-    for i in 0..PARAMETERS {
-        normal.jtj[i][..=i].fill(T::zero());
-    }
+    normal.jtj = [[T::zero(); PARAMETERS]; PARAMETERS];
     normal.jtr = [T::zero(); PARAMETERS];
     normal.cost = T::zero();
     for &reading in readings {

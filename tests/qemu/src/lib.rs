@@ -9,6 +9,7 @@ use firmware::sensor::RawSample;
 use firmware::sim::{sim_serial_number, SimFlash, SimMpu6050, SIM_FLASH_RANGE};
 use shared::calibration::{GyroCalibration, TemperatureModel};
 use shared::protocol::{Request, Response, SensorConfig, StreamKind};
+use shared::real::Real;
 use shared::{AccelRange, Calibration, Position, PositionMap};
 
 /// The published phone readings in m/s^2 (Georgieva and Hofreither), the six faces in their order.
@@ -53,6 +54,21 @@ pub const QUICK_TILTED: [[f32; 3]; 10] = [
     [-0.54, 0.62, -0.62],
     [0.54, -0.62, -0.62],
 ];
+
+/// The quick calibration's ten captures as the published-error MPU-6050 (firmware::sim's truth) reads
+/// them at [`QUICK_TILTED`], in g, with a fixed pattern of +-1e-4 g standing in for noise.
+pub fn quick_readings() -> [[f32; 3]; 10] {
+    let truth = firmware::sim::physics::TrueErrors::published_mpu6050();
+    let mut readings = [[0.0f32; 3]; 10];
+    for (i, (reading, up)) in readings.iter_mut().zip(QUICK_TILTED).enumerate() {
+        let length = shared::linalg::dot(up, up).root();
+        *reading = truth.reading_g(up.map(|v| v / length));
+        for (k, value) in reading.iter_mut().enumerate() {
+            *value += 1e-4 * (((i * 3 + k) * 7 % 3) as f32 - 1.0);
+        }
+    }
+    readings
+}
 
 /// The firmware's own 9-parameter fit on request: ten 5 s captures of the realistic simulated
 /// sensor at [`QUICK_TILTED`], then `FitOrtho9`; the capture means, and the fit's M (row-major), o,
