@@ -13,6 +13,12 @@ use crate::fit::gyro::TurnSummary;
 use crate::orientation::Orientation;
 use crate::procedure::Verification;
 
+mod kind;
+mod outcome;
+
+pub use kind::SessionKind;
+pub use outcome::{Fitted, Outcome, OutcomeError};
+
 /// Why a session file could not be written or read.
 #[derive(Debug, thiserror::Error)]
 pub enum SessionError {
@@ -109,13 +115,9 @@ pub struct Session {
     /// The board the captures were taken on (absent in sessions of `accelcal capture`).
     #[serde(default)]
     pub board: Option<BoardRecord>,
-    /// Whether the calibration asked for the six faces only (`--quick`).
-    #[serde(default)]
-    pub quick: bool,
-    /// Whether the calibration was adaptive (captures until their means were known, the offset's
-    /// drift with the temperature fitted with it): its report fits the same way.
-    #[serde(default)]
-    pub adaptive: bool,
+    /// How the positions were captured: its calibration and its report are fitted accordingly.
+    #[serde(flatten, with = "kind::stored")]
+    pub kind: SessionKind,
     /// The captures used for fitting.
     pub captures: Vec<CaptureRecord>,
     /// The check of the calibration at fresh orientations, when one was made.
@@ -213,7 +215,7 @@ mod tests {
     fn a_saved_session_reads_back_and_its_csv_reads_as_data() {
         let session = Session {
             board: None,
-            quick: false,
+            kind: SessionKind::Adaptive,
             captures: vec![record(Position::PosZ, 1.0, 1.5), record(Position::NegZ, -1.0, 20.0)],
             ..Session::default()
         };
@@ -227,5 +229,31 @@ mod tests {
         assert_eq!(data.rows[0].std, Some([0.003f32 as f64; 3]));
         assert_eq!(data.rows[0].gyro_mean_dps, Some([0.5, -0.25, 0.125]));
         assert_eq!(data, session.dataset());
+    }
+
+    #[test]
+    fn a_session_resumes_only_on_its_board_at_its_range_and_filter() {
+        use shared::protocol::LowPassFilter;
+        let serial = "0123456789abcdef01234567".to_owned();
+        let firmware = FirmwareVersion { major: 0, minor: 1, patch: 0 };
+        let board = |serial: &str, range, filter| BoardRecord {
+            serial: serial.to_owned(),
+            firmware,
+            config: SensorConfig { range, sample_rate_hz: 100, filter },
+        };
+        let recorded = board(&serial, AccelRange::G2, LowPassFilter::Hz44);
+        let path = Path::new("session.json");
+        // A sample rate the board achieves differently does not change what a capture measures.
+        let mut same = recorded.clone();
+        same.config.sample_rate_hz = 99;
+        assert!(recorded.check_same(&same, path).is_ok());
+        let other = |b: BoardRecord| recorded.check_same(&b, path).unwrap_err();
+        let error = other(board(&serial, AccelRange::G2, LowPassFilter::Hz21));
+        assert!(matches!(error, SessionError::OtherSetting { .. }), "another filter: {error}");
+        assert!(error.to_string().contains("G2 with the Hz44 filter, the board is set to G2 with the Hz21"), "{error}");
+        let error = other(board(&serial, AccelRange::G4, LowPassFilter::Hz44));
+        assert!(matches!(error, SessionError::OtherSetting { .. }), "another range: {error}");
+        let error = other(board("ffffffffffffffffffffffff", AccelRange::G2, LowPassFilter::Hz44));
+        assert!(matches!(error, SessionError::OtherBoard { .. }), "another board: {error}");
     }
 }

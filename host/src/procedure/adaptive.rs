@@ -6,16 +6,12 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use super::collect::capture_at;
-use super::drift::{self, Drift};
+use super::drift;
 use super::stop_rule::{CaptureLength, StopRule, MAX_SECONDS};
 use super::wait::wait_for_target_settled;
 use super::{Feedback, Hand, Moves, Orientation, ProcedureError};
-use crate::calibration;
-use crate::fit::{Fit, FitError};
 use crate::link::{Client, Port};
-use crate::session::{CaptureRecord, Session, SessionError};
-use shared::protocol::SensorConfig;
-use shared::Calibration;
+use crate::session::{CaptureRecord, Session, SessionError, SessionKind};
 
 /// Captures of a position tried before giving up on a board that keeps moving.
 const CAPTURE_ATTEMPTS: usize = 5;
@@ -57,6 +53,7 @@ pub fn collect_adaptive<P: Port>(
     keep: &mut dyn FnMut(&Session) -> Result<(), SessionError>,
 ) -> Result<Collected, ProcedureError> {
     client.clear_positions()?;
+    session.kind = SessionKind::Adaptive;
     let order = drift::order(targets);
     let (mut collected, mut reached) = (Collected::default(), false);
     for target in &order {
@@ -102,7 +99,7 @@ fn enough(session: &Session, target_mg: f64, feedback: &mut dyn Feedback) -> boo
 
 /// The error the session's fit predicts at a fresh orientation, in mg (`None` without a fit).
 fn predicted_mg(session: &Session) -> Option<f64> {
-    adaptive_fit(session).ok().and_then(|(f, _)| f.prediction).map(|p| p.norm_error_mg)
+    session.fit().ok().and_then(|(f, _)| f.prediction).map(|p| p.norm_error_mg)
 }
 
 /// Says what the fit of every position taken predicts, once no position is left to ask for.
@@ -160,30 +157,6 @@ fn take<P: Port>(
     Err(ProcedureError::KeptMoving { attempts: CAPTURE_ATTEMPTS })
 }
 
-/// The device calibration of an adaptive session: its fit, at the session's mean temperature, with
-/// the measured offset drift as a temperature model; the fit and the drift beside it.
-pub fn adaptive_calibration(
-    session: &Session,
-    config: SensorConfig,
-) -> Result<(Calibration, Fit, Option<Drift>), ProcedureError> {
-    let (fit, drift) = adaptive_fit(session)?;
-    let fitted = drift::at_mean_temperature(session, drift.as_ref());
-    let calibration = calibration::from_fit(&fit, &fitted, config).map_err(ProcedureError::Calibration)?;
-    let calibration = match &drift {
-        Some(d) => calibration::with_offset_drift(&calibration, drift::mean_temp_c(session), d.slope_g_per_c),
-        None => calibration,
-    };
-    Ok((calibration, fit, drift))
-}
-
-/// The orientation-free fit of an adaptive session, its captures first corrected for the drift
-/// that the first and the closing capture show (to the session's mean temperature); the drift.
-pub fn adaptive_fit(session: &Session) -> Result<(Fit, Option<Drift>), FitError> {
-    let drift = drift::fitted(session);
-    let fitted = drift::at_mean_temperature(session, drift.as_ref());
-    Ok((drift::ortho9(&fitted)?, drift))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -221,5 +194,41 @@ mod tests {
         let short = Session { captures: vec![captured("+Z", 2.0), captured("-Z", 2.0)], ..Session::default() };
         let missed = prediction_line(&short, 0.3, 0.2);
         assert!(missed.ends_with("not the 0.2 mg wanted: every position is taken; a larger --target-mg ends sooner"));
+    }
+
+    /// A session of `n` positions of a sensor read through a scale error and an offset, each mean
+    /// off by a few hundredths of a mg as noise would leave it.
+    fn positions_of_a_good_sensor(n: usize) -> Session {
+        let directions: [[f32; 3]; 10] = [
+            [0.0, 0.0, 1.0],
+            [0.0, 0.0, -1.0],
+            [1.0, 0.0, 0.0],
+            [-1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, -1.0, 0.0],
+            [0.577, 0.577, 0.577],
+            [-0.577, 0.577, -0.577],
+            [0.707, -0.707, 0.0],
+            [0.0, -0.707, 0.707],
+        ];
+        let captures = directions[..n]
+            .iter()
+            .enumerate()
+            .map(|(k, d)| {
+                let wiggle = if k % 2 == 0 { 3e-5 } else { -3e-5 };
+                let mut capture = captured(&format!("p{k}"), 8.0);
+                capture.stats.mean_g = [1.01 * d[0] + 0.02 + wiggle, 0.99 * d[1] - 0.01, d[2] + 0.03 - wiggle];
+                capture.stats.samples = 800;
+                capture
+            })
+            .collect();
+        Session { captures, kind: SessionKind::Adaptive, ..Session::default() }
+    }
+
+    #[test]
+    fn a_prediction_ends_the_session_only_from_ten_positions_on() {
+        let mut said = crate::procedure::Silent { yes: true };
+        assert!(!enough(&positions_of_a_good_sensor(9), 1.0, &mut said), "nine positions are one too few");
+        assert!(enough(&positions_of_a_good_sensor(10), 1.0, &mut said), "ten positions that predict the target");
     }
 }

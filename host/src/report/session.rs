@@ -9,6 +9,7 @@ use super::allan::AllanSection;
 use super::figure::{self, Figure};
 use super::temperature::TemperatureSection;
 use super::{Comparison, FitReport};
+use crate::data::Dataset;
 use crate::fit::gyro::TurnSummary;
 use crate::fit::{FitError, FitOptions, Parameter};
 use crate::procedure::Verification;
@@ -118,10 +119,9 @@ pub struct Figures {
 impl SessionReport {
     /// Fits the session as its calibration was fitted (every model compared) and gathers the report.
     pub fn new(session: &Session) -> Result<Self, FitError> {
-        let model = crate::procedure::session_model(session);
-        let fitted = crate::procedure::fitted_captures(session);
-        let fit_report = FitReport::new(&fitted.dataset(), model, &FitOptions::default())?;
-        let positions = positions(session, &fitted, &fit_report);
+        let fitted = session.fitted();
+        let fit_report = FitReport::new(&fitted.captures, fitted.model, &FitOptions::default())?;
+        let positions = positions(session, &fitted.captures, &fit_report);
         let fit = summary(&fit_report, &positions);
         let verification = session.verification.clone();
         let mut figures = Figures::new(&positions, &fit_report, verification.as_ref());
@@ -157,15 +157,15 @@ impl SessionReport {
 
 /// Each position's reading as taken and calibrated by the fit; `fitted` holds the readings the fit
 /// took (an adaptive session's with the drift taken out, as the chip's temperature model does).
-fn positions(session: &Session, fitted: &Session, report: &FitReport) -> Vec<PositionResult> {
+fn positions(session: &Session, fitted: &Dataset, report: &FitReport) -> Vec<PositionResult> {
     let (matrix, offset) = (&report.fit.matrix, &report.fit.offset);
     session
         .captures
         .iter()
-        .zip(&fitted.captures)
+        .zip(&fitted.rows)
         .map(|(taken, corrected)| {
             let raw_g = taken.stats.mean_g.map(f64::from);
-            let input_g = corrected.stats.mean_g.map(f64::from);
+            let input_g = corrected.reading;
             let calibrated_g = linalg::mul_vec(matrix, linalg::sub(input_g, *offset));
             PositionResult {
                 name: taken.name.clone(),
@@ -272,36 +272,4 @@ fn civil_from_days(days: i64) -> (i64, i64, i64) {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn verified(after_rms_mg: f64, noise_floor_mg: f64) -> Verification {
-        Verification {
-            positions: 6,
-            before_rms_mg: 40.0,
-            after_rms_mg,
-            after_max_mg: after_rms_mg * 2.0,
-            after_rms_without_noise_mg: (after_rms_mg.powi(2) - noise_floor_mg.powi(2)).max(0.0).sqrt(),
-            on_chip_difference_mg: 0.5,
-            noise_floor_mg,
-            before_mg: vec![],
-            after_mg: vec![],
-        }
-    }
-
-    #[test]
-    fn a_calibration_is_trusted_within_three_noise_floors_and_only_when_verified() {
-        let fit = FitSummary { model: "ortho9", cost: 1e-8, rms_mg: 0.05, parameters: vec![], warnings: vec![] };
-        assert!(Verdict::new(&fit, Some(&verified(0.37, 0.125))).trusted);
-        assert!(!Verdict::new(&fit, Some(&verified(0.38, 0.125))).trusted);
-        let unverified = Verdict::new(&fit, None);
-        assert!(!unverified.trusted && unverified.line.contains("not verified"), "{}", unverified.line);
-    }
-
-    #[test]
-    fn dates_are_utc_calendar_dates() {
-        assert_eq!(utc_minutes(0.0), "1970-01-01 00:00");
-        assert_eq!(utc_minutes(951_782_400.0 + 3_660.0), "2000-02-29 01:01");
-        assert_eq!(utc_minutes(1_795_000_000.0), "2026-11-18 11:06");
-    }
-}
+mod tests;
