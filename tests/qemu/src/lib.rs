@@ -22,6 +22,29 @@ const PHONE: [(Position, [f32; 3]); 6] = [
     (Position::PosZ, [0.231834, 0.482186, 8.60553]),
 ];
 
+/// Ends an emulated run: says `done` (or `failed`) over semihosting and exits QEMU with that status.
+#[cfg(target_os = "none")]
+pub fn finish(ok: bool) -> ! {
+    use cortex_m_semihosting::{debug, hprintln};
+    hprintln!("{}", if ok { "done" } else { "failed" });
+    debug::exit(if ok { debug::EXIT_SUCCESS } else { debug::EXIT_FAILURE });
+    // NOTE: semihosting exit ends QEMU; should it not, sleep rather than spin.
+    loop {
+        cortex_m::asm::wfi();
+    }
+}
+
+/// Says what panicked over semihosting and exits QEMU with a failure.
+#[cfg(target_os = "none")]
+#[panic_handler]
+fn panic(info: &core::panic::PanicInfo) -> ! {
+    cortex_m_semihosting::hprintln!("panic: {}", info);
+    cortex_m_semihosting::debug::exit(cortex_m_semihosting::debug::EXIT_FAILURE);
+    loop {
+        cortex_m::asm::wfi();
+    }
+}
+
 /// One named result: f32 values as their bit patterns.
 pub struct Result<'a> {
     /// What was computed.
