@@ -258,25 +258,13 @@ impl Figures {
     }
 }
 
-/// Seconds since the Unix epoch as `YYYY-MM-DD HH:MM` UTC.
+/// Seconds since the Unix epoch as `YYYY-MM-DD HH:MM` UTC (the epoch itself for a time `time`
+/// cannot represent).
 fn utc_minutes(unix_time_s: f64) -> String {
-    let seconds = unix_time_s.max(0.0) as i64;
-    let (days, minute_of_day) = (seconds.div_euclid(86_400), seconds.rem_euclid(86_400) / 60);
-    let (year, month, day) = civil_from_days(days);
-    format!("{year:04}-{month:02}-{day:02} {:02}:{:02}", minute_of_day / 60, minute_of_day % 60)
-}
-
-/// The proleptic Gregorian date of a day count since 1970-01-01 (H. Hinnant's civil_from_days).
-fn civil_from_days(days: i64) -> (i64, i64, i64) {
-    let z = days + 719_468;
-    let era = z.div_euclid(146_097);
-    let day_of_era = z - era * 146_097;
-    let year_of_era = (day_of_era - day_of_era / 1460 + day_of_era / 36_524 - day_of_era / 146_096) / 365;
-    let day_of_year = day_of_era - (365 * year_of_era + year_of_era / 4 - year_of_era / 100);
-    let mp = (5 * day_of_year + 2) / 153;
-    let day = day_of_year - (153 * mp + 2) / 5 + 1;
-    let month = if mp < 10 { mp + 3 } else { mp - 9 };
-    (year_of_era + era * 400 + i64::from(month <= 2), month, day)
+    let at = time::OffsetDateTime::from_unix_timestamp(unix_time_s.max(0.0) as i64)
+        .unwrap_or(time::OffsetDateTime::UNIX_EPOCH);
+    let (year, month, day) = (at.year(), u8::from(at.month()), at.day());
+    format!("{year:04}-{month:02}-{day:02} {:02}:{:02}", at.hour(), at.minute())
 }
 
 #[cfg(test)]

@@ -3,9 +3,11 @@
 //! readings in g (the published MPU-6050 model of data/README.md).
 //!
 //! A small Levenberg-Marquardt on the 9x9 normal equations: fixed size, no allocation, generic over
-//! f32 (chip) and f64 (host). NOTE: no maintained crate offers a no_std fixed-size solver, and the
-//! problem is tiny and well scaled (every parameter of order one near M = I, o = 0), so normal
-//! equations with a conditioning guard lose nothing: the guard refuses any problem whose scaled
+//! f32 (chip) and f64 (host). NOTE: nalgebra's static matrices (Cholesky and LU on `SMatrix`) would
+//! solve it in no_std as well; it is written here because it runs on the chip, whose firmware must fit
+//! 64 KiB of flash (.ci/firmware-size) and which carries no nalgebra; its flash cost there was not
+//! measured. The problem is tiny and well scaled (every parameter of order one near M = I, o = 0),
+//! so normal equations with a conditioning guard lose nothing: the guard refuses any problem whose scaled
 //! normal matrix has a pivot below [`min_pivot`], which keeps the squared condition number far from
 //! the float type's rounding.
 
