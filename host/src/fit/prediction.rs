@@ -33,7 +33,7 @@ fn fresh_orientations() -> impl Iterator<Item = Vector3<f64>> {
 
 /// The prediction from `covariance_of(u)`, the covariance of the corrected reading a (output units)
 /// at true specific force g u.
-pub(super) fn predict(g: f64, covariance_of: impl Fn(&Vector3<f64>) -> Matrix3<f64>) -> Prediction {
+pub fn predict(g: f64, covariance_of: impl Fn(&Vector3<f64>) -> Matrix3<f64>) -> Prediction {
     let (mut norm, mut tilt) = (0.0, 0.0);
     for u in fresh_orientations() {
         let covariance = covariance_of(&u);

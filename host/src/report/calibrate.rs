@@ -9,6 +9,7 @@ use shared::Calibration;
 
 use super::gyro::{GyroJson, GyroOutcome, TruthGyroJson};
 use crate::calibration::CalibrationJson;
+use crate::certificate::Certificate;
 use crate::fit::Fit;
 use crate::procedure::{TurnCheck, Verification};
 
@@ -33,6 +34,8 @@ pub struct CalibrateReport {
     pub board_seconds: Option<f64>,
     /// The gyro's verification turn, when it was measured.
     pub gyro_check: Option<TurnCheck>,
+    /// The board's calibration certificate (parameters with u and U at k = 2).
+    pub certificate: Option<Certificate>,
 }
 
 /// The calibration uploaded, with its gyro part and what its fit gave.
@@ -95,6 +98,7 @@ impl CalibrateReport {
             host_fit: host.map(HostFitSummary::new),
             board_seconds: None,
             gyro_check: None,
+            certificate: None,
         }
     }
 

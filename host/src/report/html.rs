@@ -266,6 +266,6 @@ pub(super) fn absent(what: &str) -> String {
 }
 
 /// Text made safe for HTML.
-fn escape(text: &str) -> String {
+pub fn escape(text: &str) -> String {
     text.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
 }
