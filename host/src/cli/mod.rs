@@ -9,6 +9,7 @@ mod calibrate;
 mod certificate;
 mod choice;
 mod device;
+mod export;
 mod fit;
 mod gyro;
 mod length;
@@ -57,6 +58,7 @@ pub fn run(cli: Cli) -> Result<(), Error> {
         Command::Erase { device } => transfer::erase(&device),
         Command::Stream(args) => board::stream(&args),
         Command::Noise(args) => noise::noise(&args),
+        Command::Export(args) => export::export(&args),
         Command::Record(args) => record::record(&args),
         Command::Thermal(args) => thermal::thermal(&args),
         Command::Sim { pty: _, seed, fast } => {
