@@ -13,8 +13,8 @@ use nalgebra::{Matrix3, Vector3};
 use serde::{Deserialize, Serialize};
 
 use super::estimate::Estimate;
+use crate::fit::drift;
 use crate::fit::{self, FitError, ModelChoice, Prediction};
-use crate::procedure::drift;
 use crate::session::Session;
 
 /// Spread of the offset's drift per degree between parts, in g/degC: the prior of the session's
@@ -145,7 +145,7 @@ fn capture_sources(session: &Session, estimate: &Estimate) -> Vec<Source> {
 /// The offset's and the sensitivity's drift per degree, per axis, each at its spread between parts,
 /// applied to the captures around their mean temperature (where the parameters are stated).
 fn temperature_sources(session: &Session, estimate: &Estimate) -> Vec<Source> {
-    let mean_c = drift::mean_temp_c(session);
+    let mean_c = drift::mean_temp_c(&session.dataset());
     let offset = estimate.offset;
     let mut sources = Vec::new();
     for axis in 0..3 {

@@ -4,7 +4,6 @@
 use nalgebra::{Matrix3, Vector3};
 
 use crate::fit::{self, FitError, FitOptions, Model, ModelChoice};
-use crate::procedure;
 use crate::session::Session;
 
 /// Names of the offset drift slopes, in g/degC, when the session fitted them.
@@ -29,18 +28,15 @@ pub struct Estimate {
 
 impl Estimate {
     /// The calibration of `session` as `calibrate` fits it: an adaptive session's corrected for its
-    /// fitted drift (whose slopes become parameters), any other's by its session model.
+    /// fitted drift (whose slopes become parameters), any other's by its session's model.
     pub fn of(session: &Session) -> Result<Self, FitError> {
-        Estimate::with(session, procedure::session_model(session))
+        Estimate::with(session, session.model())
     }
 
     /// The same with the model fixed (so that a small change of the captures cannot switch models).
     pub fn with(session: &Session, choice: ModelChoice) -> Result<Self, FitError> {
-        let (fit, drift) = if session.adaptive {
-            procedure::adaptive_fit(session)?
-        } else {
-            (fit::fit(&session.dataset(), choice, &FitOptions::default())?, None)
-        };
+        let fitted = session.fitted();
+        let (fit, drift) = (fit::fit(&fitted.captures, choice, &FitOptions::default())?, fitted.drift);
         let mut names: Vec<String> = fit.parameters.iter().map(|p| p.name.clone()).collect();
         let mut values: Vec<f64> = fit.parameters.iter().map(|p| p.value).collect();
         if let Some(drift) = drift {

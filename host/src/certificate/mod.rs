@@ -12,10 +12,11 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
+use crate::fit::drift;
 use crate::fit::FitError;
-use crate::procedure::{drift, Verification};
+use crate::procedure::Verification;
 use crate::report::Board;
-use crate::session::Session;
+use crate::session::{Session, SessionKind};
 pub use budget::{budget, Budget, Component};
 pub use estimate::Estimate;
 pub use seal::{check, SealError};
@@ -115,7 +116,8 @@ impl Certificate {
     pub fn issue(session: &Session) -> Result<Self, FitError> {
         let estimate = Estimate::of(session)?;
         let budget = budget(session, &estimate)?;
-        let (low, high) = drift::span_c(session);
+        let captures = session.dataset();
+        let (low, high) = drift::span_c(&captures);
         let mut certificate = Certificate {
             format: FORMAT,
             board: Board::of(session),
@@ -124,7 +126,7 @@ impl Certificate {
             method: method(session),
             model: model(&estimate),
             conditions: Conditions {
-                temp_mean_c: drift::mean_temp_c(session),
+                temp_mean_c: drift::mean_temp_c(&captures),
                 temp_low_c: low,
                 temp_high_c: high,
                 g: 1.0,
@@ -180,13 +182,11 @@ fn unit(name: &str) -> &'static str {
 
 /// How the captures were taken, in words.
 fn method(session: &Session) -> String {
-    let positions = drift::positions(session);
-    let how = if session.adaptive {
-        "each averaged until its mean was known, in drift-cancelling order"
-    } else if session.quick {
-        "quick set, fixed-length captures"
-    } else {
-        "fixed-length captures"
+    let positions = crate::procedure::drift::positions(session);
+    let how = match session.kind {
+        SessionKind::Adaptive => "each averaged until its mean was known, in drift-cancelling order",
+        SessionKind::Quick => "quick set, fixed-length captures",
+        SessionKind::Fixed => "fixed-length captures",
     };
     format!("accelcal calibrate: {positions} static positions ({how}), verified at fresh orientations")
 }

@@ -4,7 +4,7 @@ use shared::AccelRange;
 use super::*;
 use crate::orientation::{corners, faces, Orientation};
 use crate::procedure::drift::{closing, order};
-use crate::session::CaptureRecord;
+use crate::session::{CaptureRecord, SessionKind};
 use crate::sim::random::gaussian;
 use rand_xoshiro::rand_core::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -44,7 +44,7 @@ fn session(seed: u64, warming_c: f64, std_g: f32) -> Session {
         let error = [0; 3].map(|_| gaussian(&mut random) * sigma);
         capture(t, 21.5 + warming_c * i as f64 / 14.0, error, std_g)
     });
-    Session { adaptive: true, captures: captures.collect(), ..Session::default() }
+    Session { kind: SessionKind::Adaptive, captures: captures.collect(), ..Session::default() }
 }
 
 #[test]
@@ -66,7 +66,7 @@ fn the_noise_s_part_of_the_budget_is_the_fit_s_own_standard_error() {
     // No warming: no drift is fitted, and the noise moved through the fit must give what the fit's
     // covariance gives for the same noise.
     let session = session(2, 0.0, 2.8e-3);
-    let fit = crate::procedure::adaptive_fit(&session).unwrap().0;
+    let fit = session.fit().unwrap().0;
     let certificate = Certificate::issue(&session).unwrap();
     for parameter in &fit.parameters {
         let expected = parameter.noise_std_error.unwrap();
