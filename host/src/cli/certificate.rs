@@ -7,7 +7,7 @@ use clap::{Args, Subcommand};
 
 use crate::certificate::{self, Certificate};
 use crate::error::Error;
-use crate::session::{write_atomically, Session};
+use crate::session::{stem_file, stem_of, write_atomically, Session};
 
 /// `accelcal certificate`.
 #[derive(Args)]
@@ -64,9 +64,9 @@ pub(super) fn issue(session: &Session, path: &Path) -> Result<Certificate, Error
 
 /// Writes a certificate's JSON and page beside the session at `session_path`; their paths.
 pub(super) fn written(certificate: &Certificate, session_path: &Path) -> Result<(PathBuf, PathBuf), Error> {
-    let stem = session_path.with_extension("");
-    let json = stem.with_extension("certificate.json");
-    let page = stem.with_extension("certificate.html");
+    let stem = stem_of(session_path);
+    let json = stem_file(&stem, "certificate.json");
+    let page = stem_file(&stem, "certificate.html");
     write_atomically(&json, certificate.to_json().as_bytes())?;
     write_atomically(&page, certificate::html::page(certificate).as_bytes())?;
     Ok((json, page))

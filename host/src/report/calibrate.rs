@@ -11,7 +11,7 @@ use super::gyro::{GyroJson, GyroOutcome, TruthGyroJson};
 use crate::calibration::CalibrationJson;
 use crate::certificate::Certificate;
 use crate::fit::Fit;
-use crate::procedure::{TurnCheck, Verification};
+use crate::procedure::{TargetVerdict, TurnCheck, Verification};
 
 /// The object `accelcal calibrate --json` prints.
 #[derive(Debug, Clone, Serialize)]
@@ -34,6 +34,8 @@ pub struct CalibrateReport {
     pub board_seconds: Option<f64>,
     /// The gyro's verification turn, when it was measured.
     pub gyro_check: Option<TurnCheck>,
+    /// The verification against `--target-mg` (trusted or not, without a target).
+    pub target: Option<TargetVerdict>,
     /// The board's calibration certificate (parameters with u and U at k = 2).
     pub certificate: Option<Certificate>,
 }
@@ -98,6 +100,7 @@ impl CalibrateReport {
             host_fit: host.map(HostFitSummary::new),
             board_seconds: None,
             gyro_check: None,
+            target: None,
             certificate: None,
         }
     }
