@@ -15,6 +15,7 @@ mod session;
 pub mod temperature;
 pub mod text;
 pub mod thermal;
+mod uploaded;
 
 pub use calibrate::{CalibrateReport, ChosenJson, HostFitSummary, TruthJson};
 pub use comparison::{ComparedModel, Comparison};
