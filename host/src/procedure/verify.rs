@@ -41,6 +41,11 @@ pub struct Verification {
     /// which `after_rms_mg` cannot resolve an error.
     #[serde(default)]
     pub noise_floor_mg: f64,
+    /// The size of the noise the chip's 20-sample mean carries (its samples' spread over the square
+    /// root of 20, through the calibration), at the orientation where it is largest, in mg: the
+    /// scale `on_chip_difference_mg` is judged against.
+    #[serde(default)]
+    pub on_chip_noise_mg: f64,
     /// |m| - 1 g at each orientation with the raw readings, in mg.
     #[serde(default)]
     pub before_mg: Vec<f64>,
@@ -55,6 +60,24 @@ struct Check {
     after_mg: f64,
     noise_mg: f64,
     on_chip_mg: f64,
+    on_chip_noise_mg: f64,
+}
+
+/// How many times its own noise the chip may differ from the host before it is said to apply
+/// something else (a 3-sigma bound on each axis of the difference).
+const CHIP_AGREEMENT_SIGMAS: f64 = 3.0;
+
+impl Verification {
+    /// Whether the chip's corrected samples agree with the host's correction, judged against the
+    /// noise of the chip's 20-sample mean, in words.
+    pub fn chip_agreement(&self) -> String {
+        let (difference, noise) = (self.on_chip_difference_mg, self.on_chip_noise_mg);
+        if difference <= CHIP_AGREEMENT_SIGMAS * noise {
+            format!("chip and host agree: they differ by {difference:.2} mg, within the {noise:.2} mg noise of the chip's {CHIP_SAMPLES}-sample mean")
+        } else {
+            format!("chip and host differ by {difference:.2} mg, more than {CHIP_AGREEMENT_SIGMAS} times the {noise:.2} mg noise of the chip's {CHIP_SAMPLES}-sample mean: the chip does not apply the calibration verified")
+        }
+    }
 }
 
 /// Checks the active calibration at `positions` fresh orientations.
@@ -128,6 +151,7 @@ fn check<P: Port>(
         after_mg: (f64::from(linalg::norm(corrected)) - 1.0) * 1000.0,
         noise_mg: norm_noise_g(calibration, &stats, corrected) * 1000.0,
         on_chip_mg: f64::from(linalg::norm(linalg::sub(chip_mean, corrected))) * 1000.0,
+        on_chip_noise_mg: mean_noise_g(calibration, &stats, CHIP_SAMPLES) * 1000.0,
     })
 }
 
@@ -144,6 +168,14 @@ fn norm_noise_g(calibration: &Calibration, stats: &CaptureStats, corrected: [f32
     variance.sqrt()
 }
 
+/// The size of the noise of a mean of `samples` corrected samples, in g: sqrt(trace(M diag(std^2) M^T) / n).
+fn mean_noise_g(calibration: &Calibration, stats: &CaptureStats, samples: u32) -> f64 {
+    let m = &calibration.matrix;
+    let variance: f64 =
+        (0..3).flat_map(|i| (0..3).map(move |j| f64::from(m[i][j] * stats.std_g[j]).powi(2))).sum::<f64>();
+    (variance / f64::from(samples.max(1))).sqrt()
+}
+
 fn summary(checks: &[Check]) -> Verification {
     let rms = |pick: fn(&Check) -> f64| {
         (checks.iter().map(|c| pick(c).powi(2)).sum::<f64>() / checks.len().max(1) as f64).sqrt()
@@ -156,6 +188,7 @@ fn summary(checks: &[Check]) -> Verification {
         after_rms_without_noise_mg: (after * after - floor * floor).max(0.0).sqrt(),
         after_max_mg: checks.iter().fold(0.0, |m, c| m.max(c.after_mg.abs())),
         on_chip_difference_mg: checks.iter().fold(0.0, |m, c| m.max(c.on_chip_mg)),
+        on_chip_noise_mg: checks.iter().fold(0.0, |m, c| m.max(c.on_chip_noise_mg)),
         noise_floor_mg: floor,
         before_mg: checks.iter().map(|c| c.before_mg).collect(),
         after_mg: checks.iter().map(|c| c.after_mg).collect(),
@@ -219,9 +252,24 @@ mod tests {
     }
 
     #[test]
+    fn the_chip_is_judged_against_the_noise_of_its_own_twenty_sample_mean() {
+        // 3 mg per axis over 20 samples: sqrt(3) * 3 / sqrt(20) = 1.16 mg of noise in the mean.
+        let stats = capture([0.0, 0.0, 1.0], [0.003; 3], 500);
+        let noise_mg = mean_noise_g(&Calibration::identity(AccelRange::G2), &stats, CHIP_SAMPLES) * 1000.0;
+        assert!((noise_mg - 1.162).abs() < 0.001, "{noise_mg}");
+        let verification =
+            |difference| Verification { on_chip_difference_mg: difference, on_chip_noise_mg: noise_mg, ..summary(&[]) };
+        assert!(verification(1.13)
+            .chip_agreement()
+            .starts_with("chip and host agree: they differ by 1.13 mg, within the 1.16 mg noise"));
+        assert!(verification(5.0).chip_agreement().contains("does not apply the calibration verified"));
+    }
+
+    #[test]
     fn the_worst_error_counts_readings_below_1_g_as_well_as_above() {
         // |a| of 0.9988 g is 1.2 mg short: the worst error is 1.2 mg, not the 0.5 mg above 1 g.
-        let check = |before_mg, after_mg| Check { before_mg, after_mg, noise_mg: 0.1, on_chip_mg: 0.01 };
+        let check =
+            |before_mg, after_mg| Check { before_mg, after_mg, noise_mg: 0.1, on_chip_mg: 0.01, on_chip_noise_mg: 1.0 };
         let result = summary(&[check(3.0, 0.3), check(-4.0, -1.2), check(2.0, 0.5)]);
         assert_eq!(result.after_max_mg, 1.2);
         // sqrt((0.09 + 1.44 + 0.25) / 3) = 0.770 mg

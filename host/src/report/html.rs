@@ -164,6 +164,7 @@ fn verification_table(out: &mut String, v: &Verification) {
         ("worst calibrated (mg)", "after_max_mg", v.after_max_mg, 3),
         ("noise floor (mg)", "noise_floor_mg", v.noise_floor_mg, 3),
         ("chip vs host (mg)", "on_chip_difference_mg", v.on_chip_difference_mg, 3),
+        ("noise of the chip's mean (mg)", "on_chip_noise_mg", v.on_chip_noise_mg, 3),
     ] {
         let _ = write!(out, "<tr><th>{name}</th>{}</tr>", cell(&format!("/verification/{key}"), Some(value), digits));
     }
