@@ -14,7 +14,7 @@ use serde::{Deserialize, Serialize};
 
 use super::estimate::Estimate;
 use crate::fit::drift;
-use crate::fit::{self, FitError, ModelChoice, Prediction};
+use crate::fit::{self, FitError, ModelChoice, Prediction, Quadratic};
 use crate::session::Session;
 
 /// Spread of the offset's drift per degree between parts, in g/degC: the prior of the session's
@@ -91,15 +91,21 @@ pub fn budget(session: &Session, estimate: &Estimate) -> Result<Budget, FitError
 }
 
 /// The errors at fresh orientations that the parameters' moves imply: at true specific force u,
-/// each input moves the corrected reading by dM M^-1 u - M do; their covariances add.
+/// each input moves the corrected reading by E w, w = (u, 1), E = [dM M^-1 | -M do]; their
+/// covariances add, sum_ab w_a w_b (E_a E_b^T).
 fn predicted(estimate: &Estimate, moves: &[(Matrix3<f64>, Vector3<f64>)]) -> Prediction {
     let sensor = estimate.matrix.try_inverse().unwrap_or_else(Matrix3::identity);
-    fit::predict(1.0, |u| {
-        moves.iter().fold(Matrix3::zeros(), |sum, (d_matrix, d_offset)| {
-            let error = d_matrix * sensor * u - estimate.matrix * d_offset;
-            sum + error * error.transpose()
-        })
-    })
+    let mut terms: Quadratic = [[Matrix3::zeros(); 4]; 4];
+    for (d_matrix, d_offset) in moves {
+        let along = d_matrix * sensor;
+        let column = |a: usize| if a < 3 { along.column(a).into_owned() } else { -(estimate.matrix * d_offset) };
+        for (a, row) in terms.iter_mut().enumerate() {
+            for (b, term) in row.iter_mut().enumerate() {
+                *term += column(a) * column(b).transpose();
+            }
+        }
+    }
+    fit::predict(1.0, &terms)
 }
 
 /// Every input of the budget that can err for this session and model.
