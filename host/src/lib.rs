@@ -8,6 +8,7 @@
 //! - [`session`]: the captures of a calibration, kept as files;
 //! - [`data`]: calibration data files;
 //! - [`fit`]: least-squares fits;
+//! - [`stream`]: a board's own stream as its sketch prints it (dialects, units, still periods);
 //! - [`noise`]: noise characterisation of a still recording by Allan deviation;
 //! - [`calibration`]: the device's calibration record on the host (its JSON form, from a fit);
 //! - [`report`]: what a fit or a calibration reports, computed once, rendered as text or JSON;
@@ -27,5 +28,6 @@ pub mod recording;
 pub mod report;
 pub mod session;
 pub mod sim;
+pub mod stream;
 
 pub use error::Error;

@@ -63,6 +63,27 @@ pub struct FitArgs {
     /// Print one JSON object instead of the table.
     #[arg(long)]
     pub json: bool,
+    #[command(flatten)]
+    pub stream: SketchStreamArgs,
+}
+
+/// What a raw stream (a sketch's own log or port) may need said about it; each is found from the
+/// stream where it can be.
+#[derive(Args, Debug, Clone, Default)]
+pub struct SketchStreamArgs {
+    /// The unit of the stream's accelerometer values, when the stream leaves it unclear.
+    #[arg(long, value_enum)]
+    pub input_unit: Option<crate::stream::AccelUnit>,
+    /// The unit of the stream's gyro values (counts of a range cannot be told from a resting gyro).
+    #[arg(long, value_enum)]
+    pub gyro_unit: Option<crate::stream::GyroUnit>,
+}
+
+impl SketchStreamArgs {
+    /// The options for reading a stream, at `rate_hz` when one was given.
+    pub fn options(&self, rate_hz: Option<f64>) -> crate::stream::StreamOptions {
+        crate::stream::StreamOptions { accel_unit: self.input_unit, gyro_unit: self.gyro_unit, rate_hz }
+    }
 }
 
 /// `accelcal calibrate`.

@@ -10,9 +10,11 @@ mod clock;
 mod commands;
 pub mod noise;
 mod outgoing;
+pub mod person;
 mod pty;
 pub mod random;
 mod serve;
+pub mod sketch;
 pub mod synthetic;
 
 pub use board::{SimBoard, SimCommand, SimSensor};
