@@ -22,7 +22,7 @@ const TIME_NAMES: [&str; 9] = ["millis", "ms", "time", "timestamp", "t", "micros
 /// What accelerometer columns are called before their axis letter.
 /// NOTE: a bare `x,y,z` (and `mx`, `raw_x`) is how accelcal's own data files name a reading.
 const ACCEL_HEADS: [&str; 11] =
-    ["a", "ac", "acc", "accel", "acceleration", "alpha", "accelerometer", "ars", "", "m", "raw"];
+    ["a", "ac", "acc", "accel", "acceleration", "alpha", "accelerometer", "arss", "", "m", "raw"];
 /// What gyro columns are called before their axis letter.
 const GYRO_HEADS: [&str; 7] = ["g", "gy", "gyr", "gyro", "omega", "w", "wrss"];
 /// Unit words after the axis letter that say nothing about which quantity it is.
