@@ -252,8 +252,12 @@ pub enum Command {
     /// Runs a simulated board on a pseudo-terminal; prints its path, then serves until killed.
     Sim {
         /// Serve on a pseudo-terminal (the only transport offered).
-        #[arg(long, required = true)]
+        #[arg(long, required_unless_present = "sketch")]
         pty: bool,
+        /// Instead of an accelcal board, a board running this sketch: a simulated person's
+        /// three-minute session as it prints it (with --pty at its own pace, else all at once on stdout).
+        #[arg(long, value_enum)]
+        sketch: Option<crate::sim::sketch::Sketch>,
         /// Seed of the simulated sensor's noise.
         #[arg(long, default_value_t = 1)]
         seed: u64,

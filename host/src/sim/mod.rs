@@ -13,6 +13,7 @@ mod outgoing;
 pub mod person;
 mod pty;
 pub mod random;
+pub mod replay;
 mod serve;
 pub mod sketch;
 pub mod synthetic;
