@@ -91,6 +91,12 @@ impl SketchStreamArgs {
 pub struct CalibrateArgs {
     #[command(flatten)]
     pub device: Device,
+    /// On a board that prints its own stream: the file that keeps every line read (default
+    /// accelcal-stream-<time>.log here); `accelcal fit` on it gives the same calibration.
+    #[arg(long, value_name = "LOG")]
+    pub stream_log: Option<PathBuf>,
+    #[command(flatten)]
+    pub stream: SketchStreamArgs,
     /// Ten positions (six faces, four corners), fitted on the chip: no fit on the host.
     #[arg(long)]
     pub quick: bool,

@@ -9,6 +9,7 @@ mod calibrate;
 mod choice;
 mod device;
 mod fit;
+mod foreign;
 mod gyro;
 mod length;
 mod noise;

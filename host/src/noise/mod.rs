@@ -6,6 +6,7 @@
 pub mod allan;
 pub mod fit;
 pub mod input;
+pub mod stream;
 pub mod json;
 pub mod plot;
 pub mod text;

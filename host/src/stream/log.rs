@@ -111,7 +111,8 @@ impl StreamLog {
         let time_unit = time_unit(&layout, &samples);
         samples.iter_mut().for_each(|s| s.time = s.time.zip(time_unit).map(|(t, unit)| t * unit));
         let times: Vec<f64> = samples.iter().filter_map(|s| s.time).collect();
-        let rate = timing::rate_of(&times, RateSource::Timestamps);
+        let arrival = super::live::arrival_rate(text).map(|hz| Rate { hz, source: RateSource::ArrivalTimes });
+        let rate = timing::rate_of(&times, RateSource::Timestamps).or(arrival);
         StreamLog::new(layout, samples, dropped, rate, options)
     }
 
