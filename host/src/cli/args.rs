@@ -192,7 +192,7 @@ pub struct NoiseArgs {
 /// The commands of `accelcal`.
 #[derive(Subcommand)]
 pub enum Command {
-    /// Fits a calibration to a calibration data file (CSV, see README).
+    /// Fits a calibration to a calibration data file (CSV, see docs/guide.md).
     Fit(FitArgs),
     /// Lists serial ports, marking accelcal boards.
     Ports,
