@@ -54,7 +54,10 @@ fn every_sketchs_stream_is_calibrated_live_with_no_flag_and_no_byte_written() {
     assert!(ports.status.success());
     let (info, _) = accelcal_within(&["info", "--port", &micropython.path], LIMIT);
     let refusal = String::from_utf8_lossy(&info.stderr);
-    assert!(!info.status.success() && refusal.contains("prints on its own") && refusal.contains("wrote nothing"), "{refusal}");
+    assert!(
+        !info.status.success() && refusal.contains("prints on its own") && refusal.contains("wrote nothing"),
+        "{refusal}"
+    );
     let runs: Vec<_> = replays
         .iter()
         .map(|(sketch, replay)| {

@@ -38,7 +38,7 @@ pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
     }
     let mut opened = match args.device.open_or_talking()? {
         Ok(opened) => opened,
-        Err(talking) => return super::foreign::calibrate_from_stream(args, talking),
+        Err(talking) => return super::foreign::calibrate_from_stream(args, *talking),
     };
     opened.connection.info.sensor.map_err(LinkError::from)?;
     let mut feedback = feedback(args.json, args.yes || (args.json && opened.sim.is_some()));

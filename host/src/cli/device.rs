@@ -23,11 +23,11 @@ pub(super) struct Opened {
 
 impl Device {
     /// Opens the device, or, when its port talks on its own, hands the port over unwritten.
-    pub(super) fn open_or_talking(&self) -> Result<Result<Opened, TalkingPort>, Error> {
+    pub(super) fn open_or_talking(&self) -> Result<Result<Opened, Box<TalkingPort>>, Error> {
         match &self.port {
             Some(name) => match open_listening(&resolve_port(name, serial_ports)?)? {
-                PortOpened::Board(connection) => Ok(Ok(Opened { connection, sim: None })),
-                PortOpened::Talking(talking) => Ok(Err(talking)),
+                PortOpened::Board(connection) => Ok(Ok(Opened { connection: *connection, sim: None })),
+                PortOpened::Talking(talking) => Ok(Err(Box::new(talking))),
             },
             None => self.open().map(Ok),
         }

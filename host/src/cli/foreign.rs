@@ -15,8 +15,8 @@ use crate::link::TalkingPort;
 use crate::report::stream::{self, StreamReport};
 use crate::stream::guide::next_turn;
 use crate::stream::live::{arrival_hz, LiveStream};
-use crate::stream::timing::{Rate, RateSource};
 use crate::stream::segment::mean_std;
+use crate::stream::timing::{Rate, RateSource};
 use crate::stream::{Layout, LineReader, StreamLog, StreamOptions};
 
 /// A stream silent this long has stopped.
@@ -32,13 +32,18 @@ const STATUS_EVERY: Duration = Duration::from_secs(1);
 pub(super) fn calibrate_from_stream(args: &CalibrateArgs, talking: TalkingPort) -> Result<(), Error> {
     let path = args.stream_log.clone().unwrap_or_else(default_log);
     let file = std::fs::File::create(&path).map_err(|source| Error::WriteFile { path: path.clone(), source })?;
-    eprintln!("{} prints its own stream: accelcal writes nothing to it and keeps what it prints in {}", talking.path, path.display());
+    eprintln!(
+        "{} prints its own stream: accelcal writes nothing to it and keeps what it prints in {}",
+        talking.path,
+        path.display()
+    );
     let interrupt = interrupt_on_ctrl_c();
     let mut live = LiveStream::new(talking, file).map_err(|source| Error::WriteFile { path: path.clone(), source })?;
     let options = args.stream.options(None);
     let mut last_status = Instant::now();
     let why = loop {
-        live.poll(Duration::from_millis(200)).map_err(|e| crate::link::LinkError::Disconnected { reason: e.to_string() })?;
+        live.poll(Duration::from_millis(200))
+            .map_err(|e| crate::link::LinkError::Disconnected { reason: e.to_string() })?;
         if interrupt.load(Ordering::SeqCst) {
             break "stopped by Ctrl-C";
         }
@@ -129,7 +134,11 @@ fn report(args: &CalibrateArgs, path: &std::path::Path, options: &StreamOptions)
         println!("{}", stream::json(&report));
     } else {
         print!("{}", stream::text(&report));
-        println!("kept in {}: `accelcal fit {} --model ortho9` gives this calibration again", path.display(), path.display());
+        println!(
+            "kept in {}: `accelcal fit {} --model ortho9` gives this calibration again",
+            path.display(),
+            path.display()
+        );
     }
     Ok(())
 }

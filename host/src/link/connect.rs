@@ -46,7 +46,7 @@ pub struct TalkingPort {
 /// What is behind a port.
 pub enum Opened {
     /// An accelcal board, greeted.
-    Board(Connection),
+    Board(Box<Connection>),
     /// A board that prints on its own.
     Talking(TalkingPort),
 }
@@ -57,7 +57,7 @@ pub fn open_listening(path: &str) -> Result<Opened, LinkError> {
     let mut port: Box<dyn Port> = Box::new(port);
     let heard = listen(&mut port, LISTEN_FIRST)?;
     if heard.is_empty() {
-        return Ok(Opened::Board(Connection::over(port)?));
+        return Ok(Opened::Board(Box::new(Connection::over(port)?)));
     }
     Ok(Opened::Talking(TalkingPort { path: path.to_owned(), port, heard }))
 }
@@ -65,11 +65,10 @@ pub fn open_listening(path: &str) -> Result<Opened, LinkError> {
 /// Opens the serial port at `path` and says hello; a port that talks on its own is refused unwritten.
 pub fn open_port(path: &str) -> Result<Connection, LinkError> {
     match open_listening(path)? {
-        Opened::Board(connection) => Ok(connection),
-        Opened::Talking(talking) => Err(LinkError::TalksOnItsOwn {
-            path: talking.path,
-            seen: describe(&talking.heard, talking.heard.len()),
-        }),
+        Opened::Board(connection) => Ok(*connection),
+        Opened::Talking(talking) => {
+            Err(LinkError::TalksOnItsOwn { path: talking.path, seen: describe(&talking.heard, talking.heard.len()) })
+        }
     }
 }
 

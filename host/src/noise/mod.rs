@@ -6,9 +6,9 @@
 pub mod allan;
 pub mod fit;
 pub mod input;
-pub mod stream;
 pub mod json;
 pub mod plot;
+pub mod stream;
 pub mod text;
 
 pub use allan::AllanPoint;

@@ -12,7 +12,8 @@ pub fn longest_still(log: &StreamLog) -> Result<(Segment, RateSeries), NoiseInpu
     let gyro = log.gyro_dps().ok_or(NoiseInputError::NoStreamGyro)?;
     let accel = log.accel_g();
     let still = StillPeriods::of(log);
-    let longest = still.segments.into_iter().max_by_key(|s| s.samples).ok_or(NoiseInputError::TooShort { samples: 0 })?;
+    let longest =
+        still.segments.into_iter().max_by_key(|s| s.samples).ok_or(NoiseInputError::TooShort { samples: 0 })?;
     if longest.samples < MIN_SAMPLES {
         return Err(NoiseInputError::TooShort { samples: longest.samples });
     }

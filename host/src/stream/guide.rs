@@ -47,7 +47,11 @@ mod tests {
 
     #[test]
     fn the_next_turn_is_the_nearest_orientation_not_yet_rested_at() {
-        assert!(next_turn([0.0, 0.0, 1.0], &[]).starts_with("turn to +Z up (0 deg away)"), "{}", next_turn([0.0, 0.0, 1.0], &[]));
+        assert!(
+            next_turn([0.0, 0.0, 1.0], &[]).starts_with("turn to +Z up (0 deg away)"),
+            "{}",
+            next_turn([0.0, 0.0, 1.0], &[])
+        );
         let advice = next_turn([0.0, 0.0, 1.0], &[[0.02, 0.0, 0.99]]);
         assert!(advice.contains("(55 deg away)") && advice.contains("13 of 14"), "{advice}");
     }

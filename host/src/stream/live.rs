@@ -24,7 +24,8 @@ pub struct LiveStream {
 impl LiveStream {
     /// Starts from what was heard while listening, keeping lines in `log`.
     pub fn new(talking: TalkingPort, log: std::fs::File) -> std::io::Result<Self> {
-        let mut live = LiveStream { port: talking.port, pending: Vec::new(), lines: Vec::new(), start: Instant::now(), log };
+        let mut live =
+            LiveStream { port: talking.port, pending: Vec::new(), lines: Vec::new(), start: Instant::now(), log };
         live.take(&talking.heard)?;
         // NOTE: lines heard while listening came at unknown times: 0 keeps them out of the rate.
         live.lines.iter_mut().for_each(|line| line.1 = 0.0);
