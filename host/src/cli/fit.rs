@@ -55,10 +55,12 @@ fn fit_stream(args: &FitArgs, text: &str) -> Result<(), StreamRefusal> {
     Ok(())
 }
 
-/// The error for a file that is not a data file and could not be fitted as a stream: as a data
-/// file's error when it looks like no stream either.
+/// The error for a file that is not a data file and could not be fitted as a stream: the data
+/// file's own error when it has a data file's header (a bad row) or holds no stream either.
 fn stream_refused(args: &FitArgs, refusal: StreamRefusal, data: Option<DataError>) -> Error {
+    let headed = |data: &DataError| !matches!(data, DataError::MissingColumns { .. });
     match (refusal, data) {
+        (StreamRefusal::Read(_), Some(data)) if headed(&data) => Error::data_file(&args.file, data),
         (StreamRefusal::Read(StreamError::NoData { .. }), Some(data)) => Error::data_file(&args.file, data),
         (StreamRefusal::Read(source), _) => Error::Stream { path: args.file.clone(), source },
         (StreamRefusal::Fit(source), _) => Error::StreamFit { path: args.file.clone(), source },
