@@ -53,6 +53,8 @@ pub enum Error {
     #[error("the device has no calibration to download: calibrate or upload one first")]
     NothingToDownload,
     #[error(transparent)]
+    Export(#[from] crate::export::ExportError),
+    #[error(transparent)]
     NoiseInput(#[from] NoiseInputError),
     #[error(transparent)]
     Recording(#[from] crate::recording::RecordingError),
@@ -66,6 +68,15 @@ pub enum Error {
     ReadFile { path: PathBuf, source: std::io::Error },
     #[error("{} cannot go into the report: {reason}", .path.display())]
     ReportInput { path: PathBuf, reason: String },
+}
+
+impl From<crate::session::OutcomeError> for Error {
+    fn from(error: crate::session::OutcomeError) -> Self {
+        match error {
+            crate::session::OutcomeError::Fit(e) => Error::Fit(e),
+            crate::session::OutcomeError::Calibration(e) => Error::Calibration(e),
+        }
+    }
 }
 
 impl Error {

@@ -8,6 +8,7 @@ mod board;
 mod calibrate;
 mod choice;
 mod device;
+mod export;
 mod fit;
 mod foreign;
 mod gyro;
@@ -56,6 +57,7 @@ pub fn run(cli: Cli) -> Result<(), Error> {
         Command::Erase { device } => transfer::erase(&device),
         Command::Stream(args) => board::stream(&args),
         Command::Noise(args) => noise::noise(&args),
+        Command::Export(args) => export::export(&args),
         Command::Record(args) => record::record(&args),
         Command::Thermal(args) => thermal::thermal(&args),
         Command::Sim { pty, seed, sketch: Some(sketch), .. } => sketch_stream(sketch, seed, pty),
