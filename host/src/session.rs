@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 use shared::protocol::{CaptureStats, DeviceInfo, FirmwareVersion, SensorConfig};
-use shared::Position;
+use shared::{Calibration, Position};
 
 use crate::data::{Dataset, Row};
 use crate::fit::gyro::TurnSummary;
@@ -123,6 +123,10 @@ pub struct Session {
     /// The check of the calibration at fresh orientations, when one was made.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub verification: Option<Verification>,
+    /// The calibration record uploaded to the board (the chip's f32 values, the gyro's G included),
+    /// once `calibrate` uploaded it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub uploaded: Option<Calibration>,
     /// The gyro's turns between the positions, when `calibrate` recorded them.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub gyro_turns: Option<Vec<TurnSummary>>,

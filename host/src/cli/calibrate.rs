@@ -130,7 +130,9 @@ fn finish(
     let board_seconds = first_capture_s.map(|first| clock() - first);
     let check = super::gyro::check(client, hand.as_mut(), rate_hz, gyro, feedback)?;
     if let Some(stem) = kept_at {
-        keep_with_report(&fitted.session, &verification, stem, feedback)?;
+        let uploaded = Some(fitted.chosen);
+        let session = Session { verification: Some(verification.clone()), uploaded, ..fitted.session.clone() };
+        keep_with_report(&session, stem, feedback)?;
     }
     let mut report = report_of(opened, (fitted, gyro), verification, check);
     report.board_seconds = board_seconds;
@@ -159,17 +161,11 @@ fn report_of(
 }
 
 /// Saves the session again with its verification, writes its report beside it, and says where.
-fn keep_with_report(
-    session: &Session,
-    verification: &Verification,
-    stem: &Path,
-    feedback: &mut dyn Feedback,
-) -> Result<(), Error> {
-    let session = Session { verification: Some(verification.clone()), ..session.clone() };
+fn keep_with_report(session: &Session, stem: &Path, feedback: &mut dyn Feedback) -> Result<(), Error> {
     session.save(stem)?;
     let json = stem.with_extension("json");
     let page = super::report::beside(&json);
-    super::report::write_page(&super::report::build(&session, &json)?, &page)?;
+    super::report::write_page(&super::report::build(session, &json)?, &page)?;
     feedback.say(&format!("session kept in {}; report written to {}", json.display(), page.display()));
     Ok(())
 }

@@ -19,6 +19,7 @@ pub fn page(report: &SessionReport) -> Result<String, PlotError> {
     let mut out = head(report);
     board(&mut out, &report.board);
     sphere(&mut out, report)?;
+    super::uploaded::html_section(&mut out, report);
     parameters(&mut out, report);
     if let Some(comparison) = &report.comparison {
         models(&mut out, comparison);
@@ -266,6 +267,6 @@ pub(super) fn absent(what: &str) -> String {
 }
 
 /// Text made safe for HTML.
-fn escape(text: &str) -> String {
+pub(super) fn escape(text: &str) -> String {
     text.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
 }

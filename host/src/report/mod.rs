@@ -16,6 +16,7 @@ pub mod stream;
 pub mod temperature;
 pub mod text;
 pub mod thermal;
+mod uploaded;
 
 pub use calibrate::{CalibrateReport, ChosenJson, HostFitSummary, TruthJson};
 pub use comparison::{ComparedModel, Comparison};

@@ -160,6 +160,9 @@ pub fn session_report(report: &SessionReport) -> String {
 
 /// The fit's parameters, and each position's residual before and after.
 fn write_session_fit(out: &mut String, report: &SessionReport) {
+    if let Some(uploaded) = &report.uploaded {
+        let _ = writeln!(out, "uploaded to the board: {}", uploaded.line);
+    }
     let fit = &report.fit;
     let _ = writeln!(out, "model {}: cost {:.3e}, | |a| - 1 g | rms {:.3} mg", fit.model, fit.cost, fit.rms_mg);
     for p in &fit.parameters {
