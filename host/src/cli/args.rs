@@ -10,7 +10,7 @@ pub use super::record::RecordArgs;
 pub use super::report::ReportArgs;
 use crate::data::RowList;
 use crate::fit::ModelChoice;
-use crate::limits::FACE_TOLERANCE_DEG;
+use crate::limits::{FACE_TOLERANCE_DEG, MIN_THERMAL_SPAN_C};
 use crate::sim::SimSensor;
 
 /// Calibrates the accelerometer of an MPU-6050.
@@ -133,9 +133,14 @@ pub struct CalibrateArgs {
 pub struct ThermalArgs {
     #[command(flatten)]
     pub device: Device,
-    /// Stop learning once the temperature has spanned this many degC (at least 10 are needed).
-    #[arg(long, default_value_t = 34.0)]
+    /// Stop learning once the temperature has spanned this many degC (10-100: a temperature model
+    /// needs at least 10).
+    #[arg(long, default_value_t = 34.0, value_parser = target_span_c)]
     pub target_span_c: f64,
+    /// With --port: keep the learned bins in this JSON file after every capture, and go on from it
+    /// when it exists (default: accelcal-thermal-TIME.json in the current directory).
+    #[arg(long, value_name = "PATH")]
+    pub bins: Option<PathBuf>,
     /// With --sim: fresh orientations verified at each temperature (corners of a turned cube, 1-8).
     #[arg(long, default_value_t = 8, value_parser = clap::value_parser!(u8).range(1..=8))]
     pub verify: u8,
@@ -179,7 +184,8 @@ pub struct StreamArgs {
 pub struct NoiseArgs {
     /// The recording: .npy from `accelcal record`, or CSV (ax_g ... gz_dps) from `accelcal stream`.
     pub file: PathBuf,
-    /// Samples per second of a CSV file (default 1000); a .npy recording names its own.
+    /// Samples per second of a CSV file without a time_s column (default 1000); a .npy recording
+    /// and a `stream` CSV (its time_s) name their own, which a given rate must agree with.
     #[arg(long)]
     pub rate: Option<f64>,
     /// Print one JSON object instead of the table.
@@ -285,6 +291,10 @@ const MAX_VERIFY_POSITIONS: i64 = 20;
 // NOTE: beyond 10 degrees a face is no longer reliably within the face tolerance's reach after
 // the sensor's own offset tilts it, and the run would wait for a face it never reaches.
 const MAX_PLACEMENT_DEG: f64 = 10.0;
+/// Largest thermal learning target, in degC.
+// NOTE: the MPU-6050 works from -40 to +85 degC (Product Specification 6.1); no board warms from
+// one end to the other while it is being learned, and a larger target could never be reached.
+const MAX_THERMAL_SPAN_C: f64 = 100.0;
 
 /// The capture lengths the device accepts, refused when parsed.
 fn seconds() -> clap::builder::RangedI64ValueParser<u8> {
@@ -298,6 +308,16 @@ fn placement_deg(text: &str) -> Result<f64, String> {
         Ok(deg)
     } else {
         Err(format!("{deg} is not in 0-{MAX_PLACEMENT_DEG} degrees"))
+    }
+}
+
+/// A thermal learning target in [`MIN_THERMAL_SPAN_C`]-[`MAX_THERMAL_SPAN_C`] degC.
+fn target_span_c(text: &str) -> Result<f64, String> {
+    let span: f64 = text.parse().map_err(|_| format!("{text:?} is not a number of degC"))?;
+    if (MIN_THERMAL_SPAN_C..=MAX_THERMAL_SPAN_C).contains(&span) {
+        Ok(span)
+    } else {
+        Err(format!("{span} is not in {MIN_THERMAL_SPAN_C}-{MAX_THERMAL_SPAN_C} degC (a temperature model needs at least {MIN_THERMAL_SPAN_C})"))
     }
 }
 

@@ -2,7 +2,7 @@
 //! the tool's own hand on it).
 
 use std::sync::Arc;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use super::args::Device;
 use crate::error::Error;
@@ -19,6 +19,8 @@ pub(super) struct Opened {
     pub connection: Connection,
     /// The in-process simulated board, for `--sim`.
     pub sim: Option<SimBoard>,
+    /// When the device was opened: a real board's clock starts here, once per run.
+    opened_at: Instant,
 }
 
 impl Device {
@@ -36,10 +38,13 @@ impl Device {
     /// Opens the device and says hello.
     pub(super) fn open(&self) -> Result<Opened, Error> {
         match (&self.port, self.sim) {
-            (Some(name), _) => Ok(Opened { connection: open_port(&resolve_port(name, serial_ports)?)?, sim: None }),
+            (Some(name), _) => {
+                let connection = open_port(&resolve_port(name, serial_ports)?)?;
+                Ok(Opened { connection, sim: None, opened_at: Instant::now() })
+            }
             (None, true) => {
                 let (connection, board) = SimBoard::in_process(self.seed, self.sim_sensor)?;
-                Ok(Opened { connection, sim: Some(board) })
+                Ok(Opened { connection, sim: Some(board), opened_at: Instant::now() })
             }
             (None, false) => Err(Error::WhichDevice),
         }
@@ -47,12 +52,13 @@ impl Device {
 }
 
 impl Opened {
-    /// The board's clock: the simulated board's own time, or the wall clock from now for a real one.
+    /// The board's clock: the simulated board's own time, or for a real one the wall clock since
+    /// the device was opened (the same clock however often it is asked for).
     pub(super) fn clock(&self) -> BoardClock {
         match &self.sim {
             Some(board) => Arc::new(board.clock()),
             None => {
-                let start = std::time::Instant::now();
+                let start = self.opened_at;
                 Arc::new(move || start.elapsed().as_secs_f64())
             }
         }
@@ -69,5 +75,22 @@ impl Opened {
             }
             None => (Box::new(PersonHand), None),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sim::SimSensor;
+
+    #[test]
+    fn a_real_boards_clock_counts_from_when_it_was_opened_however_often_it_is_asked_for() {
+        let (connection, _board) = SimBoard::in_process(1, SimSensor::Settled).unwrap();
+        let opened_at = Instant::now() - Duration::from_secs(5);
+        // NOTE: a board behind a port: no simulated clock, the wall clock since it was opened.
+        let opened = Opened { connection, sim: None, opened_at };
+        let (first, second) = (opened.clock(), opened.clock());
+        assert!(first() >= 5.0 && second() >= 5.0, "{} s and {} s since it was opened 5 s ago", first(), second());
+        assert!((second() - first()).abs() < 0.5);
     }
 }

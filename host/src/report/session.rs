@@ -13,8 +13,8 @@ use super::{Comparison, FitReport};
 use crate::data::Dataset;
 use crate::fit::gyro::TurnSummary;
 use crate::fit::{FitError, FitOptions, Parameter};
-use crate::procedure::Verification;
 use crate::session::Session;
+use crate::session::Verification;
 
 /// Shown for what the session does not carry.
 pub const NOT_RECORDED: &str = "not recorded";
@@ -233,7 +233,7 @@ impl Verdict {
             );
             return Verdict { trusted: false, line };
         };
-        let trusted = v.after_rms_mg <= crate::limits::TRUSTED_AFTER_NOISE_FLOOR * v.noise_floor_mg.max(f64::EPSILON);
+        let trusted = v.trusted();
         let judged = if trusted { "trusted" } else { "not trusted" };
         let line = format!(
             "{judged}: | |a| - 1 g | rms {:.3} mg at {} fresh orientations (noise floor {:.3} mg; {:.2} mg uncalibrated)",

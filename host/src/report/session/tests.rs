@@ -9,17 +9,7 @@ use crate::orientation::{corners, faces, Orientation};
 use crate::session::{CaptureRecord, SessionKind};
 
 fn verified(after_rms_mg: f64, noise_floor_mg: f64) -> Verification {
-    Verification {
-        positions: 6,
-        before_rms_mg: 40.0,
-        after_rms_mg,
-        after_max_mg: after_rms_mg * 2.0,
-        after_rms_without_noise_mg: (after_rms_mg.powi(2) - noise_floor_mg.powi(2)).max(0.0).sqrt(),
-        on_chip_difference_mg: 0.5,
-        noise_floor_mg,
-        before_mg: vec![],
-        after_mg: vec![],
-    }
+    Verification::example(after_rms_mg, noise_floor_mg)
 }
 
 #[test]
