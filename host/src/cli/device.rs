@@ -28,7 +28,9 @@ impl Device {
     pub(super) fn open_or_talking(&self) -> Result<Result<Opened, Box<TalkingPort>>, Error> {
         match &self.port {
             Some(name) => match open_listening(&resolve_port(name, serial_ports)?)? {
-                PortOpened::Board(connection) => Ok(Ok(Opened { connection: *connection, sim: None })),
+                PortOpened::Board(connection) => {
+                    Ok(Ok(Opened { connection: *connection, sim: None, opened_at: Instant::now() }))
+                }
                 PortOpened::Talking(talking) => Ok(Err(Box::new(talking))),
             },
             None => self.open().map(Ok),
