@@ -1,33 +1,31 @@
 //! Writing a data file that [`Dataset::from_path`] reads back: the reading and the capture
 //! statistics, and a last column of labels.
 
+use std::fmt::Write as _;
+
 use super::columns;
 use super::{Dataset, Row};
 
 impl Dataset {
     /// The rows as CSV with the capture-statistics columns and a last column `label_column` holding
-    /// `labels` (quoted where a label holds a comma or a quote).
+    /// `labels` (commas in a label become spaces).
     pub fn to_csv(&self, label_column: &str, labels: &[&str]) -> String {
-        let mut writer = csv::WriterBuilder::new().terminator(csv::Terminator::Any(b'\n')).from_writer(Vec::new());
-        // NOTE: a csv writer into memory cannot fail, and every cell written is UTF-8.
-        let _ = writer.write_record(header(label_column));
+        let mut out = header(label_column);
         for (row, label) in self.rows.iter().zip(labels) {
-            let mut record = cells(row);
-            record.push((*label).to_owned());
-            let _ = writer.write_record(&record);
+            let _ = writeln!(out, "{},{}", cells(row).join(","), label.replace(',', " "));
         }
-        String::from_utf8(writer.into_inner().unwrap_or_default()).unwrap_or_default()
+        out
     }
 }
 
-fn header(label_column: &str) -> Vec<&str> {
+fn header(label_column: &str) -> String {
     let mut names: Vec<&str> = columns::READING[0].to_vec();
     names.push(columns::COUNT);
     names.extend(columns::STD);
     names.push(columns::TEMP);
     names.extend(columns::GYRO);
     names.push(label_column);
-    names
+    names.join(",") + "\n"
 }
 
 /// The row's cells, empty where a value is absent.
