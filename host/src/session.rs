@@ -40,13 +40,17 @@ pub struct BoardRecord {
     pub firmware: FirmwareVersion,
     /// Range, sample rate and filter of the sensor.
     pub config: SensorConfig,
+    /// The sensor part as [`crate::part::describe`] names it (absent in sessions before issue 27).
+    #[serde(default)]
+    pub sensor: Option<String>,
 }
 
 impl BoardRecord {
     /// The board that answered `info`.
     pub fn of(info: &DeviceInfo) -> Self {
         let serial = String::from_utf8_lossy(&info.serial.hex()).into_owned();
-        BoardRecord { serial, firmware: info.firmware, config: info.config }
+        let sensor = info.sensor.as_ref().ok().map(crate::part::describe);
+        BoardRecord { serial, firmware: info.firmware, config: info.config, sensor }
     }
 
     /// Whether a session captured on `self` may continue on `board`; the reason when not.

@@ -192,7 +192,11 @@ fn the_page_stands_alone_and_names_what_the_session_does_not_hold() {
     // Verification, temperature, Allan deviation: none is in this session; its gyro turns are.
     assert_eq!(html.matches("not part of this session").count(), 3);
     assert!(html.contains("<figure id=\"gyro-turns\">"), "the page draws the gyro's turns");
-    assert_eq!(html.matches("not recorded").count(), 3, "serial, firmware and configuration are not in this session");
+    assert_eq!(
+        html.matches("not recorded").count(),
+        4,
+        "serial, firmware, sensor and configuration are not in this session"
+    );
     assert!(!html.contains("id=\"verification"));
 }
 

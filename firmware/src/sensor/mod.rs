@@ -4,11 +4,13 @@
 //! (FIFO, sample-rate divider, filter, interrupt status) goes through its register access.
 
 mod bus;
+mod family;
 pub mod registers;
 
 use embedded_hal::blocking::i2c::{Write, WriteRead};
 use mpu6050::device::{AccelRange as ChipRange, GyroRange};
 use mpu6050::{Mpu6050, Mpu6050Error};
+use shared::part::{Family, TemperatureFormula};
 use shared::protocol::{DeviceError, LowPassFilter, SensorConfig, SensorIdentity};
 use shared::AccelRange;
 
@@ -58,7 +60,7 @@ impl<E> Error<E> {
 pub struct RawSample {
     /// Accelerometer x, y, z in LSB.
     pub accel: [i16; 3],
-    /// Temperature in LSB.
+    /// Temperature in LSB of the MPU-6050's encoding (raw / 340 + 36.53), whatever the part.
     pub temp: i16,
     /// Gyro x, y, z in LSB.
     pub gyro: [i16; 3],
@@ -97,11 +99,10 @@ impl Sensor {
             let Ok(who_am_i) = Mpu6050::new_with_addr(Borrowed(bus), address).read_byte(reg::WHO_AM_I) else {
                 continue;
             };
-            let genuine = who_am_i == reg::WHO_AM_I_MPU6050;
-            if !genuine && !reg::WHO_AM_I_CLONES.contains(&who_am_i) {
+            let Some(family) = family::family_of(bus, address, who_am_i)? else {
                 return Err(Error::UnknownChip { address, who_am_i });
-            }
-            let identity = SensorIdentity { address, who_am_i, genuine };
+            };
+            let identity = SensorIdentity { address, who_am_i, family };
             return Ok(Sensor { identity, config: SensorConfig::default() });
         }
         Err(Error::Missing)
@@ -115,6 +116,11 @@ impl Sensor {
     /// The configuration last applied.
     pub fn config(&self) -> SensorConfig {
         self.config
+    }
+
+    /// How this part's TEMP_OUT reads (the driver hands samples on in the MPU-6050's encoding).
+    fn temperature(&self) -> TemperatureFormula {
+        self.identity.identification().temperature()
     }
 
     fn chip<'a, I, E>(&self, bus: &'a mut I) -> Mpu6050<Borrowed<'a, I>>
@@ -135,6 +141,10 @@ impl Sensor {
         chip.set_accel_range(chip_range(config.range))?;
         chip.set_gyro_range(GyroRange::D1000)?;
         chip.write_byte(reg::CONFIG, filter_setting(config.filter))?;
+        if self.identity.family == Family::Mpu6500 {
+            // NOTE: on the MPU-6500 family CONFIG filters the gyro only (RM-MPU-6500A 4.6).
+            chip.write_byte(reg::ACCEL_CONFIG2, family::accel_config2(config.filter))?;
+        }
         chip.write_byte(reg::SMPLRT_DIV, divider)?;
         chip.write_byte(reg::INT_ENABLE, reg::FIFO_OFLOW)?;
         let achieved = (reg::GYRO_OUTPUT_RATE_HZ / (1 + u32::from(divider))) as u16;
@@ -187,7 +197,7 @@ impl Sensor {
             for (sample, raw) in chunk.iter_mut().zip(bytes.chunks_exact(reg::FIFO_SAMPLE_LEN)) {
                 let mut one = [0u8; reg::FIFO_SAMPLE_LEN];
                 one.copy_from_slice(raw);
-                *sample = RawSample::from_be_bytes(&one);
+                *sample = self.decoded(&one);
             }
         }
         Ok(wanted)
@@ -200,7 +210,13 @@ impl Sensor {
     {
         let mut bytes = [0u8; reg::FIFO_SAMPLE_LEN];
         self.chip(bus).read_bytes(reg::ACCEL_XOUT_H, &mut bytes)?;
-        Ok(RawSample::from_be_bytes(&bytes))
+        Ok(self.decoded(&bytes))
+    }
+
+    /// A sample's bytes as a sample, its temperature in the MPU-6050's encoding.
+    fn decoded(&self, bytes: &[u8; reg::FIFO_SAMPLE_LEN]) -> RawSample {
+        let sample = RawSample::from_be_bytes(bytes);
+        RawSample { temp: family::in_mpu6050_encoding(self.temperature(), sample.temp), ..sample }
     }
 }
 

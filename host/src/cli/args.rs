@@ -10,7 +10,7 @@ pub use super::report::ReportArgs;
 use crate::data::RowList;
 use crate::fit::ModelChoice;
 use crate::limits::FACE_TOLERANCE_DEG;
-use crate::sim::SimSensor;
+use crate::sim::{FaultyAxis, SimPartChoice, SimSensor};
 
 /// Calibrates the accelerometer of an MPU-6050.
 #[derive(Parser)]
@@ -37,6 +37,12 @@ pub struct Device {
     /// With --sim: the simulated sensor, realistic (warming and drifting) or settled (one temperature).
     #[arg(long, value_enum, default_value_t = SimSensor::Realistic)]
     pub sim_sensor: SimSensor,
+    /// With --sim: the simulated part (its register map, temperature formula and self-test).
+    #[arg(long, value_enum, default_value_t = SimPartChoice::Mpu6050)]
+    pub sim_part: SimPartChoice,
+    /// With --sim: this axis' self-test response is 20 % off its factory trim.
+    #[arg(long, value_enum)]
+    pub sim_faulty_axis: Option<FaultyAxis>,
 }
 
 /// `accelcal fit`.

@@ -27,7 +27,8 @@ impl Device {
         match (&self.port, self.sim) {
             (Some(name), _) => Ok(Opened { connection: open_port(&resolve_port(name, serial_ports)?)?, sim: None }),
             (None, true) => {
-                let (connection, board) = SimBoard::in_process(self.seed, self.sim_sensor)?;
+                let part = self.sim_part.part(self.sim_faulty_axis);
+                let (connection, board) = SimBoard::in_process_part((self.seed, self.sim_sensor, part))?;
                 Ok(Opened { connection, sim: Some(board) })
             }
             (None, false) => Err(Error::WhichDevice),

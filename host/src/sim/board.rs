@@ -8,6 +8,7 @@ use std::thread::JoinHandle;
 use embassy_futures::block_on;
 use firmware::device::Device;
 use firmware::server::Server;
+use firmware::sim::part::SimPart;
 use firmware::sim::physics::{Motion, Physics, TrueErrors};
 use firmware::sim::{sim_serial_number, SimFlash, SimMpu6050, SIM_FLASH_RANGE};
 
@@ -49,6 +50,9 @@ pub enum SimSensor {
     Settled,
 }
 
+/// A simulated sensor: the seed of its noise, its kind and its part.
+pub type SensorChoice = (u64, SimSensor, SimPart);
+
 /// A running simulated board.
 pub struct SimBoard {
     commands: Sender<SimCommand>,
@@ -68,10 +72,18 @@ impl SimBoard {
 
     /// [`Self::spawn`] with the simulated sensor of the owner's choice and simulated time at `pace`.
     pub fn spawn_with<P: Port + 'static>(port: P, flash: SimFlash, seed: u64, kind: SimSensor, pace: Pace) -> Self {
+        Self::spawn_part(port, flash, (seed, kind, SimPart::mpu6050()), pace)
+    }
+
+    /// [`Self::spawn_with`] with a simulated part of the owner's choice: `sensor` is the seed, the
+    /// kind of sensor and the part.
+    pub fn spawn_part<P: Port + 'static>(port: P, flash: SimFlash, sensor: SensorChoice, pace: Pace) -> Self {
+        let (seed, kind, part) = sensor;
         let sensor = match kind {
             SimSensor::Realistic => SimMpu6050::new(seed),
             SimSensor::Settled => SimMpu6050::settled(seed),
-        };
+        }
+        .with_part(part);
         let truth = sensor.physics.truth;
         let (commands, inbox) = channel();
         let now_us = Arc::new(AtomicU64::new(0));
@@ -90,8 +102,13 @@ impl SimBoard {
     /// A fresh simulated board in this process, behind an in-memory pipe, and a session with it; its
     /// clock runs in lockstep with the requests, so a run is repeatable by its seed.
     pub fn in_process(seed: u64, kind: SimSensor) -> Result<(Connection, SimBoard), LinkError> {
+        Self::in_process_part((seed, kind, SimPart::mpu6050()))
+    }
+
+    /// [`Self::in_process`] with a simulated part of the owner's choice.
+    pub fn in_process_part(sensor: SensorChoice) -> Result<(Connection, SimBoard), LinkError> {
         let (host_end, device_end) = pipe();
-        let board = SimBoard::spawn_with(device_end, SimFlash::new(), seed, kind, Pace::Lockstep);
+        let board = SimBoard::spawn_part(device_end, SimFlash::new(), sensor, Pace::Lockstep);
         Ok((Connection::over(Box::new(host_end))?, board))
     }
 

@@ -10,12 +10,14 @@ mod clock;
 mod commands;
 pub mod noise;
 mod outgoing;
+mod parts;
 mod pty;
 pub mod random;
 mod serve;
 pub mod synthetic;
 
-pub use board::{SimBoard, SimCommand, SimSensor};
+pub use board::{SensorChoice, SimBoard, SimCommand, SimSensor};
+pub use parts::{FaultyAxis, SimPartChoice};
 pub use clock::Pace;
 pub use pty::{serve_pty, SimError};
 
