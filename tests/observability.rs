@@ -1,5 +1,5 @@
 //! Positions that cannot determine a model are refused before fitting, each with the message the
-//! README promises: the numbers (needed, found, how many to add), the axis and direction missing,
+//! docs/guide.md promises: the numbers (needed, found, how many to add), the axis and direction missing,
 //! the parameter the Jacobian cannot see; and a poorly conditioned fit is fitted with a warning.
 
 use accelcal::data::Dataset;
@@ -168,7 +168,7 @@ fn a_parameter_the_jacobian_barely_sees_is_refused_too() {
 
 #[test]
 fn the_published_lab_fit_warns_of_the_condition_number_the_readme_quotes() {
-    // README, "Results on the published data": "The fit warns of a condition number of 1.2e4: the 20
+    // docs/measurements.md, "Results on the published data": "The fit warns of a condition number of 1.2e4: the 20
     // training rows never point z down."
     let g = 9.8061;
     let dataset = Dataset::from_path(&data_path("ivanov-lab-32.csv"), g).unwrap();

@@ -54,7 +54,7 @@ fn reference_norm12_reaches_the_minimum_of_the_published_objective() {
     let (matrix, offset) = parts(&fit);
     let at_fit = objective(&dataset, &matrix, &offset);
     assert!((at_fit - fit.cost).abs() < 1e-12 * at_fit.max(1e-30) + 1e-18, "reported {} vs {at_fit}", fit.cost);
-    // The README's figure: the minimum is 3.009947e-5 (the solver's relative cost tolerance is 1e-12).
+    // The figure of docs/measurements.md: the minimum is 3.009947e-5 (the solver's relative cost tolerance is 1e-12).
     assert!((fit.cost / 3.009947e-5 - 1.0).abs() < 1e-6, "cost {:e}", fit.cost);
 
     // Independent check: no step of an independent Gauss-Newton on the written-out objective, with
@@ -128,8 +128,8 @@ fn test_rows_have_toolface_and_inclination_errors_within_2_degrees_and_training_
         let set = if row.training { "train" } else { "test" };
         println!("| {} | {set} | {} | {} |", i + 1, cell(row.inclination_error_deg), cell(row.toolface_error_deg));
     }
-    // Worst inclination and toolface errors per set, in degrees (the README's table). Bounds: 1.5
-    // times the measured worst, except the README's promise of 2 degrees on the test rows, which is
+    // Worst inclination and toolface errors per set, in degrees (docs/measurements.md's table). Bounds: 1.5
+    // times the measured worst, except the promise of docs/measurements.md of 2 degrees on the test rows, which is
     // tighter (measured 1.73 and 1.34).
     let sets = [
         ("rows 1-10 (train)", 0..10, 0.46, 0.09, 0.69, 0.14),

@@ -19,7 +19,7 @@ const PROBLEMS: u64 = 300;
 /// Largest relative difference between the median reported standard error and the actual spread.
 ///
 /// NOTE: the spread from 300 draws is itself uncertain by 1 / sqrt(600) = 4 %; 30 % is the issue's
-/// bound. Measured: see the printed ratios (README, "Uncertainty").
+/// bound. Measured: see the printed ratios (docs/guide.md, "Fitting data files").
 const TOLERANCE: f64 = 0.3;
 
 /// Samples averaged by each of `rows` rows: from 2 to 3000, spaced evenly in log.

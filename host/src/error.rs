@@ -49,6 +49,8 @@ pub enum Error {
     #[error("the device has no calibration to download: calibrate or upload one first")]
     NothingToDownload,
     #[error(transparent)]
+    Export(#[from] crate::export::ExportError),
+    #[error(transparent)]
     NoiseInput(#[from] NoiseInputError),
     #[error(transparent)]
     Recording(#[from] crate::recording::RecordingError),

@@ -11,6 +11,7 @@
 //! - [`fit`]: least-squares fits;
 //! - [`noise`]: noise characterisation of a still recording by Allan deviation;
 //! - [`calibration`]: the device's calibration record on the host (its JSON form, from a fit);
+//! - [`export`]: the calibration in other programs' formats, with what each loses;
 //! - [`report`]: what a fit or a calibration reports, computed once, rendered as text or JSON;
 //! - [`cli`]: the command line; the `accelcal` binary only calls [`cli::main`].
 
@@ -18,6 +19,7 @@ pub mod calibration;
 pub mod cli;
 pub mod data;
 pub mod error;
+pub mod export;
 pub mod fit;
 pub mod limits;
 pub mod link;

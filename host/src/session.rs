@@ -232,4 +232,30 @@ mod tests {
         assert_eq!(data.rows[0].gyro_mean_dps, Some([0.5, -0.25, 0.125]));
         assert_eq!(data, session.dataset());
     }
+
+    #[test]
+    fn a_session_resumes_only_on_its_board_at_its_range_and_filter() {
+        use shared::protocol::LowPassFilter;
+        let serial = "0123456789abcdef01234567".to_owned();
+        let firmware = FirmwareVersion { major: 0, minor: 1, patch: 0 };
+        let board = |serial: &str, range, filter| BoardRecord {
+            serial: serial.to_owned(),
+            firmware,
+            config: SensorConfig { range, sample_rate_hz: 100, filter },
+        };
+        let recorded = board(&serial, AccelRange::G2, LowPassFilter::Hz44);
+        let path = Path::new("session.json");
+        // A sample rate the board achieves differently does not change what a capture measures.
+        let mut same = recorded.clone();
+        same.config.sample_rate_hz = 99;
+        assert!(recorded.check_same(&same, path).is_ok());
+        let other = |b: BoardRecord| recorded.check_same(&b, path).unwrap_err();
+        let error = other(board(&serial, AccelRange::G2, LowPassFilter::Hz21));
+        assert!(matches!(error, SessionError::OtherSetting { .. }), "another filter: {error}");
+        assert!(error.to_string().contains("G2 with the Hz44 filter, the board is set to G2 with the Hz21"), "{error}");
+        let error = other(board(&serial, AccelRange::G4, LowPassFilter::Hz44));
+        assert!(matches!(error, SessionError::OtherSetting { .. }), "another range: {error}");
+        let error = other(board("ffffffffffffffffffffffff", AccelRange::G2, LowPassFilter::Hz44));
+        assert!(matches!(error, SessionError::OtherBoard { .. }), "another board: {error}");
+    }
 }

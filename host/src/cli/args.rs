@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use clap::{Args, Parser, Subcommand};
 use shared::protocol::{SensorConfig, DEFAULT_CAPTURE_SECONDS, MAX_CAPTURE_SECONDS, MIN_CAPTURE_SECONDS};
 
+pub use super::export::ExportArgs;
 pub use super::record::RecordArgs;
 pub use super::report::ReportArgs;
 use crate::data::RowList;
@@ -171,7 +172,7 @@ pub struct NoiseArgs {
 /// The commands of `accelcal`.
 #[derive(Subcommand)]
 pub enum Command {
-    /// Fits a calibration to a calibration data file (CSV, see README).
+    /// Fits a calibration to a calibration data file (CSV, see docs/guide.md).
     Fit(FitArgs),
     /// Lists serial ports, marking accelcal boards.
     Ports,
@@ -232,6 +233,8 @@ pub enum Command {
     Thermal(ThermalArgs),
     /// Records raw samples at the sensor's full rate into a .npy file, with a progress bar.
     Record(RecordArgs),
+    /// The calibration in another program's format (C, Rust, Fusion, ArduPilot, PX4, ...; see --to).
+    Export(ExportArgs),
     /// Allan deviation and noise terms (white noise, bias instability, random walk) of a still recording.
     Noise(NoiseArgs),
     /// Runs a simulated board on a pseudo-terminal; prints its path, then serves until killed.

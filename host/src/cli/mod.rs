@@ -8,6 +8,7 @@ mod board;
 mod calibrate;
 mod choice;
 mod device;
+mod export;
 mod fit;
 mod gyro;
 mod length;
@@ -55,6 +56,7 @@ pub fn run(cli: Cli) -> Result<(), Error> {
         Command::Erase { device } => transfer::erase(&device),
         Command::Stream(args) => board::stream(&args),
         Command::Noise(args) => noise::noise(&args),
+        Command::Export(args) => export::export(&args),
         Command::Record(args) => record::record(&args),
         Command::Thermal(args) => thermal::thermal(&args),
         Command::Sim { pty: _, seed, fast } => {

@@ -179,4 +179,29 @@ mod tests {
         let half_width = (high - low) / 2.0;
         assert!((half_width - 1.0 / 200.0).abs() < 1e-4, "{half_width}");
     }
+
+    /// allantools 2024.06's overlapping deviation, edf and interval of the series below, as printed by:
+    /// python3 -c 'import numpy as np, allantools as at
+    /// y = np.array([((i * 7919) % 1009) / 1009 - 0.5 for i in range(2000)])
+    /// _, devs, _, _ = at.oadev(y, rate=100.0, data_type="freq", taus=[0.01, 0.1, 1.0])
+    /// for m, d in zip([1, 10, 100], devs):
+    ///     e = at.edf_simple(2001, m, 0); print(m, d, e, *at.confidence_interval(d, e, ci=0.683))'
+    const ALLANTOOLS: [(usize, f64, f64, f64, f64); 3] = [
+        (1, 0.2539184031779845, 1332.445332889111, 0.24913621908226213, 0.2589868056436688),
+        (10, 0.07781386027440619, 294.3229619758022, 0.07479349949748806, 0.08123212126071454),
+        (100, 0.007950852320917454, 27.99849918810124, 0.007071070896893004, 0.009268908392554927),
+    ];
+
+    #[test]
+    fn deviations_and_confidence_intervals_agree_with_allantools() {
+        let rate: Vec<f64> = (0..2000).map(|i| ((i * 7919) % 1009) as f64 / 1009.0 - 0.5).collect();
+        let points = overlapping_adev(&rate, 100.0, &[1, 10, 100]);
+        for (point, (m, adev, edf, low, high)) in points.iter().zip(ALLANTOOLS) {
+            let near = |ours: f64, theirs: f64, tolerance: f64| (ours / theirs - 1.0).abs() < tolerance;
+            assert!(near(point.adev, adev, 1e-9) && near(point.edf, edf, 1e-9), "m = {m}: {point:?}");
+            // Above 100 degrees of freedom the quantiles are Wilson-Hilferty's, within 1e-4.
+            assert!(near(point.adev_low, low, 2e-4) && near(point.adev_high, high, 2e-4), "m = {m}: {point:?}");
+        }
+        assert_eq!(points.len(), 3);
+    }
 }

@@ -14,7 +14,9 @@ use nalgebra::{Matrix3, Vector3};
 use super::allan::AllanPoint;
 
 /// The flicker floor of the Allan deviation is this times the bias instability: sqrt(2 ln 2 / pi).
-pub const FLICKER_FLOOR: f64 = 0.664_282_433_663_950_4;
+// NOTE: python3 -c "import math; print(math.sqrt(2 * math.log(2) / math.pi))" (was 0.664_282_433_7, wrong
+// in the eighth digit).
+pub const FLICKER_FLOOR: f64 = 0.664_282_470_267_960_1;
 
 /// The fitted noise terms of one axis, in the rate's unit (g or deg/s) and seconds.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -102,11 +104,15 @@ fn cost(curve: &[AllanPoint], variances: &Vector3<f64>) -> f64 {
 mod tests {
     use super::*;
 
+    /// The curve IEEE Std 952 (C.2) gives for the terms, written out here rather than taken from the
+    /// code under test: AVAR = N^2 / tau + (2 ln 2 / pi) B^2 + K^2 tau / 3.
     fn exact_curve(terms: &NoiseTerms) -> Vec<AllanPoint> {
+        let NoiseTerms { white_noise_n: n, bias_instability: b, random_walk: k, .. } = *terms;
+        let flicker = 2.0 * std::f64::consts::LN_2 / std::f64::consts::PI;
         (0..40)
-            .map(|k| {
-                let tau_s = 10f64.powf(k as f64 / 8.0 - 2.0);
-                let adev = terms.adev(tau_s);
+            .map(|i| {
+                let tau_s = 10f64.powf(i as f64 / 8.0 - 2.0);
+                let adev = (n * n / tau_s + flicker * b * b + k * k * tau_s / 3.0).sqrt();
                 AllanPoint { tau_s, adev, adev_low: adev, adev_high: adev, edf: 1e4 / tau_s }
             })
             .collect()
@@ -131,5 +137,16 @@ mod tests {
         assert!(fitted.bias_instability < 1e-12 && fitted.random_walk < 1e-12, "{fitted:?}");
         // With only white noise the deviation keeps falling: the longest averaging time is best.
         assert!((fitted.bias_instability_tau_s - 10f64.powf(39.0 / 8.0 - 2.0)).abs() < 1e-9, "{fitted:?}");
+    }
+
+    #[test]
+    fn the_terms_read_where_ieee_952_puts_them_on_the_curve() {
+        // White noise alone crosses N at tau = 1 s; random walk alone crosses K at tau = 3 s; the
+        // flicker floor is B sqrt(2 ln 2 / pi) = 0.6643 B.
+        let only =
+            |n, b, k| NoiseTerms { white_noise_n: n, bias_instability: b, bias_instability_tau_s: 0.0, random_walk: k };
+        assert!((only(4e-4, 0.0, 0.0).adev(1.0) - 4e-4).abs() < 1e-15);
+        assert!((only(0.0, 0.0, 2e-6).adev(3.0) - 2e-6).abs() < 1e-18);
+        assert!((only(0.0, 5e-5, 0.0).adev(100.0) - 0.664_282_47 * 5e-5).abs() < 1e-13);
     }
 }

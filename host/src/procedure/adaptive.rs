@@ -222,4 +222,40 @@ mod tests {
         let missed = prediction_line(&short, 0.3, 0.2);
         assert!(missed.ends_with("not the 0.2 mg wanted: every position is taken; a larger --target-mg ends sooner"));
     }
+
+    /// A session of `n` positions of a sensor read through a scale error and an offset, each mean
+    /// off by a few hundredths of a mg as noise would leave it.
+    fn positions_of_a_good_sensor(n: usize) -> Session {
+        let directions: [[f32; 3]; 10] = [
+            [0.0, 0.0, 1.0],
+            [0.0, 0.0, -1.0],
+            [1.0, 0.0, 0.0],
+            [-1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, -1.0, 0.0],
+            [0.577, 0.577, 0.577],
+            [-0.577, 0.577, -0.577],
+            [0.707, -0.707, 0.0],
+            [0.0, -0.707, 0.707],
+        ];
+        let captures = directions[..n]
+            .iter()
+            .enumerate()
+            .map(|(k, d)| {
+                let wiggle = if k % 2 == 0 { 3e-5 } else { -3e-5 };
+                let mut capture = captured(&format!("p{k}"), 8.0);
+                capture.stats.mean_g = [1.01 * d[0] + 0.02 + wiggle, 0.99 * d[1] - 0.01, d[2] + 0.03 - wiggle];
+                capture.stats.samples = 800;
+                capture
+            })
+            .collect();
+        Session { captures, ..Session::default() }
+    }
+
+    #[test]
+    fn a_prediction_ends_the_session_only_from_ten_positions_on() {
+        let mut said = crate::procedure::Silent { yes: true };
+        assert!(!enough(&positions_of_a_good_sensor(9), 1.0, &mut said), "nine positions are one too few");
+        assert!(enough(&positions_of_a_good_sensor(10), 1.0, &mut said), "ten positions that predict the target");
+    }
 }

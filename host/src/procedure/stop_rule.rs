@@ -200,6 +200,18 @@ mod tests {
     }
 
     #[test]
+    fn a_noise_report_capture_limit_is_held_within_the_shortest_and_longest_capture() {
+        // A tight target asks for (0.283 mg / 0.01 mg)^2 = 801 s: a 40 s report limit still stops at
+        // the 8 s longest capture (800 samples at 100 Hz), and a 0.2 s limit at the 0.5 s shortest.
+        let report = |capture_limit_s| Noise::Report { white_noise_g: [200e-6, 283e-6, 250e-6], capture_limit_s };
+        let tight = |noise| StopRule { target_mg: 0.01, noise, rate_hz: 100 };
+        let goal = tight(report(Some(40.0))).goal();
+        assert_eq!((goal.min_samples, goal.max_samples), (800, 800), "a long limit is capped at 8 s");
+        let goal = tight(report(Some(0.2))).goal();
+        assert_eq!((goal.min_samples, goal.max_samples), (50, 50), "a limit under 0.5 s gives 0.5 s");
+    }
+
+    #[test]
     fn a_noise_report_is_read_from_noise_json_or_refused_by_name() {
         let dir = std::env::temp_dir().join(format!("accelcal-stop-rule-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();

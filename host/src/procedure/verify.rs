@@ -217,4 +217,15 @@ mod tests {
         let expected = ((0.5 * 0.004f64.powi(2) + 0.5 * 0.002f64.powi(2)) / 100.0).sqrt();
         assert!((noise(&tilted) - expected).abs() < 1e-8, "{} vs {expected}", noise(&tilted));
     }
+
+    #[test]
+    fn the_worst_error_counts_readings_below_1_g_as_well_as_above() {
+        // |a| of 0.9988 g is 1.2 mg short: the worst error is 1.2 mg, not the 0.5 mg above 1 g.
+        let check = |before_mg, after_mg| Check { before_mg, after_mg, noise_mg: 0.1, on_chip_mg: 0.01 };
+        let result = summary(&[check(3.0, 0.3), check(-4.0, -1.2), check(2.0, 0.5)]);
+        assert_eq!(result.after_max_mg, 1.2);
+        // sqrt((0.09 + 1.44 + 0.25) / 3) = 0.770 mg
+        assert!((result.after_rms_mg - 0.770_281).abs() < 1e-6, "{}", result.after_rms_mg);
+        assert_eq!(result.positions, 3);
+    }
 }

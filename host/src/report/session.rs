@@ -275,36 +275,4 @@ fn civil_from_days(days: i64) -> (i64, i64, i64) {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn verified(after_rms_mg: f64, noise_floor_mg: f64) -> Verification {
-        Verification {
-            positions: 6,
-            before_rms_mg: 40.0,
-            after_rms_mg,
-            after_max_mg: after_rms_mg * 2.0,
-            after_rms_without_noise_mg: (after_rms_mg.powi(2) - noise_floor_mg.powi(2)).max(0.0).sqrt(),
-            on_chip_difference_mg: 0.5,
-            noise_floor_mg,
-            before_mg: vec![],
-            after_mg: vec![],
-        }
-    }
-
-    #[test]
-    fn a_calibration_is_trusted_within_three_noise_floors_and_only_when_verified() {
-        let fit = FitSummary { model: "ortho9", cost: 1e-8, rms_mg: 0.05, parameters: vec![], warnings: vec![] };
-        assert!(Verdict::new(&fit, Some(&verified(0.37, 0.125))).trusted);
-        assert!(!Verdict::new(&fit, Some(&verified(0.38, 0.125))).trusted);
-        let unverified = Verdict::new(&fit, None);
-        assert!(!unverified.trusted && unverified.line.contains("not verified"), "{}", unverified.line);
-    }
-
-    #[test]
-    fn dates_are_utc_calendar_dates() {
-        assert_eq!(utc_minutes(0.0), "1970-01-01 00:00");
-        assert_eq!(utc_minutes(951_782_400.0 + 3_660.0), "2000-02-29 01:01");
-        assert_eq!(utc_minutes(1_795_000_000.0), "2026-11-18 11:06");
-    }
-}
+mod tests;

@@ -37,12 +37,16 @@ impl Clock {
 
     /// Microseconds of simulated time to let pass now, the board `busy` or not.
     pub(super) fn step_us(&mut self, busy: bool) -> u64 {
+        self.step_us_at(busy, Instant::now())
+    }
+
+    /// The step of [`Clock::step_us`] taken at the instant `now`.
+    fn step_us_at(&mut self, busy: bool, now: Instant) -> u64 {
         match self.pace {
             Pace::Fast => FAST_TICK_US,
             Pace::Lockstep if busy => FAST_TICK_US,
             Pace::Lockstep => 0,
             Pace::RealTime => {
-                let now = Instant::now();
                 let elapsed = now.duration_since(self.last).as_micros();
                 self.last = now;
                 u64::try_from(elapsed).unwrap_or(u64::MAX).min(MAX_REAL_STEP_US)
@@ -75,21 +79,24 @@ mod tests {
 
     #[test]
     fn real_time_follows_the_wall_clock_and_stands_still_while_held() {
+        // Instants are given, not slept for: the test asserts no duration of the machine's own.
         let mut clock = Clock::new(Pace::RealTime);
-        std::thread::sleep(Duration::from_millis(30));
-        let step = clock.step_us(false);
-        assert!((30_000..MAX_REAL_STEP_US).contains(&step), "{step} us");
-        std::thread::sleep(Duration::from_millis(30));
+        let start = clock.last;
+        assert_eq!(clock.step_us_at(false, start + Duration::from_millis(30)), 30_000);
+        let stalled = start + Duration::from_millis(530);
+        assert_eq!(clock.step_us_at(true, stalled), MAX_REAL_STEP_US, "a stall is not made up in one jump");
+        let before_hold = Instant::now();
         clock.hold();
-        assert!(clock.step_us(true) < 10_000, "time held still must not be made up");
+        assert!(clock.last >= before_hold, "time held still must not be made up");
+        assert_eq!(clock.step_us_at(true, clock.last + Duration::from_millis(2)), 2_000);
         assert_eq!(Clock::new(Pace::Fast).step_us(false), FAST_TICK_US);
     }
 
     #[test]
     fn lockstep_time_passes_only_while_the_board_works() {
         let mut clock = Clock::new(Pace::Lockstep);
-        std::thread::sleep(Duration::from_millis(20));
-        assert_eq!(clock.step_us(false), 0);
-        assert_eq!(clock.step_us(true), FAST_TICK_US);
+        let later = clock.last + Duration::from_millis(20);
+        assert_eq!(clock.step_us_at(false, later), 0);
+        assert_eq!(clock.step_us_at(true, later), FAST_TICK_US);
     }
 }

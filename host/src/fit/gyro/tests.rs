@@ -146,3 +146,42 @@ fn fewer_turns_than_the_fit_needs_are_refused_by_name() {
     let error = fit_gyro(&session(&[0, 1, 2], MIN_TURNS - 1, 0.0, 1)).unwrap_err();
     assert_eq!(error, GyroFitError::TooFewTurns { turns: MIN_TURNS - 1 });
 }
+
+/// Fits of `runs` sessions of twelve noisy turns: the scatter of each entry of G over the runs, and
+/// the mean standard error the fits claimed for it.
+fn scatter_and_claimed(runs: u64, noise_dps: f64) -> Vec<(f64, f64)> {
+    let fits: Vec<GyroFit> =
+        (0..runs).map(|seed| fit_gyro(&session(&[0, 1, 2], 12, noise_dps, 100 + seed)).unwrap()).collect();
+    let n = fits.len() as f64;
+    (0..9)
+        .map(|p| {
+            let (i, k) = (p / 3, p % 3);
+            let mean = fits.iter().map(|f| f.matrix[i][k]).sum::<f64>() / n;
+            let variance = fits.iter().map(|f| (f.matrix[i][k] - mean).powi(2)).sum::<f64>() / (n - 1.0);
+            (variance.sqrt(), fits.iter().map(|f| f.std_errors[i][k]).sum::<f64>() / n)
+        })
+        .collect()
+}
+
+#[test]
+fn the_standard_errors_of_g_match_its_scatter_over_repeated_sessions() {
+    // 60 sessions: each entry's scatter is known to 1/sqrt(118) = 9 %, the nine pooled to about 3 %.
+    let entries = scatter_and_claimed(60, 0.3);
+    let ratio = (entries.iter().map(|(s, c)| (s / c).powi(2)).sum::<f64>() / 9.0).sqrt();
+    assert!((0.88..1.12).contains(&ratio), "scatter / claimed standard error = {ratio:.3}: {entries:?}");
+}
+
+#[test]
+fn a_turn_s_residual_with_the_true_g_is_nil_and_without_it_shows_the_scale_error() {
+    // The true correction is not symmetric, so G applied transposed misses by tenths of a degree.
+    let turns = session(&[0, 1, 2], 3, 0.0, 1);
+    let truth = true_correction();
+    let g = [0, 1, 2].map(|i| [0, 1, 2].map(|k| truth[(i, k)]));
+    for turn in &turns {
+        let summary = summarise_turn(turn, &g, ("a", "b"));
+        assert!(summary.residual_calibrated_deg < 1e-4, "{summary:?}");
+        assert!((summary.calibrated_deg - 90.0).abs() < 1e-4, "{summary:?}");
+        assert!(summary.residual_raw_deg > 0.5, "{summary:?}");
+        assert!((summary.expected_deg - 90.0).abs() < 1e-9, "{summary:?}");
+    }
+}

@@ -81,3 +81,23 @@ fn fewer_than_six_temperature_bins_are_refused() {
         (0..5).map(|t| reading(&calibration, &model, 20.0 + f64::from(t), FACES[0])).collect();
     assert_eq!(fit_temperature(&reference(&calibration), &points), Err(ThermalFitError::TooFewBins { bins: 5 }));
 }
+
+#[test]
+fn the_held_out_error_of_noisy_readings_is_their_noise_per_axis() {
+    use rand_distr::{Distribution, Normal};
+    use rand_xoshiro::rand_core::SeedableRng;
+    // Readings with 0.5 mg of independent noise on each axis: a model fitted to one half predicts the
+    // other to the noise itself, times sqrt(1 + p / n) = 1.04 for up to 8 coefficients from 93 points.
+    let (calibration, model) = truth();
+    let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(5);
+    let noise = Normal::new(0.0, 0.5e-3).unwrap();
+    let points: Vec<ThermalPoint> = (0..31)
+        .flat_map(|t| FACES.map(|f| reading(&calibration, &model, 15.0 + f64::from(t) + 0.3, f)))
+        .map(|mut p| {
+            p.accel_g = p.accel_g.map(|a| a + noise.sample(&mut rng));
+            p
+        })
+        .collect();
+    let fit = fit_temperature(&reference(&calibration), &points).unwrap();
+    assert!((0.47..0.58).contains(&fit.held_out_mg), "held out {} mg for 0.5 mg of noise", fit.held_out_mg);
+}

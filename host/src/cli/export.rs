@@ -1,0 +1,84 @@
+//! `accelcal export`: the calibration in the format of another program (host/src/export).
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use clap::Args;
+use shared::protocol::CalibrationSlot;
+
+use super::args::Device;
+use crate::error::Error;
+use crate::export::{self, Noise, Source, Target};
+use crate::session::{write_atomically, BoardRecord};
+
+/// `accelcal export`.
+#[derive(Args)]
+pub struct ExportArgs {
+    /// The calibration: what `calibrate --json`, `fit --json` (in g), `download` or a session (SESSION.json) wrote; leave it out with --port or --sim for the board's active calibration.
+    #[arg(required_unless_present_any = ["port", "sim"], conflicts_with_all = ["port", "sim"])]
+    pub calibration: Option<PathBuf>,
+    /// The format (each says what of the calibration it carries).
+    #[arg(long, value_enum)]
+    pub to: Target,
+    /// The file to write (default: stdout; the binary adafruit-eeprom needs a file).
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+    /// The noise report (`accelcal noise RECORDING --json`) whose terms go into the kalibr imu.yaml.
+    #[arg(long, value_name = "NOISE.json")]
+    pub noise: Option<PathBuf>,
+    #[command(flatten)]
+    pub device: Device,
+}
+
+/// Reads the calibration, exports it, writes the file (or stdout) and says what it carries.
+pub(super) fn export(args: &ExportArgs) -> Result<(), Error> {
+    if export_is_binary(args.to) && args.output.is_none() {
+        return Err(export::ExportError::BinaryNeedsFile { target: target_name(args.to) }.into());
+    }
+    let mut source = match &args.calibration {
+        Some(path) => Source::from_text(&read(path)?, &path.display().to_string())?,
+        None => from_board(&args.device)?,
+    };
+    if let Some(path) = &args.noise {
+        source.noise = Some(Noise::from_text(&read(path)?)?);
+    }
+    let exported = export::export(&source, args.to)?;
+    match &args.output {
+        Some(path) => {
+            write_atomically(path, &exported.bytes)?;
+            let shown = if exported.binary { exported.statement.join("\n") } else { exported.statement[0].clone() };
+            eprintln!("{shown}\nwrote {}", path.display());
+        }
+        None => {
+            std::io::stdout()
+                .write_all(&exported.bytes)
+                .map_err(|source| Error::WriteFile { path: "stdout".into(), source })?;
+        }
+    }
+    Ok(())
+}
+
+/// The board's active calibration and its serial number.
+fn from_board(device: &Device) -> Result<Source, Error> {
+    let mut opened = device.open()?;
+    let connection = &mut opened.connection;
+    let board = BoardRecord::of(&connection.info);
+    let calibration = connection.client.calibration(CalibrationSlot::Active)?.ok_or(Error::NothingToDownload)?;
+    let from =
+        device.port.clone().map_or_else(|| "the simulated board (--sim)".to_owned(), |p| format!("the board on {p}"));
+    Ok(Source { calibration, serial: Some(board.serial), from, noise: None })
+}
+
+fn read(path: &Path) -> Result<String, Error> {
+    std::fs::read_to_string(path).map_err(|source| Error::ReadFile { path: path.into(), source })
+}
+
+fn export_is_binary(target: Target) -> bool {
+    target == Target::AdafruitEeprom
+}
+
+/// The name `--to` takes for `target`.
+fn target_name(target: Target) -> String {
+    use clap::ValueEnum;
+    target.to_possible_value().map_or_else(String::new, |v| v.get_name().to_owned())
+}

@@ -1,0 +1,46 @@
+//! xio Fusion: FusionMatrix and FusionVector values for FusionCalibrationInertial, whose model is
+//! calibrated = misalignment * ((uncalibrated - offset) .* sensitivity) (Fusion's FusionCalibration.h;
+//! the Python package `imufusion` exposes the same as `model_inertial`). Fed raw counts: offset in
+//! counts, sensitivity in g (deg/s) per count, misalignment = M (G); carries everything.
+
+use super::code::{c_matrix, c_vector};
+use super::loss::loss;
+use super::statement::{lines, Said};
+use super::{text, Export, Source, GYRO_LSB_PER_DPS, SLASHES};
+
+const CONVENTION: &[&str] = &[
+    "FusionCalibrationInertial: calibrated = misalignment * ((uncalibrated - offset) .* sensitivity)",
+    "uncalibrated in raw counts; offset in counts; sensitivity in g per count (accelerometer), deg/s per count (gyro)",
+    "misalignment = accelcal's M (G for the gyro), row-major as FusionMatrix stores it: xx, xy, xz, yx, ... (column vectors)",
+    "the result is in g and deg/s, the units FusionAhrsUpdate takes",
+];
+
+/// The Fusion values, as a C/C++ snippet that includes Fusion.h.
+pub fn fusion(source: &Source) -> Export {
+    let full = source.full();
+    let loss = loss(&full, &full);
+    let lsb = source.lsb_per_g();
+    let said = Said {
+        title: "xio Fusion (FusionCalibrationInertial)",
+        convention: CONVENTION,
+        carries: "M, o, G, b in full (float32)",
+        temperature: "not applied",
+    };
+    let flat = |m: &[[f64; 3]; 3]| c_matrix(m).replace("}, {", ", ").replace("{{", "{").replace("}}", "}");
+    let body = format!(
+        "\n#include \"Fusion.h\"\n\n\
+         static const FusionMatrix accelerometerMisalignment = {};\n\
+         static const FusionVector accelerometerSensitivity = {};\n\
+         static const FusionVector accelerometerOffset = {};\n\n\
+         static const FusionMatrix gyroscopeMisalignment = {};\n\
+         static const FusionVector gyroscopeSensitivity = {};\n\
+         static const FusionVector gyroscopeOffset = {};\n",
+        flat(&full.matrix),
+        c_vector(&[1.0 / lsb; 3]),
+        c_vector(&full.offset_g.map(|v| v * lsb)),
+        flat(&full.gyro_matrix),
+        c_vector(&[1.0 / GYRO_LSB_PER_DPS; 3]),
+        c_vector(&source.gyro_bias_dps().map(|v| v * GYRO_LSB_PER_DPS)),
+    );
+    text(lines(source, &said, &loss), &SLASHES, &body, loss)
+}

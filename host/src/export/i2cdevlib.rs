@@ -1,0 +1,47 @@
+//! i2cdevlib's MPU6050 class: the chip's own offset registers (XA_OFFS, XG_OFFS_USR), which add to
+//! every reading. The accelerometer's are in +-16 g counts (2048 per g) and hold a factory trim,
+//! the gyro's in +-1000 deg/s counts (32.8 per deg/s) (InvenSense, MPU Hardware Offset Registers
+//! Application Note); so the export adds to what the chip holds. Offsets only.
+
+use super::loss::{diagonal, loss, Carried};
+use super::statement::{lines, Said};
+use super::{text, Export, Source, GYRO_LSB_PER_DPS, SLASHES};
+
+/// Counts per g of the accelerometer offset registers (+-16 g format).
+const ACCEL_OFFSET_LSB_PER_G: f64 = 2048.0;
+
+const CONVENTION: &[&str] = &[
+    "the MPU-6050 adds its offset registers to every reading: reading = raw + register (in the register's units)",
+    "accelerometer registers in 2048 counts per g (+-16 g format, whatever the range); gyro registers in 32.8 per deg/s",
+    "the accelerometer registers hold a factory trim, which the calibration was measured with: the calls add to it",
+    "run them once per power-up, after initialize() (the registers do not survive a power cycle)",
+    "no scale and no cross-axis terms: M and G are not carried",
+];
+
+/// The C++ calls.
+pub fn i2cdevlib(source: &Source) -> Export {
+    let full = source.full();
+    let accel = full.offset_g.map(|v| -(v * ACCEL_OFFSET_LSB_PER_G).round() as i32);
+    let gyro = source.gyro_bias_dps().map(|v| -(v * GYRO_LSB_PER_DPS).round() as i32);
+    let carried = Carried {
+        matrix: diagonal([1.0; 3]),
+        offset_g: accel.map(|v| -f64::from(v) / ACCEL_OFFSET_LSB_PER_G),
+        gyro_matrix: diagonal([1.0; 3]),
+        gyro_bias_dps: Some(gyro.map(|v| -f64::from(v) / GYRO_LSB_PER_DPS)),
+    };
+    let loss = loss(&full, &carried);
+    let said = Said {
+        title: "i2cdevlib MPU6050 (offset registers)",
+        convention: CONVENTION,
+        carries: "accelerometer and gyro offsets only, rounded to the registers' counts",
+        temperature: "the chip's registers have no temperature model: not carried",
+    };
+    let mut body = "\n// MPU6050 mpu; ... mpu.initialize(); then:\n".to_owned();
+    for (axis, name) in ["X", "Y", "Z"].iter().enumerate() {
+        body.push_str(&format!("mpu.set{name}AccelOffset(mpu.get{name}AccelOffset() + ({}));\n", accel[axis]));
+    }
+    for (axis, name) in ["X", "Y", "Z"].iter().enumerate() {
+        body.push_str(&format!("mpu.set{name}GyroOffset(mpu.get{name}GyroOffset() + ({}));\n", gyro[axis]));
+    }
+    text(lines(source, &said, &loss), &SLASHES, &body, loss)
+}

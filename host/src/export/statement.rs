@@ -1,0 +1,109 @@
+//! What every export states about itself, in plain lines its target puts in its own comment syntax:
+//! the board and sensor setting it belongs to, the temperature it was made at and the temperature
+//! model, the convention the target applies, what it carries, and what it loses on this unit.
+
+use shared::calibration::{TempCoefficients, TemperatureModel};
+
+use super::loss::{Loss, SPHERE_POINTS};
+use super::{Source, GYRO_LSB_PER_DPS, STANDARD_GRAVITY};
+
+/// What one target says of itself.
+pub struct Said<'a> {
+    /// The target, as a person knows it ("ArduPilot parameter file").
+    pub title: &'a str,
+    /// The formula the target applies, vectors, units and the g used, one line each.
+    pub convention: &'a [&'a str],
+    /// What of the calibration the file carries.
+    pub carries: &'a str,
+    /// What the target does with the temperature model.
+    pub temperature: &'a str,
+}
+
+/// The lines every export states, with `said` for its target and `loss` on this unit.
+pub fn lines(source: &Source, said: &Said, loss: &Loss) -> Vec<String> {
+    let mut lines = vec![
+        format!("accelcal calibration for {}, written by accelcal {}", said.title, env!("CARGO_PKG_VERSION")),
+        format!("from: {}", source.from),
+        format!("board serial: {}", serial(source)),
+        sensor(source),
+        format!(
+            "made at: {:.1} degC die temperature (the mean of the captures it was fitted to)",
+            source.calibration.mean_temp_c
+        ),
+        format!("temperature model: {}", temperature_model(source.calibration.temperature.as_ref())),
+        format!("temperature model in this file: {}", said.temperature),
+    ];
+    lines.extend(said.convention.iter().map(|line| format!("convention: {line}")));
+    lines.push(format!("g: {STANDARD_GRAVITY} m/s^2 per g (standard gravity) wherever a value is in m/s^2"));
+    lines.push(format!("carries: {}", said.carries));
+    lines.extend(lost(loss));
+    lines
+}
+
+/// The serial number, or why there is none.
+fn serial(source: &Source) -> String {
+    source.serial.clone().unwrap_or_else(|| {
+        "not recorded in what this was exported from (export a session file or --port for it)".to_owned()
+    })
+}
+
+/// Sensor, range and filter.
+fn sensor(source: &Source) -> String {
+    let calibration = &source.calibration;
+    format!(
+        "sensor: MPU-6050, accelerometer +-{} g ({} LSB per g), low-pass filter {} Hz, gyro +-1000 deg/s \
+         ({GYRO_LSB_PER_DPS} LSB per deg/s); the calibration holds at this range and filter only",
+        calibration.range.full_scale_g(),
+        calibration.range.lsb_per_g(),
+        calibration.filter.bandwidth_hz()
+    )
+}
+
+/// The loss lines, in a fixed form (tests read them back).
+fn lost(loss: &Loss) -> Vec<String> {
+    vec![
+        format!(
+            "lost, accelerometer, against accelcal's full calibration over {SPHERE_POINTS} orientations at 1 g: \
+             {:.4} mg rms, {:.4} mg worst",
+            loss.rms_mg, loss.worst_mg
+        ),
+        format!(
+            "lost, gyro scale and misalignment, of the rate: {:.3} % rms, {:.3} % worst",
+            loss.gyro_rms_pct, loss.gyro_worst_pct
+        ),
+    ]
+}
+
+/// The temperature model in words, or that there is none.
+pub fn temperature_model(model: Option<&TemperatureModel>) -> String {
+    let Some(model) = model else {
+        return "none (offsets and scales hold near the temperature above)".to_owned();
+    };
+    let parts: Vec<String> = [
+        terms("offset", "mg", 1e3, &model.offset_g),
+        terms("sensitivity", "ppm", 1e6, &model.scale),
+        terms("gyro bias", "deg/s", 1.0, &model.gyro_bias_dps),
+    ]
+    .into_iter()
+    .flatten()
+    .collect();
+    format!(
+        "around T_ref {:.2} degC: {} (o(T) = o + sum c_k (T - T_ref)^k; M(T) = M diag(1 + d(T))^-1; b(T) = b + sum e_k (T - T_ref)^k)",
+        model.ref_temp_c,
+        if parts.is_empty() { "flat".to_owned() } else { parts.join("; ") }
+    )
+}
+
+/// The nonzero orders of one part of the temperature model.
+fn terms(name: &str, unit: &str, factor: f64, coefficients: &TempCoefficients) -> Option<String> {
+    let orders: Vec<String> = coefficients
+        .iter()
+        .enumerate()
+        .filter(|(_, c)| c.iter().any(|v| *v != 0.0))
+        .map(|(k, c)| {
+            let [x, y, z] = c.map(|v| f64::from(v) * factor);
+            format!("order {}: {x:+.5} {y:+.5} {z:+.5} {unit}/degC^{}", k + 1, k + 1)
+        })
+        .collect();
+    (!orders.is_empty()).then(|| format!("{name} {}", orders.join(", ")))
+}

@@ -1,0 +1,76 @@
+//! The session report: its verdict, its dates and its positions as the fit took them.
+
+use shared::linalg;
+use shared::protocol::CaptureStats;
+use shared::AccelRange;
+
+use super::*;
+use crate::orientation::{corners, faces, Orientation};
+use crate::session::CaptureRecord;
+
+fn verified(after_rms_mg: f64, noise_floor_mg: f64) -> Verification {
+    Verification {
+        positions: 6,
+        before_rms_mg: 40.0,
+        after_rms_mg,
+        after_max_mg: after_rms_mg * 2.0,
+        after_rms_without_noise_mg: (after_rms_mg.powi(2) - noise_floor_mg.powi(2)).max(0.0).sqrt(),
+        on_chip_difference_mg: 0.5,
+        noise_floor_mg,
+        before_mg: vec![],
+        after_mg: vec![],
+    }
+}
+
+#[test]
+fn a_calibration_is_trusted_within_three_noise_floors_and_only_when_verified() {
+    let fit = FitSummary { model: "ortho9", cost: 1e-8, rms_mg: 0.05, parameters: vec![], warnings: vec![] };
+    assert!(Verdict::new(&fit, Some(&verified(0.37, 0.125))).trusted);
+    assert!(!Verdict::new(&fit, Some(&verified(0.38, 0.125))).trusted);
+    let unverified = Verdict::new(&fit, None);
+    assert!(!unverified.trusted && unverified.line.contains("not verified"), "{}", unverified.line);
+}
+
+#[test]
+fn dates_are_utc_calendar_dates() {
+    assert_eq!(utc_minutes(0.0), "1970-01-01 00:00");
+    assert_eq!(utc_minutes(951_782_400.0 + 3_660.0), "2000-02-29 01:01");
+    assert_eq!(utc_minutes(1_795_000_000.0), "2026-11-18 11:06");
+}
+
+/// A noise-free capture at `up` of a sensor read through a scale and offset whose offset drifts by
+/// `slope` g/degC from 22 degC, at die temperature `temp_c`.
+fn warming_capture(target: &Orientation, temp_c: f64, slope: [f64; 3]) -> CaptureRecord {
+    let sensor = [[1.01, 0.0, 0.0], [0.0, 0.99, 0.0], [0.0, 0.0, 1.02]];
+    let drifted = linalg::add([0.03, -0.01, -0.08], linalg::scale(slope, temp_c - 22.0));
+    let reading = linalg::add(linalg::mul_vec(&sensor, target.up), drifted);
+    let stats = CaptureStats {
+        samples: 200,
+        seconds: 2.0,
+        mean_g: reading.map(|v| v as f32),
+        std_g: [1e-6; 3],
+        gyro_mean_dps: [0.0; 3],
+        gyro_std_dps: [0.05; 3],
+        temp_c: temp_c as f32,
+        clipped: 0,
+        range: AccelRange::G2,
+    };
+    CaptureRecord::now(&target.name, Some(target.clone()), None, stats)
+}
+
+#[test]
+fn an_adaptive_session_s_positions_are_shown_with_the_drift_taken_out() {
+    // 1 mg/degC over 0.07 degC a capture: the first and last positions read 0.45 mg off the mean
+    // temperature's offset; with the drift taken out every calibrated position is on the sphere.
+    let targets = [faces(), corners()].concat();
+    let slope = [1e-3, -1e-3, 1e-3];
+    let captures = targets.iter().enumerate().map(|(i, t)| warming_capture(t, 21.5 + 0.07 * i as f64, slope));
+    let session = Session { captures: captures.collect(), adaptive: true, ..Session::default() };
+    let report = SessionReport::new(&session).unwrap();
+    for position in &report.positions {
+        assert!(position.residual_after_mg.abs() < 0.01, "{}: {} mg", position.name, position.residual_after_mg);
+    }
+    // The raw readings are shown as taken, drift and all.
+    let first = &report.positions[0];
+    assert_eq!(first.raw_g, session.captures[0].stats.mean_g.map(f64::from));
+}
