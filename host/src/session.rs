@@ -242,6 +242,7 @@ mod tests {
             serial: serial.to_owned(),
             firmware,
             config: SensorConfig { range, sample_rate_hz: 100, filter },
+            sensor: None,
         };
         let recorded = board(&serial, AccelRange::G2, LowPassFilter::Hz44);
         let path = Path::new("session.json");

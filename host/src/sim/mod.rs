@@ -17,8 +17,8 @@ mod serve;
 pub mod synthetic;
 
 pub use board::{SensorChoice, SimBoard, SimCommand, SimSensor};
-pub use parts::{FaultyAxis, SimPartChoice};
 pub use clock::Pace;
+pub use parts::{FaultyAxis, SimPartChoice};
 pub use pty::{serve_pty, SimError};
 
 use crate::link::Port;
