@@ -4,7 +4,6 @@
 use std::sync::mpsc::Sender;
 use std::time::Duration;
 
-use accelcal::calibration;
 use accelcal::link::{open_serial, pipe, Client, LinkError, Port};
 use accelcal::procedure::{self, CollectOptions, Feedback, Hand, Orientation, ProcedureError, Silent, SimulatedHand};
 use accelcal::sim::{SimBoard, SimCommand};
@@ -60,9 +59,9 @@ fn default_calibration_over_a_pty_survives_a_restart_and_verifies_below_1_mg() {
         let tilt = target.tilt_deg(capture.stats.mean_g.map(f64::from));
         assert!(tilt < target.tolerance_deg + 6.0, "{} captured {tilt:.1} degrees away", capture.name);
     }
-    let fit = procedure::host_fit(&session).unwrap();
-    assert_eq!(fit.model, accelcal::fit::Model::Ortho9);
-    let calibration = calibration::from_fit(&fit, &session, shared::protocol::SensorConfig::default()).unwrap();
+    let outcome = session.outcome(shared::protocol::SensorConfig::default()).unwrap();
+    assert_eq!(outcome.fit.model, accelcal::fit::Model::Ortho9);
+    let calibration = outcome.calibration;
     client.set_calibration(calibration).unwrap();
     client.save_calibration().unwrap();
     drop(client);

@@ -61,7 +61,7 @@ fn default_session(seed: u64) -> Recovered {
     )
     .unwrap();
     assert!(moves.dropped.is_empty(), "{:?}", moves.dropped);
-    let (accel, _, _) = procedure::adaptive_calibration(&session, connection.info.config).unwrap();
+    let accel = session.outcome(connection.info.config).unwrap().calibration;
     let gyro = procedure::fit_moves(&moves.recorded, &session, &accel).unwrap();
     let chosen = calibration::with_gyro(&accel, &gyro).unwrap();
     client.set_calibration(chosen).unwrap();

@@ -96,9 +96,9 @@ fn session(seed: u64, kind: SimSensor, target_mg: f64) -> Outcome {
         &mut |_| Ok(()),
     )
     .unwrap();
-    let (calibration, _, _) = procedure::adaptive_calibration(&session, SensorConfig::default()).unwrap();
-    let static_fit = procedure::drift::ortho9(&session).unwrap();
-    let static_calibration = from_fit(&static_fit, &session, SensorConfig::default()).unwrap();
+    let calibration = session.outcome(SensorConfig::default()).unwrap().calibration;
+    let static_fit = accelcal::fit::drift::ortho9(&session.dataset()).unwrap();
+    let static_calibration = from_fit(&static_fit, &session.dataset(), SensorConfig::default()).unwrap();
     client.set_calibration(calibration).unwrap();
     let calibrated: Vec<[f64; 3]> = session.captures.iter().map(|c| c.stats.mean_g.map(f64::from)).collect();
     let length = CaptureLength::Goal(rule.verification_goal());
@@ -106,15 +106,19 @@ fn session(seed: u64, kind: SimSensor, target_mg: f64) -> Outcome {
         procedure::verify_with(&mut client, &mut hand, 3, WAIT, &mut feedback, &calibrated, length).unwrap();
     let board_seconds = board.clock()() - collected.first_capture_s.unwrap();
     let end_c = reading_now(&mut client);
-    let (low, high) = procedure::drift::span_c(&session);
+    let (low, high) = accelcal::fit::drift::span_c(&session.dataset());
     Outcome {
         captures: session.captures.len(),
         board_seconds,
         temp_change_c: high - low,
         at_end_mg: true_error_mg(&board, &calibration, end_c),
-        at_mean_mg: true_error_mg(&board, &calibration, procedure::drift::mean_temp_c(&session) as f32),
+        at_mean_mg: true_error_mg(&board, &calibration, accelcal::fit::drift::mean_temp_c(&session.dataset()) as f32),
         static_at_end_mg: true_error_mg(&board, &static_calibration, end_c),
-        static_at_mean_mg: true_error_mg(&board, &static_calibration, procedure::drift::mean_temp_c(&session) as f32),
+        static_at_mean_mg: true_error_mg(
+            &board,
+            &static_calibration,
+            accelcal::fit::drift::mean_temp_c(&session.dataset()) as f32,
+        ),
         verified_mg: verification.after_rms_mg,
     }
 }
@@ -173,7 +177,7 @@ fn a_looser_target_stops_no_sooner_than_the_drift_can_be_fitted() {
             "seed {seed}: {} captures, {:.3} mg at the mean temperature, {:.3} mg at the end",
             o.captures, o.at_mean_mg, o.at_end_mg
         );
-        assert!(o.captures >= procedure::drift::MIN_CAPTURES, "seed {seed}: {} captures", o.captures);
+        assert!(o.captures >= accelcal::fit::drift::MIN_CAPTURES, "seed {seed}: {} captures", o.captures);
         assert!(
             o.at_end_mg < o.static_at_end_mg,
             "seed {seed}: {:.3} vs static {:.3} mg",

@@ -1,6 +1,6 @@
 //! accelcal's firmware library: everything the board does, target-independent and tested on the host.
 //!
-//! The board binary (`main.rs`) only sets up clocks, pins and USB and hands them to this library.
+//! The board crates (`boards/`) only set up their chip and hand its pieces to [`board::serve`].
 #![cfg_attr(not(test), no_std)]
 
 pub mod board;
@@ -13,3 +13,5 @@ pub mod server;
 pub mod sim;
 pub mod storage;
 pub mod temperature_bins;
+#[cfg(feature = "usb")]
+pub mod usb;

@@ -2,7 +2,7 @@
 //! frames. Shared by the board's USB loop, the host's in-process simulated device and its
 //! pseudo-terminal device, so every one of them speaks exactly the board's protocol.
 
-use embedded_hal::blocking::i2c::{Write, WriteRead};
+use embedded_hal_async::i2c::I2c;
 use embedded_storage_async::nor_flash::NorFlash;
 use shared::protocol::{self, Feed, FrameAccumulator, Request, Response, MAX_FRAME_LEN};
 
@@ -22,9 +22,9 @@ impl Link {
 
     /// Feeds received bytes; every complete frame is decoded and handed to the device, and every
     /// unreadable frame answered with an error. Responses wait in the device's outbox.
-    pub async fn receive<I, E, F>(&mut self, bytes: &[u8], device: &mut Device<I, F>)
+    pub async fn receive<I, F>(&mut self, bytes: &[u8], device: &mut Device<I, F>)
     where
-        I: Write<Error = E> + WriteRead<Error = E>,
+        I: I2c,
         F: NorFlash,
     {
         for &byte in bytes {

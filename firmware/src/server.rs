@@ -2,7 +2,7 @@
 //! polled, and its responses are encoded and written back. The board's USB loop and the host's
 //! simulated board both serve through it, so both speak exactly the same protocol.
 
-use embedded_hal::blocking::i2c::{Write, WriteRead};
+use embedded_hal_async::i2c::I2c;
 use embedded_storage_async::nor_flash::NorFlash;
 use shared::protocol::{Response, MAX_FRAME_LEN};
 
@@ -24,9 +24,9 @@ pub struct Server<I, F: NorFlash> {
     link: Link,
 }
 
-impl<I, E, F> Server<I, F>
+impl<I, F> Server<I, F>
 where
-    I: Write<Error = E> + WriteRead<Error = E>,
+    I: I2c,
     F: NorFlash,
 {
     /// Serves `device`, with nothing received yet.
@@ -55,8 +55,8 @@ where
     }
 
     /// Moves a running capture or stream on.
-    pub fn poll(&mut self) {
-        self.device.poll();
+    pub async fn poll(&mut self) {
+        self.device.poll().await;
     }
 
     /// Encodes the next waiting response into `buffer`: the frame to write, and whether it carries
@@ -97,7 +97,7 @@ mod tests {
         let len = encode(5, &Request::Hello { protocol_version: PROTOCOL_VERSION }, &mut frame).unwrap();
         block_on(server.receive(&frame[..3]));
         block_on(server.receive(&frame[3..len]));
-        server.poll();
+        block_on(server.poll());
         let mut written = Vec::new();
         let drained = server.drain(|frame| written.push(frame.to_vec()));
         assert_eq!(drained, Drained { frames: 1, errors: 0 });

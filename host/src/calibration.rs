@@ -8,12 +8,12 @@ use shared::linalg;
 use shared::protocol::{LowPassFilter, SensorConfig};
 use shared::{AccelRange, Calibration, CalibrationError};
 
+use crate::data::Dataset;
 use crate::fit::gyro::GyroFit;
 use crate::fit::thermal::ThermalReference;
 use crate::fit::{self, Fit};
 use crate::link::calibration_reason;
 use crate::report::shown;
-use crate::session::Session;
 
 /// A calibration as JSON, under the convention a = matrix (m - offset).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -169,15 +169,18 @@ pub fn with_offset_drift(calibration: &Calibration, ref_c: f64, slope_g_per_c: [
     Calibration { temperature: Some(model), ..*calibration }
 }
 
-/// The device calibration from a host fit over a session's captures (in g) taken with `config`: the fit's M and o, the
-/// captures' mean gyro reading as the gyro bias, their mean temperature, and the fit's RMS residual.
-pub fn from_fit(fit: &Fit, session: &Session, config: SensorConfig) -> Result<Calibration, CalibrationRecordError> {
+/// The device calibration from a host fit over a session's captures (in g, as fitted) taken with
+/// `config`: the fit's M and o, the captures' mean gyro reading as the gyro bias, their mean
+/// temperature, and the fit's RMS residual over them.
+pub fn from_fit(fit: &Fit, captures: &Dataset, config: SensorConfig) -> Result<Calibration, CalibrationRecordError> {
     let range = config.range;
-    let n = session.captures.len().max(1) as f32;
-    let stats = session.captures.iter().map(|c| &c.stats);
-    let gyro_bias = stats.clone().fold([0.0f32; 3], |sum, s| linalg::add(sum, linalg::scale(s.gyro_mean_dps, 1.0 / n)));
-    let mean_temp_c = stats.map(|s| s.temp_c).sum::<f32>() / n;
-    let evaluation = fit::evaluate(&session.dataset(), &fit.matrix, &fit.offset, 1.0, &fit.lines_used);
+    let n = captures.rows.len().max(1) as f32;
+    // NOTE: the captures' statistics are f32 on the chip: summed in f32 as before they were rows.
+    let gyro_of = |r: &crate::data::Row| r.gyro_mean_dps.unwrap_or_default().map(|v| v as f32);
+    let gyro_bias =
+        captures.rows.iter().fold([0.0f32; 3], |sum, r| linalg::add(sum, linalg::scale(gyro_of(r), 1.0 / n)));
+    let mean_temp_c = captures.rows.iter().map(|r| r.temp_c.unwrap_or_default() as f32).sum::<f32>() / n;
+    let evaluation = fit::evaluate(captures, &fit.matrix, &fit.offset, 1.0, &fit.lines_used);
     let residual_mg = evaluation.rms_norm_error(true).unwrap_or(0.0) * 1000.0;
     let calibration = Calibration {
         origin: fit.model.origin(),

@@ -66,6 +66,15 @@ pub enum Error {
     ReportInput { path: PathBuf, reason: String },
 }
 
+impl From<crate::session::OutcomeError> for Error {
+    fn from(error: crate::session::OutcomeError) -> Self {
+        match error {
+            crate::session::OutcomeError::Fit(e) => Error::Fit(e),
+            crate::session::OutcomeError::Calibration(e) => Error::Calibration(e),
+        }
+    }
+}
+
 impl Error {
     /// A data file refused: a file that cannot be read is named once (the reader's message already
     /// holds the path), a bad one with the path before the line and cause.

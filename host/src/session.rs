@@ -13,6 +13,12 @@ use crate::fit::gyro::TurnSummary;
 use crate::orientation::Orientation;
 use crate::procedure::Verification;
 
+mod kind;
+mod outcome;
+
+pub use kind::SessionKind;
+pub use outcome::{Fitted, Outcome, OutcomeError};
+
 /// Why a session file could not be written or read.
 #[derive(Debug, thiserror::Error)]
 pub enum SessionError {
@@ -113,13 +119,9 @@ pub struct Session {
     /// The board the captures were taken on (absent in sessions of `accelcal capture`).
     #[serde(default)]
     pub board: Option<BoardRecord>,
-    /// Whether the calibration asked for the six faces only (`--quick`).
-    #[serde(default)]
-    pub quick: bool,
-    /// Whether the calibration was adaptive (captures until their means were known, the offset's
-    /// drift with the temperature fitted with it): its report fits the same way.
-    #[serde(default)]
-    pub adaptive: bool,
+    /// How the positions were captured: its calibration and its report are fitted accordingly.
+    #[serde(flatten, with = "kind::stored")]
+    pub kind: SessionKind,
     /// The captures used for fitting.
     pub captures: Vec<CaptureRecord>,
     /// The check of the calibration at fresh orientations, when one was made.
@@ -217,7 +219,7 @@ mod tests {
     fn a_saved_session_reads_back_and_its_csv_reads_as_data() {
         let session = Session {
             board: None,
-            quick: false,
+            kind: SessionKind::Adaptive,
             captures: vec![record(Position::PosZ, 1.0, 1.5), record(Position::NegZ, -1.0, 20.0)],
             ..Session::default()
         };

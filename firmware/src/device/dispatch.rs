@@ -1,15 +1,15 @@
 //! Routing: every request to the operation that answers it, exactly one final response each.
 
-use embedded_hal::blocking::i2c::{Write, WriteRead};
+use embedded_hal_async::i2c::I2c;
 use embedded_storage_async::nor_flash::NorFlash;
 use shared::protocol::{DeviceError, DeviceInfo, Request, Response, SensorConfig, PROTOCOL_VERSION};
 use shared::PositionMap;
 
-use super::{Device, FIRMWARE_VERSION};
+use super::{Device, SensorOp, FIRMWARE_VERSION};
 
-impl<I, E, F> Device<I, F>
+impl<I, F> Device<I, F>
 where
-    I: Write<Error = E> + WriteRead<Error = E>,
+    I: I2c,
     F: NorFlash,
 {
     /// Carries out one request; its final response, or the start of a long operation.
@@ -19,10 +19,10 @@ where
             Request::Capture { .. } | Request::Stream { .. } | Request::CaptureUntil(_) if self.is_busy() => {
                 Err(DeviceError::Busy)
             }
-            Request::Capture { seconds } => self.start_capture(request_id, seconds).map(|()| None),
-            Request::CaptureUntil(goal) => self.start_capture_until(request_id, goal).map(|()| None),
+            Request::Capture { seconds } => self.start_capture(request_id, seconds).await.map(|()| None),
+            Request::CaptureUntil(goal) => self.start_capture_until(request_id, goal).await.map(|()| None),
             Request::Stream { kind, rate_hz, count } => {
-                self.start_stream(request_id, kind, rate_hz, count).map(|()| None)
+                self.start_stream(request_id, kind, rate_hz, count).await.map(|()| None)
             }
             request => self.answer(request).await.map(Some),
         };
@@ -36,14 +36,14 @@ where
     /// The final response to a request that completes at once.
     async fn answer(&mut self, request: Request) -> Result<Response, DeviceError> {
         match request {
-            Request::Hello { protocol_version } => Ok(self.hello(protocol_version)),
-            Request::Cancel => Ok(self.cancel()),
+            Request::Hello { protocol_version } => Ok(self.hello(protocol_version).await),
+            Request::Cancel => Ok(self.cancel().await),
             Request::GetCalibration(slot) => self.get_calibration(slot).await,
             Request::TakeTemperatureBins => {
                 Ok(Response::TemperatureBins(self.temperature_bins.take(self.config.range)))
             }
             _ if self.is_busy() => Err(DeviceError::Busy),
-            Request::Configure(config) => self.configure(config),
+            Request::Configure(config) => self.configure(config).await,
             Request::ClearPositions => {
                 self.positions.clear();
                 self.kept.clear();
@@ -59,7 +59,7 @@ where
         }
     }
 
-    fn hello(&mut self, host_version: u8) -> Response {
+    async fn hello(&mut self, host_version: u8) -> Response {
         if host_version != PROTOCOL_VERSION {
             return Response::Error(DeviceError::UnsupportedVersion { device: PROTOCOL_VERSION, host: host_version });
         }
@@ -68,7 +68,7 @@ where
             // the truth (never mid-capture or mid-stream, where the FIFO is in use).
             self.sensor = Err(DeviceError::SensorMissing);
         }
-        let sensor = self.sensor().map(|s| s.identity());
+        let sensor = self.sensor().await.map(|s| s.identity());
         Response::Hello(DeviceInfo {
             protocol_version: PROTOCOL_VERSION,
             serial: self.serial,
@@ -81,8 +81,9 @@ where
         })
     }
 
-    fn configure(&mut self, config: SensorConfig) -> Result<Response, DeviceError> {
-        let achieved = self.with_sensor(|sensor, bus| sensor.configure(bus, config))?;
+    async fn configure(&mut self, config: SensorConfig) -> Result<Response, DeviceError> {
+        self.with_sensor(SensorOp::Configure(config)).await?;
+        let achieved = self.sensor.map_or(config, |sensor| sensor.config());
         if achieved.range != self.config.range {
             // Captures and bins belong to the range they were taken at.
             self.positions = PositionMap::new();

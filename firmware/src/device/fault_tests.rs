@@ -31,7 +31,7 @@ fn drain(device: &mut SimDevice) -> Vec<(u16, Response)> {
 fn finish(device: &mut SimDevice) -> Response {
     for _ in 0..10_000 {
         device.bus_mut().advance_us(TICK_US);
-        device.poll();
+        block_on(device.poll());
         if let Some((_, last)) = drain(device).into_iter().find(|(_, r)| !matches!(r, Response::Progress(_))) {
             return last;
         }
@@ -74,7 +74,7 @@ fn a_sensor_that_vanishes_mid_capture_is_named_missing_and_found_again() {
     block_on(device.handle(1, Request::Capture { seconds: 5 }));
     for _ in 0..50 {
         device.bus_mut().advance_us(TICK_US);
-        device.poll();
+        block_on(device.poll());
     }
     device.bus_mut().set_connected(false);
     assert_eq!(finish(&mut device), Response::Error(DeviceError::SensorMissing));
@@ -87,7 +87,7 @@ fn a_stalled_reader_gets_a_fifo_overflow_and_the_next_capture_works() {
     let mut device = boot(63);
     block_on(device.handle(1, Request::Capture { seconds: 5 }));
     device.bus_mut().advance_us(2_000_000); // 200 samples of 14 bytes: far beyond the 1024-byte FIFO
-    device.poll();
+    block_on(device.poll());
     assert_eq!(drain(&mut device), [(1, Response::Error(DeviceError::FifoOverflow))]);
     assert!(matches!(capture(&mut device), Response::Captured { .. }));
 }

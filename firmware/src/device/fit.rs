@@ -5,7 +5,7 @@
 //! the fit needs no exact placement and a capture that ended between two wanted positions is still
 //! good data.
 
-use embedded_hal::blocking::i2c::{Write, WriteRead};
+use embedded_hal_async::i2c::I2c;
 use embedded_storage_async::nor_flash::NorFlash;
 use heapless::Deque;
 use shared::calibration::{GyroCalibration, Origin};
@@ -55,9 +55,9 @@ impl KeptCaptures {
     }
 }
 
-impl<I, E, F> Device<I, F>
+impl<I, F> Device<I, F>
 where
-    I: Write<Error = E> + WriteRead<Error = E>,
+    I: I2c,
     F: NorFlash,
 {
     /// Fits `ortho9` to the kept captures and returns it when it is plausible; never made active

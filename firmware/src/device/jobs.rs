@@ -1,13 +1,13 @@
 //! The long operations: a capture (progress, then its statistics) and a stream (samples, then its
 //! end), moved on by [`Device::poll`] with whatever the sensor FIFO holds.
 
-use embedded_hal::blocking::i2c::{Write, WriteRead};
+use embedded_hal_async::i2c::I2c;
 use embedded_storage_async::nor_flash::NorFlash;
 use shared::orientation::DEFAULT_FACE_TOLERANCE_DEG;
 use shared::protocol::{ActiveCalibration, CaptureGoal, CaptureStats, DeviceError, Response, StreamKind};
 use shared::Position;
 
-use super::{sample_message, Device, OUTBOX_LEN};
+use super::{sample_message, Device, SensorOp, OUTBOX_LEN};
 use crate::capture::Capture;
 use crate::sensor::RawSample;
 
@@ -47,56 +47,56 @@ impl Stream {
     }
 }
 
-impl<I, E, F> Device<I, F>
+impl<I, F> Device<I, F>
 where
-    I: Write<Error = E> + WriteRead<Error = E>,
+    I: I2c,
     F: NorFlash,
 {
     /// Moves the running capture or stream on with whatever the FIFO holds. Call every few ms.
-    pub fn poll(&mut self) {
+    pub async fn poll(&mut self) {
         match self.job {
             Job::Idle => {}
-            Job::Capturing { .. } => self.poll_capture(),
-            Job::Streaming(stream) => self.poll_stream(stream),
+            Job::Capturing { .. } => self.poll_capture().await,
+            Job::Streaming(stream) => self.poll_stream(stream).await,
         }
     }
 
-    pub(super) fn start_capture(&mut self, request_id: u16, seconds: u8) -> Result<(), DeviceError> {
+    pub(super) async fn start_capture(&mut self, request_id: u16, seconds: u8) -> Result<(), DeviceError> {
         let capture = Capture::new(seconds, self.config)?;
-        self.run_capture(request_id, capture)
+        self.run_capture(request_id, capture).await
     }
 
     /// Starts a capture that stops at `goal`.
-    pub(super) fn start_capture_until(&mut self, request_id: u16, goal: CaptureGoal) -> Result<(), DeviceError> {
+    pub(super) async fn start_capture_until(&mut self, request_id: u16, goal: CaptureGoal) -> Result<(), DeviceError> {
         let capture = Capture::until(goal, self.config)?;
-        self.run_capture(request_id, capture)
+        self.run_capture(request_id, capture).await
     }
 
-    fn run_capture(&mut self, request_id: u16, capture: Capture) -> Result<(), DeviceError> {
-        self.with_sensor(|sensor, bus| sensor.start_fifo(bus))?;
+    async fn run_capture(&mut self, request_id: u16, capture: Capture) -> Result<(), DeviceError> {
+        self.start_fifo().await?;
         let next_progress = u32::from(self.config.sample_rate_hz);
         self.job = Job::Capturing { request_id, capture, next_progress };
         Ok(())
     }
 
-    fn poll_capture(&mut self) {
+    async fn poll_capture(&mut self) {
         let Job::Capturing { request_id, mut capture, mut next_progress } = self.job else {
             return;
         };
         let mut batch = [RawSample::default(); READ_BATCH];
         loop {
-            match self.read_fifo(&mut batch) {
+            match self.read_fifo(&mut batch).await {
                 Ok(0) => break,
                 Ok(n) => {
                     let taken = capture.take(&batch[..n]);
                     self.temperature_bins.add(&batch[..taken]);
                     taken
                 }
-                Err(error) => return self.end_job(request_id, Response::Error(error)),
+                Err(error) => return self.end_job(request_id, Response::Error(error)).await,
             };
             if capture.is_complete() {
                 let response = capture.finish().map_or_else(Response::Error, |stats| self.keep(stats));
-                return self.end_job(request_id, response);
+                return self.end_job(request_id, response).await;
             }
             if capture.samples() >= next_progress {
                 self.send(request_id, Response::Progress(capture.progress()));
@@ -117,29 +117,36 @@ where
         Response::Captured { stats, position }
     }
 
-    fn read_fifo(&mut self, batch: &mut [RawSample]) -> Result<usize, DeviceError> {
-        self.with_sensor(|sensor, bus| sensor.read_fifo(bus, batch))
+    /// Starts the FIFO afresh (one instance of the driver call for captures and streams alike).
+    async fn start_fifo(&mut self) -> Result<(), DeviceError> {
+        self.with_sensor(SensorOp::StartFifo).await.map(|_| ())
     }
 
-    fn end_job(&mut self, request_id: u16, response: Response) {
+    async fn read_fifo(&mut self, batch: &mut [RawSample]) -> Result<usize, DeviceError> {
+        self.with_sensor(SensorOp::ReadFifo(batch)).await
+    }
+
+    async fn end_job(&mut self, request_id: u16, response: Response) {
         self.job = Job::Idle;
         let bus = &mut self.bus;
         if let Ok(sensor) = self.sensor.as_mut() {
-            let _ = sensor.stop_fifo(bus);
+            let _ = sensor.stop_fifo(bus).await;
         }
         self.send(request_id, response);
     }
 
-    pub(super) fn cancel(&mut self) -> Response {
+    pub(super) async fn cancel(&mut self) -> Response {
         match self.job {
             Job::Idle => {}
-            Job::Capturing { request_id, .. } => self.end_job(request_id, Response::Error(DeviceError::Cancelled)),
-            Job::Streaming(s) => self.end_job(s.request_id, s.ended()),
+            Job::Capturing { request_id, .. } => {
+                self.end_job(request_id, Response::Error(DeviceError::Cancelled)).await
+            }
+            Job::Streaming(s) => self.end_job(s.request_id, s.ended()).await,
         }
         Response::Done
     }
 
-    pub(super) fn start_stream(
+    pub(super) async fn start_stream(
         &mut self,
         request_id: u16,
         kind: StreamKind,
@@ -154,7 +161,7 @@ where
         if calibrated && self.active.range != self.config.range {
             return Err(DeviceError::RangeMismatch { calibration: self.active.range, configured: self.config.range });
         }
-        self.with_sensor(|sensor, bus| sensor.start_fifo(bus))?;
+        self.start_fifo().await?;
         let decimation = u32::from(sample_rate / rate_hz);
         let remaining = (count > 0).then_some(count);
         let sample_period_us = 1_000_000 / u32::from(sample_rate);
@@ -175,7 +182,7 @@ where
         Ok(())
     }
 
-    fn poll_stream(&mut self, mut stream: Stream) {
+    async fn poll_stream(&mut self, mut stream: Stream) {
         let room = OUTBOX_LEN - self.outbox.len();
         let mut batch = [RawSample::default(); READ_BATCH];
         // NOTE: read no more samples than the outbox can send, the rest waits in the FIFO; but with
@@ -184,9 +191,9 @@ where
             0 => READ_BATCH,
             free => (free * stream.decimation as usize).min(READ_BATCH),
         };
-        let n = match self.read_fifo(&mut batch[..readable]) {
+        let n = match self.read_fifo(&mut batch[..readable]).await {
             Ok(n) => n,
-            Err(error) => return self.end_job(stream.request_id, Response::Error(error)),
+            Err(error) => return self.end_job(stream.request_id, Response::Error(error)).await,
         };
         self.temperature_bins.add(&batch[..n]);
         for raw in &batch[..n] {
@@ -198,7 +205,7 @@ where
             }
             stream.skip = stream.decimation - 1;
             if self.take_sample(&mut stream, raw, time_us) {
-                return self.end_job(stream.request_id, stream.ended());
+                return self.end_job(stream.request_id, stream.ended()).await;
             }
         }
         self.job = Job::Streaming(stream);

@@ -16,7 +16,7 @@ mod slots;
 
 use core::ops::Range;
 
-use embedded_hal::blocking::i2c::{Write, WriteRead};
+use embedded_hal_async::i2c::I2c;
 use embedded_storage_async::nor_flash::NorFlash;
 use heapless::Deque;
 use shared::protocol::{
@@ -60,9 +60,9 @@ pub struct Device<I, F: NorFlash> {
     outbox: Deque<(u16, Response), OUTBOX_LEN>,
 }
 
-impl<I, E, F> Device<I, F>
+impl<I, F> Device<I, F>
 where
-    I: Write<Error = E> + WriteRead<Error = E>,
+    I: I2c,
     F: NorFlash,
 {
     /// Boots the board `serial`: finds and configures the sensor, loads the stored calibration from
@@ -90,7 +90,7 @@ where
             device.active = calibration;
             device.source = ActiveCalibration::Stored;
         }
-        let _ = device.sensor();
+        let _ = device.sensor().await;
         Ok(device)
     }
 
@@ -136,41 +136,64 @@ where
     }
 
     /// The sensor, found again if it was missing (a loose wire put back).
-    fn sensor(&mut self) -> Result<&mut Sensor, DeviceError> {
+    async fn sensor(&mut self) -> Result<&mut Sensor, DeviceError> {
         if self.sensor.is_err() {
-            self.sensor = Sensor::probe(&mut self.bus).map_err(|e| e.to_device_error()).and_then(|mut sensor| {
-                sensor.configure(&mut self.bus, self.config).map_err(|e| e.to_device_error())?;
-                Ok(sensor)
-            });
+            self.sensor = self.find_sensor().await.map_err(|e| e.to_device_error());
         }
         self.sensor.as_mut().map_err(|e| *e)
     }
 
+    /// Probes for the sensor and configures it as the device is configured.
+    async fn find_sensor(&mut self) -> Result<Sensor, sensor::Error<I::Error>> {
+        let mut sensor = Sensor::probe(&mut self.bus).await?;
+        sensor.configure(&mut self.bus, self.config).await?;
+        Ok(sensor)
+    }
+
     /// Records a bus failure and looks for the sensor again at once: a sensor that no longer answers
     /// is reported as missing, a passing fault as the bus error it was.
-    fn sensor_failed(&mut self, error: sensor::Error<E>) -> DeviceError {
+    async fn sensor_failed(&mut self, error: sensor::Error<I::Error>) -> DeviceError {
         let error = error.to_device_error();
         if error == DeviceError::Bus {
             self.sensor = Err(DeviceError::Bus);
-            if let Err(missing) = self.sensor() {
+            if let Err(missing) = self.sensor().await {
                 return missing;
             }
         }
         error
     }
 
-    /// Runs one driver operation on the sensor (found again first if it was missing).
-    fn with_sensor<R>(
-        &mut self,
-        operation: impl FnOnce(&mut Sensor, &mut I) -> Result<R, sensor::Error<E>>,
-    ) -> Result<R, DeviceError> {
-        self.sensor()?;
-        let result = match self.sensor.as_mut() {
-            Ok(sensor) => operation(sensor, &mut self.bus),
+    /// Runs one driver operation on the sensor (found again first if it was missing); the samples
+    /// a FIFO read took, 0 for the others.
+    ///
+    /// NOTE: an operation is data, not a closure: one instance of this state machine, with its
+    /// sensor recovery, serves every operation (closures cost 400 bytes of flash each).
+    async fn with_sensor(&mut self, operation: SensorOp<'_>) -> Result<usize, DeviceError> {
+        self.sensor().await?;
+        let (sensor, bus) = match self.sensor.as_mut() {
+            Ok(sensor) => (sensor, &mut self.bus),
             Err(error) => return Err(*error),
         };
-        result.map_err(|e| self.sensor_failed(e))
+        let result = match operation {
+            SensorOp::Configure(config) => sensor.configure(bus, config).await.map(|_| 0),
+            SensorOp::StartFifo => sensor.start_fifo(bus).await.map(|()| 0),
+            SensorOp::ReadFifo(batch) => sensor.read_fifo(bus, batch).await,
+        };
+        match result {
+            Ok(samples) => Ok(samples),
+            Err(e) => Err(self.sensor_failed(e).await),
+        }
     }
+}
+
+/// A driver operation the device runs through [`Device::with_sensor`].
+enum SensorOp<'a> {
+    /// Applies a configuration; the sensor keeps the one achieved.
+    Configure(SensorConfig),
+    /// Starts the FIFO afresh.
+    StartFifo,
+    /// Reads whole samples from the FIFO into the batch.
+    ReadFifo(&'a mut [crate::sensor::RawSample]),
 }
 
 /// Parses a decimal version component at compile time (0 when it is not a number below 256).

@@ -1,7 +1,7 @@
 //! The calibration slots: the active one in RAM (fitted on the chip or uploaded) and the stored one in
 //! flash, each change validated first.
 
-use embedded_hal::blocking::i2c::{Write, WriteRead};
+use embedded_hal_async::i2c::I2c;
 use embedded_storage_async::nor_flash::NorFlash;
 use shared::calibration::{GyroCalibration, Origin};
 use shared::linalg::{self, Vec3};
@@ -10,9 +10,9 @@ use shared::{Calibration, Position, PositionMap, SixPositionError};
 
 use super::Device;
 
-impl<I, E, F> Device<I, F>
+impl<I, F> Device<I, F>
 where
-    I: Write<Error = E> + WriteRead<Error = E>,
+    I: I2c,
     F: NorFlash,
 {
     /// Fits the kept captures on the chip and returns the fit when it is plausible.

@@ -30,7 +30,7 @@ fn sequence_numbers_count_up_and_sample_times_follow_the_sensor_clock() {
 fn poll_without_reading(device: &mut SimDevice, seconds: u32) {
     for _ in 0..seconds * 100 {
         device.bus_mut().advance_us(10_000);
-        device.poll();
+        block_on(device.poll());
     }
 }
 

@@ -50,7 +50,7 @@ pub(super) fn run(device: &mut SimDevice, id: u16, request: Request) -> (Respons
             }
         }
         device.bus_mut().advance_us(TICK_US);
-        device.poll();
+        block_on(device.poll());
     }
     panic!("no final response");
 }
@@ -258,7 +258,7 @@ fn a_bus_error_during_a_capture_is_named_and_the_next_capture_works() {
     block_on(device.handle(1, Request::Capture { seconds: 5 }));
     device.bus_mut().advance_us(TICK_US);
     device.bus_mut().fail_next_transactions(1);
-    device.poll();
+    block_on(device.poll());
     assert_eq!(drain(&mut device), [(1, Response::Error(DeviceError::Bus))]);
     let (last, _) = run(&mut device, 2, Request::Capture { seconds: 5 });
     assert!(matches!(last, Response::Captured { .. }), "{last:?}");

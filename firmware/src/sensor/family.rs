@@ -2,12 +2,11 @@
 //! registers only the MPU-6500 family has), where its accelerometer filter sits, and how its
 //! temperature reads.
 
-use embedded_hal::blocking::i2c::{Write, WriteRead};
-use mpu6050::Mpu6050;
+use embedded_hal_async::i2c::I2c;
 use shared::part::{Behaviour, Family, Part, TemperatureFormula};
 use shared::protocol::LowPassFilter;
 
-use super::bus::Borrowed;
+use super::access::{read_register, write_register};
 use super::registers as reg;
 use super::Error;
 
@@ -19,34 +18,31 @@ const LOOK_ALIKES: [u8; 2] = [0x72, 0x74];
 
 /// The family a chip at `address` answering `who_am_i` behaves as; `Ok(None)` for a chip that is
 /// not one to write to, or whose registers say neither family.
-pub(super) fn family_of<I, E>(bus: &mut I, address: u8, who_am_i: u8) -> Result<Option<Family>, Error<E>>
-where
-    I: Write<Error = E> + WriteRead<Error = E>,
-{
+pub(super) async fn family_of<I: I2c>(
+    bus: &mut I,
+    address: u8,
+    who_am_i: u8,
+) -> Result<Option<Family>, Error<I::Error>> {
     let part = Part::from_who_am_i(who_am_i);
     if part.claimed_family().is_none() && !LOOK_ALIKES.contains(&who_am_i) {
         return Ok(None);
     }
-    let mut chip = Mpu6050::new_with_addr(Borrowed(bus), address);
     let behaviour = Behaviour {
-        accel_config2_kept: keeps_a_value(&mut chip, reg::ACCEL_CONFIG2)?,
-        offsets_at_0x77: keeps_a_value(&mut chip, reg::XA_OFFSET_H_6500)?,
+        accel_config2_kept: keeps_a_value(bus, address, reg::ACCEL_CONFIG2).await?,
+        offsets_at_0x77: keeps_a_value(bus, address, reg::XA_OFFSET_H_6500).await?,
     };
     // NOTE: mixed evidence (one register kept, the other not) trusts a known WHO_AM_I.
     Ok(behaviour.family().or(part.claimed_family()))
 }
 
 /// Whether `register` keeps a value written to it; its value is restored either way.
-fn keeps_a_value<I, E>(chip: &mut Mpu6050<Borrowed<'_, I>>, register: u8) -> Result<bool, Error<E>>
-where
-    I: Write<Error = E> + WriteRead<Error = E>,
-{
-    let original = chip.read_byte(register)?;
+async fn keeps_a_value<I: I2c>(bus: &mut I, address: u8, register: u8) -> Result<bool, Error<I::Error>> {
+    let original = read_register(bus, address, register).await?;
     // NOTE: flips bits 0 and 2: A_DLPF_CFG's on ACCEL_CONFIG2, the offset's on XA_OFFSET_H.
     let probe = original ^ 0b0000_0101;
-    chip.write_byte(register, probe)?;
-    let read_back = chip.read_byte(register)?;
-    chip.write_byte(register, original)?;
+    write_register(bus, address, register, probe).await?;
+    let read_back = read_register(bus, address, register).await?;
+    write_register(bus, address, register, original).await?;
     Ok(read_back == probe)
 }
 

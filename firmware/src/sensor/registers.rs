@@ -1,8 +1,7 @@
 //! MPU-6050 register addresses and bits used here.
 //!
 //! NOTE: from the MPU-6000/MPU-6050 Register Map and Descriptions, revision 4.2 (RM-MPU-6000A-00).
-//! The `mpu6050` crate covers power, ranges and the data registers; it has no FIFO, sample-rate
-//! divider or interrupt-status access, so those are written through its register access.
+//! One home for every address and bit: the driver and the simulated chip both read them from here.
 
 /// The two addresses the chip answers at: AD0 low (0x68) or high (0x69).
 pub const ADDRESSES: [u8; 2] = [0x68, 0x69];
@@ -11,6 +10,10 @@ pub const ADDRESSES: [u8; 2] = [0x68, 0x69];
 pub const SMPLRT_DIV: u8 = 0x19;
 /// CONFIG (0x1A): DLPF_CFG in bits 2:0, section 4.3.
 pub const CONFIG: u8 = 0x1A;
+/// GYRO_CONFIG (0x1B): FS_SEL in bits 4:3, section 4.4.
+pub const GYRO_CONFIG: u8 = 0x1B;
+/// ACCEL_CONFIG (0x1C): AFS_SEL in bits 4:3, section 4.5.
+pub const ACCEL_CONFIG: u8 = 0x1C;
 /// ACCEL_CONFIG2 (0x1D) of the MPU-6500 family: the accelerometer's own low-pass filter
 /// (RM-MPU-6500A 4.8); not in the MPU-6050's map.
 pub const ACCEL_CONFIG2: u8 = 0x1D;
@@ -31,6 +34,8 @@ pub const USER_CTRL: u8 = 0x6A;
 pub const PWR_MGMT_1: u8 = 0x6B;
 /// FIFO_COUNT_H (0x72): byte count in the FIFO, high byte first, section 4.31.
 pub const FIFO_COUNT_H: u8 = 0x72;
+/// FIFO_COUNT_L (0x73): low byte of the FIFO count, section 4.31.
+pub const FIFO_COUNT_L: u8 = 0x73;
 /// FIFO_R_W (0x74): reading pops bytes from the FIFO, section 4.32.
 pub const FIFO_R_W: u8 = 0x74;
 /// WHO_AM_I (0x75): 0x68 on a genuine MPU-6050 whatever the AD0 pin, section 4.33.
@@ -44,6 +49,14 @@ pub const FIFO_OFLOW: u8 = 1 << 4;
 pub const USER_CTRL_FIFO_EN: u8 = 1 << 6;
 /// USER_CTRL: FIFO reset bit (self-clearing).
 pub const USER_CTRL_FIFO_RESET: u8 = 1 << 2;
+/// Bit position of the full-scale field in GYRO_CONFIG and ACCEL_CONFIG (sections 4.4, 4.5).
+pub const FULL_SCALE_SHIFT: u8 = 3;
+/// GYRO_CONFIG's FS_SEL for +-1000 deg/s (section 4.4); see [`GYRO_LSB_PER_DPS`] for why.
+pub const FS_SEL_1000_DPS: u8 = 2;
+/// PWR_MGMT_1: SLEEP bit, set at power-up (section 4.30).
+pub const PWR_MGMT_1_SLEEP: u8 = 1 << 6;
+/// PWR_MGMT_1: DEVICE_RESET bit, self-clearing (section 4.30).
+pub const PWR_MGMT_1_DEVICE_RESET: u8 = 1 << 7;
 /// PWR_MGMT_1: awake, clock from the x gyro PLL (recommended over the internal oscillator, 4.30).
 pub const PWR_MGMT_1_AWAKE_PLL_X: u8 = 0x01;
 

@@ -9,16 +9,17 @@
 
 mod board;
 pub mod flash;
+mod i2c;
 pub mod part;
 pub mod physics;
 pub mod thermal;
 
-use embedded_hal::blocking::i2c::{Write, WriteRead};
 use heapless::Deque;
 use shared::linalg::{self, Vec3};
 
 use crate::sensor::registers as reg;
 pub use board::{sim_serial_number, SimFlash, SIM_FLASH_RANGE};
+pub use i2c::BusFault;
 use part::SimPart;
 use physics::{Motion, Physics};
 
@@ -26,19 +27,6 @@ use physics::{Motion, Physics};
 const REGISTER_COUNT: usize = 0x80;
 /// PWR_MGMT_1 at power-up: asleep (register map section 4.30).
 const PWR_MGMT_1_RESET: u8 = 0x40;
-const SLEEP: u8 = 1 << 6;
-const DEVICE_RESET: u8 = 1 << 7;
-const ACCEL_CONFIG: u8 = 0x1C;
-const GYRO_CONFIG: u8 = 0x1B;
-
-/// Why a simulated transaction failed.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum BusFault {
-    /// Nothing acknowledged the address (wrong address, or the sensor is disconnected).
-    NoAcknowledge,
-    /// A fault injected by a test.
-    Injected,
-}
 
 /// A simulated MPU-6050 on an I2C bus.
 #[derive(Debug, Clone)]
@@ -174,7 +162,7 @@ impl SimMpu6050 {
         }
         while self.next_sample_us <= until {
             self.now_us = self.next_sample_us;
-            if self.register(reg::PWR_MGMT_1) & SLEEP == 0 {
+            if self.register(reg::PWR_MGMT_1) & reg::PWR_MGMT_1_SLEEP == 0 {
                 self.produce_sample();
             }
             self.next_sample_us += self.sample_period_us();
@@ -199,9 +187,10 @@ impl SimMpu6050 {
         let rate = self.sample_rate_hz();
         self.physics.accel_bandwidth_hz = self.part.accel_noise_bandwidth_hz(self.register(part::ACCEL_CONFIG2));
         let mut sample = self.physics.sample(seconds, rate);
-        self.part.apply_self_test(self.register(ACCEL_CONFIG), self.register(GYRO_CONFIG), &mut sample);
-        let accel_lsb = f32::from(16384u16 >> ((self.register(ACCEL_CONFIG) >> 3) & 0x03));
-        let gyro_lsb = reg::GYRO_LSB_PER_DPS_BY_FS_SEL[usize::from((self.register(GYRO_CONFIG) >> 3) & 0x03)];
+        self.part.apply_self_test(self.register(reg::ACCEL_CONFIG), self.register(reg::GYRO_CONFIG), &mut sample);
+        let accel_lsb = f32::from(16384u16 >> ((self.register(reg::ACCEL_CONFIG) >> reg::FULL_SCALE_SHIFT) & 0x03));
+        let gyro_lsb = reg::GYRO_LSB_PER_DPS_BY_FS_SEL
+            [usize::from((self.register(reg::GYRO_CONFIG) >> reg::FULL_SCALE_SHIFT) & 0x03)];
         let words = [
             quantise(sample.accel_g[0] * accel_lsb),
             quantise(sample.accel_g[1] * accel_lsb),
@@ -247,7 +236,7 @@ impl SimMpu6050 {
             return;
         }
         match address {
-            reg::PWR_MGMT_1 if value & DEVICE_RESET != 0 => {
+            reg::PWR_MGMT_1 if value & reg::PWR_MGMT_1_DEVICE_RESET != 0 => {
                 self.registers = [0; REGISTER_COUNT];
                 self.registers[usize::from(reg::PWR_MGMT_1)] = PWR_MGMT_1_RESET;
                 self.fifo.clear();
@@ -268,7 +257,7 @@ impl SimMpu6050 {
         match address {
             reg::INT_STATUS => core::mem::take(&mut self.registers[usize::from(reg::INT_STATUS)]),
             reg::FIFO_COUNT_H => (self.fifo.len() >> 8) as u8,
-            0x73 => self.fifo.len() as u8,
+            reg::FIFO_COUNT_L => self.fifo.len() as u8,
             reg::FIFO_R_W => self.fifo.pop_front().unwrap_or(0),
             a if (reg::ACCEL_XOUT_H..reg::ACCEL_XOUT_H + reg::FIFO_SAMPLE_LEN as u8).contains(&a) => {
                 self.latest[usize::from(a - reg::ACCEL_XOUT_H)]
@@ -294,36 +283,6 @@ impl SimMpu6050 {
 
 fn quantise(lsb: f32) -> i16 {
     libm::roundf(lsb).clamp(f32::from(i16::MIN), f32::from(i16::MAX)) as i16
-}
-
-impl Write for SimMpu6050 {
-    type Error = BusFault;
-
-    fn write(&mut self, address: u8, bytes: &[u8]) -> Result<(), BusFault> {
-        self.acknowledge(address)?;
-        if let Some((&first, data)) = bytes.split_first() {
-            for (offset, &value) in data.iter().enumerate() {
-                self.write_register(first.wrapping_add(offset as u8), value);
-            }
-        }
-        Ok(())
-    }
-}
-
-impl WriteRead for SimMpu6050 {
-    type Error = BusFault;
-
-    fn write_read(&mut self, address: u8, bytes: &[u8], buffer: &mut [u8]) -> Result<(), BusFault> {
-        self.acknowledge(address)?;
-        let start = bytes.first().copied().unwrap_or(0);
-        for (offset, byte) in buffer.iter_mut().enumerate() {
-            // NOTE: burst reads auto-increment the register address, except on FIFO_R_W, which
-            // pops the FIFO at every byte (register map 4.32).
-            let address = if start == reg::FIFO_R_W { start } else { start.wrapping_add(offset as u8) };
-            *byte = self.read_register(address);
-        }
-        Ok(())
-    }
 }
 
 #[cfg(test)]

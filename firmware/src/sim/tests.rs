@@ -1,5 +1,6 @@
 //! The simulated MPU-6050 under the real driver and capture engine.
 
+use embassy_futures::block_on;
 use shared::linalg::{self, Vec3};
 use shared::protocol::{CaptureStats, DeviceError, SensorConfig};
 
@@ -12,8 +13,8 @@ use crate::sensor::{Error, RawSample, Sensor};
 const POLL_US: u64 = 50_000;
 
 fn configured(sim: &mut SimMpu6050, config: SensorConfig) -> Sensor {
-    let mut sensor = Sensor::probe(sim).expect("simulated sensor answers");
-    sensor.configure(sim, config).expect("configures");
+    let mut sensor = block_on(Sensor::probe(sim)).expect("simulated sensor answers");
+    block_on(sensor.configure(sim, config)).expect("configures");
     sensor
 }
 
@@ -21,12 +22,12 @@ fn configured(sim: &mut SimMpu6050, config: SensorConfig) -> Sensor {
 fn capture(sim: &mut SimMpu6050, config: SensorConfig, seconds: u8) -> Result<CaptureStats, DeviceError> {
     let mut sensor = configured(sim, config);
     let mut capture = Capture::new(seconds, sensor.config())?;
-    sensor.start_fifo(sim).unwrap();
+    block_on(sensor.start_fifo(sim)).unwrap();
     let mut buffer = [RawSample::default(); 32];
     while !capture.is_complete() {
         sim.advance_us(POLL_US);
         loop {
-            let n = sensor.read_fifo(sim, &mut buffer).map_err(|e| e.to_device_error())?;
+            let n = block_on(sensor.read_fifo(sim, &mut buffer)).map_err(|e| e.to_device_error())?;
             capture.take(&buffer[..n]);
             if n < buffer.len() {
                 break;
@@ -39,10 +40,10 @@ fn capture(sim: &mut SimMpu6050, config: SensorConfig, seconds: u8) -> Result<Ca
 #[test]
 fn who_am_i_and_address_follow_the_configuration() {
     let mut sim = SimMpu6050::new(1).with_address(0x69).with_who_am_i(0x72);
-    let identity = Sensor::probe(&mut sim).unwrap().identity();
+    let identity = block_on(Sensor::probe(&mut sim)).unwrap().identity();
     assert_eq!((identity.address, identity.who_am_i), (0x69, 0x72));
     sim.set_connected(false);
-    assert_eq!(Sensor::probe(&mut sim), Err(Error::Missing));
+    assert_eq!(block_on(Sensor::probe(&mut sim)), Err(Error::Missing));
 }
 
 #[test]
@@ -116,21 +117,21 @@ fn saturation_refuses_the_capture_as_clipped() {
 fn a_stalled_reader_sees_a_fifo_overflow() {
     let mut sim = SimMpu6050::new(7);
     let mut sensor = configured(&mut sim, SensorConfig::default());
-    sensor.start_fifo(&mut sim).unwrap();
+    block_on(sensor.start_fifo(&mut sim)).unwrap();
     sim.advance_us(700_000); // 70 samples of 14 bytes: 980 of 1024 bytes
     let mut buffer = [RawSample::default(); 128];
-    assert_eq!(sensor.read_fifo(&mut sim, &mut buffer), Ok(70));
+    assert_eq!(block_on(sensor.read_fifo(&mut sim, &mut buffer)), Ok(70));
     sim.advance_us(800_000); // 80 samples: 1120 bytes, more than the FIFO holds
-    assert_eq!(sensor.read_fifo(&mut sim, &mut buffer), Err(Error::FifoOverflow));
+    assert_eq!(block_on(sensor.read_fifo(&mut sim, &mut buffer)), Err(Error::FifoOverflow));
     // Restarting the FIFO clears the condition.
-    sensor.start_fifo(&mut sim).unwrap();
+    block_on(sensor.start_fifo(&mut sim)).unwrap();
     sim.advance_us(100_000);
-    assert_eq!(sensor.read_fifo(&mut sim, &mut buffer), Ok(10));
+    assert_eq!(block_on(sensor.read_fifo(&mut sim, &mut buffer)), Ok(10));
 }
 
 #[test]
 fn an_asleep_chip_fills_no_fifo_until_it_is_woken() {
-    use embedded_hal::blocking::i2c::Write;
+    use embedded_hal::i2c::I2c;
     // Register addresses from the register map rev 4.2: CONFIG 0x1A, SMPLRT_DIV 0x19, FIFO_EN 0x23,
     // USER_CTRL 0x6A, PWR_MGMT_1 0x6B.
     let mut sim = SimMpu6050::new(8);

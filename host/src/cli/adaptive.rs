@@ -4,37 +4,40 @@
 //! long as the target needs.
 
 use shared::protocol::SensorConfig;
-use shared::Calibration;
 
 use super::args::CalibrateArgs;
 use super::device::Opened;
 use super::length::{ADAPTIVE_VERIFY_POSITIONS, FIXED_VERIFY_POSITIONS};
 use crate::error::Error;
-use crate::fit::Fit;
+use crate::fit::drift;
 use crate::procedure::stop_rule::CaptureLength;
-use crate::procedure::{self, drift, AdaptiveOptions, Feedback, Hand, Moves, VERIFY_SECONDS};
-use crate::session::{Session, SessionError};
+use crate::procedure::{self, AdaptiveOptions, Feedback, Hand, Moves, VERIFY_SECONDS};
+use crate::session::{Outcome, Session, SessionError, SessionKind};
 
-/// Whether a new session is adaptive: a full calibration without a fixed `--seconds`. A resumed
-/// session keeps what it was begun as (its `adaptive`), so that its collection, its fit and its
-/// report agree.
-pub(super) fn begins_adaptive(args: &CalibrateArgs) -> bool {
-    !args.quick && args.seconds.is_none()
+/// What a new session is: quick (`--quick`), of fixed-length captures (`--seconds`), or adaptive.
+/// A resumed session keeps what it was begun as, so that its collection, its fit and its report agree.
+pub(super) fn begun_as(args: &CalibrateArgs) -> SessionKind {
+    match (args.quick, args.seconds) {
+        (true, _) => SessionKind::Quick,
+        (false, Some(_)) => SessionKind::Fixed,
+        (false, None) => SessionKind::Adaptive,
+    }
 }
 
 /// What a resumed session makes of `--quick` and `--seconds` given differently from when it was
 /// begun, in words: it goes on as it was begun (its captures, fit and report must agree).
 pub(super) fn resumed_as_begun(args: &CalibrateArgs, session: &Session) -> Vec<String> {
     let kind = |quick: bool| if quick { "a quick calibration" } else { "a full calibration" };
+    let (asked_quick, begun_quick) = (args.quick, session.kind == SessionKind::Quick);
     let mut lines = Vec::new();
-    if args.quick != session.quick {
+    if asked_quick != begun_quick {
         lines.push(format!(
             "this session was begun as {}; it goes on as one ({} is not used: start a new session for the other)",
-            kind(session.quick),
-            if args.quick { "--quick" } else { "leaving out --quick" }
+            kind(begun_quick),
+            if asked_quick { "--quick" } else { "leaving out --quick" }
         ));
     }
-    if let (true, Some(seconds)) = (session.adaptive, args.seconds) {
+    if let (SessionKind::Adaptive, Some(seconds)) = (session.kind, args.seconds) {
         lines.push(format!(
             "this session was begun adaptive (each position captured until its mean is known); it goes on so and \
              --seconds {seconds} is not used (start a new session for captures of a fixed length)"
@@ -61,15 +64,14 @@ pub(super) fn collect(
     Ok(collected.first_capture_s)
 }
 
-/// The calibration of an adaptive session, with what the temperature did during it said.
-pub(super) fn calibration(
-    session: &Session,
-    config: SensorConfig,
-    feedback: &mut dyn Feedback,
-) -> Result<(Calibration, Fit), Error> {
-    let (calibration, fit, fitted_drift) = procedure::adaptive_calibration(session, config)?;
-    let (low, high) = drift::span_c(session);
-    match fitted_drift {
+/// The calibration of a session, with what the temperature did during an adaptive one said.
+pub(super) fn outcome(session: &Session, config: SensorConfig, feedback: &mut dyn Feedback) -> Result<Outcome, Error> {
+    let outcome = session.outcome(config)?;
+    if session.kind != SessionKind::Adaptive {
+        return Ok(outcome);
+    }
+    let (low, high) = drift::span_c(&outcome.fitted.captures);
+    match outcome.fitted.drift {
         Some(d) => feedback.say(&format!(
             "the temperature moved {:.2} degC during the session ({low:.2} to {high:.2} degC); the offset drift it \
              caused ({:+.2}, {:+.2}, {:+.2} mg/degC) was fitted with the calibration and goes with it to the board",
@@ -84,16 +86,16 @@ pub(super) fn calibration(
         )),
         None => {}
     }
-    Ok((calibration, fit))
+    Ok(outcome)
 }
 
 /// How many fresh orientations to verify at, and how long each capture runs.
 pub(super) fn verification(
     args: &CalibrateArgs,
-    adaptive: bool,
+    kind: SessionKind,
     rate_hz: u16,
 ) -> Result<(usize, CaptureLength), Error> {
-    if !adaptive {
+    if kind != SessionKind::Adaptive {
         return Ok((
             usize::from(args.verify.unwrap_or(FIXED_VERIFY_POSITIONS)),
             CaptureLength::Seconds(VERIFY_SECONDS),

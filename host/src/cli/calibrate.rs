@@ -19,7 +19,7 @@ use crate::link::{Client, LinkError, Port};
 use crate::procedure::{self, CollectOptions, Feedback, Hand, Moves, ProcedureError, TurnCheck, Verification};
 use crate::report::gyro::GyroOutcome;
 use crate::report::{self, CalibrateReport};
-use crate::session::{unix_time_s, BoardRecord, Session, SessionError};
+use crate::session::{unix_time_s, BoardRecord, Session, SessionError, SessionKind};
 
 /// The session of this run and where it is kept.
 pub(super) struct Kept {
@@ -43,8 +43,8 @@ pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
     let interrupt = interrupt_on_ctrl_c();
     opened.connection.client.interrupt_on(interrupt.clone());
     let (moves, first_capture_s) = collect(args, &mut opened, &mut kept, feedback.as_mut())?;
-    let adaptive = kept.session.adaptive;
-    let (fitted, gyro) = fit_with_gyro(&mut opened, &kept, &moves, adaptive, feedback.as_mut())?;
+    let kind = kept.session.kind;
+    let (fitted, gyro) = fit_with_gyro(&mut opened, &kept, &moves, feedback.as_mut())?;
     show_choice(feedback.as_mut(), &fitted);
     let client = &mut opened.connection.client;
     if interrupt.load(Ordering::SeqCst) {
@@ -56,7 +56,7 @@ pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
     // NOTE: a resumed session's first capture was taken in another run: its board time is unknown.
     let first_capture_s = first_capture_s.filter(|_| !kept.resumed);
     let fitted = (&fitted, &gyro);
-    finish(args, &mut opened, fitted, kept.path.as_deref(), (adaptive, first_capture_s), feedback.as_mut())
+    finish(args, &mut opened, fitted, kept.path.as_deref(), (kind, first_capture_s), feedback.as_mut())
 }
 
 /// The captures the session lacks, written after each one, and the moves between them; an error
@@ -73,7 +73,7 @@ fn collect(
     let mut keep = |session: &Session| path.as_deref().map_or(Ok(()), |p| session.save(p));
     let mut moves = Moves::at(opened.connection.info.config.sample_rate_hz);
     let (hand, session) = (hand.as_mut(), &mut kept.session);
-    let result = if session.adaptive {
+    let result = if session.kind == SessionKind::Adaptive {
         adaptive::collect(args, opened, (hand, &mut moves), wait_limit, session, &mut keep, feedback)
     } else {
         collect_fixed(args, opened, (hand, &mut moves), wait_limit, session, &mut keep, feedback)
@@ -101,9 +101,9 @@ fn collect_fixed(
     keep: &mut dyn FnMut(&Session) -> Result<(), SessionError>,
     feedback: &mut dyn Feedback,
 ) -> Result<Option<f64>, ProcedureError> {
-    let seconds = args.seconds.unwrap_or_else(|| procedure::capture_seconds(session.quick));
+    let seconds = args.seconds.unwrap_or_else(|| procedure::capture_seconds(session.kind == SessionKind::Quick));
     let options = CollectOptions { seconds, wait_limit };
-    let (targets, started) = (procedure::targets(session.quick), opened.clock()());
+    let (targets, started) = (procedure::targets(session.kind == SessionKind::Quick), opened.clock()());
     let client = &mut opened.connection.client;
     procedure::collect_into(client, hand, &targets, &options, feedback, session, moves, keep).map(|()| Some(started))
 }
@@ -114,11 +114,11 @@ fn finish(
     opened: &mut Opened,
     (fitted, gyro): (&Fitted, &GyroOutcome),
     kept_at: Option<&Path>,
-    (adaptive, first_capture_s): (bool, Option<f64>),
+    (kind, first_capture_s): (SessionKind, Option<f64>),
     feedback: &mut dyn Feedback,
 ) -> Result<(), Error> {
     let (mut hand, wait_limit) = opened.hand(args.sim_placement_deg, args.device.seed);
-    let (positions, length) = adaptive::verification(args, adaptive, opened.connection.info.config.sample_rate_hz)?;
+    let (positions, length) = adaptive::verification(args, kind, opened.connection.info.config.sample_rate_hz)?;
     let (rate_hz, clock) = (opened.connection.info.config.sample_rate_hz, opened.clock());
     let client = &mut opened.connection.client;
     let calibrated: Vec<[f64; 3]> = fitted.session.captures.iter().map(|c| c.stats.mean_g.map(f64::from)).collect();
@@ -193,12 +193,7 @@ fn start_session(args: &CalibrateArgs, info: &DeviceInfo, feedback: &mut dyn Fee
             kept
         }
         None => Kept {
-            session: Session {
-                board: Some(board),
-                quick: args.quick,
-                adaptive: adaptive::begins_adaptive(args),
-                ..Session::default()
-            },
+            session: Session { board: Some(board), kind: adaptive::begun_as(args), ..Session::default() },
             path: args.session.clone().or_else(|| default_session_path(args)),
             resumed: false,
         },
@@ -217,7 +212,7 @@ fn resumed(path: &Path, board: &BoardRecord, feedback: &mut dyn Feedback) -> Res
     let session = Session::load(&json)?;
     let recorded = session.board.as_ref().ok_or(crate::session::SessionError::NoBoard { path: json.clone() })?;
     recorded.check_same(board, &json)?;
-    let targets = procedure::targets(session.quick);
+    let targets = procedure::targets(session.kind == SessionKind::Quick);
     // NOTE: by name: an adaptive session's closing capture repeats its first position.
     let captured = targets.iter().filter(|t| session.has_capture(&t.name)).count();
     feedback.say(&format!("resuming {}: {captured} of {} positions captured", json.display(), targets.len()));

@@ -7,13 +7,13 @@ use shared::Calibration;
 use super::adaptive;
 use super::calibrate::Kept;
 use super::device::Opened;
-use crate::calibration::{self, describe};
+use crate::calibration::describe;
 use crate::error::Error;
 use crate::fit::Fit;
 use crate::link::{ChipOrtho9, Client, Port};
-use crate::procedure::{self, Feedback, Moves};
+use crate::procedure::{Feedback, Moves};
 use crate::report::gyro::GyroOutcome;
-use crate::session::Session;
+use crate::session::{Session, SessionKind};
 
 /// The calibrations a calibration chooses between.
 pub(super) struct Fitted {
@@ -29,43 +29,37 @@ pub(super) fn fit_with_gyro(
     opened: &mut Opened,
     kept: &Kept,
     moves: &Moves,
-    adaptive: bool,
     feedback: &mut dyn Feedback,
 ) -> Result<(Fitted, GyroOutcome), Error> {
     let config = opened.connection.info.config;
-    let mut fitted = choose(&mut opened.connection.client, kept, config, adaptive, feedback)?;
+    let mut fitted = choose(&mut opened.connection.client, kept, config, feedback)?;
     let (chosen, gyro) = super::gyro::fit((moves, kept.resumed), &fitted.session, &fitted.chosen, feedback);
     fitted.chosen = chosen;
     fitted.session.gyro_turns = super::gyro::summaries(moves, &fitted.session, &chosen, &gyro);
     Ok((fitted, gyro))
 }
 
-/// The on-chip fit (of captures all taken in this run), and for a full calibration the host's fit,
+/// The on-chip fit (of captures all taken in this run), and but for a quick session the host's fit,
 /// which is then the one chosen; a resumed `--quick` session is fitted by the same solver on the
 /// host.
 fn choose<P: Port>(
     client: &mut Client<P>,
     kept: &Kept,
     config: SensorConfig,
-    adaptive: bool,
     feedback: &mut dyn Feedback,
 ) -> Result<Fitted, Error> {
     let session = kept.session.clone();
-    if adaptive {
-        // NOTE: the chip's own ortho9 fit of its latest captures, only for comparison.
-        let chip = if kept.resumed { None } else { client.fit_ortho9().ok() };
-        let (chosen, fit) = adaptive::calibration(&session, config, feedback)?;
-        return Ok(Fitted { session, chip, host: Some(fit), chosen });
+    // NOTE: an adaptive session's chip fit is only for comparison: one it cannot make is not an error.
+    let chip = match (kept.resumed, session.kind) {
+        (true, _) => None,
+        (false, SessionKind::Adaptive) => client.fit_ortho9().ok(),
+        (false, _) => Some(client.fit_ortho9()?),
+    };
+    if let (SessionKind::Quick, Some(chip)) = (session.kind, chip) {
+        return Ok(Fitted { session, chip: Some(chip), host: None, chosen: chip.calibration });
     }
-    let chip = if kept.resumed { None } else { Some(client.fit_ortho9()?) };
-    match (session.quick, chip) {
-        (true, Some(chip)) => Ok(Fitted { session, chip: Some(chip), host: None, chosen: chip.calibration }),
-        (quick, chip) => {
-            let fit = if quick { procedure::host_quick_fit(&session)? } else { procedure::host_fit(&session)? };
-            let chosen = calibration::from_fit(&fit, &session, config)?;
-            Ok(Fitted { session, chip, host: Some(fit), chosen })
-        }
-    }
+    let outcome = adaptive::outcome(&session, config, feedback)?;
+    Ok(Fitted { session, chip, host: Some(outcome.fit), chosen: outcome.calibration })
 }
 
 /// The chosen calibration, the host fit's parameters, and the chip's fit beside them.

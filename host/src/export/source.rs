@@ -8,8 +8,7 @@ use shared::{AccelRange, Calibration};
 use super::loss::Carried;
 use super::ExportError;
 use crate::calibration::{self, CalibrationJson};
-use crate::procedure;
-use crate::session::Session;
+use crate::session::{OutcomeError, Session};
 
 /// A calibration to export and where it came from.
 #[derive(Debug, Clone)]
@@ -59,11 +58,10 @@ impl Source {
     /// needs the moves between positions, is not in a session file).
     pub fn from_session(session: &Session, from: &str) -> Result<Self, ExportError> {
         let config = session.board.as_ref().map_or_else(SensorConfig::default, |b| b.config);
-        let calibration = if session.adaptive {
-            procedure::adaptive_calibration(session, config)?.0
-        } else {
-            let fit = if session.quick { procedure::host_quick_fit(session) } else { procedure::host_fit(session) };
-            calibration::from_fit(&fit.map_err(ExportError::Fit)?, session, config)?
+        let calibration = match session.outcome(config) {
+            Ok(outcome) => outcome.calibration,
+            Err(OutcomeError::Fit(e)) => return Err(ExportError::Fit(e)),
+            Err(OutcomeError::Calibration(e)) => return Err(e.into()),
         };
         let serial = session.board.as_ref().map(|b| b.serial.clone());
         Ok(Source { calibration, serial, from: from.to_owned(), noise: None })

@@ -1,5 +1,6 @@
 //! Fitting a calibration `a = M (m - o)` to a data file, by the models of DESIGN.md.
 
+pub mod drift;
 mod evaluate;
 mod faces;
 pub mod gyro;

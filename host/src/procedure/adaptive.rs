@@ -6,16 +6,12 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use super::collect::capture_at;
-use super::drift::{self, Drift};
+use super::drift;
 use super::stop_rule::{CaptureLength, StopRule, MAX_SECONDS};
 use super::wait::wait_for_target_settled;
 use super::{Feedback, Hand, Moves, Orientation, ProcedureError};
-use crate::calibration;
-use crate::fit::{Fit, FitError};
 use crate::link::{Client, Port};
-use crate::session::{CaptureRecord, Session, SessionError};
-use shared::protocol::SensorConfig;
-use shared::Calibration;
+use crate::session::{CaptureRecord, Session, SessionError, SessionKind};
 
 /// Captures of a position tried before giving up on a board that keeps moving.
 const CAPTURE_ATTEMPTS: usize = 5;
@@ -57,6 +53,7 @@ pub fn collect_adaptive<P: Port>(
     keep: &mut dyn FnMut(&Session) -> Result<(), SessionError>,
 ) -> Result<Collected, ProcedureError> {
     client.clear_positions()?;
+    session.kind = SessionKind::Adaptive;
     let order = drift::order(targets);
     let (mut collected, mut reached) = (Collected::default(), false);
     for target in &order {
@@ -102,7 +99,7 @@ fn enough(session: &Session, target_mg: f64, feedback: &mut dyn Feedback) -> boo
 
 /// The error the session's fit predicts at a fresh orientation, in mg (`None` without a fit).
 fn predicted_mg(session: &Session) -> Option<f64> {
-    adaptive_fit(session).ok().and_then(|(f, _)| f.prediction).map(|p| p.norm_error_mg)
+    session.fit().ok().and_then(|(f, _)| f.prediction).map(|p| p.norm_error_mg)
 }
 
 /// Says what the fit of every position taken predicts, once no position is left to ask for.
@@ -158,30 +155,6 @@ fn take<P: Port>(
         }
     }
     Err(ProcedureError::KeptMoving { attempts: CAPTURE_ATTEMPTS })
-}
-
-/// The device calibration of an adaptive session: its fit, at the session's mean temperature, with
-/// the measured offset drift as a temperature model; the fit and the drift beside it.
-pub fn adaptive_calibration(
-    session: &Session,
-    config: SensorConfig,
-) -> Result<(Calibration, Fit, Option<Drift>), ProcedureError> {
-    let (fit, drift) = adaptive_fit(session)?;
-    let fitted = drift::at_mean_temperature(session, drift.as_ref());
-    let calibration = calibration::from_fit(&fit, &fitted, config).map_err(ProcedureError::Calibration)?;
-    let calibration = match &drift {
-        Some(d) => calibration::with_offset_drift(&calibration, drift::mean_temp_c(session), d.slope_g_per_c),
-        None => calibration,
-    };
-    Ok((calibration, fit, drift))
-}
-
-/// The orientation-free fit of an adaptive session, its captures first corrected for the drift
-/// that the first and the closing capture show (to the session's mean temperature); the drift.
-pub fn adaptive_fit(session: &Session) -> Result<(Fit, Option<Drift>), FitError> {
-    let drift = drift::fitted(session);
-    let fitted = drift::at_mean_temperature(session, drift.as_ref());
-    Ok((drift::ortho9(&fitted)?, drift))
 }
 
 #[cfg(test)]
@@ -249,7 +222,7 @@ mod tests {
                 capture
             })
             .collect();
-        Session { captures, ..Session::default() }
+        Session { captures, kind: SessionKind::Adaptive, ..Session::default() }
     }
 
     #[test]

@@ -19,7 +19,7 @@ mod wait;
 use std::time::Duration;
 
 pub use crate::orientation::{corners, faces, quick_set, Orientation};
-pub use adaptive::{adaptive_calibration, adaptive_fit, collect_adaptive, AdaptiveOptions, BoardClock, Collected};
+pub use adaptive::{collect_adaptive, AdaptiveOptions, BoardClock, Collected};
 pub use collect::{collect, collect_into};
 pub use feedback::{Feedback, Silent};
 pub use gyro_check::{check_turn, TurnCheck};
@@ -29,9 +29,8 @@ pub use simulated_hand::SimulatedHand;
 pub use turns::{fit_moves, turn_summaries, turns_of};
 pub use verify::{verify, verify_clear_of, verify_with, Verification, VERIFY_SECONDS};
 
-use crate::fit::{self, Fit, FitError, FitOptions, ModelChoice};
+use crate::fit::FitError;
 use crate::link::LinkError;
-use crate::session::Session;
 
 /// Why the procedure stopped; each names what to do.
 #[derive(Debug, thiserror::Error)]
@@ -99,35 +98,4 @@ pub fn targets(quick: bool) -> Vec<Orientation> {
     } else {
         [faces(), corners()].concat()
     }
-}
-
-/// The host's orientation-free fit of a session (the model `auto` picks for captures without known
-/// orientations), or an error naming what the captures lack.
-pub fn host_fit(session: &Session) -> Result<Fit, FitError> {
-    fit::fit(&session.dataset(), ModelChoice::Auto, &FitOptions::default())
-}
-
-/// The chip's model on the host (the same shared solver in f64): for a resumed `--quick` session,
-/// whose first captures the chip no longer holds.
-pub fn host_quick_fit(session: &Session) -> Result<Fit, FitError> {
-    fit::fit(&session.dataset(), session_model(session), &FitOptions::default())
-}
-
-/// The model a session's calibration is fitted with: for a `--quick` session the chip's own,
-/// `ortho9` (the six-position closed form for a quick session of the six faces alone, as taken
-/// before the chip fitted `ortho9`), the host's choice for a full one; the report fits the same.
-pub fn session_model(session: &Session) -> ModelChoice {
-    match session.quick {
-        true if session.captures.len() < shared::ortho9::MIN_READINGS => ModelChoice::Only(fit::Model::SixPosition),
-        true => ModelChoice::Only(fit::Model::Ortho9),
-        false if session.adaptive => ModelChoice::Only(fit::Model::Ortho9),
-        false => ModelChoice::Auto,
-    }
-}
-
-/// The captures a session's calibration was fitted to: an adaptive session's corrected for the
-/// offset drift fitted with them (to their mean temperature), any other's as taken.
-pub fn fitted_captures(session: &Session) -> Session {
-    let drift = session.adaptive.then(|| drift::fitted(session)).flatten();
-    drift::at_mean_temperature(session, drift.as_ref())
 }

@@ -9,6 +9,7 @@ use super::allan::AllanSection;
 use super::figure::{self, Figure};
 use super::temperature::TemperatureSection;
 use super::{Comparison, FitReport};
+use crate::data::Dataset;
 use crate::fit::gyro::TurnSummary;
 use crate::fit::{FitError, FitOptions, Parameter};
 use crate::procedure::Verification;
@@ -120,10 +121,9 @@ pub struct Figures {
 impl SessionReport {
     /// Fits the session as its calibration was fitted (every model compared) and gathers the report.
     pub fn new(session: &Session) -> Result<Self, FitError> {
-        let model = crate::procedure::session_model(session);
-        let fitted = crate::procedure::fitted_captures(session);
-        let fit_report = FitReport::new(&fitted.dataset(), model, &FitOptions::default())?;
-        let positions = positions(session, &fitted, &fit_report);
+        let fitted = session.fitted();
+        let fit_report = FitReport::new(&fitted.captures, fitted.model, &FitOptions::default())?;
+        let positions = positions(session, &fitted.captures, &fit_report);
         let fit = summary(&fit_report, &positions);
         let verification = session.verification.clone();
         let mut figures = Figures::new(&positions, &fit_report, verification.as_ref());
@@ -159,15 +159,15 @@ impl SessionReport {
 
 /// Each position's reading as taken and calibrated by the fit; `fitted` holds the readings the fit
 /// took (an adaptive session's with the drift taken out, as the chip's temperature model does).
-fn positions(session: &Session, fitted: &Session, report: &FitReport) -> Vec<PositionResult> {
+fn positions(session: &Session, fitted: &Dataset, report: &FitReport) -> Vec<PositionResult> {
     let (matrix, offset) = (&report.fit.matrix, &report.fit.offset);
     session
         .captures
         .iter()
-        .zip(&fitted.captures)
+        .zip(&fitted.rows)
         .map(|(taken, corrected)| {
             let raw_g = taken.stats.mean_g.map(f64::from);
-            let input_g = corrected.stats.mean_g.map(f64::from);
+            let input_g = corrected.reading;
             let calibrated_g = linalg::mul_vec(matrix, linalg::sub(input_g, *offset));
             PositionResult {
                 name: taken.name.clone(),

@@ -149,7 +149,7 @@ impl Service {
             return true;
         }
         self.let_time_pass(server);
-        server.poll();
+        block_on(server.poll());
         server.drain(|frame| self.outgoing.queue(frame));
         self.outgoing.write(port)
     }

@@ -276,7 +276,7 @@ fn run_to_end(
             }
         }
         device.bus_mut().advance_us(10_000);
-        device.poll();
+        block_on(device.poll());
     }
     None
 }

@@ -1,5 +1,5 @@
 //! The computations of `qemu_tests::run` on an emulated Cortex-M4F (QEMU netduinoplus2, whose
-//! STM32F405 has the F411's flash and RAM addresses, so the board's own memory.x serves) against the
+//! STM32F405 has the F411's flash and RAM addresses; tests/qemu/memory.x names them) against the
 //! same code on the host.
 //!
 //! Needs the on-target binary (`cargo build -p qemu-tests --release --target thumbv7em-none-eabihf`)

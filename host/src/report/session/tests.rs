@@ -6,7 +6,7 @@ use shared::AccelRange;
 
 use super::*;
 use crate::orientation::{corners, faces, Orientation};
-use crate::session::CaptureRecord;
+use crate::session::{CaptureRecord, SessionKind};
 
 fn verified(after_rms_mg: f64, noise_floor_mg: f64) -> Verification {
     Verification {
@@ -65,7 +65,7 @@ fn an_adaptive_session_s_positions_are_shown_with_the_drift_taken_out() {
     let targets = [faces(), corners()].concat();
     let slope = [1e-3, -1e-3, 1e-3];
     let captures = targets.iter().enumerate().map(|(i, t)| warming_capture(t, 21.5 + 0.07 * i as f64, slope));
-    let session = Session { captures: captures.collect(), adaptive: true, ..Session::default() };
+    let session = Session { captures: captures.collect(), kind: SessionKind::Adaptive, ..Session::default() };
     let report = SessionReport::new(&session).unwrap();
     for position in &report.positions {
         assert!(position.residual_after_mg.abs() < 0.01, "{}: {} mg", position.name, position.residual_after_mg);

@@ -1,0 +1,89 @@
+//! What kind of calibration a session is: how its positions were captured, and so how its
+//! calibration is fitted and reported. Sessions written before the kind existed said it with two
+//! booleans (`quick`, `adaptive`); they still read.
+
+use serde::{Deserialize, Serialize};
+
+/// How a session's positions were captured.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SessionKind {
+    /// `calibrate --quick`: ten positions of a fixed length, fitted on the chip (`ortho9`).
+    Quick,
+    /// Every position for a fixed length (`calibrate --seconds`, `accelcal capture`): the host's
+    /// choice of model.
+    #[default]
+    Fixed,
+    /// Each position captured until its mean is known, the offset's drift with the temperature
+    /// fitted with the calibration (`ortho9`).
+    Adaptive,
+}
+
+impl SessionKind {
+    /// The kind a session file written with the two booleans of before meant.
+    pub fn from_flags(quick: bool, adaptive: bool) -> Self {
+        match (quick, adaptive) {
+            (true, _) => SessionKind::Quick,
+            (false, true) => SessionKind::Adaptive,
+            (false, false) => SessionKind::Fixed,
+        }
+    }
+
+    /// The kind in words, as "this session was begun as ...".
+    pub fn described(self) -> &'static str {
+        match self {
+            SessionKind::Quick => "a quick calibration",
+            SessionKind::Fixed => "a full calibration of fixed-length captures",
+            SessionKind::Adaptive => "an adaptive calibration (each position captured until its mean is known)",
+        }
+    }
+}
+
+/// The kind as a session file holds it (flattened into the session): `"kind": "adaptive"`, or in
+/// files of before, the booleans.
+pub(super) mod stored {
+    use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+    use super::SessionKind;
+
+    #[derive(Serialize)]
+    struct Written {
+        kind: SessionKind,
+    }
+
+    #[derive(Deserialize)]
+    struct Read {
+        #[serde(default)]
+        kind: Option<SessionKind>,
+        #[serde(default)]
+        quick: bool,
+        #[serde(default)]
+        adaptive: bool,
+    }
+
+    pub fn serialize<S: Serializer>(kind: &SessionKind, serializer: S) -> Result<S::Ok, S::Error> {
+        Written { kind: *kind }.serialize(serializer)
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(deserializer: D) -> Result<SessionKind, D::Error> {
+        let read = Read::deserialize(deserializer)?;
+        Ok(read.kind.unwrap_or_else(|| SessionKind::from_flags(read.quick, read.adaptive)))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::SessionKind;
+    use crate::session::Session;
+
+    #[test]
+    fn old_session_files_with_the_booleans_read_as_their_kind() {
+        let kind = |json: &str| serde_json::from_str::<Session>(json).unwrap().kind;
+        assert_eq!(kind(r#"{"captures": [], "quick": true, "adaptive": false}"#), SessionKind::Quick);
+        assert_eq!(kind(r#"{"captures": [], "quick": false, "adaptive": true}"#), SessionKind::Adaptive);
+        assert_eq!(kind(r#"{"captures": []}"#), SessionKind::Fixed);
+        assert_eq!(kind(r#"{"captures": [], "kind": "adaptive"}"#), SessionKind::Adaptive);
+        let written = serde_json::to_string(&Session { kind: SessionKind::Quick, ..Session::default() }).unwrap();
+        assert!(written.contains(r#""kind":"quick""#) && !written.contains("adaptive"), "{written}");
+    }
+}
