@@ -3,7 +3,6 @@
 use embedded_hal_async::i2c::I2c;
 
 use super::access::read_registers;
-use super::family;
 use super::registers as reg;
 use super::{Error, Sensor};
 
@@ -49,6 +48,6 @@ impl Sensor {
     /// A sample's 14 bytes (or more) as a sample, its temperature in the MPU-6050's encoding.
     pub(super) fn decoded(&self, bytes: &[u8]) -> RawSample {
         let sample = RawSample::from_be_slice(bytes);
-        RawSample { temp: family::in_mpu6050_encoding(self.temperature(), sample.temp), ..sample }
+        RawSample { temp: self.temperature.apply(sample.temp), ..sample }
     }
 }

@@ -4,7 +4,6 @@
 
 use embedded_hal_async::i2c::I2c;
 use shared::part::{Behaviour, Family, Part, TemperatureFormula};
-use shared::protocol::LowPassFilter;
 
 use super::access::{read_register, write_register};
 use super::registers as reg;
@@ -27,10 +26,11 @@ pub(super) async fn family_of<I: I2c>(
     if part.claimed_family().is_none() && !LOOK_ALIKES.contains(&who_am_i) {
         return Ok(None);
     }
-    let behaviour = Behaviour {
-        accel_config2_kept: keeps_a_value(bus, address, reg::ACCEL_CONFIG2).await?,
-        offsets_at_0x77: keeps_a_value(bus, address, reg::XA_OFFSET_H_6500).await?,
-    };
+    let mut kept = [false; 2];
+    for (keeps, register) in kept.iter_mut().zip([reg::ACCEL_CONFIG2, reg::XA_OFFSET_H_6500]) {
+        *keeps = keeps_a_value(bus, address, register).await?;
+    }
+    let behaviour = Behaviour { accel_config2_kept: kept[0], offsets_at_0x77: kept[1] };
     // NOTE: mixed evidence (one register kept, the other not) trusts a known WHO_AM_I.
     Ok(behaviour.family().or(part.claimed_family()))
 }
@@ -46,27 +46,29 @@ async fn keeps_a_value<I: I2c>(bus: &mut I, address: u8, register: u8) -> Result
     Ok(read_back == probe)
 }
 
-/// ACCEL_CONFIG2 (0x1D) of the MPU-6500 family for a filter: A_DLPF_CFG, ACCEL_FCHOICE_B clear.
-///
-/// NOTE: RM-MPU-6500A 4.8: A_DLPF_CFG 0-6 give 460, 184, 92, 41, 20, 10, 5 Hz; the nearest to the
-/// MPU-6050's DLPF_CFG bandwidths (260, 184, 94, 44, 21, 10, 5 Hz) is the same index.
-pub(super) fn accel_config2(filter: LowPassFilter) -> u8 {
-    match filter {
-        LowPassFilter::Hz260 => 0,
-        LowPassFilter::Hz184 => 1,
-        LowPassFilter::Hz94 => 2,
-        LowPassFilter::Hz44 => 3,
-        LowPassFilter::Hz21 => 4,
-        LowPassFilter::Hz10 => 5,
-        LowPassFilter::Hz5 => 6,
-    }
+/// How a part's TEMP_OUT is re-expressed in the MPU-6050's encoding (raw / 340 + 36.53), so that
+/// everything after the driver reads one encoding whatever the part: raw x scale / 2^16 + offset,
+/// in integers per sample (worked out once, at the probe).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) struct TempEncoding {
+    scale_q16: i32,
+    offset_lsb: i32,
 }
 
-/// A TEMP_OUT reading of a part read with `formula`, re-expressed in the MPU-6050's encoding
-/// (raw / 340 + 36.53), so that everything after the driver reads one encoding whatever the part.
-pub(super) fn in_mpu6050_encoding(formula: TemperatureFormula, raw: i16) -> i16 {
-    if formula == TemperatureFormula::MPU6050 {
-        return raw;
+impl TempEncoding {
+    /// The re-encoding of a part read with `formula`.
+    pub(super) fn of(formula: TemperatureFormula) -> Self {
+        let target = TemperatureFormula::MPU6050;
+        let scale = target.lsb_per_c / formula.lsb_per_c * 65536.0;
+        let offset = (formula.offset_c - target.offset_c) * target.lsb_per_c;
+        // NOTE: scale is positive; `as` truncates towards zero, so the offset rounds by its sign.
+        let offset_lsb = if offset < 0.0 { offset - 0.5 } else { offset + 0.5 } as i32;
+        TempEncoding { scale_q16: (scale + 0.5) as i32, offset_lsb }
     }
-    TemperatureFormula::MPU6050.raw(formula.celsius(raw))
+
+    /// A raw reading in the MPU-6050's encoding (within half an LSB, 0.0015 degC).
+    pub(super) fn apply(self, raw: i16) -> i16 {
+        let value = ((i32::from(raw) * self.scale_q16 + 0x8000) >> 16) + self.offset_lsb;
+        value.clamp(i32::from(i16::MIN), i32::from(i16::MAX)) as i16
+    }
 }

@@ -5,7 +5,7 @@ use embedded_hal_async::i2c::I2c;
 use shared::protocol::{SensorConfig, SensorIdentity};
 
 use super::access::read_register;
-use super::family::family_of;
+use super::family::{family_of, TempEncoding};
 use super::registers as reg;
 use super::{Error, Sensor};
 
@@ -20,7 +20,8 @@ impl Sensor {
                 return Err(Error::UnknownChip { address, who_am_i });
             };
             let identity = SensorIdentity { address, who_am_i, family };
-            return Ok(Sensor { identity, config: SensorConfig::default() });
+            let temperature = TempEncoding::of(identity.identification().temperature());
+            return Ok(Sensor { identity, config: SensorConfig::default(), temperature });
         }
         Err(Error::Missing)
     }

@@ -14,7 +14,6 @@ mod fifo;
 mod identify;
 pub mod registers;
 
-use shared::part::TemperatureFormula;
 use shared::protocol::{DeviceError, SensorConfig, SensorIdentity};
 
 pub use data::RawSample;
@@ -52,6 +51,8 @@ impl<E> Error<E> {
 pub struct Sensor {
     identity: SensorIdentity,
     config: SensorConfig,
+    /// How its TEMP_OUT becomes the MPU-6050's encoding, which the driver hands samples on in.
+    temperature: family::TempEncoding,
 }
 
 impl Sensor {
@@ -63,11 +64,6 @@ impl Sensor {
     /// The configuration last applied.
     pub fn config(&self) -> SensorConfig {
         self.config
-    }
-
-    /// How this part's TEMP_OUT reads (the driver hands samples on in the MPU-6050's encoding).
-    fn temperature(&self) -> TemperatureFormula {
-        self.identity.identification().temperature()
     }
 }
 
