@@ -43,7 +43,7 @@ fn an_interrupted_learning_run_keeps_its_bins_and_they_still_fit() {
     controls.send(SimCommand::Ambient { target_c: 35.0, c_per_s: 1.0 / 60.0 }).unwrap();
     let mut sim = Board { controls, captures_left: 60 };
     let mut bins = ThermalBins::default();
-    let result = learn(&mut connection, &mut sim, &options(30.0), &mut bins, &mut |_| {});
+    let result = learn(&mut connection, &mut sim, &options(30.0), &mut bins, &mut |_, _| Ok(()));
     assert!(result.is_err(), "the sensor was disconnected mid-run: {result:?}");
     assert!(bins.len() >= 20, "the 60 captures before the interruption are kept: {} bins", bins.len());
     assert!(bins.span_c() >= 10.0, "span {}", bins.span_c());
@@ -61,7 +61,7 @@ fn a_board_whose_temperature_stalls_is_refused_with_the_span_it_reached() {
     controls.send(SimCommand::Elapse(3000.0)).unwrap(); // warmed up and settled: nothing moves
     let mut sim = Board { controls, captures_left: usize::MAX };
     let mut bins = ThermalBins::default();
-    let end = learn(&mut connection, &mut sim, &options(30.0), &mut bins, &mut |_| {}).unwrap();
+    let end = learn(&mut connection, &mut sim, &options(30.0), &mut bins, &mut |_, _| Ok(())).unwrap();
     assert_eq!(end, LearnEnd::Stalled);
     let error = bins.check_span().unwrap_err().to_string();
     assert!(error.contains("at least 10 degC"), "{error}");

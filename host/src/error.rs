@@ -42,12 +42,22 @@ pub enum Error {
     BadGravity { g: f64 },
     #[error("{source}; {} so far {} kept in {}: continue with `accelcal calibrate {device} --resume {}`", count(*.captures, "capture"), if *.captures == 1 { "is" } else { "are" }, .path.display(), .path.display())]
     Stopped { source: Box<ProcedureError>, captures: usize, path: PathBuf, device: String },
+    #[error("{source}; the calibration is already uploaded and saved on the board: check it with `accelcal verify {device}`")]
+    AfterUpload { source: Box<ProcedureError>, device: String },
+    #[error(
+        "the calibration uploaded and saved misses --target-mg by more than its noise ({line}); it stays on the board"
+    )]
+    TargetMissed { line: String },
     #[error("--json cannot ask whether to upload the calibration: add --yes to upload and save it, or leave out --json to be asked")]
     JsonCannotAsk,
     #[error("which device? give --port PATH (see `accelcal ports`) or --sim")]
     WhichDevice,
     #[error("the device has no calibration to download: calibrate or upload one first")]
     NothingToDownload,
+    #[error("{source}; the bins learned so far (a span of {span_c:.1} degC) are kept in {}: go on from them with `accelcal thermal --port {device} --bins {}`", .path.display(), .path.display())]
+    ThermalStopped { source: Box<Error>, span_c: f64, path: PathBuf, device: String },
+    #[error(transparent)]
+    KeptBins(#[from] crate::procedure::thermal::kept::KeptBinsError),
     #[error(transparent)]
     Export(#[from] crate::export::ExportError),
     #[error(transparent)]
@@ -75,7 +85,18 @@ impl From<crate::session::OutcomeError> for Error {
     }
 }
 
+/// The exit status of a calibration that was uploaded and saved but missed its target (documented).
+pub const TARGET_MISSED_EXIT: u8 = 2;
+
 impl Error {
+    /// The process's exit status for this error: [`TARGET_MISSED_EXIT`] for a missed target, else 1.
+    pub fn exit_code(&self) -> u8 {
+        match self {
+            Error::TargetMissed { .. } => TARGET_MISSED_EXIT,
+            _ => 1,
+        }
+    }
+
     /// A data file refused: a file that cannot be read is named once (the reader's message already
     /// holds the path), a bad one with the path before the line and cause.
     pub fn data_file(path: &std::path::Path, source: DataError) -> Self {

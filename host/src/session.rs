@@ -6,18 +6,19 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 use shared::protocol::{CaptureStats, DeviceInfo, FirmwareVersion, SensorConfig};
-use shared::Position;
+use shared::{Calibration, Position};
 
 use crate::data::{Dataset, Row};
 use crate::fit::gyro::TurnSummary;
 use crate::orientation::Orientation;
-use crate::procedure::Verification;
 
 mod kind;
 mod outcome;
+mod verification;
 
 pub use kind::SessionKind;
 pub use outcome::{Fitted, Outcome, OutcomeError};
+pub use verification::Verification;
 
 /// Why a session file could not be written or read.
 #[derive(Debug, thiserror::Error)]
@@ -28,6 +29,8 @@ pub enum SessionError {
     Read { path: PathBuf, source: std::io::Error },
     #[error("{path} is not a session file ({reason}); give the .json file written by calibrate or capture")]
     NotASession { path: PathBuf, reason: String },
+    #[error("{path} already holds a session; continue it with `--resume {path}`, or give another --session name")]
+    Exists { path: PathBuf },
     #[error("{path} records no board; only a session written by calibrate can be resumed")]
     NoBoard { path: PathBuf },
     #[error("{path} was captured on another board (serial {session}), this one is {board}: connect that board, or start a new calibration")]
@@ -127,6 +130,10 @@ pub struct Session {
     /// The check of the calibration at fresh orientations, when one was made.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub verification: Option<Verification>,
+    /// The calibration record uploaded to the board (the chip's f32 values, the gyro's G included),
+    /// once `calibrate` uploaded it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub uploaded: Option<Calibration>,
     /// The gyro's turns between the positions, when `calibrate` recorded them.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub gyro_turns: Option<Vec<TurnSummary>>,
@@ -153,8 +160,8 @@ impl Session {
     pub fn save(&self, stem: &Path) -> Result<(), SessionError> {
         // NOTE: serialising plain numbers, strings and options cannot fail.
         let json = serde_json::to_string_pretty(self).unwrap_or_default();
-        write_atomically(&stem.with_extension("json"), json.as_bytes())?;
-        write_atomically(&stem.with_extension("csv"), self.csv().as_bytes())
+        write_atomically(&stem_file(stem, "json"), json.as_bytes())?;
+        write_atomically(&stem_file(stem, "csv"), self.csv().as_bytes())
     }
 
     /// Reads a session written by [`Session::save`] (the JSON file).
@@ -165,12 +172,29 @@ impl Session {
 
     /// The session at `PATH.json` when it exists, else an empty one.
     pub fn load_or_new(stem: &Path) -> Result<Self, SessionError> {
-        let path = stem.with_extension("json");
+        let path = stem_file(stem, "json");
         if path.exists() {
             Session::load(&path)
         } else {
             Ok(Session::default())
         }
+    }
+}
+
+/// A file of the session kept at `stem`: the stem with `.extension` added, so that a name's own
+/// dots are kept (`board.1` is kept as `board.1.json`, not `board.json`).
+pub fn stem_file(stem: &Path, extension: &str) -> PathBuf {
+    let mut name = stem.as_os_str().to_owned();
+    name.push(".");
+    name.push(extension);
+    PathBuf::from(name)
+}
+
+/// The stem of a session given by its JSON file (`board.1.json`) or by its stem (`board.1`).
+pub fn stem_of(path: &Path) -> PathBuf {
+    match path.extension() {
+        Some(extension) if extension == "json" => path.with_extension(""),
+        _ => path.to_owned(),
     }
 }
 
@@ -225,14 +249,23 @@ mod tests {
         };
         let stem = std::env::temp_dir().join(format!("accelcal-session-{}", std::process::id()));
         session.save(&stem).unwrap();
-        assert_eq!(Session::load(&stem.with_extension("json")).unwrap(), session);
-        let data = Dataset::from_path(&stem.with_extension("csv"), 1.0).unwrap();
+        assert_eq!(Session::load(&stem_file(&stem, "json")).unwrap(), session);
+        let data = Dataset::from_path(&stem_file(&stem, "csv"), 1.0).unwrap();
         assert_eq!(data.rows.len(), 2);
         assert_eq!(data.rows[1].reading, [0.01f32 as f64, -0.02f32 as f64, -1.0]);
         assert_eq!(data.rows[0].count, Some(1000));
         assert_eq!(data.rows[0].std, Some([0.003f32 as f64; 3]));
         assert_eq!(data.rows[0].gyro_mean_dps, Some([0.5, -0.25, 0.125]));
         assert_eq!(data, session.dataset());
+    }
+
+    #[test]
+    fn a_session_name_keeps_its_dots_and_its_json_file_gives_the_same_stem() {
+        let (one, two) = (Path::new("out/board.1"), Path::new("out/board.2"));
+        assert_eq!(stem_file(one, "json"), Path::new("out/board.1.json"));
+        assert_ne!(stem_file(one, "csv"), stem_file(two, "csv"));
+        assert_eq!(stem_of(Path::new("out/board.1.json")), one);
+        assert_eq!(stem_of(one), one);
     }
 
     #[test]

@@ -171,3 +171,22 @@ fn a_session_in_a_missing_directory_is_refused_before_the_first_capture() {
     assert!(stderr.contains("cannot write /nonexistent-dir/s.json"), "{stderr}");
     assert!(!stderr.contains("found; averaging"), "{stderr}");
 }
+
+#[test]
+fn ctrl_c_during_the_verification_says_the_calibration_is_already_uploaded_and_saved() {
+    let mut sim = board_on_the_desk("16");
+    let mut run = Run::start(&sim.path.clone(), &["--yes"]);
+    assert!(run.follow(&mut sim, "uploaded and saved; now checking").is_some(), "{:?}", run.seen);
+    std::thread::sleep(Duration::from_millis(300));
+    run.interrupt();
+    let (status, _, stderr) = run.finish(&mut sim);
+    assert!(!status.success(), "exit 0 after Ctrl-C: {stderr}");
+    let last = stderr.lines().last().unwrap();
+    assert!(
+        last.contains("interrupted (Ctrl-C)") && last.contains("already uploaded and saved on the board"),
+        "{last}"
+    );
+    assert!(last.contains(&format!("accelcal verify --port {}", sim.path)), "{last}");
+    let (active, stored) = calibrations(&sim);
+    assert_eq!(active, stored, "what is active is what is saved");
+}

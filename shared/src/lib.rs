@@ -10,6 +10,7 @@ pub mod orientation;
 pub mod ortho9;
 pub mod part;
 pub mod protocol;
+pub mod real;
 pub mod selftest;
 pub mod six_position;
 

@@ -5,13 +5,13 @@ use std::path::PathBuf;
 use clap::{Args, Parser, Subcommand};
 use shared::protocol::{SensorConfig, DEFAULT_CAPTURE_SECONDS, MAX_CAPTURE_SECONDS, MIN_CAPTURE_SECONDS};
 
+pub use super::device::Device;
 pub use super::export::ExportArgs;
 pub use super::record::RecordArgs;
 pub use super::report::ReportArgs;
 use crate::data::RowList;
 use crate::fit::ModelChoice;
-use crate::limits::FACE_TOLERANCE_DEG;
-use crate::sim::{FaultyAxis, SimPartChoice, SimSensor};
+use crate::limits::{FACE_TOLERANCE_DEG, MIN_THERMAL_SPAN_C};
 
 /// Calibrates the accelerometer of an MPU-6050.
 #[derive(Parser)]
@@ -20,30 +20,6 @@ pub struct Cli {
     /// What to do.
     #[command(subcommand)]
     pub command: Command,
-}
-
-/// Which device to talk to.
-#[derive(Args, Clone)]
-pub struct Device {
-    /// Serial port of the board (see `accelcal ports`), or of `accelcal sim --pty`; or the board's
-    /// serial number as `accelcal ports` shows it.
-    #[arg(long, conflicts_with = "sim")]
-    pub port: Option<String>,
-    /// A simulated board in this process (its flash lasts as long as the command).
-    #[arg(long)]
-    pub sim: bool,
-    /// With --sim: seed of the simulated sensor's noise and of the hand's placement.
-    #[arg(long, default_value_t = 1)]
-    pub seed: u64,
-    /// With --sim: the simulated sensor, realistic (warming and drifting) or settled (one temperature).
-    #[arg(long, value_enum, default_value_t = SimSensor::Realistic)]
-    pub sim_sensor: SimSensor,
-    /// With --sim: the simulated part (its register map, temperature formula and self-test).
-    #[arg(long, value_enum, default_value_t = SimPartChoice::Mpu6050)]
-    pub sim_part: SimPartChoice,
-    /// With --sim: this axis' self-test response is 20 % off its factory trim.
-    #[arg(long, value_enum)]
-    pub sim_faulty_axis: Option<FaultyAxis>,
 }
 
 /// `accelcal fit`.
@@ -112,9 +88,14 @@ pub struct CalibrateArgs {
 pub struct ThermalArgs {
     #[command(flatten)]
     pub device: Device,
-    /// Stop learning once the temperature has spanned this many degC (at least 10 are needed).
-    #[arg(long, default_value_t = 34.0)]
+    /// Stop learning once the temperature has spanned this many degC (10-100: a temperature model
+    /// needs at least 10).
+    #[arg(long, default_value_t = 34.0, value_parser = target_span_c)]
     pub target_span_c: f64,
+    /// With --port: keep the learned bins in this JSON file after every capture, and go on from it
+    /// when it exists (default: accelcal-thermal-TIME.json in the current directory).
+    #[arg(long, value_name = "PATH")]
+    pub bins: Option<PathBuf>,
     /// With --sim: fresh orientations verified at each temperature (corners of a turned cube, 1-8).
     #[arg(long, default_value_t = 8, value_parser = clap::value_parser!(u8).range(1..=8))]
     pub verify: u8,
@@ -158,7 +139,8 @@ pub struct StreamArgs {
 pub struct NoiseArgs {
     /// The recording: .npy from `accelcal record`, or CSV (ax_g ... gz_dps) from `accelcal stream`.
     pub file: PathBuf,
-    /// Samples per second of a CSV file (default 1000); a .npy recording names its own.
+    /// Samples per second of a CSV file without a time_s column (default 1000); a .npy recording
+    /// and a `stream` CSV (its time_s) name their own, which a given rate must agree with.
     #[arg(long)]
     pub rate: Option<f64>,
     /// Print one JSON object instead of the table.
@@ -260,6 +242,10 @@ const MAX_VERIFY_POSITIONS: i64 = 20;
 // NOTE: beyond 10 degrees a face is no longer reliably within the face tolerance's reach after
 // the sensor's own offset tilts it, and the run would wait for a face it never reaches.
 const MAX_PLACEMENT_DEG: f64 = 10.0;
+/// Largest thermal learning target, in degC.
+// NOTE: the MPU-6050 works from -40 to +85 degC (Product Specification 6.1); no board warms from
+// one end to the other while it is being learned, and a larger target could never be reached.
+const MAX_THERMAL_SPAN_C: f64 = 100.0;
 
 /// The capture lengths the device accepts, refused when parsed.
 fn seconds() -> clap::builder::RangedI64ValueParser<u8> {
@@ -273,6 +259,16 @@ fn placement_deg(text: &str) -> Result<f64, String> {
         Ok(deg)
     } else {
         Err(format!("{deg} is not in 0-{MAX_PLACEMENT_DEG} degrees"))
+    }
+}
+
+/// A thermal learning target in [`MIN_THERMAL_SPAN_C`]-[`MAX_THERMAL_SPAN_C`] degC.
+fn target_span_c(text: &str) -> Result<f64, String> {
+    let span: f64 = text.parse().map_err(|_| format!("{text:?} is not a number of degC"))?;
+    if (MIN_THERMAL_SPAN_C..=MAX_THERMAL_SPAN_C).contains(&span) {
+        Ok(span)
+    } else {
+        Err(format!("{span} is not in {MIN_THERMAL_SPAN_C}-{MAX_THERMAL_SPAN_C} degC (a temperature model needs at least {MIN_THERMAL_SPAN_C})"))
     }
 }
 

@@ -19,7 +19,7 @@ use crate::link::{Client, LinkError, Port};
 use crate::procedure::{self, CollectOptions, Feedback, Hand, Moves, ProcedureError, TurnCheck, Verification};
 use crate::report::gyro::GyroOutcome;
 use crate::report::{self, CalibrateReport};
-use crate::session::{unix_time_s, BoardRecord, Session, SessionError, SessionKind};
+use crate::session::{stem_file, stem_of, unix_time_s, BoardRecord, Session, SessionError, SessionKind};
 
 /// The session of this run and where it is kept.
 pub(super) struct Kept {
@@ -83,7 +83,7 @@ fn collect(
         (Err(source), Some(path)) if !kept.session.captures.is_empty() => Err(Error::Stopped {
             source: Box::new(source),
             captures: kept.session.captures.len(),
-            path: path.with_extension("json"),
+            path: stem_file(path, "json"),
             device: device_flags(args),
         }),
         (Err(source), _) => Err(source.into()),
@@ -122,17 +122,26 @@ fn finish(
     let (rate_hz, clock) = (opened.connection.info.config.sample_rate_hz, opened.clock());
     let client = &mut opened.connection.client;
     let calibrated: Vec<[f64; 3]> = fitted.session.captures.iter().map(|c| c.stats.mean_g.map(f64::from)).collect();
+    let on_board = |source| Error::AfterUpload { source: Box::new(source), device: device_flags(args) };
     let verification =
-        procedure::verify_with(client, hand.as_mut(), positions, wait_limit, feedback, &calibrated, length)?;
+        procedure::verify_with(client, hand.as_mut(), positions, wait_limit, feedback, &calibrated, length)
+            .map_err(on_board)?;
     let board_seconds = first_capture_s.map(|first| clock() - first);
-    let check = super::gyro::check(client, hand.as_mut(), rate_hz, gyro, feedback)?;
+    let check = super::gyro::check(client, hand.as_mut(), rate_hz, gyro, feedback).map_err(on_board)?;
     if let Some(stem) = kept_at {
-        keep_with_report(&fitted.session, &verification, stem, feedback)?;
+        let uploaded = Some(fitted.chosen);
+        let session = Session { verification: Some(verification.clone()), uploaded, ..fitted.session.clone() };
+        keep_with_report(&session, stem, feedback)?;
     }
     let mut report = report_of(opened, (fitted, gyro), verification, check);
     report.board_seconds = board_seconds;
+    let target = report.verification.against((kind == SessionKind::Adaptive).then_some(args.length.target_mg));
+    report.target = Some(target.clone());
     print_report(&report, args.json);
-    Ok(())
+    match target.missed {
+        true => Err(Error::TargetMissed { line: target.line }),
+        false => Ok(()),
+    }
 }
 
 /// The run's report: the calibration chosen, the fits beside it, the verification and the gyro's
@@ -156,17 +165,11 @@ fn report_of(
 }
 
 /// Saves the session again with its verification, writes its report beside it, and says where.
-fn keep_with_report(
-    session: &Session,
-    verification: &Verification,
-    stem: &Path,
-    feedback: &mut dyn Feedback,
-) -> Result<(), Error> {
-    let session = Session { verification: Some(verification.clone()), ..session.clone() };
+fn keep_with_report(session: &Session, stem: &Path, feedback: &mut dyn Feedback) -> Result<(), Error> {
     session.save(stem)?;
-    let json = stem.with_extension("json");
+    let json = stem_file(stem, "json");
     let page = super::report::beside(&json);
-    super::report::write_page(&super::report::build(&session, &json)?, &page)?;
+    super::report::write_page(&super::report::build(session, &json)?, &page)?;
     feedback.say(&format!("session kept in {}; report written to {}", json.display(), page.display()));
     Ok(())
 }
@@ -194,21 +197,21 @@ fn start_session(args: &CalibrateArgs, info: &DeviceInfo, feedback: &mut dyn Fee
         }
         None => Kept {
             session: Session { board: Some(board), kind: adaptive::begun_as(args), ..Session::default() },
-            path: args.session.clone().or_else(|| default_session_path(args)),
+            path: new_session_path(args)?,
             resumed: false,
         },
     };
     if let Some(path) = &kept.path {
         kept.session.save(path)?;
-        feedback.say(&format!("the captures are kept in {} as they are taken", path.with_extension("json").display()));
+        feedback.say(&format!("the captures are kept in {} as they are taken", stem_file(path, "json").display()));
     }
     Ok(kept)
 }
 
 /// A session from an earlier run, on this board at this setting.
 fn resumed(path: &Path, board: &BoardRecord, feedback: &mut dyn Feedback) -> Result<Kept, Error> {
-    let stem = path.with_extension("");
-    let json = stem.with_extension("json");
+    let stem = stem_of(path);
+    let json = stem_file(&stem, "json");
     let session = Session::load(&json)?;
     let recorded = session.board.as_ref().ok_or(crate::session::SessionError::NoBoard { path: json.clone() })?;
     recorded.check_same(board, &json)?;
@@ -219,10 +222,24 @@ fn resumed(path: &Path, board: &BoardRecord, feedback: &mut dyn Feedback) -> Res
     Ok(Kept { session, path: Some(stem), resumed: true })
 }
 
-/// Where a calibration on a real board keeps its session when `--session` is not given: the
-/// current directory, named by the time (a simulated board in this process is gone after the run).
-fn default_session_path(args: &CalibrateArgs) -> Option<PathBuf> {
-    args.device.port.as_ref().map(|_| PathBuf::from(format!("accelcal-session-{}", unix_time_s() as u64)))
+/// Where a new session is kept: `--session` (a folder gets a session named by the time inside it),
+/// or with a real board the current directory; refused when a session is already kept there.
+fn new_session_path(args: &CalibrateArgs) -> Result<Option<PathBuf>, SessionError> {
+    let named_by_time = || PathBuf::from(format!("accelcal-session-{}", unix_time_s() as u64));
+    let path = match &args.session {
+        // NOTE: `DIR/` names a folder even before it exists; the session goes inside it.
+        Some(given) if given.is_dir() || given.as_os_str().to_string_lossy().ends_with(std::path::MAIN_SEPARATOR) => {
+            std::fs::create_dir_all(given).map_err(|source| SessionError::Write { path: given.clone(), source })?;
+            Some(given.join(named_by_time()))
+        }
+        Some(given) => Some(stem_of(given)),
+        // NOTE: a simulated board in this process is gone after the run: nothing to keep.
+        None => args.device.port.as_ref().map(|_| named_by_time()),
+    };
+    match path {
+        Some(stem) if stem_file(&stem, "json").exists() => Err(SessionError::Exists { path: stem_file(&stem, "json") }),
+        path => Ok(path),
+    }
 }
 
 /// The device flags that reach the same board again, for the resume hint.

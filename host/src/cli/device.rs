@@ -2,13 +2,38 @@
 //! the tool's own hand on it).
 
 use std::sync::Arc;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
-use super::args::Device;
+use clap::Args;
+
 use crate::error::Error;
 use crate::link::{open_port, resolve_port, serial_ports, Connection};
 use crate::procedure::{BoardClock, Hand, PersonHand, SimulatedHand};
-use crate::sim::SimBoard;
+use crate::sim::{FaultyAxis, SimBoard, SimPartChoice, SimSensor};
+
+/// Which device to talk to.
+#[derive(Args, Clone)]
+pub struct Device {
+    /// Serial port of the board (see `accelcal ports`), or of `accelcal sim --pty`; or the board's
+    /// serial number as `accelcal ports` shows it.
+    #[arg(long, conflicts_with = "sim")]
+    pub port: Option<String>,
+    /// A simulated board in this process (its flash lasts as long as the command).
+    #[arg(long)]
+    pub sim: bool,
+    /// With --sim: seed of the simulated sensor's noise and of the hand's placement.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// With --sim: the simulated sensor, realistic (warming and drifting) or settled (one temperature).
+    #[arg(long, value_enum, default_value_t = SimSensor::Realistic)]
+    pub sim_sensor: SimSensor,
+    /// With --sim: the simulated part (its register map, temperature formula and self-test).
+    #[arg(long, value_enum, default_value_t = SimPartChoice::Mpu6050)]
+    pub sim_part: SimPartChoice,
+    /// With --sim: this axis' self-test response is 20 % off its factory trim.
+    #[arg(long, value_enum)]
+    pub sim_faulty_axis: Option<FaultyAxis>,
+}
 
 /// How long the tool waits for the simulated board (which it turns itself) to settle.
 const SIM_WAIT_LIMIT: Duration = Duration::from_secs(60);
@@ -19,17 +44,22 @@ pub(super) struct Opened {
     pub connection: Connection,
     /// The in-process simulated board, for `--sim`.
     pub sim: Option<SimBoard>,
+    /// When the device was opened: a real board's clock starts here, once per run.
+    opened_at: Instant,
 }
 
 impl Device {
     /// Opens the device and says hello.
     pub(super) fn open(&self) -> Result<Opened, Error> {
         match (&self.port, self.sim) {
-            (Some(name), _) => Ok(Opened { connection: open_port(&resolve_port(name, serial_ports)?)?, sim: None }),
+            (Some(name), _) => {
+                let connection = open_port(&resolve_port(name, serial_ports)?)?;
+                Ok(Opened { connection, sim: None, opened_at: Instant::now() })
+            }
             (None, true) => {
                 let part = self.sim_part.part(self.sim_faulty_axis);
                 let (connection, board) = SimBoard::in_process_part((self.seed, self.sim_sensor, part))?;
-                Ok(Opened { connection, sim: Some(board) })
+                Ok(Opened { connection, sim: Some(board), opened_at: Instant::now() })
             }
             (None, false) => Err(Error::WhichDevice),
         }
@@ -37,12 +67,13 @@ impl Device {
 }
 
 impl Opened {
-    /// The board's clock: the simulated board's own time, or the wall clock from now for a real one.
+    /// The board's clock: the simulated board's own time, or for a real one the wall clock since
+    /// the device was opened (the same clock however often it is asked for).
     pub(super) fn clock(&self) -> BoardClock {
         match &self.sim {
             Some(board) => Arc::new(board.clock()),
             None => {
-                let start = std::time::Instant::now();
+                let start = self.opened_at;
                 Arc::new(move || start.elapsed().as_secs_f64())
             }
         }
@@ -59,5 +90,22 @@ impl Opened {
             }
             None => (Box::new(PersonHand), None),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sim::SimSensor;
+
+    #[test]
+    fn a_real_boards_clock_counts_from_when_it_was_opened_however_often_it_is_asked_for() {
+        let (connection, _board) = SimBoard::in_process(1, SimSensor::Settled).unwrap();
+        let opened_at = Instant::now() - Duration::from_secs(5);
+        // NOTE: a board behind a port: no simulated clock, the wall clock since it was opened.
+        let opened = Opened { connection, sim: None, opened_at };
+        let (first, second) = (opened.clock(), opened.clock());
+        assert!(first() >= 5.0 && second() >= 5.0, "{} s and {} s since it was opened 5 s ago", first(), second());
+        assert!((second() - first()).abs() < 0.5);
     }
 }

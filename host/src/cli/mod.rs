@@ -18,6 +18,7 @@ mod record;
 mod report;
 mod terminal;
 mod thermal;
+mod thermal_person;
 mod transfer;
 
 use std::process::ExitCode;
@@ -29,13 +30,14 @@ use args::{Cli, Command};
 
 pub use terminal::Terminal;
 
-/// Runs `accelcal` with the process's arguments: 0 on success, else one line naming the cause.
+/// Runs `accelcal` with the process's arguments: 0 on success, else one line naming the cause and
+/// 1 (2: a calibration uploaded and saved that missed `--target-mg` by more than its noise).
 pub fn main() -> ExitCode {
     match run(Cli::parse()) {
         Ok(()) => ExitCode::SUCCESS,
         Err(error) => {
             eprintln!("accelcal: {error}");
-            ExitCode::FAILURE
+            ExitCode::from(error.exit_code())
         }
     }
 }

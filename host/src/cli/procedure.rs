@@ -8,22 +8,29 @@ use crate::error::Error;
 use crate::link::LinkError;
 use crate::orientation::Orientation;
 use crate::procedure::{self, Feedback};
-use crate::session::{CaptureRecord, Session};
+use crate::session::{stem_of, CaptureRecord, Session};
 
 /// How far off, in degrees, the tool's hand places the simulated board for `verify --sim`.
 const VERIFY_PLACEMENT_DEG: f64 = 3.0;
 
 /// `accelcal capture`: one position, appended to a session file.
 pub(super) fn capture(args: &CaptureArgs) -> Result<(), Error> {
-    let mut session = Session::load_or_new(&args.session)?;
+    let stem = stem_of(&args.session);
+    let mut session = Session::load_or_new(&stem)?;
     let mut opened = args.device.open()?;
     opened.connection.info.sensor.map_err(LinkError::from)?;
     let mut feedback = Terminal::new(true);
+    let target = Orientation::named(&args.name);
+    // NOTE: the simulated board rests +Z up until turned: a capture named as an orientation is
+    // taken there, so that what is stored is what its name says.
+    if let (Some(target), Some(_)) = (&target, &opened.sim) {
+        opened.hand(0.0, args.device.seed).0.present(target, &mut feedback)?;
+    }
     let result = opened.connection.client.capture(args.seconds, |p| feedback.progress(p.samples, p.total_samples));
     feedback.progress_done();
     let (stats, face) = result?;
-    session.captures.push(CaptureRecord::now(&args.name, Orientation::named(&args.name), face, stats));
-    session.save(&args.session)?;
+    session.captures.push(CaptureRecord::now(&args.name, target, face, stats));
+    session.save(&stem)?;
     let [x, y, z] = stats.mean_g;
     println!(
         "captured {}: mean {x:+.5} {y:+.5} {z:+.5} g over {} samples; {} captures in the session",
@@ -42,8 +49,11 @@ pub(super) fn verify(device: &Device, positions: usize) -> Result<(), Error> {
     let client = &mut opened.connection.client;
     let v = procedure::verify(client, hand.as_mut(), positions, wait_limit, &mut feedback)?;
     println!(
-        "| |a| - 1 g | rms {:.2} mg raw, {:.3} mg calibrated (worst {:.3} mg); chip and host agree within {:.2} mg",
-        v.before_rms_mg, v.after_rms_mg, v.after_max_mg, v.on_chip_difference_mg
+        "| |a| - 1 g | rms {:.2} mg raw, {:.3} mg calibrated (worst {:.3} mg); {}",
+        v.before_rms_mg,
+        v.after_rms_mg,
+        v.after_max_mg,
+        v.chip_agreement()
     );
     Ok(())
 }

@@ -5,12 +5,10 @@
 
 use std::io::IsTerminal;
 use std::sync::mpsc::Sender;
-use std::time::Duration;
 
 use rand_xoshiro::rand_core::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
 use shared::linalg::{self, Vec3};
-use shared::protocol::CalibrationSlot;
 use shared::Calibration;
 
 use super::args::ThermalArgs;
@@ -47,7 +45,7 @@ pub(super) fn thermal(args: &ThermalArgs) -> Result<(), Error> {
     opened.connection.info.sensor.map_err(LinkError::from)?;
     let report = match opened.sim.take() {
         Some(board) => sim_story(&mut opened.connection, &board, args)?,
-        None => person_run(&mut opened.connection, args)?,
+        None => super::thermal_person::person_run(&mut opened.connection, args)?,
     };
     if args.json {
         println!("{}", report.json());
@@ -86,20 +84,6 @@ impl ThermalBoard for SimThermal<'_> {
     }
 }
 
-/// A person's board: it rests where it is while real time passes.
-struct RestingBoard;
-
-impl ThermalBoard for RestingBoard {
-    fn place(&mut self, _force_g: Vec3<f64>) -> Result<(), ProcedureError> {
-        Ok(())
-    }
-
-    fn rest(&mut self, seconds: f64) -> Result<(), ProcedureError> {
-        std::thread::sleep(Duration::from_secs_f64(seconds));
-        Ok(())
-    }
-}
-
 fn sim_story(connection: &mut Connection, board: &SimBoard, args: &ThermalArgs) -> Result<ThermalReport, Error> {
     let mut sim = SimThermal { board, controls: board.controls() };
     sim.settle_at(STATIC_TEMP_C)?;
@@ -108,12 +92,12 @@ fn sim_story(connection: &mut Connection, board: &SimBoard, args: &ThermalArgs) 
     sim.send(SimCommand::Ambient { target_c: LEARN_AMBIENT_TO_C, c_per_s: LEARN_RAMP_C_PER_S })?;
     let face_forces: Vec<Vec3<f64>> = faces().iter().map(|f| f.up).collect();
     let options = learn_options(face_forces, args.target_span_c, 20.0);
-    let heating = learn_bins(connection, &mut sim, &options, args.json)?;
+    let heating = learn_bins(connection, &mut sim, &options, args.json, ThermalBins::default(), &mut |_| Ok(()))?;
     // Then the way back down, learned apart, for the heating-versus-cooling comparison.
     let cooling = match heating.complete {
         true => {
             sim.send(SimCommand::Ambient { target_c: LEARN_AMBIENT_BACK_TO_C, c_per_s: LEARN_RAMP_C_PER_S })?;
-            Some(learn_bins(connection, &mut sim, &options, args.json)?)
+            Some(learn_bins(connection, &mut sim, &options, args.json, ThermalBins::default(), &mut |_| Ok(()))?)
         }
         false => None,
     };
@@ -138,12 +122,12 @@ fn six_faces_on_chip(connection: &mut Connection, sim: &mut SimThermal) -> Resul
     Ok(connection.client.fit_six_position()?)
 }
 
-fn learn_options(faces: Vec<Vec3<f64>>, target_span_c: f64, rest_seconds: f64) -> LearnOptions {
+pub(super) fn learn_options(faces: Vec<Vec3<f64>>, target_span_c: f64, rest_seconds: f64) -> LearnOptions {
     LearnOptions { faces, capture_seconds: CAPTURE_S, rest_seconds, target_span_c, max_rounds: 10_000 }
 }
 
 /// What one learning run gathered.
-struct Learned {
+pub(super) struct Learned {
     bins: ThermalBins,
     /// Why it stopped.
     stopped: String,
@@ -151,21 +135,24 @@ struct Learned {
     complete: bool,
 }
 
-/// Learns with the live line on a terminal; an interrupted run keeps its bins when they span enough.
-fn learn_bins(
+/// Learns into `bins` with the live line on a terminal, giving the bins to `keep` after every
+/// capture; an interrupted run keeps its bins when they span enough.
+pub(super) fn learn_bins(
     connection: &mut Connection,
     board: &mut dyn ThermalBoard,
     options: &LearnOptions,
     quiet: bool,
+    mut bins: ThermalBins,
+    keep: &mut dyn FnMut(&ThermalBins) -> Result<(), ProcedureError>,
 ) -> Result<Learned, Error> {
-    let mut bins = ThermalBins::default();
     // NOTE: a live line rewrites itself on a terminal; in a log it would be one endless line.
     let quiet = quiet || !std::io::stderr().is_terminal();
-    let mut show = |s: LearnStatus| {
+    let mut show = |s: LearnStatus, learned: &ThermalBins| {
         if !quiet {
             let (temp, span, bins, chip) = (s.temp_c, s.span_c, s.bins, s.chip_bins);
             eprint!("\rtemperature {temp:5.1} degC, span {span:4.1} degC, {bins:3} bins (chip bins in the last capture: {chip})");
         }
+        keep(learned)
     };
     let learned = learn(connection, board, options, &mut bins, &mut show);
     if !quiet {
@@ -181,7 +168,7 @@ fn learn_bins(
 }
 
 /// Fits the bins of one or two runs and makes the combined calibration active.
-fn fit_and_activate(
+pub(super) fn fit_and_activate(
     connection: &mut Connection,
     static_calibration: &Calibration,
     first: &Learned,
@@ -276,14 +263,4 @@ fn truth_row(board: &SimBoard, calibration: &Calibration, temp_c: f32) -> Therma
         gyro_bias_error_dps: gyro_error,
         positions: 0,
     }
-}
-
-/// A real board: it rests in one orientation while its temperature changes (offset drift only),
-/// around the calibration active on it.
-fn person_run(connection: &mut Connection, args: &ThermalArgs) -> Result<ThermalReport, Error> {
-    let active = connection.client.calibration(CalibrationSlot::Active)?.ok_or(ProcedureError::NoActiveCalibration)?;
-    let options = learn_options(vec![[0.0, 0.0, 1.0]], args.target_span_c, 30.0);
-    let learned = learn_bins(connection, &mut RestingBoard, &options, args.json)?;
-    let (calibration, fit) = fit_and_activate(connection, &active, &learned, None)?;
-    Ok(ThermalReport { calibration: CalibrationJson::from_device(&calibration), fit, verification: Vec::new() })
 }

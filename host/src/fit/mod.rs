@@ -223,8 +223,8 @@ pub enum FitError {
     NotConverged { reason: String },
     #[error("the positions do not determine the sensor: opposite faces read alike (is the file's unit right?)")]
     Degenerate,
-    #[error("no model can be fitted to these rows; the closest is {closest} ({short} short): {reason}")]
-    NothingFits { closest: &'static str, short: usize, reason: String },
+    #[error("no model can be fitted to these rows; the closest is {closest}{short}: {reason}")]
+    NothingFits { closest: &'static str, short: String, reason: String },
 }
 
 /// Fits a model (or, for `auto`, the one that best predicts rows it did not see) to the training rows

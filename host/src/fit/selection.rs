@@ -89,13 +89,38 @@ fn shortfall(error: &FitError) -> usize {
     }
 }
 
+/// What a refusal lacks in countable terms (" (2 positions short)"), or nothing when what it lacks is
+/// not a count (a spread, an axis, a duplicate): its reason says that.
+fn missing(error: &FitError) -> String {
+    let count = |n: usize, noun: &str| format!(" ({n} {noun}{} short)", if n == 1 { "" } else { "s" });
+    match error {
+        FitError::TooFewPositions { needed, found, .. } => count(needed.saturating_sub(*found), "position"),
+        FitError::TooFewReferences { needed, found, .. } => count(needed.saturating_sub(*found), "known orientation"),
+        _ => String::new(),
+    }
+}
+
 /// The refusal of the model the data came closest to (fewest positions short; the richer on a tie).
 fn closest_refusal(fits: &[(Model, Result<Fit, FitError>)]) -> FitError {
     let closest = fits.iter().filter_map(|(m, r)| r.as_ref().err().map(|e| (*m, e))).min_by_key(|(_, e)| shortfall(e));
     match closest {
         Some((model, error)) => {
-            FitError::NothingFits { closest: model.name(), short: shortfall(error), reason: error.to_string() }
+            FitError::NothingFits { closest: model.name(), short: missing(error), reason: error.to_string() }
         }
         None => FitError::Degenerate,
+    }
+}
+
+#[cfg(test)]
+mod shortfall_tests {
+    use super::*;
+
+    #[test]
+    fn a_refusal_says_what_is_short_only_when_it_is_a_count() {
+        let few = FitError::TooFewPositions { model: "ortho9", needed: 9, found: 7 };
+        assert_eq!(missing(&few), " (2 positions short)");
+        let references = FitError::TooFewReferences { model: "linear12", needed: 4, found: 3 };
+        assert_eq!(missing(&references), " (1 known orientation short)");
+        assert_eq!(missing(&FitError::NoSpread { model: "ortho9", axis: 'x', up: true }), "");
     }
 }

@@ -27,6 +27,25 @@ pub struct NoiseTest {
     pub passed: bool,
 }
 
+impl NoiseTest {
+    /// The test in words, with the levels it is read at: consistent at the 5 % level the standard
+    /// errors use, larger at 5 % (the standard errors are scaled up for it), or larger at 0.1 %.
+    pub fn verdict(&self) -> String {
+        let (chi, dof, p) = (self.chi_square, self.degrees_of_freedom, self.p_value);
+        let test = format!("chi-square {chi:.1} on {dof} degrees of freedom, p = {p:.3}");
+        if !self.passed {
+            format!("residuals larger than the capture noise: {test}, below the 0.1 % level")
+        } else if p < super::uncertainty::SCATTER_SIGNIFICANCE {
+            format!(
+                "residuals larger than the capture noise at the 5 % level (the standard errors are scaled up for \
+                 it), not at 0.1 %: {test}"
+            )
+        } else {
+            format!("residuals consistent with the capture noise at the 5 % level: {test}")
+        }
+    }
+}
+
 /// The chi-square test of the residuals when every row carries `count` and `std_x,std_y,std_z`
 /// (standard deviation of the samples, in the file's unit); `None` otherwise.
 pub(super) fn noise_test(
@@ -96,6 +115,19 @@ pub fn misalignment_deg(full: &Mat3<f64>, triangular: &Mat3<f64>) -> Option<f64>
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_p_value_between_the_levels_is_not_called_consistent() {
+        let test = |p_value: f64| NoiseTest {
+            chi_square: 9.0,
+            degrees_of_freedom: 3,
+            p_value,
+            passed: p_value >= NOISE_TEST_LEVEL,
+        };
+        assert!(test(0.003).verdict().starts_with("residuals larger than the capture noise at the 5 % level"));
+        assert!(test(0.2).verdict().starts_with("residuals consistent with the capture noise at the 5 % level"));
+        assert!(test(0.0001).verdict().contains("below the 0.1 % level"));
+    }
     use nalgebra::{Rotation3, Unit};
 
     #[test]

@@ -88,7 +88,7 @@ fn residual_covariance(
 /// NOTE: 5 %: 95 % of honest fits keep the noise's error unscaled (scaling every fit whose chi-square
 /// exceeds its dof would inflate honest errors on average), while a misfit the residuals show is
 /// carried into the errors.
-const SCATTER_SIGNIFICANCE: f64 = 0.05;
+pub(super) const SCATTER_SIGNIFICANCE: f64 = 0.05;
 
 /// The factor by which the noise-based errors are scaled: sqrt(chi-square / dof) when the
 /// residuals exceed the noise significantly, else 1.

@@ -42,10 +42,23 @@ impl NoiseTerms {
         model_terms(tau_s).dot(&self.variances()).sqrt()
     }
 
+    /// Whether a curve reaching `longest_tau_s` resolves the bias instability: the fitted deviation
+    /// is smallest before the longest averaging time, and there the flicker floor is at least half of
+    /// the variance. Otherwise B is what white noise and a short record leave in the fit.
+    pub fn bias_instability_resolved(&self, longest_tau_s: f64) -> bool {
+        let tau_s = self.bias_instability_tau_s;
+        let shares = model_terms(tau_s).component_mul(&self.variances());
+        let total = shares.sum();
+        tau_s < longest_tau_s && total > 0.0 && shares.y >= RESOLVED_FLICKER_SHARE * total
+    }
+
     fn variances(&self) -> Vector3<f64> {
         Vector3::new(self.white_noise_n, self.bias_instability, self.random_walk).map(|v| v * v)
     }
 }
+
+/// Share of the Allan variance at its minimum the flicker floor must hold for B to count as resolved.
+const RESOLVED_FLICKER_SHARE: f64 = 0.5;
 
 /// What each squared term contributes to the Allan variance at `tau_s`.
 fn model_terms(tau_s: f64) -> Vector3<f64> {
@@ -126,6 +139,24 @@ mod tests {
         assert!((fitted.white_noise_n / truth.white_noise_n - 1.0).abs() < 1e-9, "{fitted:?}");
         assert!((fitted.bias_instability / truth.bias_instability - 1.0).abs() < 1e-9, "{fitted:?}");
         assert!((fitted.random_walk / truth.random_walk - 1.0).abs() < 1e-9, "{fitted:?}");
+    }
+
+    #[test]
+    fn bias_instability_is_resolved_only_where_the_curve_turns_and_the_flicker_floor_dominates() {
+        // NOTE: the fitted deviation is smallest near 70 s, where B holds 79 % of the variance.
+        let truth =
+            NoiseTerms { white_noise_n: 4e-4, bias_instability: 2e-4, bias_instability_tau_s: 0.0, random_walk: 1e-5 };
+        let long = exact_curve(&truth);
+        let fitted = fit(&long).expect("fits");
+        assert!(fitted.bias_instability_resolved(long.last().unwrap().tau_s), "{fitted:?}");
+        // The first 2.4 s of the same curve: still falling at its end, B is not resolved.
+        let short = &long[..20];
+        let fitted = fit(short).expect("fits");
+        assert!(!fitted.bias_instability_resolved(short.last().unwrap().tau_s), "{fitted:?}");
+        // White noise with a trace of flicker: the minimum is white noise's, not B's.
+        let faint = NoiseTerms { bias_instability: 4e-6, random_walk: 1e-6, ..truth };
+        let fitted = fit(&exact_curve(&faint)).expect("fits");
+        assert!(!fitted.bias_instability_resolved(1e9), "{fitted:?}");
     }
 
     #[test]

@@ -1,7 +1,7 @@
 //! Reading a still recording for the noise analysis: a `.npy` recording as `accelcal record`
 //! writes it (told by its magic), or CSV as `accelcal stream` writes it (columns
-//! `ax_g,ay_g,az_g,gx_dps,gy_dps,gz_dps`, others ignored), sampled at a rate the caller names
-//! (a recording names its own).
+//! `ax_g,ay_g,az_g,gx_dps,gy_dps,gz_dps`, others ignored) at the rate of its own `time_s` column
+//! when it has one, else at the rate the caller names (a recording names its own).
 
 use std::io::Read;
 use std::path::Path;
@@ -32,15 +32,22 @@ pub enum NoiseInputError {
     Recording(#[from] RecordingError),
     #[error("--rate must be a positive number of samples per second, got {rate_hz}")]
     BadRate { rate_hz: f64 },
-    #[error("--rate {given_hz} differs from the {recorded_hz} Hz the recording was taken at; leave --rate out")]
-    RateDiffers { given_hz: f64, recorded_hz: f64 },
+    #[error(
+        "--rate {given_hz} differs from the {recorded_hz} Hz the recording was taken at ({shown_by}); leave --rate out"
+    )]
+    RateDiffers { given_hz: f64, recorded_hz: f64, shown_by: &'static str },
 }
 
-/// Sample rate of a CSV file when the caller names none, in Hz: the sensor's full rate.
+/// Sample rate of a CSV file without time stamps when the caller names none, in Hz: the sensor's
+/// full rate.
 pub const CSV_DEFAULT_RATE_HZ: f64 = 1000.0;
+/// How far a given rate may be from the one a file's time stamps show, as a fraction.
+// NOTE: time stamps are printed to the microsecond; at 100 Hz that is 1e-4 of a sample interval.
+const RATE_AGREEMENT: f64 = 0.01;
 
-/// Reads a recording file: a `.npy` recording at the rate it names (`rate_hz`, when given, must
-/// agree), a CSV file at `rate_hz` or [`CSV_DEFAULT_RATE_HZ`].
+/// Reads a recording file: a `.npy` recording at the rate it names, a CSV file at the rate of its
+/// `time_s` column (`rate_hz`, when given, must agree with either), else at `rate_hz` or
+/// [`CSV_DEFAULT_RATE_HZ`].
 pub fn read_path(path: &Path, rate_hz: Option<f64>) -> Result<RateSeries, NoiseInputError> {
     let io = |source| NoiseInputError::Io { path: path.display().to_string(), source };
     let mut file = std::fs::File::open(path).map_err(io)?;
@@ -48,13 +55,30 @@ pub fn read_path(path: &Path, rate_hz: Option<f64>) -> Result<RateSeries, NoiseI
     let opened = file.read(&mut magic).map_err(io)?;
     if is_npy(&magic[..opened]) {
         let recording = recording::read_path(path)?;
-        let recorded_hz = f64::from(recording.rate_hz);
-        if rate_hz.is_some_and(|given| given != recorded_hz) {
-            return Err(NoiseInputError::RateDiffers { given_hz: rate_hz.unwrap_or_default(), recorded_hz });
-        }
+        let recorded_hz = agreed_rate(rate_hz, f64::from(recording.rate_hz), "as its header names it")?;
         return from_samples(&recording.samples, recorded_hz);
     }
-    read_csv(std::fs::File::open(path).map_err(io)?, rate_hz.unwrap_or(CSV_DEFAULT_RATE_HZ))
+    read_csv(std::fs::File::open(path).map_err(io)?, rate_hz)
+}
+
+/// The rate a file shows, when `given` (if any) agrees with it.
+fn agreed_rate(given: Option<f64>, recorded_hz: f64, shown_by: &'static str) -> Result<f64, NoiseInputError> {
+    match given {
+        Some(given_hz) if (given_hz - recorded_hz).abs() > RATE_AGREEMENT * recorded_hz => {
+            Err(NoiseInputError::RateDiffers { given_hz, recorded_hz, shown_by })
+        }
+        _ => Ok(recorded_hz),
+    }
+}
+
+/// The sample rate time stamps show, in Hz: one over the median interval (a lost sample leaves one
+/// long interval, which the median passes over); `None` for fewer than two stamps or no progress.
+fn rate_of_times(times_s: &[f64]) -> Option<f64> {
+    let mut intervals: Vec<f64> = times_s.windows(2).map(|w| w[1] - w[0]).collect();
+    intervals.sort_by(f64::total_cmp);
+    let median = *intervals.get(intervals.len() / 2)?;
+    // NOTE: to the millihertz: the stamps are printed to the microsecond, so finer digits are theirs.
+    (median > 0.0).then(|| (1000.0 / median).round() / 1000.0)
 }
 
 /// The six axes of recorded samples taken at `rate_hz`.
@@ -82,24 +106,31 @@ fn check_length(series: RateSeries) -> Result<RateSeries, NoiseInputError> {
     }
 }
 
-/// Reads CSV text sampled at `rate_hz`.
-pub fn read_csv(reader: impl Read, rate_hz: f64) -> Result<RateSeries, NoiseInputError> {
-    check_rate(rate_hz)?;
+/// Reads CSV text at the rate of its `time_s` column, else at `rate_hz` or [`CSV_DEFAULT_RATE_HZ`].
+pub fn read_csv(reader: impl Read, rate_hz: Option<f64>) -> Result<RateSeries, NoiseInputError> {
+    rate_hz.map_or(Ok(()), check_rate)?;
     let mut csv = csv::ReaderBuilder::new().trim(csv::Trim::All).from_reader(reader);
     let header = csv.headers().map_err(|e| bad_line(1, e))?.clone();
-    let mut columns = [0usize; 6];
+    let mut columns = [0usize; 7];
     for (slot, column) in columns.iter_mut().zip(COLUMNS) {
         *slot = header.iter().position(|h| h == column).ok_or(NoiseInputError::MissingColumn { column })?;
     }
-    let mut axes: [Vec<f64>; 6] = Default::default();
+    let time_column = header.iter().position(|h| h == "time_s");
+    columns[6] = time_column.unwrap_or(usize::MAX);
+    let mut axes: [Vec<f64>; 7] = Default::default();
     for (row, record) in csv.records().enumerate() {
         let record = record.map_err(|e| bad_line(row + 2, e))?;
-        for (axis, &column) in axes.iter_mut().zip(&columns) {
+        for (axis, &column) in axes.iter_mut().zip(&columns).take(6 + usize::from(time_column.is_some())) {
             let cell = record.get(column).unwrap_or_default();
             axis.push(cell.parse().map_err(|_| bad_line(row + 2, format!("{cell:?} is not a number")))?);
         }
     }
-    check_length(RateSeries { rate_hz, axes })
+    let [ax, ay, az, gx, gy, gz, times_s] = axes;
+    let rate_hz = match rate_of_times(&times_s) {
+        Some(recorded_hz) => agreed_rate(rate_hz, recorded_hz, "as its time_s column shows")?,
+        None => rate_hz.unwrap_or(CSV_DEFAULT_RATE_HZ),
+    };
+    check_length(RateSeries { rate_hz, axes: [ax, ay, az, gx, gy, gz] })
 }
 
 fn bad_line(line: usize, reason: impl ToString) -> NoiseInputError {
@@ -113,7 +144,26 @@ mod tests {
     #[test]
     fn a_recording_without_a_gyro_column_is_refused_by_name() {
         let text = "index,ax_g,ay_g,az_g,gx_dps,gy_dps\n0,0,0,1,0,0\n";
-        let error = read_csv(text.as_bytes(), 100.0).unwrap_err();
+        let error = read_csv(text.as_bytes(), Some(100.0)).unwrap_err();
         assert!(matches!(error, NoiseInputError::MissingColumn { column: "gz_dps" }), "{error}");
+    }
+
+    /// A stream CSV at 50 Hz with one lost sample, as `accelcal stream` writes it.
+    fn stream_csv() -> String {
+        let mut text = "index,time_s,ax_g,ay_g,az_g,gx_dps,gy_dps,gz_dps,temp_c\n".to_owned();
+        for i in (0..200u32).filter(|i| *i != 77) {
+            text += &format!("{i},{:.6},0.001,0,1,0.1,0,0,25.00\n", f64::from(i) * 0.02 + 3.0);
+        }
+        text
+    }
+
+    #[test]
+    fn a_stream_csv_is_read_at_the_rate_of_its_own_time_stamps_and_a_different_rate_is_refused() {
+        let series = read_csv(stream_csv().as_bytes(), None).unwrap();
+        assert!((series.rate_hz - 50.0).abs() < 1e-6, "{} Hz", series.rate_hz);
+        assert_eq!(series.axes[2].len(), 199);
+        assert!((read_csv(stream_csv().as_bytes(), Some(50.2)).unwrap().rate_hz - 50.0).abs() < 1e-6);
+        let error = read_csv(stream_csv().as_bytes(), Some(1000.0)).unwrap_err().to_string();
+        assert!(error.contains("differs from the 50"), "{error}");
     }
 }

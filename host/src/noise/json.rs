@@ -24,6 +24,8 @@ struct AxisJson {
     white_noise_density: Option<f64>,
     bias_instability: Option<f64>,
     bias_instability_tau_s: Option<f64>,
+    /// Whether the curve resolves the bias instability (else it is only what the fit left there).
+    bias_instability_resolved: bool,
     random_walk: Option<f64>,
 }
 
@@ -139,6 +141,7 @@ fn axis_json(axis: &AxisNoise) -> AxisJson {
         white_noise_density: axis.terms.map(|t| t.white_noise_density() * scale),
         bias_instability: axis.terms.map(|t| t.bias_instability * scale),
         bias_instability_tau_s: axis.terms.map(|t| t.bias_instability_tau_s),
+        bias_instability_resolved: axis.bias_instability_resolved(),
         random_walk: axis.terms.map(|t| t.random_walk * scale),
     }
 }

@@ -44,6 +44,14 @@ impl AxisNoise {
     pub fn is_accel(&self) -> bool {
         self.name.starts_with("accel")
     }
+
+    /// Whether the curve resolves the fitted bias instability (see [`NoiseTerms::bias_instability_resolved`]).
+    pub fn bias_instability_resolved(&self) -> bool {
+        match (self.terms, self.curve.last()) {
+            (Some(terms), Some(last)) => terms.bias_instability_resolved(last.tau_s),
+            _ => false,
+        }
+    }
 }
 
 /// The noise of a recording: each axis analysed once, for every renderer.

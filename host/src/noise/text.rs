@@ -48,6 +48,9 @@ pub fn render(report: &NoiseReport) -> String {
         "(accelerometer in ug, ug/sqrt(Hz), ug/s/sqrt(Hz); gyro in deg/s, deg/s/sqrt(Hz), deg/s/s/sqrt(Hz))\n\
          (white noise one-sided, as datasheets give it; the Allan deviation at 1 s and Kalibr's density are it / sqrt(2))"
     );
+    if report.axes.iter().any(|a| a.terms.is_some() && !a.bias_instability_resolved()) {
+        out.push_str("(bias instability not resolved: the deviation had not levelled off by the longest averaging time; record longer)\n");
+    }
     write_gyro_per_hour(&mut out, report);
     write_calibration(&mut out, report);
     out
@@ -58,26 +61,23 @@ fn axis_line(axis: &AxisNoise) -> String {
         return format!("{:<8} too short for any averaging time", axis.name);
     };
     let s = usual_scale(axis);
-    format!(
-        "{:<8} {:>16.4e} {:>16.4e} {:>9.1}s {:>18.4e}",
-        axis.name,
-        t.white_noise_density() * s,
-        t.bias_instability * s,
-        t.bias_instability_tau_s,
-        t.random_walk * s
-    )
+    // NOTE: an unresolved B is what white noise and a short record leave in the fit, not the sensor's.
+    let bias = match axis.bias_instability_resolved() {
+        true => format!("{:>16.4e} {:>9.1}s", t.bias_instability * s, t.bias_instability_tau_s),
+        false => format!("{:>16} {:>10}", "not resolved", "-"),
+    };
+    format!("{:<8} {:>16.4e} {bias} {:>18.4e}", axis.name, t.white_noise_density() * s, t.random_walk * s)
 }
 
 fn write_gyro_per_hour(out: &mut String, report: &NoiseReport) {
     for axis in report.axes.iter().filter(|a| !a.is_accel()) {
         if let Some(t) = axis.terms {
             let arw = t.white_noise_n * SECONDS_PER_HOUR.sqrt();
-            let bias = t.bias_instability * SECONDS_PER_HOUR;
-            let _ = writeln!(
-                out,
-                "{}: angle random walk {arw:.3} deg/sqrt(h), bias instability {bias:.2} deg/h",
-                axis.name
-            );
+            let bias = match axis.bias_instability_resolved() {
+                true => format!("{:.2} deg/h", t.bias_instability * SECONDS_PER_HOUR),
+                false => "not resolved".to_owned(),
+            };
+            let _ = writeln!(out, "{}: angle random walk {arw:.3} deg/sqrt(h), bias instability {bias}", axis.name);
         }
     }
 }

@@ -13,6 +13,7 @@ mod simulated_hand;
 pub mod stop_rule;
 pub mod thermal;
 mod turns;
+mod verdict;
 mod verify;
 mod wait;
 
@@ -27,6 +28,7 @@ pub use hand::{Hand, PersonHand};
 pub use moves::{Moves, RecordedMove};
 pub use simulated_hand::SimulatedHand;
 pub use turns::{fit_moves, turn_summaries, turns_of};
+pub use verdict::TargetVerdict;
 pub use verify::{verify, verify_clear_of, verify_with, Verification, VERIFY_SECONDS};
 
 use crate::fit::FitError;

@@ -1,7 +1,7 @@
 //! Learning how the sensor drifts: the board rests while its temperature changes (warm-up, a cool
 //! or warm place), the chip averages every sample of its captures into 1 degC bins, the host keeps
 //! them per orientation, and learning stops when the span is enough or the temperature stalls. The bins belong to the caller, so a run that is
-//! interrupted keeps what it learned.
+//! interrupted keeps what it learned; [`kept`] keeps them on disk as they are learned.
 
 use std::collections::BTreeMap;
 
@@ -60,6 +60,11 @@ impl ThermalBins {
         entry.1.gyro_dps = [0, 1, 2].map(|k| mean(entry.1.gyro_dps[k], point.gyro_dps[k]));
         self.low_c = Some(self.low_c.map_or(temp_c, |low| low.min(temp_c)));
         self.high_c = Some(self.high_c.map_or(temp_c, |high| high.max(temp_c)));
+    }
+
+    /// Every bin: its orientation number, samples and average.
+    fn entries(&self) -> impl Iterator<Item = (usize, usize, &ThermalPoint)> {
+        self.bins.iter().map(|((_, face), (samples, point))| (*face, *samples, point))
     }
 
     /// The bin averages, for the fit.
@@ -145,6 +150,10 @@ pub struct LearnStatus {
     pub chip_bins: usize,
 }
 
+/// What the caller does after each capture with the status and the bins so far (show them, keep
+/// them on disk); an error stops the learning.
+pub type OnStatus<'a> = &'a mut dyn FnMut(LearnStatus, &ThermalBins) -> Result<(), ProcedureError>;
+
 /// Learns into `bins` until the span is reached or the temperature stalls; an error leaves the bins
 /// learned so far in place.
 pub fn learn(
@@ -152,7 +161,7 @@ pub fn learn(
     board: &mut dyn ThermalBoard,
     options: &LearnOptions,
     bins: &mut ThermalBins,
-    on_status: &mut dyn FnMut(LearnStatus),
+    on_status: OnStatus,
 ) -> Result<LearnEnd, ProcedureError> {
     let mut history: Vec<f64> = Vec::new();
     // NOTE: the chip's bins hold every sample since they were last taken (earlier captures too).
@@ -186,7 +195,7 @@ fn learn_round(
     board: &mut dyn ThermalBoard,
     options: &LearnOptions,
     bins: &mut ThermalBins,
-    on_status: &mut dyn FnMut(LearnStatus),
+    on_status: OnStatus,
 ) -> Result<f64, ProcedureError> {
     let mut temp_c = 0.0;
     for (face, force) in options.faces.iter().enumerate() {
@@ -196,7 +205,7 @@ fn learn_round(
         chip_bins.iter().for_each(|bin| bins.add_chip_bin(face, *force, bin));
         temp_c = f64::from(stats.temp_c);
         let status = LearnStatus { temp_c, span_c: bins.span_c(), bins: bins.len(), chip_bins: chip_bins.len() };
-        on_status(status);
+        on_status(status, bins)?;
     }
     Ok(temp_c)
 }
@@ -207,5 +216,6 @@ pub fn capture_now(connection: &mut Connection, seconds: u8) -> Result<CaptureSt
     connection.client.capture(seconds, |_| {}).map(|(stats, _)| stats)
 }
 
+pub mod kept;
 #[cfg(test)]
 mod tests;

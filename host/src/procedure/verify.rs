@@ -3,7 +3,6 @@
 
 use std::time::Duration;
 
-use serde::{Deserialize, Serialize};
 use shared::linalg;
 use shared::protocol::{CalibrationSlot, CaptureStats, StreamKind};
 use shared::Calibration;
@@ -13,41 +12,12 @@ use super::stop_rule::CaptureLength;
 use super::wait::{wait_for_fresh, LIVE_WINDOW};
 use super::{Feedback, Hand, ProcedureError};
 use crate::link::{Client, Port, StreamRequest};
+pub use crate::session::Verification;
 
 /// Length of each verification capture, in seconds.
 pub const VERIFY_SECONDS: u8 = 5;
 /// Corrected samples averaged to compare the chip with the host.
 const CHIP_SAMPLES: u32 = 20;
-
-/// The errors at the verification orientations, in mg.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Verification {
-    /// Orientations checked.
-    pub positions: usize,
-    /// RMS of | |m| - 1 g | with the raw readings.
-    pub before_rms_mg: f64,
-    /// RMS of | |a| - 1 g | with the calibration.
-    pub after_rms_mg: f64,
-    /// Largest | |a| - 1 g | with the calibration.
-    pub after_max_mg: f64,
-    /// The calibration's own error with the noise floor removed: sqrt(after_rms^2 - floor^2), 0 when
-    /// the figure is within its noise.
-    pub after_rms_without_noise_mg: f64,
-    /// Largest difference between the chip's own corrected samples and the calibration applied to
-    /// the raw capture, in mg: proof the chip applies what was verified (noise of 20 samples).
-    pub on_chip_difference_mg: f64,
-    /// RMS over the orientations of the noise each capture's mean carries in |a| (its samples'
-    /// spread over the square root of their count, through the calibration), in mg: the floor below
-    /// which `after_rms_mg` cannot resolve an error.
-    #[serde(default)]
-    pub noise_floor_mg: f64,
-    /// |m| - 1 g at each orientation with the raw readings, in mg.
-    #[serde(default)]
-    pub before_mg: Vec<f64>,
-    /// |a| - 1 g at each orientation with the calibration, in mg.
-    #[serde(default)]
-    pub after_mg: Vec<f64>,
-}
 
 /// The errors at one orientation, in mg.
 struct Check {
@@ -55,6 +25,24 @@ struct Check {
     after_mg: f64,
     noise_mg: f64,
     on_chip_mg: f64,
+    on_chip_noise_mg: f64,
+}
+
+/// How many times its own noise the chip may differ from the host before it is said to apply
+/// something else (a 3-sigma bound on each axis of the difference).
+const CHIP_AGREEMENT_SIGMAS: f64 = 3.0;
+
+impl Verification {
+    /// Whether the chip's corrected samples agree with the host's correction, judged against the
+    /// noise of the chip's 20-sample mean, in words.
+    pub fn chip_agreement(&self) -> String {
+        let (difference, noise) = (self.on_chip_difference_mg, self.on_chip_noise_mg);
+        if difference <= CHIP_AGREEMENT_SIGMAS * noise {
+            format!("chip and host agree: they differ by {difference:.2} mg, within the {noise:.2} mg noise of the chip's {CHIP_SAMPLES}-sample mean")
+        } else {
+            format!("chip and host differ by {difference:.2} mg, more than {CHIP_AGREEMENT_SIGMAS} times the {noise:.2} mg noise of the chip's {CHIP_SAMPLES}-sample mean: the chip does not apply the calibration verified")
+        }
+    }
 }
 
 /// Checks the active calibration at `positions` fresh orientations.
@@ -128,6 +116,7 @@ fn check<P: Port>(
         after_mg: (f64::from(linalg::norm(corrected)) - 1.0) * 1000.0,
         noise_mg: norm_noise_g(calibration, &stats, corrected) * 1000.0,
         on_chip_mg: f64::from(linalg::norm(linalg::sub(chip_mean, corrected))) * 1000.0,
+        on_chip_noise_mg: mean_noise_g(calibration, &stats, CHIP_SAMPLES) * 1000.0,
     })
 }
 
@@ -144,6 +133,14 @@ fn norm_noise_g(calibration: &Calibration, stats: &CaptureStats, corrected: [f32
     variance.sqrt()
 }
 
+/// The size of the noise of a mean of `samples` corrected samples, in g: sqrt(trace(M diag(std^2) M^T) / n).
+fn mean_noise_g(calibration: &Calibration, stats: &CaptureStats, samples: u32) -> f64 {
+    let m = &calibration.matrix;
+    let variance: f64 =
+        (0..3).flat_map(|i| (0..3).map(move |j| f64::from(m[i][j] * stats.std_g[j]).powi(2))).sum::<f64>();
+    (variance / f64::from(samples.max(1))).sqrt()
+}
+
 fn summary(checks: &[Check]) -> Verification {
     let rms = |pick: fn(&Check) -> f64| {
         (checks.iter().map(|c| pick(c).powi(2)).sum::<f64>() / checks.len().max(1) as f64).sqrt()
@@ -156,6 +153,7 @@ fn summary(checks: &[Check]) -> Verification {
         after_rms_without_noise_mg: (after * after - floor * floor).max(0.0).sqrt(),
         after_max_mg: checks.iter().fold(0.0, |m, c| m.max(c.after_mg.abs())),
         on_chip_difference_mg: checks.iter().fold(0.0, |m, c| m.max(c.on_chip_mg)),
+        on_chip_noise_mg: checks.iter().fold(0.0, |m, c| m.max(c.on_chip_noise_mg)),
         noise_floor_mg: floor,
         before_mg: checks.iter().map(|c| c.before_mg).collect(),
         after_mg: checks.iter().map(|c| c.after_mg).collect(),
@@ -219,9 +217,24 @@ mod tests {
     }
 
     #[test]
+    fn the_chip_is_judged_against_the_noise_of_its_own_twenty_sample_mean() {
+        // 3 mg per axis over 20 samples: sqrt(3) * 3 / sqrt(20) = 1.16 mg of noise in the mean.
+        let stats = capture([0.0, 0.0, 1.0], [0.003; 3], 500);
+        let noise_mg = mean_noise_g(&Calibration::identity(AccelRange::G2), &stats, CHIP_SAMPLES) * 1000.0;
+        assert!((noise_mg - 1.162).abs() < 0.001, "{noise_mg}");
+        let verification =
+            |difference| Verification { on_chip_difference_mg: difference, on_chip_noise_mg: noise_mg, ..summary(&[]) };
+        assert!(verification(1.13)
+            .chip_agreement()
+            .starts_with("chip and host agree: they differ by 1.13 mg, within the 1.16 mg noise"));
+        assert!(verification(5.0).chip_agreement().contains("does not apply the calibration verified"));
+    }
+
+    #[test]
     fn the_worst_error_counts_readings_below_1_g_as_well_as_above() {
         // |a| of 0.9988 g is 1.2 mg short: the worst error is 1.2 mg, not the 0.5 mg above 1 g.
-        let check = |before_mg, after_mg| Check { before_mg, after_mg, noise_mg: 0.1, on_chip_mg: 0.01 };
+        let check =
+            |before_mg, after_mg| Check { before_mg, after_mg, noise_mg: 0.1, on_chip_mg: 0.01, on_chip_noise_mg: 1.0 };
         let result = summary(&[check(3.0, 0.3), check(-4.0, -1.2), check(2.0, 0.5)]);
         assert_eq!(result.after_max_mg, 1.2);
         // sqrt((0.09 + 1.44 + 0.25) / 3) = 0.770 mg

@@ -17,6 +17,8 @@ pub struct AllanSection {
     pub samples: u64,
     /// Averaging time beyond which no accelerometer axis improves with a longer capture, in s.
     pub capture_limit_s: Option<f64>,
+    /// Whether that limit is only a lower bound (the deviation still fell at the longest averaging time).
+    pub capture_limit_is_lower_bound: bool,
     /// The six axes in `accel_x` ... `gyro_z` order.
     pub axes: Vec<AllanAxis>,
 }
@@ -32,6 +34,8 @@ pub struct AllanAxis {
     pub bias_instability: Option<f64>,
     /// Where the fitted deviation is smallest, in s.
     pub bias_instability_tau_s: Option<f64>,
+    /// Whether the curve resolves the bias instability (older noise reports do not say: taken as so).
+    pub bias_instability_resolved: bool,
     /// Random walk (ug/s/sqrt(Hz), deg/s/s/sqrt(Hz)).
     pub random_walk: Option<f64>,
 }
@@ -45,6 +49,10 @@ impl AllanSection {
             sample_rate_hz: number("/sample_rate_hz").ok_or("it has no sample_rate_hz")?,
             samples: noise.pointer("/samples").and_then(Value::as_u64).ok_or("it has no samples")?,
             capture_limit_s: number("/calibration/capture_limit_s"),
+            capture_limit_is_lower_bound: noise
+                .pointer("/calibration/capture_limit_is_lower_bound")
+                .and_then(Value::as_bool)
+                .unwrap_or(false),
             axes,
         };
         let figure = figure(noise, &section.axes[..3])?;
@@ -60,6 +68,7 @@ fn axis(noise: &Value, name: &'static str) -> Result<AllanAxis, String> {
         white_noise_density: term("white_noise_density"),
         bias_instability: term("bias_instability"),
         bias_instability_tau_s: term("bias_instability_tau_s"),
+        bias_instability_resolved: axis.get("bias_instability_resolved").and_then(Value::as_bool).unwrap_or(true),
         random_walk: term("random_walk"),
     })
 }

@@ -10,7 +10,8 @@ use shared::Calibration;
 use super::gyro::{GyroJson, GyroOutcome, TruthGyroJson};
 use crate::calibration::CalibrationJson;
 use crate::fit::Fit;
-use crate::procedure::{TurnCheck, Verification};
+use crate::procedure::{TargetVerdict, TurnCheck};
+use crate::session::Verification;
 
 /// The object `accelcal calibrate --json` prints.
 #[derive(Debug, Clone, Serialize)]
@@ -33,6 +34,8 @@ pub struct CalibrateReport {
     pub board_seconds: Option<f64>,
     /// The gyro's verification turn, when it was measured.
     pub gyro_check: Option<TurnCheck>,
+    /// The verification against `--target-mg` (trusted or not, without a target).
+    pub target: Option<TargetVerdict>,
 }
 
 /// The calibration uploaded, with its gyro part and what its fit gave.
@@ -95,6 +98,7 @@ impl CalibrateReport {
             host_fit: host.map(HostFitSummary::new),
             board_seconds: None,
             gyro_check: None,
+            target: None,
         }
     }
 

@@ -8,7 +8,7 @@ use super::figure::{Figure, SeriesStyle};
 use super::plot::{self, PlotError};
 use super::session::{Board, PositionResult, SessionReport, NOT_RECORDED};
 use super::Comparison;
-use crate::procedure::Verification;
+use crate::session::Verification;
 
 /// Said where a section's data is not in the session.
 pub const ABSENT: &str = "not part of this session";
@@ -19,6 +19,7 @@ pub fn page(report: &SessionReport) -> Result<String, PlotError> {
     let mut out = head(report);
     board(&mut out, &report.board);
     sphere(&mut out, report)?;
+    super::uploaded::html_section(&mut out, report);
     parameters(&mut out, report);
     if let Some(comparison) = &report.comparison {
         models(&mut out, comparison);
@@ -164,6 +165,7 @@ fn verification_table(out: &mut String, v: &Verification) {
         ("worst calibrated (mg)", "after_max_mg", v.after_max_mg, 3),
         ("noise floor (mg)", "noise_floor_mg", v.noise_floor_mg, 3),
         ("chip vs host (mg)", "on_chip_difference_mg", v.on_chip_difference_mg, 3),
+        ("noise of the chip's mean (mg)", "on_chip_noise_mg", v.on_chip_noise_mg, 3),
     ] {
         let _ = write!(out, "<tr><th>{name}</th>{}</tr>", cell(&format!("/verification/{key}"), Some(value), digits));
     }
@@ -267,6 +269,6 @@ pub(super) fn absent(what: &str) -> String {
 }
 
 /// Text made safe for HTML.
-fn escape(text: &str) -> String {
+pub(super) fn escape(text: &str) -> String {
     text.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
 }

@@ -75,9 +75,19 @@ fn allan_summary(out: &mut String, a: &AllanSection) {
         a.samples,
         span("/allan_deviation/sample_rate_hz", a.sample_rate_hz, 0)
     );
-    if let Some(limit) = a.capture_limit_s {
-        let _ =
-            write!(out, "; captures longer than {} s stop helping", span("/allan_deviation/capture_limit_s", limit, 1));
+    match (a.capture_limit_s, a.capture_limit_is_lower_bound) {
+        (Some(limit), true) => {
+            let limit = span("/allan_deviation/capture_limit_s", limit, 1);
+            let _ = write!(out, "; captures help at least up to {limit} s (the capture limit is only a lower bound: the deviation still fell at the longest averaging time)");
+        }
+        (Some(limit), false) => {
+            let _ = write!(
+                out,
+                "; captures longer than {} s stop helping",
+                span("/allan_deviation/capture_limit_s", limit, 1)
+            );
+        }
+        (None, _) => {}
     }
     out.push_str("</p>");
 }
@@ -89,9 +99,47 @@ fn allan_table(out: &mut String, a: &AllanSection) {
         let _ = write!(out, "<tr><td>{}</td>", axis.name);
         let pointer = |key: &str| format!("/allan_deviation/axes/{i}/{key}");
         out.push_str(&cell(&pointer("white_noise_density"), axis.white_noise_density, 4));
-        out.push_str(&cell(&pointer("bias_instability"), axis.bias_instability, 4));
+        // NOTE: an unresolved B is what white noise and a short record left in the fit: shown, and said.
+        let note = if axis.bias_instability_resolved { "</td>" } else { " (not resolved)</td>" };
+        out.push_str(&cell(&pointer("bias_instability"), axis.bias_instability, 4).replace("</td>", note));
         out.push_str(&cell(&pointer("bias_instability_tau_s"), axis.bias_instability_tau_s, 1));
         let _ = write!(out, "{}</tr>", cell(&pointer("random_walk"), axis.random_walk, 4));
     }
     out.push_str("</table></div>");
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn section(lower_bound: bool, resolved: bool) -> AllanSection {
+        let axis = crate::report::allan::AllanAxis {
+            name: "accel_x",
+            white_noise_density: Some(390.0),
+            bias_instability: Some(126.9),
+            bias_instability_tau_s: Some(2.5),
+            bias_instability_resolved: resolved,
+            random_walk: Some(0.0),
+        };
+        AllanSection {
+            sample_rate_hz: 100.0,
+            samples: 3000,
+            capture_limit_s: Some(2.5),
+            capture_limit_is_lower_bound: lower_bound,
+            axes: vec![axis],
+        }
+    }
+
+    #[test]
+    fn a_capture_limit_that_is_only_a_lower_bound_and_an_unresolved_bias_instability_are_said() {
+        let (mut bound, mut limit) = (String::new(), String::new());
+        allan_summary(&mut bound, &section(true, false));
+        allan_summary(&mut limit, &section(false, true));
+        assert!(bound.contains("captures help at least up to") && bound.contains("only a lower bound"), "{bound}");
+        assert!(limit.contains("stop helping") && !limit.contains("lower bound"), "{limit}");
+        let (mut unresolved, mut resolved) = (String::new(), String::new());
+        allan_table(&mut unresolved, &section(true, false));
+        allan_table(&mut resolved, &section(true, true));
+        assert!(unresolved.contains("(not resolved)") && !resolved.contains("not resolved"), "{unresolved}");
+    }
 }

@@ -8,12 +8,13 @@ use shared::linalg;
 use super::allan::AllanSection;
 use super::figure::{self, Figure};
 use super::temperature::TemperatureSection;
+use super::uploaded::Uploaded;
 use super::{Comparison, FitReport};
 use crate::data::Dataset;
 use crate::fit::gyro::TurnSummary;
 use crate::fit::{FitError, FitOptions, Parameter};
-use crate::procedure::Verification;
 use crate::session::Session;
+use crate::session::Verification;
 
 /// Shown for what the session does not carry.
 pub const NOT_RECORDED: &str = "not recorded";
@@ -27,7 +28,10 @@ pub struct SessionReport {
     pub verdict: Verdict,
     /// Every captured position, raw and calibrated.
     pub positions: Vec<PositionResult>,
-    /// The fit chosen, with every parameter's standard error.
+    /// The record uploaded to the board (the gyro's G included), when the session holds it; the
+    /// positions are calibrated by it.
+    pub uploaded: Option<Uploaded>,
+    /// The host's refit of the captures, with every parameter's standard error, for the comparison.
     pub fit: FitSummary,
     /// Every model on the same positions.
     pub comparison: Option<Comparison>,
@@ -133,6 +137,7 @@ impl SessionReport {
             verdict: Verdict::new(&fit, verification.as_ref()),
             figures,
             gyro_turns: session.gyro_turns.clone(),
+            uploaded: session.uploaded.as_ref().map(Uploaded::of),
             positions,
             fit,
             comparison: fit_report.comparison,
@@ -157,18 +162,21 @@ impl SessionReport {
     }
 }
 
-/// Each position's reading as taken and calibrated by the fit; `fitted` holds the readings the fit
-/// took (an adaptive session's with the drift taken out, as the chip's temperature model does).
+/// Each position's reading as taken and as calibrated: by the record uploaded to the board when the
+/// session holds it, else by the refit of `fitted`, the readings the fit took (an adaptive
+/// session's with the drift taken out, as the chip's temperature model does).
 fn positions(session: &Session, fitted: &Dataset, report: &FitReport) -> Vec<PositionResult> {
     let (matrix, offset) = (&report.fit.matrix, &report.fit.offset);
+    let calibrated: Vec<[f64; 3]> = match &session.uploaded {
+        Some(record) => super::uploaded::calibrated_by(record, session),
+        None => fitted.rows.iter().map(|row| linalg::mul_vec(matrix, linalg::sub(row.reading, *offset))).collect(),
+    };
     session
         .captures
         .iter()
-        .zip(&fitted.rows)
-        .map(|(taken, corrected)| {
+        .zip(calibrated)
+        .map(|(taken, calibrated_g)| {
             let raw_g = taken.stats.mean_g.map(f64::from);
-            let input_g = corrected.reading;
-            let calibrated_g = linalg::mul_vec(matrix, linalg::sub(input_g, *offset));
             PositionResult {
                 name: taken.name.clone(),
                 raw_g,
@@ -228,7 +236,7 @@ impl Verdict {
             );
             return Verdict { trusted: false, line };
         };
-        let trusted = v.after_rms_mg <= crate::limits::TRUSTED_AFTER_NOISE_FLOOR * v.noise_floor_mg.max(f64::EPSILON);
+        let trusted = v.trusted();
         let judged = if trusted { "trusted" } else { "not trusted" };
         let line = format!(
             "{judged}: | |a| - 1 g | rms {:.3} mg at {} fresh orientations (noise floor {:.3} mg; {:.2} mg uncalibrated)",

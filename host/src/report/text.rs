@@ -26,12 +26,7 @@ fn write_fit(out: &mut String, fit: &Fit, rows: usize, g: f64) {
         let _ = writeln!(out, "  {:<4} {:>16} {error}", parameter.name, number(parameter.value));
     }
     if let Some(test) = &fit.noise_test {
-        let verdict = if test.passed { "consistent with" } else { "larger than" };
-        let _ = writeln!(
-            out,
-            "residuals {verdict} the capture noise: chi-square {:.1} on {} degrees of freedom, p = {:.3}",
-            test.chi_square, test.degrees_of_freedom, test.p_value
-        );
+        let _ = writeln!(out, "{}", test.verdict());
     }
     for warning in &fit.warnings {
         let _ = writeln!(out, "warning: {warning}");
@@ -129,7 +124,8 @@ pub fn calibrate_report(report: &CalibrateReport) -> String {
          the captures' own noise {:.3} mg, {without}\n{board}",
         v.positions, v.before_rms_mg, v.after_rms_mg, v.after_max_mg, v.noise_floor_mg
     );
-    accel + &super::gyro::text(&report.calibration.gyro, report.gyro_check.as_ref())
+    let verdict = report.target.as_ref().map_or(String::new(), |t| format!("{}\n", t.line));
+    accel + &super::gyro::text(&report.calibration.gyro, report.gyro_check.as_ref()) + &verdict
 }
 
 /// A number right-aligned in `width` with `digits` decimals, or `-`.
@@ -160,6 +156,9 @@ pub fn session_report(report: &SessionReport) -> String {
 
 /// The fit's parameters, and each position's residual before and after.
 fn write_session_fit(out: &mut String, report: &SessionReport) {
+    if let Some(uploaded) = &report.uploaded {
+        let _ = writeln!(out, "uploaded to the board: {}", uploaded.line);
+    }
     let fit = &report.fit;
     let _ = writeln!(out, "model {}: cost {:.3e}, | |a| - 1 g | rms {:.3} mg", fit.model, fit.cost, fit.rms_mg);
     for p in &fit.parameters {
@@ -210,7 +209,7 @@ fn write_board(out: &mut String, board: &Board) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::procedure::Verification;
+    use crate::session::Verification;
     use shared::{AccelRange, Calibration};
 
     fn verified(positions: usize, after_rms_mg: f64, noise_floor_mg: f64) -> String {
@@ -222,6 +221,7 @@ mod tests {
             after_max_mg: after_rms_mg,
             after_rms_without_noise_mg: without,
             on_chip_difference_mg: 0.0,
+            on_chip_noise_mg: 1.0,
             noise_floor_mg,
             before_mg: Vec::new(),
             after_mg: Vec::new(),

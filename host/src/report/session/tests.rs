@@ -9,17 +9,7 @@ use crate::orientation::{corners, faces, Orientation};
 use crate::session::{CaptureRecord, SessionKind};
 
 fn verified(after_rms_mg: f64, noise_floor_mg: f64) -> Verification {
-    Verification {
-        positions: 6,
-        before_rms_mg: 40.0,
-        after_rms_mg,
-        after_max_mg: after_rms_mg * 2.0,
-        after_rms_without_noise_mg: (after_rms_mg.powi(2) - noise_floor_mg.powi(2)).max(0.0).sqrt(),
-        on_chip_difference_mg: 0.5,
-        noise_floor_mg,
-        before_mg: vec![],
-        after_mg: vec![],
-    }
+    Verification::example(after_rms_mg, noise_floor_mg)
 }
 
 #[test]
@@ -73,4 +63,28 @@ fn an_adaptive_session_s_positions_are_shown_with_the_drift_taken_out() {
     // The raw readings are shown as taken, drift and all.
     let first = &report.positions[0];
     assert_eq!(first.raw_g, session.captures[0].stats.mean_g.map(f64::from));
+}
+
+#[test]
+fn a_session_s_uploaded_record_is_shown_and_calibrates_its_positions() {
+    let targets = [faces(), corners()].concat();
+    let captures = targets.iter().enumerate().map(|(i, t)| warming_capture(t, 21.5 + 0.07 * i as f64, [1e-3; 3]));
+    let mut session = Session { captures: captures.collect(), kind: SessionKind::Adaptive, ..Session::default() };
+    let mut record = session.outcome(shared::protocol::SensorConfig::default()).unwrap().calibration;
+    record.gyro.matrix[0][1] = 0.0123;
+    session.uploaded = Some(record);
+    let report = SessionReport::new(&session).unwrap();
+    let shown = report.uploaded.as_ref().expect("the uploaded record is shown");
+    assert!(shown.line.starts_with("ortho9: scale"), "{}", shown.line);
+    assert_eq!(shown.record.gyro_matrix.map(|g| g[0][1]), Some(0.0123f32 as f64), "G as uploaded");
+    // The chip's record, its temperature model included, puts every position on the sphere.
+    for position in &report.positions {
+        assert!(position.residual_after_mg.abs() < 0.01, "{}: {} mg", position.name, position.residual_after_mg);
+    }
+    // A record 2 mg off in z shows so at +Z and -Z (the refit alone would not).
+    record.offset_g[2] += 2e-3;
+    session.uploaded = Some(record);
+    let report = SessionReport::new(&session).unwrap();
+    let worst = report.positions.iter().map(|p| p.residual_after_mg.abs()).fold(0.0, f64::max);
+    assert!((1.9..2.1).contains(&worst), "worst {worst} mg");
 }

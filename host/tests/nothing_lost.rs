@@ -1,0 +1,76 @@
+//! Nothing is overwritten or dropped without asking: sessions are refused rather than replaced,
+//! their names keep their dots, a folder gets a session inside it, and a capture stores what it
+//! was asked for.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::process::Output;
+use std::time::Duration;
+
+fn accelcal(args: &[&str]) -> Output {
+    common::accelcal_within(args, Duration::from_secs(120)).0
+}
+
+/// A fresh folder of its own for one test.
+fn folder(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("accelcal-lost-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn quick_session(session: &Path) -> Output {
+    accelcal(&["calibrate", "--sim", "--quick", "--yes", "--session", session.to_str().unwrap()])
+}
+
+#[test]
+fn a_second_calibration_into_a_kept_session_is_refused_pointing_to_resume_and_the_session_is_untouched() {
+    let dir = folder("again");
+    let stem = dir.join("board");
+    assert!(quick_session(&stem).status.success());
+    let before = std::fs::read(dir.join("board.json")).unwrap();
+    let again = quick_session(&stem);
+    let stderr = String::from_utf8_lossy(&again.stderr);
+    assert!(!again.status.success(), "{stderr}");
+    assert!(stderr.contains("already holds a session") && stderr.contains("--resume"), "{stderr}");
+    assert_eq!(std::fs::read(dir.join("board.json")).unwrap(), before, "the kept session was rewritten");
+}
+
+#[test]
+fn session_names_keep_their_dots() {
+    let dir = folder("dots");
+    assert!(quick_session(&dir.join("board.1")).status.success());
+    assert!(quick_session(&dir.join("board.2")).status.success());
+    for name in ["board.1.json", "board.1.csv", "board.2.json", "board.2.csv"] {
+        assert!(dir.join(name).exists(), "{name} missing");
+    }
+    assert!(!dir.join("board.json").exists());
+}
+
+#[test]
+fn a_session_given_as_a_folder_is_kept_inside_it() {
+    let dir = folder("dir");
+    let given = format!("{}/sessions/", dir.display());
+    let output = quick_session(Path::new(&given));
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let inside: Vec<_> = std::fs::read_dir(dir.join("sessions")).unwrap().map(|e| e.unwrap().file_name()).collect();
+    assert!(inside.iter().any(|n| n.to_string_lossy().ends_with(".json")), "{inside:?}");
+    assert!(!dir.join("sessions.json").exists());
+}
+
+#[test]
+fn a_simulated_capture_named_as_a_face_stores_that_face() {
+    let dir = folder("capture");
+    let stem = dir.join("named.1");
+    for name in ["+X", "-Y"] {
+        let name = format!("--name={name}");
+        let output = accelcal(&["capture", "--sim", &name, "--seconds", "5", "--session", stem.to_str().unwrap()]);
+        assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    }
+    let json: serde_json::Value = serde_json::from_slice(&std::fs::read(dir.join("named.1.json")).unwrap()).unwrap();
+    let mean = |i: usize, k: usize| json["captures"][i]["stats"]["mean_g"][k].as_f64().unwrap();
+    // NOTE: the simulated sensor's offsets and scale errors are within 0.1 g.
+    assert!((mean(0, 0) - 1.0).abs() < 0.1, "+X reads {}", mean(0, 0));
+    assert!((mean(1, 1) + 1.0).abs() < 0.1, "-Y reads {}", mean(1, 1));
+}
