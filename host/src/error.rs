@@ -32,12 +32,18 @@ pub enum Error {
     CannotFit { path: PathBuf, model: ModelChoice, source: FitError },
     #[error(transparent)]
     Fit(#[from] FitError),
+    #[error("{}: read as a sensor's stream: {source}", .path.display())]
+    Stream { path: PathBuf, source: crate::stream::StreamError },
+    #[error("{}: read as a sensor's stream, its still periods cannot be fitted: {source}; rest the board at 9 or more orientations for a few seconds each", .path.display())]
+    StreamFit { path: PathBuf, source: FitError },
     #[error("cannot fit the temperature model: {0}; learn over a wider span and run again")]
     ThermalFit(#[from] crate::fit::thermal::ThermalFitError),
     #[error("{}: cannot report this session: {source}", .path.display())]
     CannotReport { path: PathBuf, source: FitError },
     #[error(transparent)]
     Plot(#[from] PlotError),
+    #[error(transparent)]
+    Certificate(#[from] crate::certificate::SealError),
     #[error("--g must be a positive number, got {g}")]
     BadGravity { g: f64 },
     #[error("{source}; {} so far {} kept in {}: continue with `accelcal calibrate {device} --resume {}`", count(*.captures, "capture"), if *.captures == 1 { "is" } else { "are" }, .path.display(), .path.display())]

@@ -11,9 +11,12 @@ mod commands;
 pub mod noise;
 mod outgoing;
 mod parts;
+pub mod person;
 mod pty;
 pub mod random;
+pub mod replay;
 mod serve;
+pub mod sketch;
 pub mod synthetic;
 
 pub use board::{SensorChoice, SimBoard, SimCommand, SimSensor};
