@@ -31,37 +31,45 @@ const STATUS_EVERY: Duration = Duration::from_secs(1);
 /// Calibrates from the stream of `talking`.
 pub(super) fn calibrate_from_stream(args: &CalibrateArgs, talking: TalkingPort) -> Result<(), Error> {
     let path = args.stream_log.clone().unwrap_or_else(default_log);
-    let file = std::fs::File::create(&path).map_err(|source| Error::WriteFile { path: path.clone(), source })?;
+    let unwritable = |source| Error::WriteFile { path: path.clone(), source };
+    let file = std::fs::File::create(&path).map_err(unwritable)?;
     eprintln!(
         "{} prints its own stream: accelcal writes nothing to it and keeps what it prints in {}",
         talking.path,
         path.display()
     );
-    let interrupt = interrupt_on_ctrl_c();
-    let mut live = LiveStream::new(talking, file).map_err(|source| Error::WriteFile { path: path.clone(), source })?;
+    let mut live = LiveStream::new(talking, file).map_err(unwritable)?;
     let options = args.stream.options(None);
+    let why = listen_until_done(&mut live, &options, args.length.target_mg);
+    let data = data_lines(&live);
+    live.finish(&data).map_err(unwritable)?;
+    eprintln!("{why}: fitting the still periods of {}", path.display());
+    report(args, &path, &options)
+}
+
+/// Reads the stream, telling the person where things stand, until the fit predicts the target,
+/// the stream stops or goes away, or Ctrl-C; why it ended. What was read is kept in any case.
+fn listen_until_done(live: &mut LiveStream, options: &StreamOptions, target_mg: f64) -> String {
+    let interrupt = interrupt_on_ctrl_c();
     let mut last_status = Instant::now();
-    let why = loop {
-        live.poll(Duration::from_millis(200))
-            .map_err(|e| crate::link::LinkError::Disconnected { reason: e.to_string() })?;
+    loop {
+        if let Err(e) = live.poll(Duration::from_millis(200)) {
+            return format!("the port went away ({e})");
+        }
         if interrupt.load(Ordering::SeqCst) {
-            break "stopped by Ctrl-C";
+            return "stopped by Ctrl-C".to_owned();
         }
         if live.quiet_s() > QUIET_S {
-            break "the stream stopped";
+            return "the stream stopped".to_owned();
         }
         if live.lines.len() < DETECT_LINES || last_status.elapsed() < STATUS_EVERY {
             continue;
         }
         last_status = Instant::now();
-        if let Some(done) = status(&live, &options, args.length.target_mg) {
-            break done;
+        if let Some(done) = status(live, options, target_mg) {
+            return done.to_owned();
         }
-    };
-    let data = data_lines(&live);
-    live.finish(&data).map_err(|source| Error::WriteFile { path: path.clone(), source })?;
-    eprintln!("{why}: fitting the still periods of {}", path.display());
-    report(args, &path, &options)
+    }
 }
 
 fn default_log() -> PathBuf {
