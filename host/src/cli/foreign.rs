@@ -19,8 +19,8 @@ use crate::stream::segment::mean_std;
 use crate::stream::timing::{Rate, RateSource};
 use crate::stream::{Layout, LineReader, StreamLog, StreamOptions};
 
-/// A stream silent this long has stopped.
-const QUIET_S: f64 = 5.0;
+/// A stream silent this long has stopped (long enough that a busy machine's pause is not taken for it).
+const QUIET_S: f64 = 10.0;
 /// Lines heard before the dialect is decided.
 const DETECT_LINES: usize = 40;
 /// Still periods before the stop rule is asked.
@@ -52,6 +52,7 @@ pub(super) fn calibrate_from_stream(args: &CalibrateArgs, talking: TalkingPort) 
 fn listen_until_done(live: &mut LiveStream, options: &StreamOptions, target_mg: f64) -> String {
     let interrupt = interrupt_on_ctrl_c();
     let mut last_status = Instant::now();
+    let mut fitted_periods = 0;
     loop {
         if let Err(e) = live.poll(Duration::from_millis(200)) {
             return format!("the port went away ({e})");
@@ -66,7 +67,7 @@ fn listen_until_done(live: &mut LiveStream, options: &StreamOptions, target_mg: 
             continue;
         }
         last_status = Instant::now();
-        if let Some(done) = status(live, options, target_mg) {
+        if let Some(done) = status(live, options, target_mg, &mut fitted_periods) {
             return done.to_owned();
         }
     }
@@ -96,8 +97,14 @@ fn snapshot(live: &LiveStream, options: &StreamOptions) -> Option<StreamLog> {
     StreamLog::new(layout, samples, dropped, rate, options).ok()
 }
 
-/// Tells the person where things stand; `Some` once the fit predicts the target.
-fn status(live: &LiveStream, options: &StreamOptions, target_mg: f64) -> Option<&'static str> {
+/// Tells the person where things stand; `Some` once the fit predicts the target (fitted again
+/// only when a still period was added since `fitted_periods`).
+fn status(
+    live: &LiveStream,
+    options: &StreamOptions,
+    target_mg: f64,
+    fitted_periods: &mut usize,
+) -> Option<&'static str> {
     let log = snapshot(live, options)?;
     let accel = log.accel_g();
     let recent = &accel[accel.len().saturating_sub(5)..];
@@ -117,9 +124,10 @@ fn status(live: &LiveStream, options: &StreamOptions, target_mg: f64) -> Option<
         tilt[2],
         next_turn(up, &rested)
     );
-    if rested.len() < MIN_PERIODS {
+    if rested.len() < MIN_PERIODS || rested.len() == *fitted_periods {
         return None;
     }
+    *fitted_periods = rested.len();
     let report = StreamReport::new(&log, ModelChoice::Only(Model::Ortho9), &FitOptions::default()).ok()?;
     let predicted = report.fit.fit.prediction.as_ref()?.norm_error_mg;
     (predicted <= target_mg).then_some("the fit predicts the target")
