@@ -10,6 +10,7 @@ use super::args::{Device, StreamArgs};
 use crate::calibration::{describe, CalibrationJson};
 use crate::error::Error;
 use crate::link::{explain, serial_ports, StreamRequest};
+use crate::session::BoardRecord;
 
 /// `accelcal ports`: serial ports, ours marked.
 pub(super) fn ports() -> Result<(), Error> {
@@ -27,6 +28,8 @@ pub(super) fn ports() -> Result<(), Error> {
 /// What `accelcal info --json` prints.
 #[derive(Serialize)]
 struct InfoJson {
+    /// The board's serial number, 24 hexadecimal digits (as `ports` and sessions show it).
+    serial: String,
     protocol_version: u8,
     firmware: String,
     sensor: SensorJson,
@@ -62,6 +65,7 @@ pub(super) fn info(device: &Device, json: bool) -> Result<(), Error> {
 
 fn info_json(info: &DeviceInfo, active: Option<&Calibration>, stored: Option<&Calibration>) -> InfoJson {
     InfoJson {
+        serial: BoardRecord::of(info).serial,
         protocol_version: info.protocol_version,
         firmware: firmware_version(info),
         sensor: info.sensor.map_or_else(|e| SensorJson::Missing { error: explain(&e) }, SensorJson::Found),
@@ -73,7 +77,8 @@ fn info_json(info: &DeviceInfo, active: Option<&Calibration>, stored: Option<&Ca
 }
 
 fn print_info(info: &DeviceInfo, active: Option<&Calibration>, stored: Option<&Calibration>) {
-    println!("firmware {}, protocol {}", firmware_version(info), info.protocol_version);
+    let serial = BoardRecord::of(info).serial;
+    println!("board serial {serial}, firmware {}, protocol {}", firmware_version(info), info.protocol_version);
     match info.sensor {
         Ok(s) if s.genuine => println!("sensor: MPU-6050 at 0x{:02x}", s.address),
         Ok(s) => println!("sensor: MPU-6050-compatible clone (WHO_AM_I 0x{:02x}) at 0x{:02x}", s.who_am_i, s.address),

@@ -14,6 +14,7 @@ mod pty;
 pub mod random;
 mod serve;
 pub mod synthetic;
+pub mod turn;
 
 pub use board::{SimBoard, SimCommand, SimSensor};
 pub use clock::Pace;
