@@ -48,7 +48,7 @@ fn obey_stdin(controls: &Sender<SimCommand>) {
             }
             Ok(Line::Help) => print!("{}", help()),
             Err(_) if line.trim().is_empty() => {}
-            Err(why) => eprintln!("refused: {why}; the commands are:\n{}", help()),
+            Err(why) => eprintln!("refused: {why} (help lists the commands)"),
         }
         let _ = std::io::stdout().flush();
     }
