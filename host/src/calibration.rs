@@ -2,6 +2,10 @@
 //! `fit --json` and `calibrate --json` write and `upload` reads), the record made from a host fit,
 //! and its one-line description. No other host code reads or writes `shared::Calibration` fields.
 
+mod reason;
+
+pub use reason::calibration_reason;
+
 use serde::{Deserialize, Serialize};
 use shared::calibration::{drift, GyroCalibration, ModelTag, Origin, Procedure, TemperatureModel, MODEL_TAG_LEN};
 use shared::linalg;
@@ -12,8 +16,7 @@ use crate::data::Dataset;
 use crate::fit::gyro::GyroFit;
 use crate::fit::thermal::ThermalReference;
 use crate::fit::{self, Fit};
-use crate::link::calibration_reason;
-use crate::report::shown;
+use crate::shown::shown;
 
 /// A calibration as JSON, under the convention a = matrix (m - offset).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

@@ -28,6 +28,7 @@ pub mod procedure;
 pub mod recording;
 pub mod report;
 pub mod session;
+pub mod shown;
 pub mod sim;
 
 pub use error::Error;

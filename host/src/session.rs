@@ -11,13 +11,14 @@ use shared::{Calibration, Position};
 use crate::data::{Dataset, Row};
 use crate::fit::gyro::TurnSummary;
 use crate::orientation::Orientation;
-use crate::procedure::Verification;
 
 mod kind;
 mod outcome;
+mod verification;
 
 pub use kind::SessionKind;
 pub use outcome::{Fitted, Outcome, OutcomeError};
+pub use verification::Verification;
 
 /// Why a session file could not be written or read.
 #[derive(Debug, thiserror::Error)]

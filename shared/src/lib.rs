@@ -9,6 +9,7 @@ pub mod linalg;
 pub mod orientation;
 pub mod ortho9;
 pub mod protocol;
+pub mod real;
 pub mod six_position;
 
 pub use calibration::{AccelRange, Calibration, CalibrationError};

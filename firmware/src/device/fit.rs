@@ -12,6 +12,7 @@ use shared::calibration::{GyroCalibration, Origin};
 use shared::linalg::{self, Vec3};
 use shared::ortho9::{self, Ortho9Fit};
 use shared::protocol::{CaptureStats, DeviceError, Response, SensorConfig, MAX_KEPT_CAPTURES};
+use shared::real::Real;
 use shared::Calibration;
 
 use super::Device;
@@ -90,6 +91,6 @@ fn ortho9_calibration(fit: &Ortho9Fit<f32>, kept: &KeptCaptures, count: usize, c
         gyro: GyroCalibration { bias_dps: gyro_bias_dps, ..GyroCalibration::default() },
         mean_temp_c,
         temperature: None,
-        residual_mg: libm::sqrtf(fit.cost * share) * 1000.0,
+        residual_mg: (fit.cost * share).root() * 1000.0,
     }
 }

@@ -17,16 +17,17 @@ const CONVENTION: &[&str] = &[
 
 const TEMPERATURE: &str = "not applied (M, o, G, b are the ones at the temperature above)";
 
+const C_SAID: Said = Said {
+    title: "C (float)",
+    convention: CONVENTION,
+    carries: "M, o, G, b in full (float32)",
+    temperature: TEMPERATURE,
+};
+
 /// The C header (float).
 pub fn c(source: &Source) -> Export {
     let full = source.full();
     let loss = loss(&full, &full);
-    let said = Said {
-        title: "C (float)",
-        convention: CONVENTION,
-        carries: "M, o, G, b in full (float32)",
-        temperature: TEMPERATURE,
-    };
     let body = format!(
         "\n#ifndef ACCELCAL_CALIBRATION_H\n#define ACCELCAL_CALIBRATION_H\n\n#include <stdint.h>\n\n\
          #define ACCELCAL_ACCEL_LSB_PER_G {:?}f\n#define ACCELCAL_GYRO_LSB_PER_DPS {GYRO_LSB_PER_DPS}f\n\
@@ -40,7 +41,7 @@ pub fn c(source: &Source) -> Export {
         c_matrix(&full.gyro_matrix),
         c_vector(&source.gyro_bias_dps()),
     );
-    text(lines(source, &said, &loss), &C_BLOCK, &body, loss)
+    text(lines(source, &C_SAID, &loss), &C_BLOCK, &body, loss)
 }
 
 /// The C apply functions (ours; the formula stated above).
@@ -72,16 +73,17 @@ static inline void accelcal_gyro_dps(const int16_t raw[3], float out_dps[3]) {
 }
 ";
 
+const RUST_SAID: Said = Said {
+    title: "Rust (no_std)",
+    convention: CONVENTION,
+    carries: "M, o, G, b in full (f32)",
+    temperature: TEMPERATURE,
+};
+
 /// The Rust module (no_std: core only).
 pub fn rust(source: &Source) -> Export {
     let full = source.full();
     let loss = loss(&full, &full);
-    let said = Said {
-        title: "Rust (no_std)",
-        convention: CONVENTION,
-        carries: "M, o, G, b in full (f32)",
-        temperature: TEMPERATURE,
-    };
     let body = format!(
         "\n/// Raw accelerometer counts per g.\npub const ACCEL_LSB_PER_G: f32 = {:?};\n\
          /// Raw gyro counts per deg/s.\npub const GYRO_LSB_PER_DPS: f32 = {GYRO_LSB_PER_DPS:?};\n\
@@ -96,7 +98,7 @@ pub fn rust(source: &Source) -> Export {
         rust_matrix(&full.gyro_matrix),
         rust_vector(&source.gyro_bias_dps()),
     );
-    text(lines(source, &said, &loss), &SLASHES, &body, loss)
+    text(lines(source, &RUST_SAID, &loss), &SLASHES, &body, loss)
 }
 
 const RUST_FUNCTIONS: &str = "

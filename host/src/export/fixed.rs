@@ -32,26 +32,31 @@ pub fn c_fixed(source: &Source) -> Result<Export, ExportError> {
     let full = source.full();
     let accel = quantise(&full.matrix, &full.offset_g.map(|v| v * source.lsb_per_g()))?;
     let gyro = quantise(&full.gyro_matrix, &source.gyro_bias_dps().map(|v| v * GYRO_LSB_PER_DPS))?;
-    let carried = Carried {
-        matrix: accel.matrix.map(|row| row.map(|v| f64::from(v) / ONE)),
-        offset_g: accel.offset.map(|v| f64::from(v) / source.lsb_per_g()),
-        gyro_matrix: gyro.matrix.map(|row| row.map(|v| f64::from(v) / ONE)),
-        gyro_bias_dps: Some(gyro.offset.map(|v| f64::from(v) / GYRO_LSB_PER_DPS)),
-    };
-    let loss = loss(&full, &carried);
+    let loss = loss(&full, &carried(&accel, &gyro, source.lsb_per_g()));
     let step = format!(
         "M, o, G, b rounded to Q14 and whole counts; over every int16 reading the result differs from the \
          float correction by at most {} counts per axis (accelerometer) and {} (gyro)",
         list(&accel.step_lsb),
         list(&gyro.step_lsb)
     );
-    let said = Said {
-        title: "C (int16 fixed point, Q14)",
-        convention: CONVENTION,
-        carries: &step,
-        temperature: "not applied",
-    };
-    let body = format!(
+    let title = "C (int16 fixed point, Q14)";
+    let said = Said { title, convention: CONVENTION, carries: &step, temperature: "not applied" };
+    Ok(text(lines(source, &said, &loss), &C_BLOCK, &body(source, &accel, &gyro), loss))
+}
+
+/// What the quantised values apply, in accelcal's units.
+fn carried(accel: &Quantised, gyro: &Quantised, lsb_per_g: f64) -> Carried {
+    Carried {
+        matrix: accel.matrix.map(|row| row.map(|v| f64::from(v) / ONE)),
+        offset_g: accel.offset.map(|v| f64::from(v) / lsb_per_g),
+        gyro_matrix: gyro.matrix.map(|row| row.map(|v| f64::from(v) / ONE)),
+        gyro_bias_dps: Some(gyro.offset.map(|v| f64::from(v) / GYRO_LSB_PER_DPS)),
+    }
+}
+
+/// The header's C code.
+fn body(source: &Source, accel: &Quantised, gyro: &Quantised) -> String {
+    format!(
         "\n#ifndef ACCELCAL_CALIBRATION_Q14_H\n#define ACCELCAL_CALIBRATION_Q14_H\n\n#include <stdint.h>\n\n\
          #define ACCELCAL_ACCEL_LSB_PER_G {}\n#define ACCELCAL_GYRO_LSB_PER_DPS {GYRO_LSB_PER_DPS}f\n\
          /* The largest |fixed - float| per axis over every int16 reading, in counts. */\n\
@@ -66,8 +71,7 @@ pub fn c_fixed(source: &Source) -> Result<Export, ExportError> {
         int_vector(&accel.offset),
         int_matrix(&gyro.matrix),
         int_vector(&gyro.offset),
-    );
-    Ok(text(lines(source, &said, &loss), &C_BLOCK, &body, loss))
+    )
 }
 
 const FUNCTIONS: &str = "/* out = (matrix (raw - offset) + 2^13) >> 14, in counts. */

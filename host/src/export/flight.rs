@@ -17,7 +17,15 @@ const ARDUPILOT_TCAL_REF_C: f64 = 35.0;
 const ARDUPILOT_TCAL_SCALE: f64 = 1e6;
 
 /// What both autopilots keep: offsets and the best diagonal scale, rounded to f32 as stored; the gyro offset.
-pub fn diagonal_carried(source: &Source) -> (Carried, Vec3<f32>, Vec3<f32>, Vec3<f32>) {
+pub struct Diagonal {
+    /// What the values apply, in accelcal's units.
+    pub carried: Carried,
+    /// The per-axis scale, offset (m/s^2) and gyro offset (rad/s), as written.
+    pub per_axis: [Vec3<f32>; 3],
+}
+
+/// The values both autopilots take.
+pub fn diagonal_carried(source: &Source) -> Diagonal {
     let full = source.full();
     let scale = best_diagonal(&full.matrix).map(|v| v as f32);
     let offset_ms2 = full.offset_g.map(|v| (v * STANDARD_GRAVITY) as f32);
@@ -28,7 +36,28 @@ pub fn diagonal_carried(source: &Source) -> (Carried, Vec3<f32>, Vec3<f32>, Vec3
         gyro_matrix: diagonal([1.0; 3]),
         gyro_bias_dps: Some(gyro_rad.map(|v| f64::from(v) / RAD_PER_DEG)),
     };
-    (carried, scale, offset_ms2, gyro_rad)
+    Diagonal { carried, per_axis: [offset_ms2, scale, gyro_rad] }
+}
+
+/// NAME, VALUE for the offset, scale and gyro offset of each axis; `#` in a name is the axis.
+fn per_axis(values: &[Vec3<f32>; 3], names: [&str; 3]) -> Vec<(String, String)> {
+    let mut params = Vec::new();
+    for (axis, letter) in ["X", "Y", "Z"].iter().enumerate() {
+        for (name, value) in names.iter().zip(values) {
+            params.push((name.replace('#', letter), value[axis].to_string()));
+        }
+    }
+    params
+}
+
+/// What an autopilot says of itself; `carried_model` says what it does with a temperature model, if any.
+fn said<'a>(title: &'a str, convention: &'a [&'a str], source: &Source, carried_model: &'a str) -> Said<'a> {
+    Said {
+        title,
+        convention,
+        carries: "accelerometer offsets and a scale per axis (no cross-axis terms); gyro offsets (no gyro scale)",
+        temperature: if source.calibration.temperature.is_some() { carried_model } else { "none to carry" },
+    }
 }
 
 const ARDUPILOT_CONVENTION: &[&str] = &[
@@ -40,26 +69,16 @@ const ARDUPILOT_CONVENTION: &[&str] = &[
 
 /// The ArduPilot parameter file (NAME,VALUE lines).
 pub fn ardupilot(source: &Source) -> Export {
-    let (carried, scale, offset, gyro) = diagonal_carried(source);
-    let loss = loss(&source.full(), &carried);
-    let model = source.calibration.temperature.as_ref();
-    let said = Said {
-        title: "ArduPilot (.param)",
-        convention: ARDUPILOT_CONVENTION,
-        carries: "accelerometer offsets and a scale per axis (no cross-axis terms); gyro offsets (no gyro scale)",
-        temperature: if model.is_some() {
-            "TCAL carries the offset and gyro-bias terms (not a sensitivity drift)"
-        } else {
-            "none to carry"
-        },
-    };
-    let mut params = Vec::new();
-    for (axis, name) in ["X", "Y", "Z"].iter().enumerate() {
-        params.push((format!("INS_ACCOFFS_{name}"), offset[axis].to_string()));
-        params.push((format!("INS_ACCSCAL_{name}"), scale[axis].to_string()));
-        params.push((format!("INS_GYROFFS_{name}"), gyro[axis].to_string()));
-    }
-    if let Some(model) = model {
+    let values = diagonal_carried(source);
+    let loss = loss(&source.full(), &values.carried);
+    let said = said(
+        "ArduPilot (.param)",
+        ARDUPILOT_CONVENTION,
+        source,
+        "TCAL carries the offset and gyro-bias terms (not a sensitivity drift)",
+    );
+    let mut params = per_axis(&values.per_axis, ["INS_ACCOFFS_#", "INS_ACCSCAL_#", "INS_GYROFFS_#"]);
+    if let Some(model) = &source.calibration.temperature {
         params.extend(ardupilot_tcal(model));
     }
     let body: String = params.iter().map(|(name, value)| format!("{name},{value}\n")).collect();
@@ -112,26 +131,17 @@ const PX4_CONVENTION: &[&str] = &[
 
 /// The PX4 parameter file in QGroundControl's tab-separated form (vehicle, component, name, value, type).
 pub fn px4(source: &Source) -> Export {
-    let (carried, scale, offset, gyro) = diagonal_carried(source);
-    let loss = loss(&source.full(), &carried);
-    let model = source.calibration.temperature.as_ref();
-    let said = Said {
-        title: "PX4 (.params, QGroundControl)",
-        convention: PX4_CONVENTION,
-        carries: "accelerometer offsets and a scale per axis (no cross-axis terms); gyro offsets (no gyro scale)",
-        temperature: if model.is_some() {
-            "TC_A0 and TC_G0 carry the offset and gyro-bias terms (not a sensitivity drift)"
-        } else {
-            "none to carry"
-        },
-    };
-    let mut params: Vec<(String, String, u8)> = Vec::new();
-    for (axis, name) in ["X", "Y", "Z"].iter().enumerate() {
-        params.push((format!("CAL_ACC0_{name}OFF"), offset[axis].to_string(), REAL32));
-        params.push((format!("CAL_ACC0_{name}SCALE"), scale[axis].to_string(), REAL32));
-        params.push((format!("CAL_GYRO0_{name}OFF"), gyro[axis].to_string(), REAL32));
-    }
-    if let Some(model) = model {
+    let values = diagonal_carried(source);
+    let loss = loss(&source.full(), &values.carried);
+    let said = said(
+        "PX4 (.params, QGroundControl)",
+        PX4_CONVENTION,
+        source,
+        "TC_A0 and TC_G0 carry the offset and gyro-bias terms (not a sensitivity drift)",
+    );
+    let names = ["CAL_ACC0_#OFF", "CAL_ACC0_#SCALE", "CAL_GYRO0_#OFF"];
+    let mut params: Vec<_> = per_axis(&values.per_axis, names).into_iter().map(|(n, v)| (n, v, REAL32)).collect();
+    if let Some(model) = &source.calibration.temperature {
         params.extend(px4_thermal(model));
     }
     let mut body = "# Vehicle-Id\tComponent-Id\tName\tValue\tType\n".to_owned();

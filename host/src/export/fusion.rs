@@ -15,17 +15,18 @@ const CONVENTION: &[&str] = &[
     "the result is in g and deg/s, the units FusionAhrsUpdate takes",
 ];
 
+const FUSION_SAID: Said = Said {
+    title: "xio Fusion (FusionCalibrationInertial)",
+    convention: CONVENTION,
+    carries: "M, o, G, b in full (float32)",
+    temperature: "not applied",
+};
+
 /// The Fusion values, as a C/C++ snippet that includes Fusion.h.
 pub fn fusion(source: &Source) -> Export {
     let full = source.full();
     let loss = loss(&full, &full);
     let lsb = source.lsb_per_g();
-    let said = Said {
-        title: "xio Fusion (FusionCalibrationInertial)",
-        convention: CONVENTION,
-        carries: "M, o, G, b in full (float32)",
-        temperature: "not applied",
-    };
     let flat = |m: &[[f64; 3]; 3]| c_matrix(m).replace("}, {", ", ").replace("{{", "{").replace("}}", "}");
     let body = format!(
         "\n#include \"Fusion.h\"\n\n\
@@ -42,5 +43,5 @@ pub fn fusion(source: &Source) -> Export {
         c_vector(&[1.0 / GYRO_LSB_PER_DPS; 3]),
         c_vector(&source.gyro_bias_dps().map(|v| v * GYRO_LSB_PER_DPS)),
     );
-    text(lines(source, &said, &loss), &SLASHES, &body, loss)
+    text(lines(source, &FUSION_SAID, &loss), &SLASHES, &body, loss)
 }

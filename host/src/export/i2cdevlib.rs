@@ -18,6 +18,13 @@ const CONVENTION: &[&str] = &[
     "no scale and no cross-axis terms: M and G are not carried",
 ];
 
+const I2CDEVLIB_SAID: Said = Said {
+    title: "i2cdevlib MPU6050 (offset registers)",
+    convention: CONVENTION,
+    carries: "accelerometer and gyro offsets only, rounded to the registers' counts",
+    temperature: "the chip's registers have no temperature model: not carried",
+};
+
 /// The C++ calls.
 pub fn i2cdevlib(source: &Source) -> Export {
     let full = source.full();
@@ -30,12 +37,6 @@ pub fn i2cdevlib(source: &Source) -> Export {
         gyro_bias_dps: Some(gyro.map(|v| -f64::from(v) / GYRO_LSB_PER_DPS)),
     };
     let loss = loss(&full, &carried);
-    let said = Said {
-        title: "i2cdevlib MPU6050 (offset registers)",
-        convention: CONVENTION,
-        carries: "accelerometer and gyro offsets only, rounded to the registers' counts",
-        temperature: "the chip's registers have no temperature model: not carried",
-    };
     let mut body = "\n// MPU6050 mpu; ... mpu.initialize(); then:\n".to_owned();
     for (axis, name) in ["X", "Y", "Z"].iter().enumerate() {
         body.push_str(&format!("mpu.set{name}AccelOffset(mpu.get{name}AccelOffset() + ({}));\n", accel[axis]));
@@ -43,5 +44,5 @@ pub fn i2cdevlib(source: &Source) -> Export {
     for (axis, name) in ["X", "Y", "Z"].iter().enumerate() {
         body.push_str(&format!("mpu.set{name}GyroOffset(mpu.get{name}GyroOffset() + ({}));\n", gyro[axis]));
     }
-    text(lines(source, &said, &loss), &SLASHES, &body, loss)
+    text(lines(source, &I2CDEVLIB_SAID, &loss), &SLASHES, &body, loss)
 }

@@ -11,6 +11,13 @@ const CONVENTION: &[&str] = &[
     "no calibration is carried: apply accelcal's (e.g. --to c) to the data you record for Kalibr, or the loss below stays",
 ];
 
+const KALIBR_SAID: Said = Said {
+    title: "Kalibr (imu.yaml)",
+    convention: CONVENTION,
+    carries: "the noise terms only; none of the calibration",
+    temperature: "not carried",
+};
+
 /// The imu.yaml.
 pub fn kalibr(source: &Source) -> Result<Export, ExportError> {
     let noise = source.noise.ok_or(ExportError::NeedsNoise)?;
@@ -22,12 +29,6 @@ pub fn kalibr(source: &Source) -> Result<Export, ExportError> {
         gyro_bias_dps: None,
     };
     let loss = loss(&full, &nothing);
-    let said = Said {
-        title: "Kalibr (imu.yaml)",
-        convention: CONVENTION,
-        carries: "the noise terms only; none of the calibration",
-        temperature: "not carried",
-    };
     let body = format!(
         "accelerometer_noise_density: {:e}\naccelerometer_random_walk: {:e}\n\
          gyroscope_noise_density: {:e}\ngyroscope_random_walk: {:e}\nrostopic: /imu0\nupdate_rate: {}\n",
@@ -37,5 +38,5 @@ pub fn kalibr(source: &Source) -> Result<Export, ExportError> {
         noise.gyro_random_walk,
         noise.rate_hz
     );
-    Ok(text(lines(source, &said, &loss), &HASH, &body, loss))
+    Ok(text(lines(source, &KALIBR_SAID, &loss), &HASH, &body, loss))
 }

@@ -17,16 +17,17 @@ const CONVENTION: &[&str] = &[
     "gyro: W = (Wraw - bg) * Ag, Ag = G', bg in deg/s, Wraw = raw counts / gyro_lsb_per_dps",
 ];
 
+const MATLAB_SAID: Said = Said {
+    title: "MATLAB/Octave (magcal's convention)",
+    convention: CONVENTION,
+    carries: "M, o, G, b in full",
+    temperature: "not applied",
+};
+
 /// The MATLAB/Octave script.
 pub fn matlab(source: &Source) -> Export {
     let full = source.full();
     let loss = loss(&full, &full);
-    let said = Said {
-        title: "MATLAB/Octave (magcal's convention)",
-        convention: CONVENTION,
-        carries: "M, o, G, b in full",
-        temperature: "not applied",
-    };
     let c0 = linalg::scale(linalg::mul_vec(&full.matrix, full.offset_g), -1.0);
     let body = format!(
         "\naccel_lsb_per_g = {};\ngyro_lsb_per_dps = {GYRO_LSB_PER_DPS};\nstandard_gravity = {STANDARD_GRAVITY};\n\n\
@@ -38,7 +39,7 @@ pub fn matlab(source: &Source) -> Export {
         matrix(&linalg::transpose(&full.gyro_matrix)),
         row(&source.gyro_bias_dps()),
     );
-    text(lines(source, &said, &loss), &PERCENT, &body, loss)
+    text(lines(source, &MATLAB_SAID, &loss), &PERCENT, &body, loss)
 }
 
 fn row(v: &Vec3<f64>) -> String {

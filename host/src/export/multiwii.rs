@@ -33,18 +33,19 @@ const BETAFLIGHT_CONVENTION: &[&str] = &[
     "the fourth value (1) marks the calibration as done; the gyro bias is measured again at every boot",
 ];
 
+const BETAFLIGHT_SAID: Said = Said {
+    title: "Betaflight (CLI)",
+    convention: BETAFLIGHT_CONVENTION,
+    carries: "accelerometer offsets only (no scale, no gyro bias: Betaflight measures it at boot)",
+    temperature: "Betaflight has no temperature model: not carried",
+};
+
 /// The Betaflight CLI commands.
 pub fn betaflight(source: &Source) -> Export {
     let (carried, counts) = carried(source, BETAFLIGHT_LSB_PER_G, [1.0; 3]);
     let loss = loss(&source.full(), &carried);
-    let said = Said {
-        title: "Betaflight (CLI)",
-        convention: BETAFLIGHT_CONVENTION,
-        carries: "accelerometer offsets only (no scale, no gyro bias: Betaflight measures it at boot)",
-        temperature: "Betaflight has no temperature model: not carried",
-    };
     let body = format!("set acc_calibration = {},{},{},1\nsave\n", counts[0], counts[1], counts[2]);
-    text(lines(source, &said, &loss), &HASH, &body, loss)
+    text(lines(source, &BETAFLIGHT_SAID, &loss), &HASH, &body, loss)
 }
 
 const INAV_CONVENTION: &[&str] = &[
@@ -53,18 +54,18 @@ const INAV_CONVENTION: &[&str] = &[
     "the gyro bias is measured again at every boot",
 ];
 
+const INAV_SAID: Said = Said {
+    title: "INAV (CLI)",
+    convention: INAV_CONVENTION,
+    carries: "accelerometer offsets and a scale per axis (no cross-axis terms, no gyro bias: INAV measures it at boot)",
+    temperature: "INAV has no temperature model: not carried",
+};
+
 /// The INAV CLI commands.
 pub fn inav(source: &Source) -> Export {
     let gains = best_diagonal(&source.full().matrix).map(|s| (s * INAV_GAIN_ONE).round() as i32);
     let (carried, counts) = carried(source, INAV_LSB_PER_G, gains.map(|g| f64::from(g) / INAV_GAIN_ONE));
     let loss = loss(&source.full(), &carried);
-    let said = Said {
-        title: "INAV (CLI)",
-        convention: INAV_CONVENTION,
-        carries:
-            "accelerometer offsets and a scale per axis (no cross-axis terms, no gyro bias: INAV measures it at boot)",
-        temperature: "INAV has no temperature model: not carried",
-    };
     let mut body = String::new();
     for (axis, name) in ["x", "y", "z"].iter().enumerate() {
         body.push_str(&format!("set acczero_{name} = {}\n", counts[axis]));
@@ -73,5 +74,5 @@ pub fn inav(source: &Source) -> Export {
         body.push_str(&format!("set accgain_{name} = {}\n", gains[axis]));
     }
     body.push_str("save\n");
-    text(lines(source, &said, &loss), &HASH, &body, loss)
+    text(lines(source, &INAV_SAID, &loss), &HASH, &body, loss)
 }

@@ -36,7 +36,7 @@ pub fn lines(source: &Source, said: &Said, loss: &Loss) -> Vec<String> {
     lines.extend(said.convention.iter().map(|line| format!("convention: {line}")));
     lines.push(format!("g: {STANDARD_GRAVITY} m/s^2 per g (standard gravity) wherever a value is in m/s^2"));
     lines.push(format!("carries: {}", said.carries));
-    lines.extend(lost(loss));
+    lines.extend(lost(loss, source.has_gyro_matrix()));
     lines
 }
 
@@ -60,7 +60,8 @@ fn sensor(source: &Source) -> String {
 }
 
 /// The loss lines, in a fixed form (tests read them back).
-fn lost(loss: &Loss) -> Vec<String> {
+fn lost(loss: &Loss, has_gyro_matrix: bool) -> Vec<String> {
+    let gyro_note = if has_gyro_matrix { "" } else { " (no gyro matrix was fitted in what this was exported from)" };
     vec![
         format!(
             "lost, accelerometer, against accelcal's full calibration over {SPHERE_POINTS} orientations at 1 g: \
@@ -68,7 +69,7 @@ fn lost(loss: &Loss) -> Vec<String> {
             loss.rms_mg, loss.worst_mg
         ),
         format!(
-            "lost, gyro scale and misalignment, of the rate: {:.3} % rms, {:.3} % worst",
+            "lost, gyro scale and misalignment, of the rate: {:.3} % rms, {:.3} % worst{gyro_note}",
             loss.gyro_rms_pct, loss.gyro_worst_pct
         ),
     ]

@@ -2,7 +2,9 @@
 //! at a fresh orientation, from the parameter covariance; and the angles between the sensor's axes
 //! that the matrix implies (Ivanov et al.'s model (4): 90 degrees each for perfectly orthogonal axes).
 
-use nalgebra::{DMatrix, Matrix3, Matrix4, Vector3, Vector4};
+use std::sync::OnceLock;
+
+use nalgebra::{DMatrix, Matrix3, Matrix4, Vector3};
 use serde::Serialize;
 use shared::linalg::Mat3;
 
@@ -31,48 +33,94 @@ fn fresh_orientations() -> impl Iterator<Item = Vector3<f64>> {
     })
 }
 
-/// The prediction from `covariance_of(u)`, the covariance of the corrected reading a (output units)
-/// at true specific force g u.
-pub(super) fn predict(g: f64, covariance_of: impl Fn(&Vector3<f64>) -> Matrix3<f64>) -> Prediction {
-    let (mut norm, mut tilt) = (0.0, 0.0);
-    for u in fresh_orientations() {
-        let covariance = covariance_of(&u);
-        norm += (u.transpose() * covariance * u)[0];
-        tilt += covariance.trace() - (u.transpose() * covariance * u)[0];
+/// The covariance of the corrected reading at true specific force g u as a quadratic form in
+/// w = (u_x, u_y, u_z, 1): C(u) = sum_ab w_a w_b `terms[a][b]` (output units squared).
+pub(super) type Quadratic = [[Matrix3<f64>; 4]; 4];
+
+/// Every product w_a w_b w_c w_d, w = (u, 1), averaged over the fresh orientations (all moments up
+/// to the fourth), computed once.
+fn moments() -> &'static [[[[f64; 4]; 4]; 4]; 4] {
+    static MOMENTS: OnceLock<[[[[f64; 4]; 4]; 4]; 4]> = OnceLock::new();
+    MOMENTS.get_or_init(|| {
+        let mut sums = [[[[0.0; 4]; 4]; 4]; 4];
+        for u in fresh_orientations() {
+            let w = [u[0], u[1], u[2], 1.0];
+            for (a, b, c, d) in quadruples() {
+                sums[a][b][c][d] += w[a] * w[b] * w[c] * w[d];
+            }
+        }
+        sums.map(|x| x.map(|y| y.map(|z| z.map(|v| v / FRESH_ORIENTATIONS as f64))))
+    })
+}
+
+/// Every index quadruple (a, b, c, d) in 0..4.
+fn quadruples() -> impl Iterator<Item = (usize, usize, usize, usize)> {
+    (0..256).map(|i| (i >> 6, (i >> 4) & 3, (i >> 2) & 3, i & 3))
+}
+
+/// The prediction from the covariance of the corrected reading, averaged over the fresh orientations.
+///
+/// NOTE: u^T C(u) u and trace C(u) are polynomials in u of degree four and two, so their means over
+/// the orientations are the moments of [`moments`] weighed by the covariance's terms: the same sums
+/// as visiting every orientation, at the cost of one.
+pub(super) fn predict(g: f64, covariance: &Quadratic) -> Prediction {
+    let moment = moments();
+    let (mut norm, mut trace) = (0.0, 0.0);
+    for (a, b, i, j) in quadruples() {
+        if i < 3 && j < 3 {
+            norm += moment[a][b][i][j] * covariance[a][b][(i, j)];
+        } else if (i, j) == (3, 3) {
+            trace += moment[a][b][3][3] * covariance[a][b].trace();
+        }
     }
-    let n = FRESH_ORIENTATIONS as f64;
-    Prediction { norm_error_mg: (norm / n).sqrt() / g * 1000.0, tilt_error_deg: ((tilt / n).sqrt() / g).to_degrees() }
+    let tilt = trace - norm;
+    Prediction {
+        norm_error_mg: norm.max(0.0).sqrt() / g * 1000.0,
+        tilt_error_deg: (tilt.max(0.0).sqrt() / g).to_degrees(),
+    }
 }
 
 /// The prediction of a least-squares model from its parameters and their covariance in the file's
-/// units: da = sum_k dM/dp_k (m - o) dp_k - M do.
+/// units: da = sum_k dM/dp_k (m - o) dp_k - M do, with m - o = M^-1 g u, so da = sum_a w_a J_a dp.
 pub(super) fn least_squares(shape: Shape, parameters: &[f64], covariance: &DMatrix<f64>, g: f64) -> Prediction {
     let n = shape.len();
     let matrix = shape.matrix(&parameters[..n]);
     let sensor = matrix.try_inverse().unwrap_or_else(Matrix3::zeros);
-    predict(g, |u| {
-        let centered = sensor * (u * g);
+    let jacobians: [DMatrix<f64>; 4] = std::array::from_fn(|a| {
         let mut jacobian = DMatrix::zeros(3, n + 3);
-        for k in 0..n {
-            jacobian.column_mut(k).copy_from(&(shape.derivative(&parameters[..n], k) * centered));
+        if a < 3 {
+            let centered = sensor.column(a) * g;
+            for k in 0..n {
+                jacobian.column_mut(k).copy_from(&(shape.derivative(&parameters[..n], k) * centered));
+            }
+        } else {
+            jacobian.view_mut((0, n), (3, 3)).copy_from(&(-matrix));
         }
-        jacobian.view_mut((0, n), (3, 3)).copy_from(&(-matrix));
-        let a = &jacobian * covariance * jacobian.transpose();
-        Matrix3::from_fn(|i, j| a[(i, j)])
-    })
+        jacobian
+    });
+    let weighted: [DMatrix<f64>; 4] = std::array::from_fn(|a| &jacobians[a] * covariance);
+    let terms = std::array::from_fn(|a| {
+        std::array::from_fn(|b| {
+            let term = &weighted[a] * jacobians[b].transpose();
+            Matrix3::from_fn(|i, j| term[(i, j)])
+        })
+    });
+    predict(g, &terms)
 }
 
 /// The prediction of a linear model (a = M (m - y), m = X a + y) from the per-reading-axis
 /// covariances of (X row, y): each axis c of m errs by (dX a + dy)_c, variance [a 1] C_c [a 1]^T,
-/// and a by -M times that.
+/// and a by -M times that; [a 1] = diag(g, g, g, 1) w.
 pub(super) fn linear(matrix: &Mat3<f64>, covariances: &[Matrix4<f64>; 3], g: f64) -> Prediction {
     let m = Matrix3::from_fn(|i, j| matrix[i][j]);
-    predict(g, |u| {
-        let a = u * g;
-        let extended = Vector4::new(a[0], a[1], a[2], 1.0);
-        let reading = Vector3::from_fn(|c, _| (extended.transpose() * covariances[c] * extended)[0]);
-        m * Matrix3::from_diagonal(&reading) * m.transpose()
-    })
+    let scale = [g, g, g, 1.0];
+    let terms = std::array::from_fn(|a| {
+        std::array::from_fn(|b| {
+            let reading = Vector3::from_fn(|c, _| covariances[c][(a, b)] * scale[a] * scale[b]);
+            m * Matrix3::from_diagonal(&reading) * m.transpose()
+        })
+    });
+    predict(g, &terms)
 }
 
 /// The three angles between the sensor's axes, in degrees (x-y, x-z, y-z): the angles between the
@@ -82,4 +130,33 @@ pub fn axis_angles_deg(matrix: &Mat3<f64>) -> Option<[f64; 3]> {
     let row = |i: usize| sensor.row(i).transpose();
     let angle = |i: usize, j: usize| row(i).angle(&row(j)).to_degrees();
     Some([angle(0, 1), angle(0, 2), angle(1, 2)])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_moments_give_the_mean_over_every_fresh_orientation() {
+        // C(u) = L(w) L(w)^T with L(w) = sum_a w_a L_a (positive by construction): its terms are L_a L_b^T.
+        let factors: [Matrix3<f64>; 4] =
+            std::array::from_fn(|a| Matrix3::from_fn(|i, j| ((3 * i + 5 * j + 7 * a) % 11) as f64 * 1e-4 - 4e-4));
+        let terms: Quadratic = std::array::from_fn(|a| std::array::from_fn(|b| factors[a] * factors[b].transpose()));
+        let (mut norm, mut tilt) = (0.0, 0.0);
+        for u in fresh_orientations() {
+            let factor = factors[0] * u[0] + factors[1] * u[1] + factors[2] * u[2] + factors[3];
+            let covariance = factor * factor.transpose();
+            norm += (u.transpose() * covariance * u)[0];
+            tilt += covariance.trace() - (u.transpose() * covariance * u)[0];
+        }
+        let (n, g) = (FRESH_ORIENTATIONS as f64, 9.81);
+        let visited = Prediction {
+            norm_error_mg: (norm / n).sqrt() / g * 1000.0,
+            tilt_error_deg: ((tilt / n).sqrt() / g).to_degrees(),
+        };
+        let moments = predict(g, &terms);
+        let relative = |a: f64, b: f64| (a - b).abs() / b;
+        assert!(relative(moments.norm_error_mg, visited.norm_error_mg) < 1e-12, "{moments:?} vs {visited:?}");
+        assert!(relative(moments.tilt_error_deg, visited.tilt_error_deg) < 1e-12, "{moments:?} vs {visited:?}");
+    }
 }

@@ -15,7 +15,7 @@ pub use client::{Client, SILENCE_LIMIT};
 pub use connect::{open_port, Connection};
 pub use discovery::{resolve_port, serial_ports, SerialPortEntry};
 pub use error::LinkError;
-pub use explain::{calibration_reason, explain};
+pub use explain::explain;
 pub use port::{open_serial, pipe, PipeEnd, Port};
 pub use requests::{ChipOrtho9, StreamRequest};
 pub use tally::Tally;

@@ -10,7 +10,8 @@ use shared::Calibration;
 use super::gyro::{GyroJson, GyroOutcome, TruthGyroJson};
 use crate::calibration::CalibrationJson;
 use crate::fit::Fit;
-use crate::procedure::{TargetVerdict, TurnCheck, Verification};
+use crate::procedure::{TargetVerdict, TurnCheck};
+use crate::session::Verification;
 
 /// The object `accelcal calibrate --json` prints.
 #[derive(Debug, Clone, Serialize)]

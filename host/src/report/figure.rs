@@ -7,7 +7,7 @@ use shared::linalg::{self, Mat3, Vec3};
 #[cfg(test)]
 use super::session::residual_mg;
 use super::session::PositionResult;
-use crate::procedure::Verification;
+use crate::session::Verification;
 
 /// Points on each sphere outline.
 const OUTLINE_POINTS: usize = 96;

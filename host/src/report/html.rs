@@ -8,7 +8,7 @@ use super::figure::{Figure, SeriesStyle};
 use super::plot::{self, PlotError};
 use super::session::{Board, PositionResult, SessionReport, NOT_RECORDED};
 use super::Comparison;
-use crate::procedure::Verification;
+use crate::session::Verification;
 
 /// Said where a section's data is not in the session.
 pub const ABSENT: &str = "not part of this session";

@@ -2,6 +2,8 @@
 //! as text for a person ([`text`]), as the JSON of DESIGN.md ([`json`]), and for a session as an
 //! HTML page with plots ([`html`]).
 
+pub use crate::shown::shown;
+
 pub mod allan;
 mod calibrate;
 mod comparison;
@@ -26,17 +28,6 @@ pub use session::{Board, Figures, FitSummary, PositionResult, SessionReport, Ver
 use crate::data::Dataset;
 use crate::fit::{self, Evaluation, Fit, FitError, FitOptions, ModelChoice};
 
-/// `value` as shown with `digits` decimals: a value that rounds to zero is shown as zero, never as
-/// the `-0.00` a tiny negative number would print.
-pub fn shown(value: f64, digits: usize) -> f64 {
-    let scale = 10f64.powi(digits as i32);
-    if (value * scale).round() == 0.0 {
-        0.0
-    } else {
-        value
-    }
-}
-
 /// A fit of a data file with everything its renderers show.
 #[derive(Debug, Clone)]
 pub struct FitReport {
@@ -60,16 +51,5 @@ impl FitReport {
         let evaluation = fit::evaluate(dataset, &fit.matrix, &fit.offset, options.g, &fit.lines_used);
         let comparison = (choice == ModelChoice::Auto).then(|| Comparison::new(dataset, options, (&fit, &evaluation)));
         Ok(FitReport { fit, evaluation, g: options.g, rows: dataset.rows.len(), comparison })
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    #[test]
-    fn a_value_that_rounds_to_zero_is_shown_without_a_sign() {
-        assert_eq!(format!("{:.2}", super::shown(-0.004, 2)), "0.00");
-        assert_eq!(format!("{:+.2}", super::shown(-0.004, 2)), "+0.00");
-        assert_eq!(format!("{:.2}", super::shown(-0.005, 2)), "-0.01");
-        assert_eq!(format!("{:.1}", super::shown(-0.04, 1)), "0.0");
     }
 }

@@ -13,8 +13,8 @@ use super::{Comparison, FitReport};
 use crate::data::Dataset;
 use crate::fit::gyro::TurnSummary;
 use crate::fit::{FitError, FitOptions, Parameter};
-use crate::procedure::Verification;
 use crate::session::Session;
+use crate::session::Verification;
 
 /// Shown for what the session does not carry.
 pub const NOT_RECORDED: &str = "not recorded";

@@ -206,7 +206,7 @@ fn write_board(out: &mut String, board: &Board) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::procedure::Verification;
+    use crate::session::Verification;
     use shared::{AccelRange, Calibration};
 
     fn verified(positions: usize, after_rms_mg: f64, noise_floor_mg: f64) -> String {

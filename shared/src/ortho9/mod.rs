@@ -17,7 +17,8 @@ use num_traits::Float;
 use serde::{Deserialize, Serialize};
 
 use crate::linalg::{self, Mat3, Vec3};
-use normal::{accumulate, solve_scaled};
+use crate::real::Real;
+use normal::{accumulate, solve_scaled, Normal};
 
 /// Number of parameters: a_yz, a_zy, a_zx, s_x, s_y, s_z, o_x, o_y, o_z (offset in g).
 pub const PARAMETERS: usize = 9;
@@ -84,67 +85,86 @@ pub fn min_pivot<T: Float>() -> T {
     T::epsilon() * T::from(100.0).unwrap_or_else(T::one)
 }
 
+/// The stopping rule's tolerance: the fit ends at a step of at most this times |parameters| (f64
+/// 1.5e-10, f32 3.5e-6), as Ceres' `parameter_tolerance` and scipy's `xtol` do.
+///
+/// NOTE: the cost cannot see a parameter error below about sqrt(epsilon) (it changes by the error's
+/// square); a hundredth of that ends the fit once the steps carry nothing the cost could confirm.
+pub fn step_tolerance<T: Real>() -> T {
+    T::epsilon().root() * constant(0.01)
+}
+
 /// Fits `ortho9` to readings in g, starting from M = I, o = 0.
-pub fn fit<T: Float>(readings: &[Vec3<T>]) -> Result<Ortho9Fit<T>, Ortho9Error> {
+pub fn fit<T: Real>(readings: &[Vec3<T>]) -> Result<Ortho9Fit<T>, Ortho9Error> {
     fit_from(readings, identity())
 }
 
 /// Fits `ortho9` to readings in g from the parameters `start`.
-pub fn fit_from<T: Float>(readings: &[Vec3<T>], start: Params<T>) -> Result<Ortho9Fit<T>, Ortho9Error> {
+pub fn fit_from<T: Real>(readings: &[Vec3<T>], start: Params<T>) -> Result<Ortho9Fit<T>, Ortho9Error> {
     if readings.len() < MIN_READINGS {
         return Err(Ortho9Error::TooFewReadings(readings.len().min(255) as u8));
     }
-    let mut state = State { params: start, normal: accumulate(readings, &start)?, lambda: constant(1e-3) };
-    check_conditioning(&state)?;
+    // NOTE: built in place, not returned from a constructor: moving the solver copies its two 9x9
+    // systems, which on the chip took a sixth of the fit.
+    let normals = [Normal::new(), Normal::new()];
+    let mut solver = Solver { readings, params: start, normals, current: 0, lambda: T::zero() };
+    if !accumulate(readings, &start, &mut solver.normals[0]) {
+        return Err(Ortho9Error::NotFinite);
+    }
     for iteration in 1..=MAX_ITERATIONS {
-        if state.step(readings)? {
-            return Ok(Ortho9Fit { params: state.params, cost: state.normal.cost, iterations: iteration });
+        if solver.step()? {
+            let cost = cost(readings, &solver.params);
+            return Ok(Ortho9Fit { params: solver.params, cost, iterations: iteration });
         }
     }
     Err(Ortho9Error::NotConverged)
 }
 
-/// The iteration's state: parameters, their normal equations and the damping.
-struct State<T> {
+/// Levenberg-Marquardt's state: parameters, their normal equations and the damping.
+struct Solver<'a, T> {
+    readings: &'a [Vec3<T>],
     params: Params<T>,
-    normal: normal::Normal<T>,
+    /// The normal equations at `params` (`normals[current]`) and at the step being tried: the two
+    /// swap roles when a step is taken, so no 9x9 matrix is ever copied.
+    normals: [Normal<T>; 2],
+    current: usize,
+    /// Damping of the scaled normal matrix; zero (plain Gauss-Newton) until a step fails.
     lambda: T,
 }
 
-impl<T: Float> State<T> {
+impl<'a, T: Real> Solver<'a, T> {
     /// One damped step; `Ok(true)` once converged.
-    fn step(&mut self, readings: &[Vec3<T>]) -> Result<bool, Ortho9Error> {
-        let minus_jtr = self.normal.jtr.map(|v| -v);
-        let delta = solve_scaled(&self.normal.jtj, &minus_jtr, self.lambda, min_pivot())
+    ///
+    /// NOTE: the first solve is undamped, so its Cholesky is also the conditioning check: a pivot
+    /// below [`min_pivot`] names a parameter the readings hardly determine. A negligible step is taken
+    /// unchecked and ends the fit: it costs nothing and leaves the parameters at their rounding floor.
+    fn step(&mut self) -> Result<bool, Ortho9Error> {
+        let normal = &self.normals[self.current];
+        let delta = solve_scaled(&normal.jtj, &normal.jtr, self.lambda, min_pivot())
             .map_err(|k| Ortho9Error::IllConditioned(k as u8))?;
-        let mut trial = self.params;
-        for (t, d) in trial.iter_mut().zip(&delta) {
-            *t = *t + *d;
-        }
-        if cost(readings, &trial) <= self.normal.cost + cost_resolution(self.normal.cost, readings.len()) {
+        let trial = core::array::from_fn(|k| self.params[k] + delta[k]);
+        if negligible(&delta, &self.params) {
             self.params = trial;
-            self.normal = accumulate(readings, &trial)?;
-            self.lambda = (self.lambda * constant(0.1)).max(constant(1e-12));
-            return Ok(negligible(&delta, &trial));
+            return Ok(true);
+        }
+        let (cost, next) = (normal.cost, 1 - self.current);
+        let resolution = cost_resolution(cost, self.readings.len());
+        if accumulate(self.readings, &trial, &mut self.normals[next]) && self.normals[next].cost <= cost + resolution {
+            (self.params, self.current) = (trial, next);
+            self.lambda = self.lambda * constant(0.1);
+            return Ok(false);
         }
         // NOTE: when no step however short lowers the cost, the cost is at its rounding floor.
-        self.lambda = self.lambda * constant(10.0);
+        self.lambda = (self.lambda * constant(10.0)).max(constant(1e-3));
         Ok(self.lambda > constant(1e12))
     }
 }
 
-/// Refuses readings whose undamped scaled normal matrix has a pivot below [`min_pivot`].
-fn check_conditioning<T: Float>(state: &State<T>) -> Result<(), Ortho9Error> {
-    let zero = [T::zero(); PARAMETERS];
-    solve_scaled(&state.normal.jtj, &zero, T::zero(), min_pivot()).map_err(|k| Ortho9Error::IllConditioned(k as u8))?;
-    Ok(())
-}
-
-/// Whether a step is below the solver's resolution: 64 epsilons of the largest parameter.
-fn negligible<T: Float>(delta: &Params<T>, params: &Params<T>) -> bool {
-    let largest = params.iter().fold(T::one(), |m, p| m.max(p.abs()));
-    let tolerance = T::epsilon() * constant(64.0) * largest;
-    delta.iter().all(|d| d.abs() <= tolerance)
+/// Whether a step is below the solver's resolution: |delta| <= [`step_tolerance`] |params|.
+fn negligible<T: Real>(delta: &Params<T>, params: &Params<T>) -> bool {
+    let squared = |v: &Params<T>| v.iter().fold(T::zero(), |sum, x| sum + *x * *x);
+    let tolerance = step_tolerance::<T>();
+    squared(delta) <= tolerance * tolerance * squared(params)
 }
 
 /// How far the cost can move by rounding alone: each residual |a| - 1 carries an absolute error of a
@@ -152,32 +172,27 @@ fn negligible<T: Float>(delta: &Params<T>, params: &Params<T>) -> bool {
 ///
 /// NOTE: near the minimum the last Gauss-Newton step lowers the cost by less than that; judged by
 /// the cost it would be refused, and the fit would stop short of the minimum by about sqrt(epsilon).
-fn cost_resolution<T: Float>(cost: T, readings: usize) -> T {
+fn cost_resolution<T: Real>(cost: T, readings: usize) -> T {
     let n = T::from(readings).unwrap_or_else(T::one);
-    T::epsilon() * constant(64.0) * (n * cost).sqrt()
+    T::epsilon() * constant(64.0) * (n * cost).root()
 }
 
-/// Sum of squared residuals; infinite when a value is not finite, so such a step is never taken.
-fn cost<T: Float>(readings: &[Vec3<T>], p: &Params<T>) -> T {
-    let matrix = matrix_of(p);
-    let offset = [p[6], p[7], p[8]];
-    let sum = readings.iter().fold(T::zero(), |sum, &m| {
-        let r = linalg::norm(linalg::mul_vec(&matrix, linalg::sub(m, offset))) - T::one();
+/// Sum of squared residuals at `p`.
+fn cost<T: Real>(readings: &[Vec3<T>], p: &Params<T>) -> T {
+    let (matrix, offset) = (matrix_of(p), [p[6], p[7], p[8]]);
+    readings.iter().fold(T::zero(), |sum, &m| {
+        let a = linalg::mul_vec(&matrix, linalg::sub(m, offset));
+        let r = linalg::dot(a, a).root() - T::one();
         sum + r * r
-    });
-    if sum.is_finite() {
-        sum
-    } else {
-        T::infinity()
-    }
+    })
 }
 
 /// The residual |M (m - o)| - 1 of one reading and its gradient over the parameters.
-fn residual_and_gradient<T: Float>(p: &Params<T>, m: Vec3<T>) -> (T, Params<T>) {
+fn residual_and_gradient<T: Real>(p: &Params<T>, m: Vec3<T>) -> (T, Params<T>) {
     let (a_yz, a_zy, a_zx, s_x, s_y, s_z) = (p[0], p[1], p[2], p[3], p[4], p[5]);
     let c = linalg::sub(m, [p[6], p[7], p[8]]);
     let a = linalg::mul_vec(&matrix_of(p), c);
-    let length = linalg::norm(a);
+    let length = linalg::dot(a, a).root();
     let u = linalg::scale(a, T::one() / length);
     // d|a|/dM_ij = u_i c_j; each parameter's dM/dp picks its entries.
     let column_z = u[0] * a_zy + u[1] * a_zx + u[2];

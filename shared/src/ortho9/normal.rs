@@ -5,16 +5,17 @@
 
 use num_traits::Float;
 
-use super::{residual_and_gradient, Ortho9Error, Params, PARAMETERS};
+use super::{residual_and_gradient, Params, PARAMETERS};
 use crate::linalg::Vec3;
+use crate::real::Real;
 
-/// A symmetric 9x9 matrix, row-major.
+/// A symmetric 9x9 matrix, row-major; the solve reads only its lower triangle.
 pub(super) type Square<T> = [[T; PARAMETERS]; PARAMETERS];
 
-/// J^T J, J^T r and the cost sum r^2 at one parameter vector.
-#[derive(Debug, Clone, Copy)]
+/// J^T J (lower triangle), J^T r and the cost sum r^2 at one parameter vector.
+#[derive(Debug, Clone)]
 pub(super) struct Normal<T> {
-    /// J^T J.
+    /// J^T J, its lower triangle (j <= i).
     pub jtj: Square<T>,
     /// J^T r.
     pub jtr: Params<T>,
@@ -22,47 +23,48 @@ pub(super) struct Normal<T> {
     pub cost: T,
 }
 
-/// Accumulates the normal equations over the readings; refuses values that are not finite.
-pub(super) fn accumulate<T: Float>(readings: &[Vec3<T>], p: &Params<T>) -> Result<Normal<T>, Ortho9Error> {
-    let mut normal =
-        Normal { jtj: [[T::zero(); PARAMETERS]; PARAMETERS], jtr: [T::zero(); PARAMETERS], cost: T::zero() };
+impl<T: Float> Normal<T> {
+    /// All zero.
+    pub fn new() -> Self {
+        Normal { jtj: [[T::zero(); PARAMETERS]; PARAMETERS], jtr: [T::zero(); PARAMETERS], cost: T::zero() }
+    }
+}
+
+/// Accumulates the normal equations at `p` over the readings into `normal`; `false` when a value is
+/// not finite.
+pub(super) fn accumulate<T: Real>(readings: &[Vec3<T>], p: &Params<T>, normal: &mut Normal<T>) -> bool {
+    normal.jtj = [[T::zero(); PARAMETERS]; PARAMETERS];
+    normal.jtr = [T::zero(); PARAMETERS];
+    normal.cost = T::zero();
     for &reading in readings {
         let (r, row) = residual_and_gradient(p, reading);
         normal.cost = normal.cost + r * r;
         for i in 0..PARAMETERS {
             normal.jtr[i] = normal.jtr[i] + row[i] * r;
-            // NOTE: only the lower triangle is summed; the upper is mirrored once at the end.
             for j in 0..=i {
                 normal.jtj[i][j] = normal.jtj[i][j] + row[i] * row[j];
             }
         }
     }
-    for i in 0..PARAMETERS {
-        for j in 0..i {
-            normal.jtj[j][i] = normal.jtj[i][j];
-        }
-    }
-    let finite = normal.cost.is_finite() && normal.jtr.iter().chain(normal.jtj.iter().flatten()).all(|v| v.is_finite());
-    finite.then_some(normal).ok_or(Ortho9Error::NotFinite)
+    // NOTE: an off-diagonal sum is bounded by its two diagonal ones (Cauchy-Schwarz), so finite
+    // diagonals, J^T r and cost mean a finite system.
+    let diagonal = (0..PARAMETERS).map(|k| normal.jtj[k][k]);
+    normal.cost.is_finite() && normal.jtr.iter().copied().chain(diagonal).all(|v| v.is_finite())
 }
 
-/// Solves (A + lambda diag(A)) x = b by Cholesky on the diagonally scaled matrix.
+/// Solves (A + lambda diag(A)) x = -g by Cholesky on the diagonally scaled matrix (A's lower
+/// triangle): the step that the gradient g = J^T r asks for.
 ///
 /// NOTE: scaling to a unit diagonal makes the pivots comparable across parameters of different
 /// units (scale factors, cross-axis terms, offsets in g); a pivot below `min_pivot` means the readings
 /// hardly determine that parameter, and its index is returned as the error.
-pub(super) fn solve_scaled<T: Float>(
-    a: &Square<T>,
-    b: &Params<T>,
-    lambda: T,
-    min_pivot: T,
-) -> Result<Params<T>, usize> {
+pub(super) fn solve_scaled<T: Real>(a: &Square<T>, g: &Params<T>, lambda: T, min_pivot: T) -> Result<Params<T>, usize> {
     let mut d = [T::zero(); PARAMETERS];
     for (k, dk) in d.iter_mut().enumerate() {
         if a[k][k].is_nan() || a[k][k] <= T::zero() {
             return Err(k);
         }
-        *dk = T::one() / a[k][k].sqrt();
+        *dk = T::one() / a[k][k].root();
     }
     let mut l = [[T::zero(); PARAMETERS]; PARAMETERS];
     for i in 0..PARAMETERS {
@@ -78,20 +80,20 @@ pub(super) fn solve_scaled<T: Float>(
                 if sum.is_nan() || sum <= min_pivot * (T::one() + lambda) {
                     return Err(i);
                 }
-                l[i][i] = sum.sqrt();
+                l[i][i] = sum.root();
             } else {
                 l[i][j] = sum / l[j][j];
             }
         }
     }
-    Ok(substitute(&l, b, &d))
+    Ok(substitute(&l, g, &d))
 }
 
-/// x = D L^-T L^-1 D b: the forward and back substitutions of the scaled system.
-fn substitute<T: Float>(l: &Square<T>, b: &Params<T>, d: &Params<T>) -> Params<T> {
+/// x = -D L^-T L^-1 D g: the forward and back substitutions of the scaled system.
+fn substitute<T: Float>(l: &Square<T>, g: &Params<T>, d: &Params<T>) -> Params<T> {
     let mut y = [T::zero(); PARAMETERS];
     for i in 0..PARAMETERS {
-        let mut sum = b[i] * d[i];
+        let mut sum = -(g[i] * d[i]);
         for k in 0..i {
             sum = sum - l[i][k] * y[k];
         }

@@ -9,6 +9,7 @@ use firmware::sensor::RawSample;
 use firmware::sim::{sim_serial_number, SimFlash, SimMpu6050, SIM_FLASH_RANGE};
 use shared::calibration::{GyroCalibration, TemperatureModel};
 use shared::protocol::{Request, Response, SensorConfig, StreamKind};
+use shared::real::Real;
 use shared::{AccelRange, Calibration, Position, PositionMap};
 
 /// The published phone readings in m/s^2 (Georgieva and Hofreither), the six faces in their order.
@@ -20,6 +21,29 @@ const PHONE: [(Position, [f32; 3]); 6] = [
     (Position::NegZ, [0.510292, 0.338026, -10.7851]),
     (Position::PosZ, [0.231834, 0.482186, 8.60553]),
 ];
+
+/// Ends an emulated run: says `done` (or `failed`) over semihosting and exits QEMU with that status.
+#[cfg(target_os = "none")]
+pub fn finish(ok: bool) -> ! {
+    use cortex_m_semihosting::{debug, hprintln};
+    hprintln!("{}", if ok { "done" } else { "failed" });
+    debug::exit(if ok { debug::EXIT_SUCCESS } else { debug::EXIT_FAILURE });
+    // NOTE: semihosting exit ends QEMU; should it not, sleep rather than spin.
+    loop {
+        cortex_m::asm::wfi();
+    }
+}
+
+/// Says what panicked over semihosting and exits QEMU with a failure.
+#[cfg(target_os = "none")]
+#[panic_handler]
+fn panic(info: &core::panic::PanicInfo) -> ! {
+    cortex_m_semihosting::hprintln!("panic: {}", info);
+    cortex_m_semihosting::debug::exit(cortex_m_semihosting::debug::EXIT_FAILURE);
+    loop {
+        cortex_m::asm::wfi();
+    }
+}
 
 /// One named result: f32 values as their bit patterns.
 pub struct Result<'a> {
@@ -53,6 +77,21 @@ pub const QUICK_TILTED: [[f32; 3]; 10] = [
     [-0.54, 0.62, -0.62],
     [0.54, -0.62, -0.62],
 ];
+
+/// The quick calibration's ten captures as the published-error MPU-6050 (firmware::sim's truth) reads
+/// them at [`QUICK_TILTED`], in g, with a fixed pattern of +-1e-4 g standing in for noise.
+pub fn quick_readings() -> [[f32; 3]; 10] {
+    let truth = firmware::sim::physics::TrueErrors::published_mpu6050();
+    let mut readings = [[0.0f32; 3]; 10];
+    for (i, (reading, up)) in readings.iter_mut().zip(QUICK_TILTED).enumerate() {
+        let length = shared::linalg::dot(up, up).root();
+        *reading = truth.reading_g(up.map(|v| v / length));
+        for (k, value) in reading.iter_mut().enumerate() {
+            *value += 1e-4 * (((i * 3 + k) * 7 % 3) as f32 - 1.0);
+        }
+    }
+    readings
+}
 
 /// The firmware's own 9-parameter fit on request: ten 5 s captures of the realistic simulated
 /// sensor at [`QUICK_TILTED`], then `FitOrtho9`; the capture means, and the fit's M (row-major), o,

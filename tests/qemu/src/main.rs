@@ -8,7 +8,7 @@ fn main() {}
 #[cfg(target_os = "none")]
 mod target {
     use cortex_m_rt::entry;
-    use cortex_m_semihosting::{debug, hprint, hprintln};
+    use cortex_m_semihosting::{hprint, hprintln};
 
     #[entry]
     fn main() -> ! {
@@ -19,20 +19,6 @@ mod target {
             }
             hprintln!("");
         });
-        hprintln!("{}", if ok { "done" } else { "failed" });
-        debug::exit(if ok { debug::EXIT_SUCCESS } else { debug::EXIT_FAILURE });
-        // NOTE: semihosting exit ends QEMU; should it not, sleep rather than spin.
-        loop {
-            cortex_m::asm::wfi();
-        }
-    }
-
-    #[panic_handler]
-    fn panic(info: &core::panic::PanicInfo) -> ! {
-        hprintln!("panic: {}", info);
-        debug::exit(debug::EXIT_FAILURE);
-        loop {
-            cortex_m::asm::wfi();
-        }
+        qemu_tests::finish(ok)
     }
 }

@@ -7,42 +7,15 @@
 //! stderr that it was skipped and why (visible without `--nocapture`), except under CI (`CI` set),
 //! where their absence is a failure.
 
+mod common;
+
 use std::collections::BTreeMap;
-use std::path::PathBuf;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-fn elf() -> PathBuf {
-    let target = std::env::var_os("CARGO_TARGET_DIR")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../target"));
-    target.join("thumbv7em-none-eabihf/release/qemu-tests")
-}
-
-/// Says on the terminal that the test was skipped and why, even when the harness captures output.
-///
-/// NOTE: the test harness captures `println!` and `eprintln!` of passing tests; a write to the
-/// stderr handle itself is not captured, so a skip is never silent.
-fn say_skipped(reason: &str) {
-    use std::io::Write;
-    let _ = writeln!(std::io::stderr(), "on-target test SKIPPED: {reason}");
-}
-
 /// Runs the binary under QEMU; its `name hex...` lines as f32 values, by name.
 fn on_target() -> Option<BTreeMap<String, Vec<u32>>> {
-    let elf = elf();
-    let missing = if !elf.exists() {
-        Some(format!("{} is not built", elf.display()))
-    } else if Command::new("qemu-system-arm").arg("--version").output().is_err() {
-        Some("qemu-system-arm is not installed (apt-get install qemu-system-arm)".to_owned())
-    } else {
-        None
-    };
-    if let Some(reason) = missing {
-        assert!(std::env::var_os("CI").is_none(), "on-target test cannot run under CI: {reason}");
-        say_skipped(&reason);
-        return None;
-    }
+    let elf = common::runnable("qemu-tests")?;
     let mut qemu = Command::new("qemu-system-arm")
         .args(["-machine", "netduinoplus2", "-nographic", "-semihosting-config", "enable=on,target=native", "-kernel"])
         .arg(&elf)
