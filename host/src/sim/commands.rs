@@ -14,6 +14,10 @@ pub(super) const COMMANDS: &[(&str, &str)] = &[
     ("turn +X+Y+Z|...|-X-Y-Z", "turn it by hand to rest on that corner"),
     ("rotate x|y|z DEG", "turn it by hand DEG degrees about its own x, y or z axis (-360 to 360)"),
     (
+        "tip DEG",
+        "tip it by hand over an edge, DEG degrees about a horizontal line (the gyro check's quarter turn: tip 90)",
+    ),
+    (
         "place +X|...|-Z|+X+Y+Z|...",
         "put the board down at once with that axis or corner up (no turn: the gyro sees none)",
     ),
@@ -64,6 +68,7 @@ pub(super) fn parse(line: &str) -> Result<Line, String> {
         ["help"] => return Ok(Line::Help),
         ["turn", face] if face.starts_with(['+', '-']) && face.len() > 1 => SimCommand::TurnTo(face_up(face)?),
         ["rotate", axis, degrees] => rotation_by(axis, number(degrees, -360.0, 360.0)?)?,
+        ["tip", degrees] => SimCommand::Tip(number(degrees, -360.0, 360.0)?),
         ["place", face] => SimCommand::Place(face_up(face)?),
         ["place", x, y, z] => SimCommand::Place(direction([x, y, z])?),
         ["tilt", degrees] => timed(rotation(number(degrees, -360.0, 360.0)?), 1.0),
@@ -182,6 +187,7 @@ mod tests {
     #[test]
     fn a_person_turns_the_board_by_hand_to_a_face_or_about_any_of_its_axes() {
         assert_eq!(board("turn -Y"), Some(SimCommand::TurnTo([0.0, -1.0, 0.0])));
+        assert_eq!(board("tip 90"), Some(SimCommand::Tip(90.0)));
         assert_eq!(board("turn +x+y+z").map(|c| matches!(c, SimCommand::TurnTo(_))), Some(true));
         let Some(SimCommand::MoveFor { motion: Motion::Turning { axis, angle_deg, seconds }, .. }) =
             board("rotate y -90")

@@ -18,7 +18,7 @@ use firmware::sim::{SimFlash, SimMpu6050, SIM_FLASH_RANGE};
 use super::board::SimCommand;
 use super::clock::{Clock, Pace};
 use super::outgoing::Outgoing;
-use super::turn::turn_between;
+use super::turn::{tip, turn_between};
 use super::Port;
 
 type SimServer = Server<SimMpu6050, SimFlash>;
@@ -97,7 +97,11 @@ impl Service {
         // surroundings during a turn leaves the turn to end where it would have.
         if matches!(
             command,
-            SimCommand::Place(_) | SimCommand::Move(_) | SimCommand::MoveFor { .. } | SimCommand::TurnTo(_)
+            SimCommand::Place(_)
+                | SimCommand::Move(_)
+                | SimCommand::MoveFor { .. }
+                | SimCommand::TurnTo(_)
+                | SimCommand::Tip(_)
         ) {
             self.motion_ends_us = None;
         }
@@ -107,6 +111,10 @@ impl Service {
                 sensor.stop_motion();
                 let from = sensor.physics.up.map(f64::from);
                 turn_between(from, up.map(f64::from), [1.0, 0.0, 0.0])
+            }
+            SimCommand::Tip(degrees) => {
+                sensor.stop_motion();
+                tip(sensor.physics.up.map(f64::from), f64::from(degrees))
             }
             command => command,
         };
@@ -121,7 +129,7 @@ impl Service {
             SimCommand::Ambient { target_c, c_per_s } => sensor.physics.environment.ramp_to(target_c, c_per_s),
             SimCommand::Elapse(seconds) => soak(sensor, seconds),
             SimCommand::LoseSamples(count) => self.outgoing.lose_samples(count),
-            SimCommand::Restart | SimCommand::Stop | SimCommand::TurnTo(_) => {}
+            SimCommand::Restart | SimCommand::Stop | SimCommand::TurnTo(_) | SimCommand::Tip(_) => {}
         }
     }
 

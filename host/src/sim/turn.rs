@@ -34,3 +34,28 @@ pub fn turn_between(from: [f64; 3], to: [f64; 3], aside: [f64; 3]) -> SimCommand
     let axis = Some(cross(to, from)).filter(perpendicular).or_else(|| half_turn_axes.into_iter().find(perpendicular));
     turning(axis.unwrap_or([1.0, 0.0, 0.0]), angle_between_deg(from, to))
 }
+
+/// A turn by `angle_deg` over an edge of a board resting with `up` up: about the horizontal line
+/// across the board's x axis (its y axis when x points up).
+pub fn tip(up: [f64; 3], angle_deg: f64) -> SimCommand {
+    let across = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]].map(|a| cross(up, a));
+    let axis = if norm(across[0]) > 0.5 { across[0] } else { across[1] };
+    turning(axis, angle_deg)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_tip_turns_about_a_horizontal_line_wherever_the_board_rests() {
+        let r = 1.0 / 3f64.sqrt();
+        for up in [[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [-1.0, 0.0, 0.0], [r, r, r], [0.6, 0.0, 0.8]] {
+            let SimCommand::MoveFor { motion: Motion::Turning { axis, angle_deg, .. }, .. } = tip(up, 90.0) else {
+                panic!("a tip is a turn");
+            };
+            let along_up: f64 = (0..3).map(|k| f64::from(axis[k]) * up[k]).sum();
+            assert!(along_up.abs() < 1e-6 && angle_deg == 90.0, "{up:?}: axis {axis:?}");
+        }
+    }
+}
