@@ -8,6 +8,7 @@
 //! - [`session`]: the captures of a calibration, kept as files;
 //! - [`data`]: calibration data files;
 //! - [`fit`]: least-squares fits;
+//! - [`stream`]: a board's own stream as its sketch prints it (dialects, units, still periods);
 //! - [`noise`]: noise characterisation of a still recording by Allan deviation;
 //! - [`calibration`]: the device's calibration record on the host (its JSON form, from a fit);
 //! - [`export`]: the calibration in other programs' formats, with what each loses;
@@ -30,5 +31,6 @@ pub mod report;
 pub mod session;
 pub mod shown;
 pub mod sim;
+pub mod stream;
 
 pub use error::Error;

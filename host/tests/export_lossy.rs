@@ -302,3 +302,30 @@ fn count_targets_write_the_calibrations_offset_to_half_a_count_with_the_sign_the
         }
     }
 }
+
+#[test]
+fn i2cdevlib_states_what_imu_zeros_one_pose_offsets_would_leave_within_10_percent() {
+    let sim = simulated();
+    let text = read(&export("i2cdevlib", "i2cdevlib.imu_zero", &[]));
+    let stated = numbers_after_label(text.lines().find(|l| l.contains("IMU_Zero")).expect("an IMU_Zero line"));
+    // IMU_Zero zeroes the true sensor's reading at +Z up to 0, 0, 1 g.
+    let up = correct(&inverse(&sim.true_matrix), &[0.0; 3], [0.0, 0.0, 1.0]);
+    let offset = [0, 1, 2].map(|i| up[i] + sim.true_offset[i] - [0.0, 0.0, 1.0][i]);
+    let applied = Applied { scale: [1.0; 3], offset_g: offset, gyro_bias_dps: None };
+    let measured = measured_on_truth(&applied);
+    for (stated, measured, what) in [(stated[0], measured.0, "rms"), (stated[1], measured.1, "worst")] {
+        assert!(
+            (stated - measured).abs() <= 0.1 * measured,
+            "IMU_Zero: stated {stated:.4} mg {what}, measured {measured:.4}"
+        );
+    }
+}
+
+/// The decimal numbers of a line after its label (up to "):").
+fn numbers_after_label(line: &str) -> Vec<f64> {
+    let tail = &line[line.find("):").map_or(0, |i| i + 2)..];
+    tail.split(|c: char| !(c.is_ascii_digit() || c == '.'))
+        .filter(|s| !s.is_empty())
+        .filter_map(|s| s.parse().ok())
+        .collect()
+}

@@ -11,6 +11,8 @@ use common::accelcal_within;
 struct ChattyPort {
     path: String,
     stop: std::sync::Arc<std::sync::atomic::AtomicBool>,
+    /// Bytes written to the port by whatever opened it.
+    written: std::sync::Arc<std::sync::atomic::AtomicUsize>,
     _slave: serialport::TTYPort,
 }
 
@@ -21,16 +23,19 @@ impl ChattyPort {
         let path = serialport::SerialPort::name(&slave).unwrap();
         let stop = std::sync::Arc::new(AtomicBool::new(false));
         let running = stop.clone();
+        let written = std::sync::Arc::new(std::sync::atomic::AtomicUsize::new(0));
+        let counted = written.clone();
         std::thread::spawn(move || {
             let line = b"$GPGGA,123519,4807.038,N,01131.000,E,1,08,0.9,545.4,M,46.9,M,,*47\r\n";
             while !running.load(Ordering::Relaxed) {
                 let _ = master.write_all(line);
                 let mut drained = [0u8; 256];
-                let _ = std::io::Read::read(&mut master, &mut drained);
+                let read = std::io::Read::read(&mut master, &mut drained).unwrap_or(0);
+                counted.fetch_add(read, Ordering::Relaxed);
                 std::thread::sleep(Duration::from_millis(20));
             }
         });
-        ChattyPort { path, stop, _slave: slave }
+        ChattyPort { path, stop, written, _slave: slave }
     }
 }
 
@@ -40,8 +45,11 @@ impl Drop for ChattyPort {
     }
 }
 
+/// NOTE: accelcal listens before it writes (issue 24): a port that talks on its own is named after
+/// the 1.2 s of listening and never written to (a MicroPython board would take the probe's 0x03 as
+/// Ctrl-C).
 #[test]
-fn a_port_printing_nmea_text_is_named_not_an_accelcal_board_within_3_s() {
+fn a_port_printing_nmea_text_is_named_not_an_accelcal_board_within_3_s_and_never_written_to() {
     let port = ChattyPort::start();
     let (output, elapsed) = accelcal_within(&["info", "--port", &port.path], Duration::from_secs(15));
     let stderr = String::from_utf8(output.stderr).unwrap();
@@ -49,8 +57,11 @@ fn a_port_printing_nmea_text_is_named_not_an_accelcal_board_within_3_s() {
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
     assert!(stderr.contains("is not an accelcal board"), "{stderr}");
     assert!(stderr.contains("text such as \"$GPGGA,"), "{stderr}");
+    assert!(stderr.contains("wrote nothing to it"), "{stderr}");
     assert!(stderr.contains("`accelcal ports`"), "{stderr}");
-    // NOTE: 2 s without an accelcal frame, plus process start-up.
+    std::thread::sleep(Duration::from_millis(100));
+    assert_eq!(port.written.load(std::sync::atomic::Ordering::Relaxed), 0, "bytes were written to the port");
+    // NOTE: 1.2 s of listening, plus process start-up.
     assert!(elapsed < Duration::from_secs(3), "took {elapsed:?}");
 }
 

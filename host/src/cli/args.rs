@@ -64,6 +64,27 @@ pub struct FitArgs {
     /// Print one JSON object instead of the table.
     #[arg(long)]
     pub json: bool,
+    #[command(flatten)]
+    pub stream: SketchStreamArgs,
+}
+
+/// What a raw stream (a sketch's own log or port) may need said about it; each is found from the
+/// stream where it can be.
+#[derive(Args, Debug, Clone, Default)]
+pub struct SketchStreamArgs {
+    /// The unit of the stream's accelerometer values, when the stream leaves it unclear.
+    #[arg(long, value_enum)]
+    pub input_unit: Option<crate::stream::AccelUnit>,
+    /// The unit of the stream's gyro values (counts of a range cannot be told from a resting gyro).
+    #[arg(long, value_enum)]
+    pub gyro_unit: Option<crate::stream::GyroUnit>,
+}
+
+impl SketchStreamArgs {
+    /// The options for reading a stream, at `rate_hz` when one was given.
+    pub fn options(&self, rate_hz: Option<f64>) -> crate::stream::StreamOptions {
+        crate::stream::StreamOptions { accel_unit: self.input_unit, gyro_unit: self.gyro_unit, rate_hz }
+    }
 }
 
 /// `accelcal calibrate`.
@@ -71,6 +92,12 @@ pub struct FitArgs {
 pub struct CalibrateArgs {
     #[command(flatten)]
     pub device: Device,
+    /// On a board that prints its own stream: the file that keeps every line read (default
+    /// accelcal-stream-<time>.log here); `accelcal fit` on it gives the same calibration.
+    #[arg(long, value_name = "LOG")]
+    pub stream_log: Option<PathBuf>,
+    #[command(flatten)]
+    pub stream: SketchStreamArgs,
     /// Ten positions (six faces, four corners), fitted on the chip: no fit on the host.
     #[arg(long)]
     pub quick: bool,
@@ -240,8 +267,12 @@ pub enum Command {
     /// Runs a simulated board on a pseudo-terminal; prints its path, then serves until killed.
     Sim {
         /// Serve on a pseudo-terminal (the only transport offered).
-        #[arg(long, required = true)]
+        #[arg(long, required_unless_present = "sketch")]
         pty: bool,
+        /// Instead of an accelcal board, a board running this sketch: a simulated person's
+        /// three-minute session as it prints it (with --pty at its own pace, else all at once on stdout).
+        #[arg(long, value_enum)]
+        sketch: Option<crate::sim::sketch::Sketch>,
         /// Seed of the simulated sensor's noise.
         #[arg(long, default_value_t = 1)]
         seed: u64,

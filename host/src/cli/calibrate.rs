@@ -36,7 +36,10 @@ pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
     if args.json && !args.yes && !args.device.sim {
         return Err(Error::JsonCannotAsk);
     }
-    let mut opened = args.device.open()?;
+    let mut opened = match args.device.open_or_talking()? {
+        Ok(opened) => opened,
+        Err(talking) => return super::foreign::calibrate_from_stream(args, *talking),
+    };
     opened.connection.info.sensor.map_err(LinkError::from)?;
     let mut feedback = feedback(args.json, args.yes || (args.json && opened.sim.is_some()));
     let mut kept = start_session(args, &opened.connection.info, feedback.as_mut())?;

@@ -6,7 +6,7 @@ use std::time::{Duration, Instant};
 
 use super::args::Device;
 use crate::error::Error;
-use crate::link::{open_port, resolve_port, serial_ports, Connection};
+use crate::link::{open_listening, open_port, resolve_port, serial_ports, Connection, PortOpened, TalkingPort};
 use crate::procedure::{BoardClock, Hand, PersonHand, SimulatedHand};
 use crate::sim::SimBoard;
 
@@ -24,6 +24,19 @@ pub(super) struct Opened {
 }
 
 impl Device {
+    /// Opens the device, or, when its port talks on its own, hands the port over unwritten.
+    pub(super) fn open_or_talking(&self) -> Result<Result<Opened, Box<TalkingPort>>, Error> {
+        match &self.port {
+            Some(name) => match open_listening(&resolve_port(name, serial_ports)?)? {
+                PortOpened::Board(connection) => {
+                    Ok(Ok(Opened { connection: *connection, sim: None, opened_at: Instant::now() }))
+                }
+                PortOpened::Talking(talking) => Ok(Err(Box::new(talking))),
+            },
+            None => self.open().map(Ok),
+        }
+    }
+
     /// Opens the device and says hello.
     pub(super) fn open(&self) -> Result<Opened, Error> {
         match (&self.port, self.sim) {

@@ -46,8 +46,7 @@ pub(super) fn export(args: &ExportArgs) -> Result<(), Error> {
     match &args.output {
         Some(path) => {
             write_atomically(path, &exported.bytes)?;
-            let shown = if exported.binary { exported.statement.join("\n") } else { exported.statement[0].clone() };
-            eprintln!("{shown}\nwrote {}", path.display());
+            eprintln!("{}\nwrote {}", shown(&exported), path.display());
         }
         None => {
             std::io::stdout()
@@ -56,6 +55,13 @@ pub(super) fn export(args: &ExportArgs) -> Result<(), Error> {
         }
     }
     Ok(())
+}
+
+/// What the terminal shows beside a written file: all of a binary file's statement, else what the
+/// file carries and loses (the rest is in the file).
+fn shown(exported: &export::Export) -> String {
+    let wanted = |line: &&String| exported.binary || line.starts_with("carries:") || line.starts_with("lost");
+    exported.statement.iter().filter(wanted).cloned().collect::<Vec<_>>().join("\n")
 }
 
 /// The board's active calibration and its serial number.

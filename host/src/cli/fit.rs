@@ -1,18 +1,31 @@
-//! `accelcal fit FILE`: a data file fitted, reported as text or JSON.
+//! `accelcal fit FILE`: a data file fitted, reported as text or JSON. A file that is a sketch's raw
+//! log (or a data file whose rows are single samples) is read as a stream: its still periods are
+//! found, averaged, and fitted.
 
 use super::args::FitArgs;
-use crate::data::Dataset;
+use crate::data::{DataError, Dataset};
 use crate::error::Error;
 use crate::fit::FitOptions;
+use crate::report::stream::{self, StreamReport};
 use crate::report::{self, FitReport};
+use crate::stream::{StreamError, StreamLog};
 
 /// Reads the file, fits, and prints the report.
 pub(super) fn fit(args: &FitArgs) -> Result<(), Error> {
     if !(args.g.is_finite() && args.g > 0.0) {
         return Err(Error::BadGravity { g: args.g });
     }
-    let dataset = Dataset::from_path(&args.file, args.g).map_err(|source| Error::data_file(&args.file, source))?;
-    let report = FitReport::new(&dataset, args.model, &options(args)).map_err(|source| Error::CannotFit {
+    let text =
+        std::fs::read_to_string(&args.file).map_err(|source| Error::ReadFile { path: args.file.clone(), source })?;
+    match Dataset::from_reader(text.as_bytes(), args.g) {
+        Ok(dataset) if !dataset.looks_like_samples() => fit_dataset(args, &dataset),
+        Ok(_) => fit_stream(args, &text).map_err(|e| stream_refused(args, e, None)),
+        Err(data) => fit_stream(args, &text).map_err(|e| stream_refused(args, e, Some(data))),
+    }
+}
+
+fn fit_dataset(args: &FitArgs, dataset: &Dataset) -> Result<(), Error> {
+    let report = FitReport::new(dataset, args.model, &options(args)).map_err(|source| Error::CannotFit {
         path: args.file.clone(),
         model: args.model,
         source,
@@ -23,6 +36,35 @@ pub(super) fn fit(args: &FitArgs) -> Result<(), Error> {
         print!("{}", report::text::fit_report(&report));
     }
     Ok(())
+}
+
+/// Why a file was neither fitted as a data file nor as a stream.
+enum StreamRefusal {
+    Read(StreamError),
+    Fit(crate::fit::FitError),
+}
+
+fn fit_stream(args: &FitArgs, text: &str) -> Result<(), StreamRefusal> {
+    let log = StreamLog::parse(text, &args.stream.options(None)).map_err(StreamRefusal::Read)?;
+    let report = StreamReport::new(&log, args.model, &options(args)).map_err(StreamRefusal::Fit)?;
+    if args.json {
+        println!("{}", stream::json(&report));
+    } else {
+        print!("{}", stream::text(&report));
+    }
+    Ok(())
+}
+
+/// The error for a file that is not a data file and could not be fitted as a stream: the data
+/// file's own error when it has a data file's header (a bad row) or holds no stream either.
+fn stream_refused(args: &FitArgs, refusal: StreamRefusal, data: Option<DataError>) -> Error {
+    let headed = |data: &DataError| !matches!(data, DataError::MissingColumns { .. });
+    match (refusal, data) {
+        (StreamRefusal::Read(_), Some(data)) if headed(&data) => Error::data_file(&args.file, data),
+        (StreamRefusal::Read(StreamError::NoData { .. }), Some(data)) => Error::data_file(&args.file, data),
+        (StreamRefusal::Read(source), _) => Error::Stream { path: args.file.clone(), source },
+        (StreamRefusal::Fit(source), _) => Error::StreamFit { path: args.file.clone(), source },
+    }
 }
 
 fn options(args: &FitArgs) -> FitOptions {

@@ -10,6 +10,7 @@ mod choice;
 mod device;
 mod export;
 mod fit;
+mod foreign;
 mod gyro;
 mod length;
 mod noise;
@@ -61,9 +62,24 @@ pub fn run(cli: Cli) -> Result<(), Error> {
         Command::Export(args) => export::export(&args),
         Command::Record(args) => record::record(&args),
         Command::Thermal(args) => thermal::thermal(&args),
-        Command::Sim { pty: _, seed, fast } => {
+        Command::Sim { pty, seed, sketch: Some(sketch), .. } => sketch_stream(sketch, seed, pty),
+        Command::Sim { pty: _, seed, fast, sketch: None } => {
             let pace = if fast { crate::sim::Pace::Fast } else { crate::sim::Pace::RealTime };
             Ok(crate::sim::serve_pty(seed, pace)?)
         }
     }
+}
+
+/// `sim --sketch`: the replay on a pseudo-terminal, or the whole log on stdout.
+fn sketch_stream(sketch: crate::sim::sketch::Sketch, seed: u64, pty: bool) -> Result<(), Error> {
+    if pty {
+        return Ok(crate::sim::replay::serve_replay(sketch, seed)?);
+    }
+    let session = crate::sim::person::PersonSession::new(seed, sketch.reading());
+    let mut out = std::io::stdout().lock();
+    for line in sketch.lines(&session) {
+        std::io::Write::write_all(&mut out, line.text.as_bytes())
+            .map_err(|source| Error::WriteFile { path: "stdout".into(), source })?;
+    }
+    Ok(())
 }

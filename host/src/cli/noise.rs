@@ -1,12 +1,18 @@
-//! `accelcal noise`: the Allan deviation and noise terms of a still recording.
+//! `accelcal noise`: the Allan deviation and noise terms of a still recording, or of the longest
+//! still period of a sketch's raw stream.
 
 use super::args::NoiseArgs;
 use crate::error::Error;
-use crate::noise::{self, input, json, plot, text};
+use crate::noise::input::NoiseInputError;
+use crate::noise::{self, input, json, plot, text, RateSeries};
+use crate::stream::{cost, StillPeriods, StreamLog, StreamOptions};
 
 /// `accelcal noise FILE [--json] [--plot FILE.svg]`.
 pub(super) fn noise(args: &NoiseArgs) -> Result<(), Error> {
-    let series = input::read_path(&args.file, args.rate)?;
+    let series = match input::read_path(&args.file, args.rate) {
+        Err(NoiseInputError::MissingColumn { .. } | NoiseInputError::BadLine { .. }) => stream_series(args)?,
+        read => read?,
+    };
     let report = noise::analyse(&series);
     if let Some(path) = &args.plot {
         std::fs::write(path, plot::render(&report))
@@ -18,4 +24,25 @@ pub(super) fn noise(args: &NoiseArgs) -> Result<(), Error> {
         print!("{}", text::render(&report));
     }
     Ok(())
+}
+
+/// The file as a sketch's stream: its longest still period, said on stderr with what the stream costs.
+fn stream_series(args: &NoiseArgs) -> Result<RateSeries, Error> {
+    let text =
+        std::fs::read_to_string(&args.file).map_err(|source| Error::ReadFile { path: args.file.clone(), source })?;
+    let options = StreamOptions { rate_hz: args.rate, ..StreamOptions::default() };
+    let log = StreamLog::parse(&text, &options).map_err(|source| Error::Stream { path: args.file.clone(), source })?;
+    let (longest, series) = noise::stream::longest_still(&log)?;
+    eprintln!(
+        "{} stream: the longest still period, lines {}-{}, {} samples at {:.1} Hz",
+        log.layout.dialect.name(),
+        log.samples[longest.first].line,
+        log.samples[longest.last].line,
+        longest.samples,
+        series.rate_hz
+    );
+    for cost in cost::costs(&log, &StillPeriods::of(&log).segments) {
+        eprintln!("cost: {}", cost.words);
+    }
+    Ok(series)
 }

@@ -47,7 +47,27 @@ pub struct Dataset {
     pub rows: Vec<Row>,
 }
 
+/// Rows from which a file of single samples is told from a file of averaged positions.
+const SAMPLE_FILE_ROWS: usize = 30;
+/// Successive rows this close (relative to the reading's size) repeat one position.
+const REPEAT_FRACTION: f64 = 0.05;
+
 impl Dataset {
+    /// Whether the rows are single samples rather than averaged positions: no row says how many
+    /// samples it averages, and most follow one that reads about the same (a resting board printed
+    /// over and over, not one row per position).
+    pub fn looks_like_samples(&self) -> bool {
+        if self.rows.len() < SAMPLE_FILE_ROWS || self.rows.iter().any(|r| r.count.is_some()) {
+            return false;
+        }
+        let size = |r: [f64; 3]| shared::linalg::norm(r);
+        let close = |pair: &[Row]| {
+            size(shared::linalg::sub(pair[1].reading, pair[0].reading)) < REPEAT_FRACTION * size(pair[0].reading)
+        };
+        let repeats = self.rows.windows(2).filter(|pair| close(pair)).count();
+        2 * repeats >= self.rows.len()
+    }
+
     /// The rows whose orientation is known.
     pub fn references(&self) -> impl Iterator<Item = (&Row, [f64; 3])> {
         self.rows.iter().filter_map(|row| row.reference.map(|r| (row, r)))

@@ -83,3 +83,37 @@ pub fn best_diagonal(matrix: &Mat3<f64>) -> Vec3<f64> {
 pub fn diagonal(scale: Vec3<f64>) -> Mat3<f64> {
     [[scale[0], 0.0, 0.0], [0.0, scale[1], 0.0], [0.0, 0.0, scale[2]]]
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const M: Mat3<f64> = [[1.002, 0.004, -0.007], [0.0, 0.997, 0.003], [0.0, 0.0, 1.011]];
+    const O: Vec3<f64> = [0.02, -0.01, 0.05];
+
+    #[test]
+    fn offsets_only_leave_the_scale_error_of_an_axis_analytically() {
+        // M = diag(1.01, 1, 1) kept as offsets only: the error is (1/1.01 - 1) u_x, rms over the sphere
+        // |1/1.01 - 1| / sqrt(3), worst |1/1.01 - 1|.
+        let scale_error = 1.0 - 1.0 / 1.01;
+        let (rms, worst) = spread(&diagonal([1.01, 1.0, 1.0]), &O, &diagonal([1.0; 3]), &O);
+        assert!((rms / (scale_error / 3f64.sqrt()) - 1.0).abs() < 1e-3, "rms {rms}");
+        assert!((worst / scale_error - 1.0).abs() < 1e-3, "worst {worst}");
+        assert!(spread(&M, &O, &M, &O).1 < 1e-15, "the full calibration loses nothing");
+    }
+
+    #[test]
+    fn best_diagonal_leaves_less_than_the_matrix_diagonal_or_any_nudge_of_it() {
+        let best = best_diagonal(&M);
+        let rms = |scale: Vec3<f64>| spread(&M, &O, &diagonal(scale), &O).0;
+        let at_best = rms(best);
+        assert!(at_best < rms([M[0][0], M[1][1], M[2][2]]), "the diagonal of M is not the best per-axis scale here");
+        for axis in 0..3 {
+            for nudge in [-1e-4, 1e-4] {
+                let mut scale = best;
+                scale[axis] += nudge;
+                assert!(rms(scale) > at_best, "axis {axis} nudged by {nudge} leaves less");
+            }
+        }
+    }
+}

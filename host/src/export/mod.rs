@@ -20,7 +20,6 @@ pub use source::{Noise, Source};
 
 use crate::calibration::CalibrationRecordError;
 use crate::fit::FitError;
-use crate::procedure::ProcedureError;
 
 /// Standard gravity, m/s^2 per g: the g every m/s^2 value of an export is converted with
 /// (CGPM 1901; the value ArduPilot's GRAVITY_MSS, PX4's CONSTANTS_ONE_G and Adafruit's
@@ -82,8 +81,6 @@ pub enum ExportError {
     Record(#[from] CalibrationRecordError),
     #[error("the session cannot be fitted: {0}; capture the positions it lacks (calibrate --resume SESSION)")]
     Fit(FitError),
-    #[error("the session cannot be fitted: {0}")]
-    Procedure(#[from] ProcedureError),
     #[error("not a noise report: {reason}")]
     NoiseFile { reason: String },
     #[error("kalibr's imu.yaml is noise terms: give --noise NOISE.json (from `accelcal noise RECORDING --json`)")]

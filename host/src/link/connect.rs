@@ -1,10 +1,21 @@
-//! Opening a device on a serial port (the board, or `accelcal sim --pty`) and saying hello.
+//! Opening a device on a serial port (the board, or `accelcal sim --pty`) and saying hello, after
+//! listening first: accelcal's firmware speaks only when asked, so a port that talks on its own is a
+//! board running someone's own sketch, and nothing is written to it (on a MicroPython board the
+//! probe's 0x03 would stop the program).
+
+use std::io::Read;
+use std::time::{Duration, Instant};
 
 use shared::protocol::DeviceInfo;
 
 use super::client::Client;
 use super::error::LinkError;
+use super::listening::describe;
 use super::port::{open_serial, Port};
+
+/// How long a port is listened to before anything is written to it: a sketch printing at 1 Hz or
+/// faster has said something by then.
+pub const LISTEN_FIRST: Duration = Duration::from_millis(1200);
 
 /// An open session with a device.
 pub struct Connection {
@@ -22,8 +33,59 @@ impl Connection {
     }
 }
 
-/// Opens the serial port at `path` and says hello.
-pub fn open_port(path: &str) -> Result<Connection, LinkError> {
+/// A port that talked on its own, never written to.
+pub struct TalkingPort {
+    /// Its path.
+    pub path: String,
+    /// The open port.
+    pub port: Box<dyn Port>,
+    /// What it said while accelcal listened.
+    pub heard: Vec<u8>,
+}
+
+/// What is behind a port.
+pub enum Opened {
+    /// An accelcal board, greeted.
+    Board(Box<Connection>),
+    /// A board that prints on its own.
+    Talking(TalkingPort),
+}
+
+/// Opens the serial port at `path`, listens, and says hello only when it stayed silent.
+pub fn open_listening(path: &str) -> Result<Opened, LinkError> {
     let port = open_serial(path).map_err(|e| LinkError::opening(path, e))?;
-    Connection::over(Box::new(port))
+    let mut port: Box<dyn Port> = Box::new(port);
+    let heard = listen(&mut port, LISTEN_FIRST)?;
+    if heard.is_empty() {
+        return Ok(Opened::Board(Box::new(Connection::over(port)?)));
+    }
+    Ok(Opened::Talking(TalkingPort { path: path.to_owned(), port, heard }))
+}
+
+/// Opens the serial port at `path` and says hello; a port that talks on its own is refused unwritten.
+pub fn open_port(path: &str) -> Result<Connection, LinkError> {
+    match open_listening(path)? {
+        Opened::Board(connection) => Ok(*connection),
+        Opened::Talking(talking) => {
+            Err(LinkError::TalksOnItsOwn { path: talking.path, seen: describe(&talking.heard, talking.heard.len()) })
+        }
+    }
+}
+
+/// Every byte the port sends within `span`, without writing to it.
+pub fn listen(port: &mut Box<dyn Port>, span: Duration) -> Result<Vec<u8>, LinkError> {
+    let start = Instant::now();
+    let mut heard = Vec::new();
+    let mut buffer = [0u8; 512];
+    while start.elapsed() < span {
+        port.set_read_timeout(span.saturating_sub(start.elapsed()).max(Duration::from_millis(1)))
+            .map_err(|e| LinkError::Disconnected { reason: e.to_string() })?;
+        match port.read(&mut buffer) {
+            Ok(0) => std::thread::sleep(Duration::from_millis(10)),
+            Ok(n) => heard.extend_from_slice(&buffer[..n]),
+            Err(e) if matches!(e.kind(), std::io::ErrorKind::TimedOut | std::io::ErrorKind::WouldBlock) => {}
+            Err(e) => return Err(LinkError::Disconnected { reason: e.to_string() }),
+        }
+    }
+    Ok(heard)
 }

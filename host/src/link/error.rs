@@ -17,6 +17,8 @@ pub enum LinkError {
     StoppedAnswering,
     #[error("something answers on this port but it is not an accelcal board: it sent {seen} and no accelcal frame within {seconds} s; check that --port names the board (`accelcal ports` marks it)")]
     NotAccelcal { seconds: f64, seen: String },
+    #[error("{path} prints on its own ({seen}), so it is not an accelcal board (which speaks only when asked) and accelcal wrote nothing to it; if it is a sketch printing the sensor, `accelcal calibrate --port {path}` calibrates from what it prints (docs/streams.md); else check that --port names the board (`accelcal ports` marks it)")]
+    TalksOnItsOwn { path: String, seen: String },
     #[error("the device went away ({reason}): it was unplugged or restarted; reconnect and run the command again")]
     Disconnected { reason: String },
     #[error("the device speaks protocol version {device}, this accelcal speaks {host}: update {}", if device < host { "the firmware (cargo run --release in firmware/)" } else { "accelcal" })]

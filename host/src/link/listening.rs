@@ -50,7 +50,7 @@ impl Listening {
 }
 
 /// What the port sent, in words: a quote of its text, or a count of its bytes.
-fn describe(evidence: &[u8], total: usize) -> String {
+pub(super) fn describe(evidence: &[u8], total: usize) -> String {
     let printable = evidence.iter().filter(|b| b.is_ascii_graphic() || b.is_ascii_whitespace()).count();
     // NOTE: a few stray bytes do not make text binary; line noise is mostly unprintable.
     if printable * 10 >= evidence.len() * 9 {

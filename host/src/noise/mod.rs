@@ -8,6 +8,7 @@ pub mod fit;
 pub mod input;
 pub mod json;
 pub mod plot;
+pub mod stream;
 pub mod text;
 
 pub use allan::AllanPoint;

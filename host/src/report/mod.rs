@@ -14,6 +14,7 @@ mod html_sections;
 pub mod json;
 mod plot;
 mod session;
+pub mod stream;
 pub mod temperature;
 pub mod text;
 pub mod thermal;

@@ -10,9 +10,12 @@ mod clock;
 mod commands;
 pub mod noise;
 mod outgoing;
+pub mod person;
 mod pty;
 pub mod random;
+pub mod replay;
 mod serve;
+pub mod sketch;
 pub mod synthetic;
 pub mod turn;
 

@@ -14,3 +14,8 @@ pub fn random_unit(rng: &mut Xoshiro256PlusPlus) -> Vec3<f64> {
     let v = [gaussian(rng), gaussian(rng), gaussian(rng)];
     linalg::scale(v, 1.0 / linalg::norm(v))
 }
+
+/// A draw uniform over [0, 1).
+pub fn uniform(rng: &mut Xoshiro256PlusPlus) -> f64 {
+    <rand_distr::StandardUniform as Distribution<f64>>::sample(&rand_distr::StandardUniform, rng)
+}

@@ -1,0 +1,157 @@
+//! A fit of a board's own stream (`accelcal fit LOG` on a raw log, `calibrate` on a port that
+//! talks on its own): what the stream is, the still periods found in it, what it costs, the gyro's
+//! bias, and the fit of the periods' means; as text and as the JSON of DESIGN.md.
+
+use std::fmt::Write;
+
+use serde::Serialize;
+
+use super::json::FitJson;
+use super::FitReport;
+use crate::fit::{FitError, FitOptions, ModelChoice};
+use crate::stream::cost::{costs, Cost};
+use crate::stream::timing::Rate;
+use crate::stream::{AccelUnit, Dialect, Dropped, GyroUnit, SegmentLines, StillPeriods, StreamLog};
+
+/// A stream's fit and everything its renderers show.
+#[derive(Debug, Clone)]
+pub struct StreamReport {
+    /// The dialect.
+    pub dialect: Dialect,
+    /// The accelerometer's unit: the calibration applies to values in it.
+    pub input_unit: AccelUnit,
+    /// The gyro's unit, and whether it was assumed.
+    pub gyro_unit: Option<(GyroUnit, bool)>,
+    /// The rate, when known.
+    pub rate: Option<Rate>,
+    /// Samples read.
+    pub samples: usize,
+    /// Lines that were not samples.
+    pub dropped: Dropped,
+    /// The still periods, by line.
+    pub segments: Vec<SegmentLines>,
+    /// What the stream costs.
+    pub costs: Vec<Cost>,
+    /// The gyro's bias in deg/s.
+    pub gyro_bias_dps: Option<[f64; 3]>,
+    /// The fit of the periods' means (output in g).
+    pub fit: FitReport,
+}
+
+impl StreamReport {
+    /// Finds the still periods of `log` and fits `choice` to their means.
+    pub fn new(log: &StreamLog, choice: ModelChoice, options: &FitOptions) -> Result<Self, FitError> {
+        let still = StillPeriods::of(log);
+        let options = FitOptions { g: 1.0, ..options.clone() };
+        let fit = FitReport::new(&still.dataset, choice, &options)?;
+        Ok(StreamReport {
+            dialect: log.layout.dialect,
+            input_unit: log.accel_unit,
+            gyro_unit: log.gyro_unit,
+            rate: log.rate,
+            samples: log.samples.len(),
+            dropped: log.dropped.clone(),
+            costs: costs(log, &still.segments),
+            gyro_bias_dps: still.gyro_bias_dps(),
+            segments: still.lines,
+            fit,
+        })
+    }
+
+    /// The gyro's bias in the stream's own unit.
+    pub fn gyro_bias(&self) -> Option<[f64; 3]> {
+        let (unit, _) = self.gyro_unit?;
+        self.gyro_bias_dps.map(|b| b.map(|v| v * unit.per_dps()))
+    }
+}
+
+/// The object `fit LOG --json` and `calibrate --json` on a foreign stream print.
+#[derive(Debug, Serialize)]
+pub struct StreamJson<'a> {
+    dialect: Dialect,
+    input_unit: AccelUnit,
+    gyro_unit: Option<GyroUnit>,
+    gyro_unit_assumed: bool,
+    rate_hz: Option<f64>,
+    rate_source: Option<crate::stream::timing::RateSource>,
+    samples: usize,
+    dropped: &'a Dropped,
+    segments: &'a [SegmentLines],
+    costs: &'a [Cost],
+    gyro_bias: Option<[f64; 3]>,
+    gyro_bias_dps: Option<[f64; 3]>,
+    #[serde(flatten)]
+    fit: FitJson<'a>,
+}
+
+/// `--json`: the report as pretty JSON.
+pub fn json(report: &StreamReport) -> String {
+    let view = StreamJson {
+        dialect: report.dialect,
+        input_unit: report.input_unit,
+        gyro_unit: report.gyro_unit.map(|(unit, _)| unit),
+        gyro_unit_assumed: report.gyro_unit.is_some_and(|(_, assumed)| assumed),
+        rate_hz: report.rate.map(|r| r.hz),
+        rate_source: report.rate.map(|r| r.source),
+        samples: report.samples,
+        dropped: &report.dropped,
+        segments: &report.segments,
+        costs: &report.costs,
+        gyro_bias: report.gyro_bias(),
+        gyro_bias_dps: report.gyro_bias_dps,
+        fit: FitJson::new(&report.fit),
+    };
+    serde_json::to_string_pretty(&view).unwrap_or_default()
+}
+
+/// The report for a person: the stream, its still periods and costs, then the fit.
+pub fn text(report: &StreamReport) -> String {
+    let mut out = String::new();
+    write_stream(&mut out, report);
+    let _ = writeln!(out, "{} still periods:", report.segments.len());
+    for s in &report.segments {
+        let _ = writeln!(
+            out,
+            "  lines {:>6}-{:<6} {:>5} samples, scatter {:.2} mg",
+            s.first_line, s.last_line, s.samples, s.scatter_mg
+        );
+    }
+    if let Some(bias) = report.gyro_bias_dps {
+        let _ = writeln!(out, "gyro bias {:+.3} {:+.3} {:+.3} deg/s", bias[0], bias[1], bias[2]);
+    }
+    for cost in &report.costs {
+        let _ = writeln!(out, "cost: {}", cost.words);
+    }
+    let unit = report.input_unit.name();
+    let _ = writeln!(
+        out,
+        "M and o apply to the values as the sketch prints them: a = M (m - o), a in g, m and o in {unit}"
+    );
+    out + &super::text::fit_report(&report.fit)
+}
+
+fn write_stream(out: &mut String, report: &StreamReport) {
+    let gyro = match report.gyro_unit {
+        Some((unit, true)) => format!(", gyro in {} (assumed: --gyro-unit settles it)", unit.name()),
+        Some((unit, false)) => format!(", gyro in {}", unit.name()),
+        None => ", no gyro".to_owned(),
+    };
+    let rate = match report.rate {
+        Some(rate) => format!("{:.1} Hz from {}", rate.hz, rate_source(rate)),
+        None => "rate unknown (no timestamps)".to_owned(),
+    };
+    let _ =
+        writeln!(out, "stream: {}, accelerometer in {}{gyro}, {rate}", report.dialect.name(), report.input_unit.name());
+    let _ = writeln!(out, "{} samples; {} lines dropped", report.samples, report.dropped.total());
+    for d in &report.dropped.0 {
+        let _ = writeln!(out, "  {} line(s) from line {}: {}", d.lines, d.first_line, d.reason.words());
+    }
+}
+
+fn rate_source(rate: Rate) -> &'static str {
+    match rate.source {
+        crate::stream::timing::RateSource::Timestamps => "its timestamps",
+        crate::stream::timing::RateSource::ArrivalTimes => "the lines' arrival",
+        crate::stream::timing::RateSource::Given => "--rate",
+    }
+}

@@ -1,0 +1,120 @@
+//! What a stream costs the calibration, in numbers: noise folded in by a low rate with a wide
+//! low-pass, values printed with too few decimals, samples lost where nobody can see them.
+
+use serde::Serialize;
+
+use super::log::StreamLog;
+use super::segment::Segment;
+use super::timing::{lost_in_gaps, RateSource};
+
+/// The MPU-6050's accelerometer noise density, in g/sqrt(Hz) (Product Specification 6.2).
+const ACCEL_DENSITY_G: f64 = 400e-6;
+/// The accelerometer low-pass settings of the MPU-6050, in Hz (register map 4.3, DLPF_CFG 0-6).
+const LOW_PASS_HZ: [f64; 7] = [260.0, 184.0, 94.0, 44.0, 21.0, 10.0, 5.0];
+/// A position's mean known to this, in g, is what the capture times below are for.
+const MEAN_GOAL_G: f64 = 1e-4;
+/// Noise more than this many times what the rate's band holds is folded in from above.
+const FOLDED_FACTOR: f64 = 1.5;
+
+/// One cost of the stream.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Cost {
+    /// `aliasing`, `decimals`, `no-timestamps`, `lost`.
+    pub kind: &'static str,
+    /// What it costs, in words with numbers.
+    pub words: String,
+}
+
+/// Every cost of `log`, judged from its still `segments`.
+pub fn costs(log: &StreamLog, segments: &[Segment]) -> Vec<Cost> {
+    let mut costs = Vec::new();
+    let scatter_g = median(segments.iter().map(|s| rms(s.std_g)));
+    costs.extend(scatter_g.and_then(|s| aliasing(log, s)));
+    costs.extend(accel_decimals(log, scatter_g));
+    costs.extend(gyro_decimals(log, segments));
+    costs.extend(timestamps(log));
+    costs
+}
+
+fn aliasing(log: &StreamLog, scatter_g: f64) -> Option<Cost> {
+    let rate = log.rate?.hz;
+    let band_hz = (scatter_g / ACCEL_DENSITY_G).powi(2);
+    if band_hz < FOLDED_FACTOR * rate / 2.0 {
+        return None;
+    }
+    let here_s = (scatter_g / MEAN_GOAL_G).powi(2) / rate;
+    let low_pass = LOW_PASS_HZ.into_iter().find(|&f| f <= rate / 2.0).unwrap_or(5.0);
+    // NOTE: with the band within the rate, a mean over T seconds scatters density / sqrt(2 T), however
+    // narrow the low-pass: the time no longer depends on the rate.
+    let filtered_s = (ACCEL_DENSITY_G / MEAN_GOAL_G).powi(2) / 2.0;
+    Some(Cost {
+        kind: "aliasing",
+        words: format!(
+            "each sample scatters {:.1} mg: the sketch reads single samples of a signal about {band_hz:.0} Hz wide \
+             at {rate:.0} Hz, so the noise of the whole band folds in; a position known to 0.1 mg takes {here_s:.0} s \
+             here, {filtered_s:.0} s with the chip's low-pass at {low_pass:.0} Hz (DLPF_CFG in register 0x1A)",
+            scatter_g * 1e3
+        ),
+    })
+}
+
+fn accel_decimals(log: &StreamLog, scatter_g: Option<f64>) -> Option<Cost> {
+    let step_g = step(log.samples.iter().flat_map(|s| s.accel))? / log.accel_unit.per_g();
+    (step_g > scatter_g? / 2.0).then(|| Cost {
+        kind: "decimals",
+        words: format!(
+            "the accelerometer's values step by {:.2} mg, more than half their scatter ({:.2} mg): print more decimals",
+            step_g * 1e3,
+            scatter_g.unwrap_or(0.0) * 1e3
+        ),
+    })
+}
+
+fn gyro_decimals(log: &StreamLog, segments: &[Segment]) -> Option<Cost> {
+    let (unit, _) = log.gyro_unit?;
+    let step_dps = step(log.samples.iter().filter_map(|s| s.gyro).flatten())? / unit.per_dps();
+    let gyro = log.gyro_dps()?;
+    let scatter = median(segments.iter().map(|s| rms(super::segment::mean_std(&gyro[s.first..=s.last]).1)))?;
+    (step_dps > scatter).then(|| Cost {
+        kind: "decimals",
+        words: format!(
+            "the gyro's values step by {step_dps:.2} deg/s, more than its noise ({scatter:.3} deg/s): its bias is known \
+             no better than {:.2} deg/s; print more decimals",
+            step_dps / 2.0
+        ),
+    })
+}
+
+fn timestamps(log: &StreamLog) -> Option<Cost> {
+    if log.layout.columns.time.is_none() {
+        let rate = match log.rate {
+            Some(rate) if rate.source == RateSource::Given => format!("{:.1} Hz, from --rate", rate.hz),
+            Some(rate) => format!("{:.1} Hz, from the lines' arrival", rate.hz),
+            None => "unknown".to_owned(),
+        };
+        let words = format!("no timestamps: a lost line cannot be seen, and the rate is {rate}");
+        return Some(Cost { kind: "no-timestamps", words });
+    }
+    let rate = log.rate?;
+    let times: Vec<f64> = log.samples.iter().filter_map(|s| s.time).collect();
+    let lost = lost_in_gaps(&times, rate);
+    (lost > 0).then(|| Cost { kind: "lost", words: format!("the timestamps show {lost} samples lost in gaps") })
+}
+
+/// The step the values are printed in: 10^-d for the most decimals any value has (d <= 6), the
+/// unit itself for whole numbers.
+fn step(values: impl Iterator<Item = f64>) -> Option<f64> {
+    let decimals = |v: f64| (0..=6).find(|&d| ((v * 10f64.powi(d)).round() - v * 10f64.powi(d)).abs() < 1e-6);
+    let most = values.take(5000).map(|v| decimals(v).unwrap_or(6)).max()?;
+    Some(10f64.powi(-most))
+}
+
+fn rms(v: [f64; 3]) -> f64 {
+    (v.iter().map(|x| x * x).sum::<f64>() / 3.0).sqrt()
+}
+
+fn median(values: impl Iterator<Item = f64>) -> Option<f64> {
+    let mut values: Vec<f64> = values.collect();
+    values.sort_by(f64::total_cmp);
+    values.get(values.len() / 2).copied()
+}

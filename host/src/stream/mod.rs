@@ -1,0 +1,47 @@
+//! A board's own stream, as the sketch on it prints it: the dialect and columns found from the
+//! lines ([`dialect`]), the units ([`units`]) and the rate ([`timing`]), every line that is not a
+//! sample counted with its reason, the still periods found and averaged ([`segment`]), and what the
+//! stream costs the calibration ([`cost`]). A saved log (`accelcal fit LOG`, `noise LOG`) and a
+//! port that talks on its own go through the same reader.
+
+mod columns;
+pub mod cost;
+pub mod dialect;
+mod dropped;
+pub mod guide;
+mod line;
+pub mod live;
+mod log;
+pub mod segment;
+mod still;
+pub mod timing;
+pub mod units;
+
+pub use columns::Columns;
+pub use dialect::{Dialect, Layout};
+pub use dropped::{DropReason, Dropped};
+pub use log::{LineReader, StreamLog, StreamOptions, StreamSample};
+pub use segment::{segment, Segment, Stillness};
+pub use still::{SegmentLines, StillPeriods};
+pub use units::{AccelUnit, GyroUnit};
+
+/// Why a stream cannot be read.
+#[derive(Debug, thiserror::Error)]
+pub enum StreamError {
+    #[error("cannot read {path}: {source}")]
+    Io { path: String, source: std::io::Error },
+    #[error("none of the {lines} lines holds three or more numbers: this is not a sensor's stream")]
+    NoData { lines: usize },
+    #[error(
+        "the lines hold {count} values ({names}) and which are the accelerometer's is unclear: \
+         give them a header such as millis,ax,ay,az,gx,gy,gz"
+    )]
+    UnclearColumns { count: usize, names: String },
+    #[error(
+        "the accelerometer's values have a median size of {median_norm:.4}, which is 1 g in none of g, mg, m/s2 \
+         or the counts of a range: give --input-unit (g, mg, m/s2, counts-2g, counts-4g, counts-8g, counts-16g)"
+    )]
+    UnclearUnit { median_norm: f64 },
+    #[error("only {samples} samples were read: a calibration needs a few seconds at each of 9 or more positions")]
+    TooFewSamples { samples: usize },
+}

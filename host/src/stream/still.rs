@@ -1,0 +1,76 @@
+//! A stream's still periods as the data set a fit takes: one row per segment, its mean in the
+//! stream's own unit (so the calibration applies to the values as the sketch prints them), its
+//! sample count and scatter, and the gyro's mean; and the gyro's bias from them.
+
+use serde::Serialize;
+
+use super::log::StreamLog;
+use super::segment::{segment, Segment, Stillness};
+use crate::data::{Dataset, Row};
+
+/// A segment as the report lists it: its lines in the stream, and its scatter.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SegmentLines {
+    /// The stream's lines of its first and last sample.
+    pub first_line: usize,
+    pub last_line: usize,
+    /// Samples averaged.
+    pub samples: usize,
+    /// The accelerometer's scatter, the rms over its axes of the standard deviation, in mg.
+    pub scatter_mg: f64,
+}
+
+/// A stream's still periods.
+#[derive(Debug, Clone)]
+pub struct StillPeriods {
+    /// The segments, sample indices into the log.
+    pub segments: Vec<Segment>,
+    /// The segments by line.
+    pub lines: Vec<SegmentLines>,
+    /// The rows a fit takes.
+    pub dataset: Dataset,
+}
+
+impl StillPeriods {
+    /// Finds and averages the still periods of `log`.
+    pub fn of(log: &StreamLog) -> Self {
+        let gyro = log.gyro_dps();
+        let segments = segment(&log.accel_g(), gyro.as_deref(), &Stillness::for_rate(log.rate.map(|r| r.hz)));
+        let per_g = log.accel_unit.per_g();
+        let rows = segments.iter().map(|s| row(log, s, per_g)).collect();
+        let lines = segments.iter().map(|s| segment_lines(log, s)).collect();
+        StillPeriods { segments, lines, dataset: Dataset { rows } }
+    }
+
+    /// The gyro's bias in deg/s: its mean over every still sample.
+    pub fn gyro_bias_dps(&self) -> Option<[f64; 3]> {
+        let total: usize = self.segments.iter().map(|s| s.samples).sum();
+        let weighted = |k: usize| -> Option<f64> {
+            let sum: Option<f64> = self.segments.iter().map(|s| s.gyro_mean_dps.map(|g| g[k] * s.samples as f64)).sum();
+            sum.map(|sum| sum / total.max(1) as f64)
+        };
+        Some([weighted(0)?, weighted(1)?, weighted(2)?])
+    }
+}
+
+fn row(log: &StreamLog, segment: &Segment, per_g: f64) -> Row {
+    Row {
+        line: log.samples[segment.first].line,
+        reading: segment.mean_g.map(|v| v * per_g),
+        reference: None,
+        count: u32::try_from(segment.samples).ok(),
+        std: Some(segment.std_g.map(|v| v * per_g)),
+        temp_c: None,
+        gyro_mean_dps: segment.gyro_mean_dps,
+    }
+}
+
+fn segment_lines(log: &StreamLog, segment: &Segment) -> SegmentLines {
+    let rms = (segment.std_g.iter().map(|v| v * v).sum::<f64>() / 3.0).sqrt();
+    SegmentLines {
+        first_line: log.samples[segment.first].line,
+        last_line: log.samples[segment.last].line,
+        samples: segment.samples,
+        scatter_mg: rms * 1e3,
+    }
+}

@@ -1,0 +1,91 @@
+//! A stream's clock: the unit of its time column (by its name, else by the rate it would give) and
+//! the sample rate, from the timestamps, else from when the lines arrived, else as given.
+
+use serde::Serialize;
+
+/// Where a stream's rate comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum RateSource {
+    /// The stream's own time column.
+    Timestamps,
+    /// When the lines arrived on the port (losses are invisible).
+    ArrivalTimes,
+    /// `--rate`.
+    Given,
+}
+
+/// A stream's sample rate and where it comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Rate {
+    /// Samples per second.
+    pub hz: f64,
+    /// Where it comes from.
+    pub source: RateSource,
+}
+
+/// Seconds per unit of a time column, by its name, when the name says.
+pub(super) fn unit_by_name(name: &str) -> Option<f64> {
+    let name = name.to_ascii_lowercase();
+    match () {
+        _ if name.contains("[ns]") || name.contains("nano") => Some(1e-9),
+        _ if name.contains("micro") || name == "us" || name.ends_with("_us") || name.contains("[us]") => Some(1e-6),
+        _ if name.contains("milli") || name == "ms" || name.ends_with("_ms") || name.contains("[ms]") => Some(1e-3),
+        _ if name.ends_with("_s") || name.contains("[s]") => Some(1.0),
+        _ => None,
+    }
+}
+
+/// Rates a sketch prints at, in Hz: a time unit that puts the rate outside is the wrong one.
+const PLAUSIBLE_HZ: (f64, f64) = (0.5, 10_000.0);
+
+/// Seconds per unit of a time column whose name does not say: the largest of s, ms, us, ns that
+/// gives a plausible rate for the median step between lines.
+pub(super) fn unit_by_steps(times: &[f64]) -> Option<f64> {
+    let step = median_step(times)?;
+    [1.0, 1e-3, 1e-6, 1e-9].into_iter().find(|unit| {
+        let hz = 1.0 / (step * unit);
+        (PLAUSIBLE_HZ.0..=PLAUSIBLE_HZ.1).contains(&hz)
+    })
+}
+
+/// The median step between successive times (positive steps only), in their unit.
+pub fn median_step(times: &[f64]) -> Option<f64> {
+    let mut steps: Vec<f64> = times.windows(2).map(|w| w[1] - w[0]).filter(|s| *s > 0.0).collect();
+    if steps.is_empty() {
+        return None;
+    }
+    steps.sort_by(f64::total_cmp);
+    Some(steps[steps.len() / 2])
+}
+
+/// The rate of samples at `times` seconds: one over the median step (robust to the odd lost or
+/// late line).
+pub fn rate_of(times: &[f64], source: RateSource) -> Option<Rate> {
+    median_step(times).map(|step| Rate { hz: 1.0 / step, source })
+}
+
+/// Samples lost in gaps of the clock: each step longer than 1.5 periods hides round(step / period) - 1.
+pub fn lost_in_gaps(times: &[f64], rate: Rate) -> usize {
+    let period = 1.0 / rate.hz;
+    let hidden = |step: f64| if step > 1.5 * period { (step / period).round() as usize - 1 } else { 0 };
+    times.windows(2).map(|w| hidden(w[1] - w[0])).sum()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_time_columns_unit_comes_from_its_name_else_from_a_plausible_rate() {
+        assert_eq!(unit_by_name("millis"), Some(1e-3));
+        assert_eq!(unit_by_name("#timestamp [ns]"), Some(1e-9));
+        assert_eq!(unit_by_name("t"), None);
+        assert_eq!(unit_by_steps(&[1000.0, 1010.0, 1020.0]), Some(1e-3));
+        assert_eq!(unit_by_steps(&[0.0, 0.01, 0.02]), Some(1.0));
+        assert_eq!(unit_by_steps(&[0.0, 1e7, 2e7]), Some(1e-9));
+        let rate = rate_of(&[0.0, 0.01, 0.02, 0.05, 0.06], RateSource::Timestamps).unwrap();
+        assert!((rate.hz - 100.0).abs() < 1e-9);
+        assert_eq!(lost_in_gaps(&[0.0, 0.01, 0.02, 0.05, 0.06], rate), 2);
+    }
+}

@@ -1,0 +1,187 @@
+//! The units a stream's values are in: some dialects fix them, otherwise the accelerometer's is
+//! told by the size of gravity in the stream (most of a session rests, so the median |a| is 1 g in
+//! whatever unit), and the gyro's follows the accelerometer's convention unless a flag says better.
+
+use serde::Serialize;
+
+use super::dialect::Dialect;
+use super::StreamError;
+
+/// Standard gravity, in m/s^2 (the unit's definition, CGPM 1901).
+pub const STANDARD_GRAVITY: f64 = 9.80665;
+/// MotionCal's sketch prints acceleration as m/s^2 * 8192 / 9.8 (Adafruit's `calibration` example).
+const MOTIONCAL_COUNTS_PER_MS2: f64 = 8192.0 / 9.8;
+/// MotionCal's sketch prints the gyro as deg/s * 16.
+const MOTIONCAL_COUNTS_PER_DPS: f64 = 16.0;
+/// How far the median |a| may be from 1 g in a unit for the stream to be taken as in that unit: the
+/// units' sizes differ by 2x at least, a sensor's scale and offset errors by a few percent.
+const UNIT_TOLERANCE: f64 = 0.25;
+
+/// The unit of an accelerometer's values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum AccelUnit {
+    #[value(name = "g")]
+    G,
+    #[value(name = "mg")]
+    MilliG,
+    #[value(name = "m/s2")]
+    MetersPerSecond2,
+    /// Counts of the +-2 g range, 16384 a g (MPU-6050 Product Specification 6.2).
+    #[value(name = "counts-2g")]
+    Counts2g,
+    #[value(name = "counts-4g")]
+    Counts4g,
+    #[value(name = "counts-8g")]
+    Counts8g,
+    #[value(name = "counts-16g")]
+    Counts16g,
+    /// MotionCal's m/s^2 * 8192 / 9.8.
+    #[value(name = "motioncal-counts")]
+    MotionCal,
+}
+
+/// The unit of a gyro's values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum GyroUnit {
+    #[value(name = "deg/s")]
+    DegPerS,
+    #[value(name = "rad/s")]
+    RadPerS,
+    /// Counts of the +-250 deg/s range, 131 a deg/s (Product Specification 6.1).
+    #[value(name = "counts-250dps")]
+    Counts250,
+    #[value(name = "counts-500dps")]
+    Counts500,
+    #[value(name = "counts-1000dps")]
+    Counts1000,
+    #[value(name = "counts-2000dps")]
+    Counts2000,
+    /// MotionCal's deg/s * 16.
+    #[value(name = "motioncal-counts")]
+    MotionCal,
+}
+
+const ACCEL_UNITS: [AccelUnit; 7] = [
+    AccelUnit::G,
+    AccelUnit::MilliG,
+    AccelUnit::MetersPerSecond2,
+    AccelUnit::Counts2g,
+    AccelUnit::Counts4g,
+    AccelUnit::Counts8g,
+    AccelUnit::Counts16g,
+];
+
+impl AccelUnit {
+    /// How many of the unit make a g.
+    pub fn per_g(self) -> f64 {
+        match self {
+            AccelUnit::G => 1.0,
+            AccelUnit::MilliG => 1000.0,
+            AccelUnit::MetersPerSecond2 => STANDARD_GRAVITY,
+            AccelUnit::Counts2g => 16384.0,
+            AccelUnit::Counts4g => 8192.0,
+            AccelUnit::Counts8g => 4096.0,
+            AccelUnit::Counts16g => 2048.0,
+            AccelUnit::MotionCal => MOTIONCAL_COUNTS_PER_MS2 * STANDARD_GRAVITY,
+        }
+    }
+
+    /// The name `--input-unit` takes and `--json` prints.
+    pub fn name(self) -> &'static str {
+        match self {
+            AccelUnit::G => "g",
+            AccelUnit::MilliG => "mg",
+            AccelUnit::MetersPerSecond2 => "m/s2",
+            AccelUnit::Counts2g => "counts-2g",
+            AccelUnit::Counts4g => "counts-4g",
+            AccelUnit::Counts8g => "counts-8g",
+            AccelUnit::Counts16g => "counts-16g",
+            AccelUnit::MotionCal => "motioncal-counts",
+        }
+    }
+
+    /// The unit the dialect fixes, or the one whose g the median |a| is near.
+    pub fn infer(dialect: Dialect, median_norm: f64) -> Result<AccelUnit, StreamError> {
+        match dialect {
+            Dialect::AdafruitPlotter | Dialect::Kalibr => return Ok(AccelUnit::MetersPerSecond2),
+            Dialect::Motioncal => return Ok(AccelUnit::MotionCal),
+            _ => {}
+        }
+        let near = |unit: &&AccelUnit| (median_norm / unit.per_g() - 1.0).abs() <= UNIT_TOLERANCE;
+        ACCEL_UNITS.iter().find(near).copied().ok_or(StreamError::UnclearUnit { median_norm })
+    }
+}
+
+impl GyroUnit {
+    /// How many of the unit make a deg/s.
+    pub fn per_dps(self) -> f64 {
+        match self {
+            GyroUnit::DegPerS => 1.0,
+            GyroUnit::RadPerS => 1f64.to_radians(),
+            GyroUnit::Counts250 => 131.0,
+            GyroUnit::Counts500 => 65.5,
+            GyroUnit::Counts1000 => 32.8,
+            GyroUnit::Counts2000 => 16.4,
+            GyroUnit::MotionCal => MOTIONCAL_COUNTS_PER_DPS,
+        }
+    }
+
+    /// The name `--gyro-unit` takes and `--json` prints.
+    pub fn name(self) -> &'static str {
+        match self {
+            GyroUnit::DegPerS => "deg/s",
+            GyroUnit::RadPerS => "rad/s",
+            GyroUnit::Counts250 => "counts-250dps",
+            GyroUnit::Counts500 => "counts-500dps",
+            GyroUnit::Counts1000 => "counts-1000dps",
+            GyroUnit::Counts2000 => "counts-2000dps",
+            GyroUnit::MotionCal => "motioncal-counts",
+        }
+    }
+
+    /// The unit the dialect fixes (true), else the one that goes with the accelerometer's (false:
+    /// an assumption the report states, with the flag that settles it).
+    pub fn infer(dialect: Dialect, accel: AccelUnit) -> (GyroUnit, bool) {
+        match (dialect, accel) {
+            (Dialect::AdafruitPlotter | Dialect::Kalibr, _) => (GyroUnit::RadPerS, true),
+            (Dialect::Motioncal, _) => (GyroUnit::MotionCal, true),
+            (_, AccelUnit::G | AccelUnit::MilliG) => (GyroUnit::DegPerS, false),
+            (_, AccelUnit::MetersPerSecond2) => (GyroUnit::RadPerS, false),
+            // NOTE: +-250 deg/s is the MPU-6050's range at power-on (register map 4.4, FS_SEL = 0),
+            // which i2cdevlib's and most loggers' examples keep.
+            _ => (GyroUnit::Counts250, false),
+        }
+    }
+}
+
+impl Serialize for AccelUnit {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_str(self.name())
+    }
+}
+
+impl Serialize for GyroUnit {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_str(self.name())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn gravitys_size_names_the_unit_and_a_size_that_fits_none_names_the_flag() {
+        let unit = |norm| AccelUnit::infer(Dialect::Csv, norm).map_err(|e| e.to_string());
+        assert_eq!(unit(16_690.0), Ok(AccelUnit::Counts2g));
+        assert_eq!(unit(8_100.0), Ok(AccelUnit::Counts4g));
+        assert_eq!(unit(2_050.0), Ok(AccelUnit::Counts16g));
+        assert_eq!(unit(0.93), Ok(AccelUnit::G));
+        assert_eq!(unit(9.6), Ok(AccelUnit::MetersPerSecond2));
+        assert_eq!(unit(1010.0), Ok(AccelUnit::MilliG));
+        assert!(unit(3.0).unwrap_err().contains("--input-unit"), "{:?}", unit(3.0));
+        assert_eq!(AccelUnit::infer(Dialect::AdafruitPlotter, 1.0).unwrap(), AccelUnit::MetersPerSecond2);
+        assert_eq!(AccelUnit::Counts2g.name(), "counts-2g");
+        assert_eq!(GyroUnit::RadPerS.name(), "rad/s");
+    }
+}
