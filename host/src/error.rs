@@ -42,6 +42,8 @@ pub enum Error {
     CannotReport { path: PathBuf, source: FitError },
     #[error(transparent)]
     Plot(#[from] PlotError),
+    #[error(transparent)]
+    Certificate(#[from] crate::certificate::SealError),
     #[error("--g must be a positive number, got {g}")]
     BadGravity { g: f64 },
     #[error("{source}; {} so far {} kept in {}: continue with `accelcal calibrate {device} --resume {}`", count(*.captures, "capture"), if *.captures == 1 { "is" } else { "are" }, .path.display(), .path.display())]

@@ -16,6 +16,7 @@
 //! - [`cli`]: the command line; the `accelcal` binary only calls [`cli::main`].
 
 pub mod calibration;
+pub mod certificate;
 pub mod cli;
 pub mod data;
 pub mod error;

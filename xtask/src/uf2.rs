@@ -1,8 +1,9 @@
 //! UF2, the format the RP2040's and RP2350's boot ROMs take by drag and drop onto their USB drive.
 //!
 //! NOTE: written here rather than installing elf2uf2-rs: the format is a dozen lines (the UF2
-//! specification, github.com/microsoft/uf2, README "File format"), and CI then needs no extra
-//! `cargo install` and no support for the RP2350's family id in a tool's release.
+//! specification, github.com/microsoft/uf2, README "File format"); `cargo install --locked elf2uf2-rs`
+//! (2.2.0) fails on a machine without libudev's development files (it links a serial port crate to
+//! deploy to boards), so CI would need system packages for a conversion this small.
 
 /// Family id of RP2040 images (UF2 specification, utils/uf2families.json, "rp2040").
 pub const RP2040_FAMILY: u32 = 0xE48B_FF56;

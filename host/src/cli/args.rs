@@ -217,6 +217,8 @@ pub enum Command {
     Report(ReportArgs),
     /// Captures one position into a session file.
     Capture(CaptureArgs),
+    /// A session's calibration certificate (uncertainties at k = 2, hashed), or the check of one.
+    Certificate(super::certificate::CertificateArgs),
     /// Uploads a calibration (from `download`, `calibrate --json`, or `fit --json` on data in g) and makes it active.
     Upload {
         #[command(flatten)]

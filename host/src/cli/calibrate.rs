@@ -14,6 +14,7 @@ use super::choice::{fit_with_gyro, show_choice, Fitted};
 use super::device::Opened;
 use super::terminal::feedback;
 use crate::calibration;
+use crate::certificate::Certificate;
 use crate::error::Error;
 use crate::link::{Client, LinkError, Port};
 use crate::procedure::{self, CollectOptions, Feedback, Hand, Moves, ProcedureError, TurnCheck, Verification};
@@ -131,13 +132,15 @@ fn finish(
             .map_err(on_board)?;
     let board_seconds = first_capture_s.map(|first| clock() - first);
     let check = super::gyro::check(client, hand.as_mut(), rate_hz, gyro, feedback).map_err(on_board)?;
+    let uploaded = Some(fitted.chosen);
+    let verified = Session { verification: Some(verification.clone()), uploaded, ..fitted.session.clone() };
+    let certificate = super::certificate::issue(&verified, kept_at.unwrap_or(Path::new("the session")))?;
     if let Some(stem) = kept_at {
-        let uploaded = Some(fitted.chosen);
-        let session = Session { verification: Some(verification.clone()), uploaded, ..fitted.session.clone() };
-        keep_with_report(&session, stem, feedback)?;
+        keep_with_report(&verified, &certificate, stem, feedback)?;
     }
     let mut report = report_of(opened, (fitted, gyro), verification, check);
     report.board_seconds = board_seconds;
+    report.certificate = Some(certificate);
     let target = report.verification.against((kind == SessionKind::Adaptive).then_some(args.length.target_mg));
     report.target = Some(target.clone());
     print_report(&report, args.json);
@@ -167,13 +170,24 @@ fn report_of(
     )
 }
 
-/// Saves the session again with its verification, writes its report beside it, and says where.
-fn keep_with_report(session: &Session, stem: &Path, feedback: &mut dyn Feedback) -> Result<(), Error> {
+/// Saves the verified session again, writes its report and certificate beside it, and says where.
+fn keep_with_report(
+    session: &Session,
+    certificate: &Certificate,
+    stem: &Path,
+    feedback: &mut dyn Feedback,
+) -> Result<(), Error> {
     session.save(stem)?;
     let json = stem_file(stem, "json");
     let page = super::report::beside(&json);
     super::report::write_page(&super::report::build(session, &json)?, &page)?;
-    feedback.say(&format!("session kept in {}; report written to {}", json.display(), page.display()));
+    let (certificate, _) = super::certificate::written(certificate, &json)?;
+    feedback.say(&format!(
+        "session kept in {}; report written to {}; certificate to {}",
+        json.display(),
+        page.display(),
+        certificate.display()
+    ));
     Ok(())
 }
 

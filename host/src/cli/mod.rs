@@ -6,6 +6,7 @@ mod adaptive;
 pub mod args;
 mod board;
 mod calibrate;
+mod certificate;
 mod choice;
 mod device;
 mod export;
@@ -52,6 +53,7 @@ pub fn run(cli: Cli) -> Result<(), Error> {
         Command::Calibrate(args) => calibrate::calibrate(&args),
         Command::Capture(args) => procedure::capture(&args),
         Command::Report(args) => report::report(&args),
+        Command::Certificate(args) => certificate::certificate(&args),
         Command::Verify { device, positions } => procedure::verify(&device, usize::from(positions)),
         Command::Upload { device, file, save } => transfer::upload(&device, &file, save),
         Command::Save { device } => transfer::save(&device),

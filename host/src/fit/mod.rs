@@ -30,7 +30,7 @@ use crate::data::Dataset;
 
 pub use evaluate::{evaluate, Evaluation, RowEvaluation};
 pub use model::Model;
-pub use prediction::{axis_angles_deg, Prediction};
+pub use prediction::{axis_angles_deg, predict, Prediction, Quadratic};
 pub use selection::{leave_one_out_rms, Selection};
 pub use statistics::{misalignment_deg, NoiseTest};
 

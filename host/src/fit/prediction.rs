@@ -35,7 +35,7 @@ fn fresh_orientations() -> impl Iterator<Item = Vector3<f64>> {
 
 /// The covariance of the corrected reading at true specific force g u as a quadratic form in
 /// w = (u_x, u_y, u_z, 1): C(u) = sum_ab w_a w_b `terms[a][b]` (output units squared).
-pub(super) type Quadratic = [[Matrix3<f64>; 4]; 4];
+pub type Quadratic = [[Matrix3<f64>; 4]; 4];
 
 /// Every product w_a w_b w_c w_d, w = (u, 1), averaged over the fresh orientations (all moments up
 /// to the fourth), computed once.
@@ -63,7 +63,7 @@ fn quadruples() -> impl Iterator<Item = (usize, usize, usize, usize)> {
 /// NOTE: u^T C(u) u and trace C(u) are polynomials in u of degree four and two, so their means over
 /// the orientations are the moments of [`moments`] weighed by the covariance's terms: the same sums
 /// as visiting every orientation, at the cost of one.
-pub(super) fn predict(g: f64, covariance: &Quadratic) -> Prediction {
+pub fn predict(g: f64, covariance: &Quadratic) -> Prediction {
     let moment = moments();
     let (mut norm, mut trace) = (0.0, 0.0);
     for (a, b, i, j) in quadruples() {

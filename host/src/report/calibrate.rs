@@ -9,6 +9,7 @@ use shared::Calibration;
 
 use super::gyro::{GyroJson, GyroOutcome, TruthGyroJson};
 use crate::calibration::CalibrationJson;
+use crate::certificate::Certificate;
 use crate::fit::Fit;
 use crate::procedure::{TargetVerdict, TurnCheck};
 use crate::session::Verification;
@@ -36,6 +37,8 @@ pub struct CalibrateReport {
     pub gyro_check: Option<TurnCheck>,
     /// The verification against `--target-mg` (trusted or not, without a target).
     pub target: Option<TargetVerdict>,
+    /// The board's calibration certificate (parameters with u and U at k = 2).
+    pub certificate: Option<Certificate>,
 }
 
 /// The calibration uploaded, with its gyro part and what its fit gave.
@@ -99,6 +102,7 @@ impl CalibrateReport {
             board_seconds: None,
             gyro_check: None,
             target: None,
+            certificate: None,
         }
     }
 

@@ -268,6 +268,6 @@ pub(super) fn absent(what: &str) -> String {
 }
 
 /// Text made safe for HTML.
-pub(super) fn escape(text: &str) -> String {
+pub fn escape(text: &str) -> String {
     text.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
 }

@@ -24,7 +24,7 @@ pub use calibrate::{CalibrateReport, ChosenJson, HostFitSummary, TruthJson};
 pub use comparison::{ComparedModel, Comparison};
 pub use figure::{axis_role, Figure, Role, Series, SeriesStyle};
 pub use plot::PlotError;
-pub use session::{Board, Figures, FitSummary, PositionResult, SessionReport, Verdict, NOT_RECORDED};
+pub use session::{utc_minutes, Board, Figures, FitSummary, PositionResult, SessionReport, Verdict, NOT_RECORDED};
 
 use crate::data::Dataset;
 use crate::fit::{self, Evaluation, Fit, FitError, FitOptions, ModelChoice};

@@ -2,7 +2,7 @@
 //! the fit with its uncertainties and the models it was chosen from, the verification, and the
 //! figures drawn from them. Computed once; [`super::html`], [`super::text`] and JSON render it.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use shared::linalg;
 
 use super::allan::AllanSection;
@@ -48,7 +48,7 @@ pub struct SessionReport {
 }
 
 /// What the session records of the board; `None` where it records nothing.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Board {
     /// The board's serial number.
     pub serial: Option<String>,
@@ -203,7 +203,7 @@ fn summary(report: &FitReport, positions: &[PositionResult]) -> FitSummary {
 }
 
 impl Board {
-    fn of(session: &Session) -> Self {
+    pub fn of(session: &Session) -> Self {
         let first = session.captures.first();
         let board = session.board.as_ref();
         Board {
@@ -259,7 +259,7 @@ impl Figures {
 }
 
 /// Seconds since the Unix epoch as `YYYY-MM-DD HH:MM` UTC.
-fn utc_minutes(unix_time_s: f64) -> String {
+pub fn utc_minutes(unix_time_s: f64) -> String {
     let seconds = unix_time_s.max(0.0) as i64;
     let (days, minute_of_day) = (seconds.div_euclid(86_400), seconds.rem_euclid(86_400) / 60);
     let (year, month, day) = civil_from_days(days);

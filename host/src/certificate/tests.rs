@@ -1,0 +1,77 @@
+use shared::protocol::CaptureStats;
+use shared::AccelRange;
+
+use super::*;
+use crate::orientation::{corners, faces, Orientation};
+use crate::procedure::drift::{closing, order};
+use crate::session::{CaptureRecord, SessionKind};
+use crate::sim::random::gaussian;
+use rand_xoshiro::rand_core::SeedableRng;
+use rand_xoshiro::Xoshiro256PlusPlus;
+
+/// A capture of a sensor with M^-1 = a triangular sensor matrix and offset o(T) = o + c (T - 22), at
+/// `up` and `temp_c`, its mean off by `error_g`, stating `std_g` over `samples`.
+fn capture(target: &Orientation, temp_c: f64, error_g: [f64; 3], std_g: f32) -> CaptureRecord {
+    let sensor = [[1.01, 0.002, -0.004], [0.0, 0.99, 0.003], [0.0, 0.0, 1.02]];
+    let offset = [0.03, -0.01, -0.08];
+    let slope = [0.75e-3, -0.7e-3, 1.4e-3];
+    let mean = [0, 1, 2].map(|i| {
+        let felt: f64 = (0..3).map(|j| sensor[i][j] * target.up[j]).sum();
+        (felt + offset[i] + slope[i] * (temp_c - 22.0) + error_g[i]) as f32
+    });
+    let stats = CaptureStats {
+        samples: 400,
+        seconds: 4.0,
+        mean_g: mean,
+        std_g: [std_g; 3],
+        gyro_mean_dps: [0.0; 3],
+        gyro_std_dps: [0.05; 3],
+        temp_c: temp_c as f32,
+        clipped: 0,
+        range: AccelRange::G2,
+    };
+    CaptureRecord::now(&target.name, Some(target.clone()), None, stats)
+}
+
+/// An adaptive session of the fifteen captures, warming `warming_c` over it, each mean off by its
+/// noise (`std_g` / sqrt(400)) drawn from `seed`.
+fn session(seed: u64, warming_c: f64, std_g: f32) -> Session {
+    let mut targets = order(&[faces(), corners()].concat());
+    targets.push(closing(&targets[0]));
+    let mut random = Xoshiro256PlusPlus::seed_from_u64(seed);
+    let sigma = f64::from(std_g) / 20.0;
+    let captures = targets.iter().enumerate().map(|(i, t)| {
+        let error = [0; 3].map(|_| gaussian(&mut random) * sigma);
+        capture(t, 21.5 + warming_c * i as f64 / 14.0, error, std_g)
+    });
+    Session { kind: SessionKind::Adaptive, captures: captures.collect(), ..Session::default() }
+}
+
+#[test]
+fn a_changed_copy_of_a_certificate_is_detected() {
+    let certificate = Certificate::issue(&session(1, 1.0, 2.8e-3)).unwrap();
+    let path = std::env::temp_dir().join(format!("accelcal-certificate-{}.json", std::process::id()));
+    std::fs::write(&path, certificate.to_json()).unwrap();
+    assert_eq!(check(&path).unwrap(), certificate);
+    let value = certificate.parameters["o_x"].value;
+    let changed = certificate.to_json().replacen(&format!("{value}"), &format!("{}", value + 1e-6), 1);
+    assert_ne!(changed, certificate.to_json());
+    std::fs::write(&path, changed).unwrap();
+    assert!(matches!(check(&path), Err(SealError::Changed { .. })), "{:?}", check(&path));
+    std::fs::remove_file(&path).unwrap();
+}
+
+#[test]
+fn the_noise_s_part_of_the_budget_is_the_fit_s_own_standard_error() {
+    // No warming: no drift is fitted, and the noise moved through the fit must give what the fit's
+    // covariance gives for the same noise.
+    let session = session(2, 0.0, 2.8e-3);
+    let fit = session.fit().unwrap().0;
+    let certificate = Certificate::issue(&session).unwrap();
+    for parameter in &fit.parameters {
+        let expected = parameter.noise_std_error.unwrap();
+        let noise = certificate.parameters[&parameter.name].budget[&Component::Noise];
+        assert!((noise / expected - 1.0).abs() < 0.03, "{}: {noise:e} vs the fit's {expected:e}", parameter.name);
+    }
+    assert!(certificate.parameters.keys().all(|name| !name.starts_with("c_")));
+}
