@@ -101,6 +101,7 @@ fn calibrate_sim_json_has_calibration_truth_and_verification() {
             assert!((fitted - truth).abs() < 1e-3, "M{i}{j}: {fitted} vs {truth}");
         }
     }
+    assert!(json["truth"]["drift"].is_null(), "the settled sensor does not drift: {}", json["truth"]);
     let verification = &json["verification"];
     // The default session verifies at three orientations, each as long as the 0.2 mg target needs;
     // the board's time from the first capture to the end: measured 55.9 s for this seed.
@@ -124,6 +125,36 @@ fn calibrate_sim_on_the_realistic_sensor_that_warms_during_the_session_verifies_
     let verification = &json["verification"];
     assert!(verification["before_rms_mg"].as_f64().unwrap() > 10.0, "{verification}");
     assert!(verification["after_rms_mg"].as_f64().unwrap() < 2.5, "{verification}");
+    truth_is_the_sensor_at_the_calibration_s_temperature(&json);
+}
+
+/// `truth` holds at the calibration's temperature, so it compares with `calibration` directly (its
+/// static truth at 25 degC was 4.5 mg away), has one gyro bias, and its drift gives it back.
+fn truth_is_the_sensor_at_the_calibration_s_temperature(json: &serde_json::Value) {
+    let (calibration, truth) = (&json["calibration"], &json["truth"]);
+    let temp_c = truth["temp_c"].as_f64().unwrap();
+    // NOTE: the same f32, printed once as f32 and once as f64.
+    assert!((temp_c - calibration["mean_temp_c"].as_f64().unwrap()).abs() < 1e-5, "{truth}");
+    let value = |v: &serde_json::Value| v.as_f64().unwrap();
+    for k in 0..3 {
+        let (fitted, true_g) = (value(&calibration["offset"][k]), value(&truth["offset"][k]));
+        assert!((fitted - true_g).abs() < 0.5e-3, "offset {k}: {fitted} vs {true_g} at {temp_c} degC");
+    }
+    assert!(truth.get("gyro_bias_dps").is_none() && truth["gyro"]["bias_dps"].is_array(), "{truth}");
+    // Whoever wants the truth at another temperature has it from the drift: here, at this one.
+    let drift = &truth["drift"];
+    let dt = temp_c - value(&drift["reading_offset_c"]) - value(&drift["ref_die_c"]);
+    let poly = |key: &str, k: usize| value(&drift[key][0][k]) * dt + value(&drift[key][1][k]) * dt * dt;
+    for k in 0..3 {
+        let offset = value(&drift["ref_offset"][k]) + poly("offset_g", k);
+        assert!((offset - value(&truth["offset"][k])).abs() < 1e-6, "offset {k} from the drift: {offset}");
+        let bias = value(&drift["ref_gyro_bias_dps"][k]) + poly("gyro_bias_dps", k);
+        assert!((bias - value(&truth["gyro"]["bias_dps"][k])).abs() < 1e-5, "gyro bias {k} from the drift: {bias}");
+        for i in 0..3 {
+            let matrix = value(&drift["ref_matrix"][i][k]) / (1.0 + poly("scale", k));
+            assert!((matrix - value(&truth["matrix"][i][k])).abs() < 1e-6, "M{i}{k} from the drift: {matrix}");
+        }
+    }
 }
 
 #[test]

@@ -9,12 +9,14 @@ use embassy_futures::block_on;
 use firmware::device::Device;
 use firmware::server::Server;
 use firmware::sim::physics::{Motion, Physics, TrueErrors};
+use firmware::sim::thermal::TRUTH_REF_TEMP_C;
 use firmware::sim::{sim_serial_number, SimFlash, SimMpu6050, SIM_FLASH_RANGE};
 
 use super::clock::Pace;
 use super::serve::serve;
 use super::Port;
 use crate::link::{pipe, Connection, LinkError};
+use crate::report::{DriftJson, TruthJson};
 
 /// What the owner of a simulated board can do to it.
 #[derive(Debug, Clone, PartialEq)]
@@ -125,6 +127,21 @@ impl SimBoard {
             SimSensor::Realistic => physics.drift.at(&self.truth, reading_c - physics.environment.reading_offset_c),
             SimSensor::Settled => self.truth,
         }
+    }
+
+    /// The truth at TEMP_OUT `reading_c` degC for a report, with the realistic sensor's drift.
+    pub fn truth_json(&self, reading_c: f32) -> TruthJson {
+        let physics = Physics::new(0);
+        let drift = match self.kind {
+            SimSensor::Realistic => Some(DriftJson::new(
+                &self.truth,
+                &physics.drift,
+                TRUTH_REF_TEMP_C,
+                physics.environment.reading_offset_c,
+            )),
+            SimSensor::Settled => None,
+        };
+        TruthJson::new(reading_c, &self.truth_at(reading_c), drift)
     }
 
     /// The surroundings, in degC, in which the settled sensor reports `reading_c`.
