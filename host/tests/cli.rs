@@ -362,9 +362,9 @@ fn every_out_of_range_argument_is_refused_when_parsed_naming_the_allowed_range()
         (&["calibrate", "--sim", "--seconds", "4"], "5..=20"),
         (&["calibrate", "--sim", "--seconds", "21"], "5..=20"),
         (&["capture", "--sim", "--session", "s", "--seconds", "0"], "5..=20"),
-        (&["calibrate", "--sim", "--verify", "0"], "1..=20"),
-        (&["verify", "--sim", "--positions", "21"], "1..=20"),
-        (&["calibrate", "--sim", "--sim-placement-deg", "11"], "not in 0-10 degrees"),
+        (&["calibrate", "--sim", "--verify", "17"], "1..=16"),
+        (&["verify", "--sim", "--positions", "17"], "1..=16"),
+        (&["calibrate", "--sim", "--sim-placement-deg", "9"], "not in 0-8 degrees"),
         (&["stream", "--sim", "--rate", "30"], "does not divide the 100 Hz sample rate"),
         (&["stream", "--sim", "--rate", "0"], "does not divide the 100 Hz sample rate"),
     ];
@@ -377,8 +377,8 @@ fn every_out_of_range_argument_is_refused_when_parsed_naming_the_allowed_range()
         assert!(started.elapsed() < std::time::Duration::from_secs(2), "{args:?} refused only after it started");
     }
     let help = String::from_utf8(accelcal(&["calibrate", "--help"]).stdout).unwrap();
-    assert!(help.contains("Seconds to average each position (5-20)") && help.contains("(1-20)"), "{help}");
-    assert!(help.contains("(0-10)"), "{help}");
+    assert!(help.contains("Seconds to average each position (5-20)") && help.contains("(1-16)"), "{help}");
+    assert!(help.contains("(0-8)"), "{help}");
 }
 
 #[test]

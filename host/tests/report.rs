@@ -217,23 +217,17 @@ document.body.setAttribute("data-fetched", JSON.stringify(failed.concat(
   performance.getEntriesByType("resource").map(e => e.name))));
 });</script></body>"#;
 
-/// Headless Chromium, when installed: `None` (after saying why) where it is not and CI is not set.
-fn chromium() -> Option<&'static str> {
+/// Headless Chromium; the test that needs it is ignored where the build found none (and CI is not set).
+fn chromium() -> &'static str {
     let found = Command::new("chromium").arg("--version").output().is_ok_and(|o| o.status.success());
-    if found {
-        return Some("chromium");
-    }
-    assert!(
-        std::env::var("CI").as_deref() != Ok("true"),
-        "CI=true but chromium is not installed (apt-get install chromium)"
-    );
-    eprintln!("skipped: chromium is not installed (apt-get install -y chromium); CI=true makes this a failure");
-    None
+    assert!(found, "chromium is not installed (apt-get install chromium)");
+    "chromium"
 }
 
 #[test]
+#[cfg_attr(not(has_chromium), ignore = "needs chromium (apt-get install chromium); CI=true runs it")]
 fn the_page_loads_in_headless_chromium_without_console_errors_and_draws_every_plot() {
-    let Some(browser) = chromium() else { return };
+    let browser = chromium();
     let dir = scratch("browser");
     let session = simulated_session(&dir);
     let extras = extras(&dir);

@@ -11,6 +11,7 @@ use crate::calibration::{describe, CalibrationJson};
 use crate::error::Error;
 use crate::link::{explain, serial_ports, StreamRequest};
 use crate::part::{describe as describe_part, part_name};
+use crate::session::BoardRecord;
 
 /// `accelcal ports`: serial ports, ours marked.
 pub(super) fn ports() -> Result<(), Error> {
@@ -28,6 +29,8 @@ pub(super) fn ports() -> Result<(), Error> {
 /// What `accelcal info --json` prints.
 #[derive(Serialize)]
 struct InfoJson {
+    /// The board's serial number, 24 hexadecimal digits (as `ports` and sessions show it).
+    serial: String,
     protocol_version: u8,
     firmware: String,
     /// The part's name ("unknown" for a WHO_AM_I of no known part); null with no sensor.
@@ -67,6 +70,7 @@ pub(super) fn info(device: &Device, json: bool) -> Result<(), Error> {
 
 fn info_json(info: &DeviceInfo, active: Option<&Calibration>, stored: Option<&Calibration>) -> InfoJson {
     InfoJson {
+        serial: BoardRecord::of(info).serial,
         protocol_version: info.protocol_version,
         firmware: firmware_version(info),
         part: info.sensor.as_ref().ok().map(part_name),
@@ -80,7 +84,8 @@ fn info_json(info: &DeviceInfo, active: Option<&Calibration>, stored: Option<&Ca
 }
 
 fn print_info(info: &DeviceInfo, active: Option<&Calibration>, stored: Option<&Calibration>) {
-    println!("firmware {}, protocol {}", firmware_version(info), info.protocol_version);
+    let serial = BoardRecord::of(info).serial;
+    println!("board serial {serial}, firmware {}, protocol {}", firmware_version(info), info.protocol_version);
     match info.sensor {
         Ok(s) => println!("sensor: {}", describe_part(&s)),
         Err(e) => println!("sensor: {}", explain(&e)),

@@ -28,6 +28,12 @@ pub enum SimCommand {
     Move(Motion),
     /// Move for this many seconds of simulated time, then rest where the motion left the board.
     MoveFor { motion: Motion, seconds: f32 },
+    /// Turn from where the board rests to rest with this body-frame direction up, as a hand does
+    /// (the gyro sees the turn).
+    TurnTo([f32; 3]),
+    /// Tip the board over an edge by this many degrees, as a hand does: about the horizontal line
+    /// across the board's x axis (its y axis when x points up).
+    Tip(f32),
     /// Move the surroundings towards a temperature (degC) at a rate (degC/s; infinite: at once).
     Ambient { target_c: f32, c_per_s: f32 },
     /// Let this many seconds pass at once while idle (a soak), without producing every sample.

@@ -18,6 +18,7 @@ pub mod replay;
 mod serve;
 pub mod sketch;
 pub mod synthetic;
+pub mod turn;
 
 pub use board::{SensorChoice, SimBoard, SimCommand, SimSensor};
 pub use clock::Pace;
