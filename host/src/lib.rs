@@ -4,6 +4,7 @@
 //! - [`sim`]: the host side of the simulation (the simulated board served over a port);
 //! - [`procedure`]: the guided procedure (wanted orientations, the person's and the simulated hand,
 //!   collecting captures, verification);
+//! - [`part`]: the sensor part named for a person;
 //! - [`orientation`]: the one type for a wanted orientation; [`limits`]: the host's thresholds;
 //! - [`session`]: the captures of a calibration, kept as files;
 //! - [`data`]: calibration data files;
@@ -26,6 +27,7 @@ pub mod limits;
 pub mod link;
 pub mod noise;
 pub mod orientation;
+pub mod part;
 pub mod procedure;
 pub mod recording;
 pub mod report;

@@ -39,6 +39,9 @@ pub enum SessionError {
     OtherSetting { path: PathBuf, session: String, board: String },
 }
 
+/// How far, as a fraction, a board's sample rate may be from a session's for it to be resumed.
+const RESUME_RATE_TOLERANCE: f64 = 0.05;
+
 /// The board a session was captured on: a resumed session must continue on the same board, at the
 /// same range and filter.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -49,13 +52,17 @@ pub struct BoardRecord {
     pub firmware: FirmwareVersion,
     /// Range, sample rate and filter of the sensor.
     pub config: SensorConfig,
+    /// The sensor part as [`crate::part::describe`] names it (absent in sessions before issue 27).
+    #[serde(default)]
+    pub sensor: Option<String>,
 }
 
 impl BoardRecord {
     /// The board that answered `info`.
     pub fn of(info: &DeviceInfo) -> Self {
         let serial = String::from_utf8_lossy(&info.serial.hex()).into_owned();
-        BoardRecord { serial, firmware: info.firmware, config: info.config }
+        let sensor = info.sensor.as_ref().ok().map(crate::part::describe);
+        BoardRecord { serial, firmware: info.firmware, config: info.config, sensor }
     }
 
     /// Whether a session captured on `self` may continue on `board`; the reason when not.
@@ -64,8 +71,13 @@ impl BoardRecord {
         if self.serial != board.serial {
             return Err(SessionError::OtherBoard { path, session: self.serial.clone(), board: board.serial.clone() });
         }
-        let setting = |c: &SensorConfig| format!("{:?} with the {:?} filter", c.range, c.filter);
-        if (self.config.range, self.config.filter) != (board.config.range, board.config.filter) {
+        let setting =
+            |c: &SensorConfig| format!("{:?} with the {:?} filter at {} Hz", c.range, c.filter, c.sample_rate_hz);
+        let (rate, other_rate) = (f64::from(self.config.sample_rate_hz), f64::from(board.config.sample_rate_hz));
+        // NOTE: a rate the board achieves a little differently (99 for 100 Hz) measures the same; a
+        // board left at 1000 Hz by `record` filters and averages otherwise.
+        let rate_differs = (rate - other_rate).abs() > RESUME_RATE_TOLERANCE * rate;
+        if (self.config.range, self.config.filter) != (board.config.range, board.config.filter) || rate_differs {
             return Err(SessionError::OtherSetting {
                 path,
                 session: setting(&self.config),
@@ -273,6 +285,7 @@ mod tests {
             serial: serial.to_owned(),
             firmware,
             config: SensorConfig { range, sample_rate_hz: 100, filter },
+            sensor: None,
         };
         let recorded = board(&serial, AccelRange::G2, LowPassFilter::Hz44);
         let path = Path::new("session.json");
@@ -283,10 +296,20 @@ mod tests {
         let other = |b: BoardRecord| recorded.check_same(&b, path).unwrap_err();
         let error = other(board(&serial, AccelRange::G2, LowPassFilter::Hz21));
         assert!(matches!(error, SessionError::OtherSetting { .. }), "another filter: {error}");
-        assert!(error.to_string().contains("G2 with the Hz44 filter, the board is set to G2 with the Hz21"), "{error}");
+        assert!(
+            error.to_string().contains("G2 with the Hz44 filter at 100 Hz, the board is set to G2 with the Hz21"),
+            "{error}"
+        );
         let error = other(board(&serial, AccelRange::G4, LowPassFilter::Hz44));
         assert!(matches!(error, SessionError::OtherSetting { .. }), "another range: {error}");
         let error = other(board("ffffffffffffffffffffffff", AccelRange::G2, LowPassFilter::Hz44));
         assert!(matches!(error, SessionError::OtherBoard { .. }), "another board: {error}");
+        let mut fast = recorded.clone();
+        fast.config.sample_rate_hz = 1000;
+        let error = other(fast);
+        assert!(
+            error.to_string().contains("at 100 Hz, the board is set to G2 with the Hz44 filter at 1000 Hz"),
+            "{error}"
+        );
     }
 }

@@ -101,6 +101,7 @@ fn calibrate_sim_json_has_calibration_truth_and_verification() {
             assert!((fitted - truth).abs() < 1e-3, "M{i}{j}: {fitted} vs {truth}");
         }
     }
+    assert!(json["truth"]["drift"].is_null(), "the settled sensor does not drift: {}", json["truth"]);
     let verification = &json["verification"];
     // The default session verifies at three orientations, each as long as the 0.2 mg target needs;
     // the board's time from the first capture to the end: measured 55.9 s for this seed.
@@ -124,6 +125,36 @@ fn calibrate_sim_on_the_realistic_sensor_that_warms_during_the_session_verifies_
     let verification = &json["verification"];
     assert!(verification["before_rms_mg"].as_f64().unwrap() > 10.0, "{verification}");
     assert!(verification["after_rms_mg"].as_f64().unwrap() < 2.5, "{verification}");
+    truth_is_the_sensor_at_the_calibration_s_temperature(&json);
+}
+
+/// `truth` holds at the calibration's temperature, so it compares with `calibration` directly (its
+/// static truth at 25 degC was 4.5 mg away), has one gyro bias, and its drift gives it back.
+fn truth_is_the_sensor_at_the_calibration_s_temperature(json: &serde_json::Value) {
+    let (calibration, truth) = (&json["calibration"], &json["truth"]);
+    let temp_c = truth["temp_c"].as_f64().unwrap();
+    // NOTE: the same f32, printed once as f32 and once as f64.
+    assert!((temp_c - calibration["mean_temp_c"].as_f64().unwrap()).abs() < 1e-5, "{truth}");
+    let value = |v: &serde_json::Value| v.as_f64().unwrap();
+    for k in 0..3 {
+        let (fitted, true_g) = (value(&calibration["offset"][k]), value(&truth["offset"][k]));
+        assert!((fitted - true_g).abs() < 0.5e-3, "offset {k}: {fitted} vs {true_g} at {temp_c} degC");
+    }
+    assert!(truth.get("gyro_bias_dps").is_none() && truth["gyro"]["bias_dps"].is_array(), "{truth}");
+    // Whoever wants the truth at another temperature has it from the drift: here, at this one.
+    let drift = &truth["drift"];
+    let dt = temp_c - value(&drift["reading_offset_c"]) - value(&drift["ref_die_c"]);
+    let poly = |key: &str, k: usize| value(&drift[key][0][k]) * dt + value(&drift[key][1][k]) * dt * dt;
+    for k in 0..3 {
+        let offset = value(&drift["ref_offset"][k]) + poly("offset_g", k);
+        assert!((offset - value(&truth["offset"][k])).abs() < 1e-6, "offset {k} from the drift: {offset}");
+        let bias = value(&drift["ref_gyro_bias_dps"][k]) + poly("gyro_bias_dps", k);
+        assert!((bias - value(&truth["gyro"]["bias_dps"][k])).abs() < 1e-5, "gyro bias {k} from the drift: {bias}");
+        for i in 0..3 {
+            let matrix = value(&drift["ref_matrix"][i][k]) / (1.0 + poly("scale", k));
+            assert!((matrix - value(&truth["matrix"][i][k])).abs() < 1e-6, "M{i}{k} from the drift: {matrix}");
+        }
+    }
 }
 
 #[test]
@@ -331,9 +362,9 @@ fn every_out_of_range_argument_is_refused_when_parsed_naming_the_allowed_range()
         (&["calibrate", "--sim", "--seconds", "4"], "5..=20"),
         (&["calibrate", "--sim", "--seconds", "21"], "5..=20"),
         (&["capture", "--sim", "--session", "s", "--seconds", "0"], "5..=20"),
-        (&["calibrate", "--sim", "--verify", "0"], "1..=20"),
-        (&["verify", "--sim", "--positions", "21"], "1..=20"),
-        (&["calibrate", "--sim", "--sim-placement-deg", "11"], "not in 0-10 degrees"),
+        (&["calibrate", "--sim", "--verify", "17"], "1..=16"),
+        (&["verify", "--sim", "--positions", "17"], "1..=16"),
+        (&["calibrate", "--sim", "--sim-placement-deg", "9"], "not in 0-8 degrees"),
         (&["stream", "--sim", "--rate", "30"], "does not divide the 100 Hz sample rate"),
         (&["stream", "--sim", "--rate", "0"], "does not divide the 100 Hz sample rate"),
     ];
@@ -346,8 +377,8 @@ fn every_out_of_range_argument_is_refused_when_parsed_naming_the_allowed_range()
         assert!(started.elapsed() < std::time::Duration::from_secs(2), "{args:?} refused only after it started");
     }
     let help = String::from_utf8(accelcal(&["calibrate", "--help"]).stdout).unwrap();
-    assert!(help.contains("Seconds to average each position (5-20)") && help.contains("(1-20)"), "{help}");
-    assert!(help.contains("(0-10)"), "{help}");
+    assert!(help.contains("Seconds to average each position (5-20)") && help.contains("(1-16)"), "{help}");
+    assert!(help.contains("(0-8)"), "{help}");
 }
 
 #[test]

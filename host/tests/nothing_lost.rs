@@ -1,6 +1,6 @@
 //! Nothing is overwritten or dropped without asking: sessions are refused rather than replaced,
 //! their names keep their dots, a folder gets a session inside it, and a capture stores what it
-//! was asked for.
+//! was asked for; and what the parser accepts can succeed.
 
 mod common;
 
@@ -73,4 +73,14 @@ fn a_simulated_capture_named_as_a_face_stores_that_face() {
     // NOTE: the simulated sensor's offsets and scale errors are within 0.1 g.
     assert!((mean(0, 0) - 1.0).abs() < 0.1, "+X reads {}", mean(0, 0));
     assert!((mean(1, 1) + 1.0).abs() < 0.1, "-Y reads {}", mean(1, 1));
+}
+
+#[test]
+fn the_largest_values_the_parser_accepts_succeed_with_the_simulated_hand() {
+    for extra in [&["--quick", "--verify", "16"][..], &["--sim-placement-deg", "8"][..]] {
+        let args = [&["calibrate", "--sim", "--yes", "--seed", "3"][..], extra].concat();
+        // NOTE: --verify 20 and --sim-placement-deg 10 waited 60 s and failed: the parser refuses them now.
+        let output = accelcal(&args);
+        assert!(output.status.success(), "{extra:?}: {}", String::from_utf8_lossy(&output.stderr));
+    }
 }

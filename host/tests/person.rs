@@ -175,7 +175,8 @@ fn a_session_in_a_missing_directory_is_refused_before_the_first_capture() {
 #[test]
 fn ctrl_c_during_the_verification_says_the_calibration_is_already_uploaded_and_saved() {
     let mut sim = board_on_the_desk("16");
-    let mut run = Run::start(&sim.path.clone(), &["--yes"]);
+    let session = temp_stem("verifying");
+    let mut run = Run::start(&sim.path.clone(), &["--yes", "--session", session.to_str().unwrap()]);
     assert!(run.follow(&mut sim, "uploaded and saved; now checking").is_some(), "{:?}", run.seen);
     std::thread::sleep(Duration::from_millis(300));
     run.interrupt();

@@ -8,8 +8,10 @@ pub mod calibration;
 pub mod linalg;
 pub mod orientation;
 pub mod ortho9;
+pub mod part;
 pub mod protocol;
 pub mod real;
+pub mod selftest;
 pub mod six_position;
 
 pub use calibration::{AccelRange, Calibration, CalibrationError};

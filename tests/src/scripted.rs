@@ -6,6 +6,7 @@ use std::io::{ErrorKind, Read, Write};
 use std::thread::JoinHandle;
 
 use accelcal::link::PipeEnd;
+use shared::part::Family;
 use shared::protocol::{
     self, ActiveCalibration, DeviceInfo, Feed, FirmwareVersion, FrameAccumulator, Request, Response, SensorConfig,
     SensorIdentity, SerialNumber, MAX_FRAME_LEN, PROTOCOL_VERSION,
@@ -17,7 +18,7 @@ pub fn device_info() -> DeviceInfo {
         protocol_version: PROTOCOL_VERSION,
         serial: SerialNumber([0x5c; 12]),
         firmware: FirmwareVersion { major: 0, minor: 1, patch: 0 },
-        sensor: Ok(SensorIdentity { address: 0x68, who_am_i: 0x68, genuine: true }),
+        sensor: Ok(SensorIdentity { address: 0x68, who_am_i: 0x68, family: Family::Mpu6050 }),
         config: SensorConfig::default(),
         active: ActiveCalibration::None,
         stored: false,

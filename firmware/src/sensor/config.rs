@@ -1,6 +1,7 @@
 //! Configuration: power, full-scale ranges, the digital low-pass filter and the sample rate.
 
 use embedded_hal_async::i2c::I2c;
+use shared::part::Family;
 use shared::protocol::{LowPassFilter, SensorConfig};
 use shared::AccelRange;
 
@@ -23,8 +24,13 @@ impl Sensor {
             (reg::CONFIG, dlpf_cfg(config.filter)),
             (reg::SMPLRT_DIV, divider),
             (reg::INT_ENABLE, reg::FIFO_OFLOW),
+            // NOTE: the MPU-6500 family's accelerometer has its own filter: CONFIG filters its gyro
+            // only (RM-MPU-6500A 4.6, 4.8). A_DLPF_CFG 0-6 (460, 184, 92, 41, 20, 10, 5 Hz) are the
+            // nearest to DLPF_CFG 0-6 (260, 184, 94, 44, 21, 10, 5 Hz), so the same value serves.
+            (reg::ACCEL_CONFIG2, dlpf_cfg(config.filter)),
         ];
-        write_each(bus, self.identity.address, &writes).await?;
+        let count = if self.identity.family == Family::Mpu6500 { writes.len() } else { writes.len() - 1 };
+        write_each(bus, self.identity.address, &writes[..count]).await?;
         let achieved = (reg::GYRO_OUTPUT_RATE_HZ / (1 + u32::from(divider))) as u16;
         self.config = SensorConfig { sample_rate_hz: achieved, ..config };
         Ok(self.config)

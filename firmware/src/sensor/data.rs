@@ -11,7 +11,7 @@ use super::{Error, Sensor};
 pub struct RawSample {
     /// Accelerometer x, y, z in LSB.
     pub accel: [i16; 3],
-    /// Temperature in LSB.
+    /// Temperature in LSB of the MPU-6050's encoding (raw / 340 + 36.53), whatever the part.
     pub temp: i16,
     /// Gyro x, y, z in LSB.
     pub gyro: [i16; 3],
@@ -42,6 +42,12 @@ impl Sensor {
     pub async fn read_latest<I: I2c>(&mut self, bus: &mut I) -> Result<RawSample, Error<I::Error>> {
         let mut bytes = [0u8; reg::FIFO_SAMPLE_LEN];
         read_registers(bus, self.identity.address, reg::ACCEL_XOUT_H, &mut bytes).await?;
-        Ok(RawSample::from_be_bytes(&bytes))
+        Ok(self.decoded(&bytes))
+    }
+
+    /// A sample's 14 bytes (or more) as a sample, its temperature in the MPU-6050's encoding.
+    pub(super) fn decoded(&self, bytes: &[u8]) -> RawSample {
+        let sample = RawSample::from_be_slice(bytes);
+        RawSample { temp: self.temperature.apply(sample.temp), ..sample }
     }
 }

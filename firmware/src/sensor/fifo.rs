@@ -43,7 +43,7 @@ impl Sensor {
             let len = chunk.len() * reg::FIFO_SAMPLE_LEN;
             read_registers(bus, address, reg::FIFO_R_W, &mut bytes[..len]).await?;
             for (sample, raw) in chunk.iter_mut().zip(bytes.chunks_exact(reg::FIFO_SAMPLE_LEN)) {
-                *sample = RawSample::from_be_slice(raw);
+                *sample = self.decoded(raw);
             }
         }
         Ok(wanted)

@@ -1,10 +1,11 @@
-//! Finding the chip: which of its two addresses answers, and whether WHO_AM_I names a part this
-//! driver can run.
+//! Finding the chip: which of its two addresses answers, the part its WHO_AM_I names and the family
+//! its registers show ([`super::family`]).
 
 use embedded_hal_async::i2c::I2c;
 use shared::protocol::{SensorConfig, SensorIdentity};
 
 use super::access::read_register;
+use super::family::{family_of, TempEncoding};
 use super::registers as reg;
 use super::{Error, Sensor};
 
@@ -15,12 +16,12 @@ impl Sensor {
             let Ok(who_am_i) = read_register(bus, address, reg::WHO_AM_I).await else {
                 continue; // no acknowledge: try the other address
             };
-            let genuine = who_am_i == reg::WHO_AM_I_MPU6050;
-            if !genuine && !reg::WHO_AM_I_CLONES.contains(&who_am_i) {
+            let Some(family) = family_of(bus, address, who_am_i).await? else {
                 return Err(Error::UnknownChip { address, who_am_i });
-            }
-            let identity = SensorIdentity { address, who_am_i, genuine };
-            return Ok(Sensor { identity, config: SensorConfig::default() });
+            };
+            let identity = SensorIdentity { address, who_am_i, family };
+            let temperature = TempEncoding::of(identity.identification().temperature());
+            return Ok(Sensor { identity, config: SensorConfig::default(), temperature });
         }
         Err(Error::Missing)
     }

@@ -1,6 +1,7 @@
 //! The MPU-6050 driver: the project's own register code over an embedded-hal-async I2C bus.
 //!
 //! One file per feature area, all on [`access`]'s two transactions: [`identify`] (which chip, where),
+//! [`family`] (which register family it behaves as, and what differs between them),
 //! [`config`] (power, ranges, filter, rate), [`fifo`] (start, stop, read whole samples), [`data`]
 //! (one sample). [`registers`] is the one home of the datasheet's addresses and bits. The bus stays
 //! with the caller, so that the device can probe both addresses and find a chip that came back.
@@ -8,6 +9,7 @@
 pub mod access;
 mod config;
 mod data;
+mod family;
 mod fifo;
 mod identify;
 pub mod registers;
@@ -49,6 +51,8 @@ impl<E> Error<E> {
 pub struct Sensor {
     identity: SensorIdentity,
     config: SensorConfig,
+    /// How its TEMP_OUT becomes the MPU-6050's encoding, which the driver hands samples on in.
+    temperature: family::TempEncoding,
 }
 
 impl Sensor {

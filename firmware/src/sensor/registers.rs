@@ -14,6 +14,12 @@ pub const CONFIG: u8 = 0x1A;
 pub const GYRO_CONFIG: u8 = 0x1B;
 /// ACCEL_CONFIG (0x1C): AFS_SEL in bits 4:3, section 4.5.
 pub const ACCEL_CONFIG: u8 = 0x1C;
+/// ACCEL_CONFIG2 (0x1D) of the MPU-6500 family: the accelerometer's own low-pass filter
+/// (RM-MPU-6500A 4.8); not in the MPU-6050's map.
+pub const ACCEL_CONFIG2: u8 = 0x1D;
+/// XA_OFFSET_H (0x77) of the MPU-6500 family: the accelerometer's x offset, high byte
+/// (RM-MPU-6500A 4.x; the MPU-6050's accelerometer offsets sit at 0x06-0x0B).
+pub const XA_OFFSET_H_6500: u8 = 0x77;
 /// FIFO_EN (0x23): which measurements go into the FIFO, section 4.6.
 pub const FIFO_EN: u8 = 0x23;
 /// INT_ENABLE (0x38), section 4.15.
@@ -34,12 +40,6 @@ pub const FIFO_COUNT_L: u8 = 0x73;
 pub const FIFO_R_W: u8 = 0x74;
 /// WHO_AM_I (0x75): 0x68 on a genuine MPU-6050 whatever the AD0 pin, section 4.33.
 pub const WHO_AM_I: u8 = 0x75;
-
-/// WHO_AM_I of a genuine MPU-6050.
-pub const WHO_AM_I_MPU6050: u8 = 0x68;
-/// WHO_AM_I values of register-compatible parts sold as MPU-6050 modules: MPU-6500 (0x70),
-/// MPU-9250 (0x71), MPU-9255 (0x73) and common clones (0x72, 0x98).
-pub const WHO_AM_I_CLONES: [u8; 5] = [0x70, 0x71, 0x72, 0x73, 0x98];
 
 /// FIFO_EN: temperature, the three gyro axes and the accelerometer (TEMP, XG, YG, ZG, ACCEL).
 pub const FIFO_EN_TEMP_GYRO_ACCEL: u8 = 0b1111_1000;
@@ -76,7 +76,8 @@ pub const GYRO_LSB_PER_DPS_BY_FS_SEL: [f32; 4] = [131.0, 65.5, 32.8, 16.4];
 /// deg/s and a clipped sample corrupts the turn's integral; the 0.03 deg/s step stays below the
 /// rate noise at any sample rate the tool uses (0.035 deg/s at 100 Hz).
 pub const GYRO_LSB_PER_DPS: f32 = GYRO_LSB_PER_DPS_BY_FS_SEL[2];
-/// Temperature: degC = raw / 340 + 36.53 (section 4.18).
-pub const TEMP_LSB_PER_C: f32 = 340.0;
+/// Temperature: degC = raw / 340 + 36.53 (section 4.18); the driver hands every part's temperature
+/// on in this encoding.
+pub const TEMP_LSB_PER_C: f32 = shared::part::TemperatureFormula::MPU6050.lsb_per_c;
 /// Temperature offset in degC.
-pub const TEMP_OFFSET_C: f32 = 36.53;
+pub const TEMP_OFFSET_C: f32 = shared::part::TemperatureFormula::MPU6050.offset_c;

@@ -4,6 +4,7 @@
 use embassy_futures::block_on;
 use embedded_hal::i2c::{ErrorKind, NoAcknowledgeSource};
 use embedded_hal_mock::eh1::i2c::{Mock, Transaction as T};
+use shared::part::Family;
 use shared::protocol::{LowPassFilter, SensorConfig};
 use shared::AccelRange;
 
@@ -15,11 +16,28 @@ fn who_am_i(address: u8, value: u8) -> T {
     T::write_read(address, vec![0x75], vec![value])
 }
 
+/// The family check: ACCEL_CONFIG2 (0x1D) then XA_OFFSET_H (0x77) read, written with bits 0 and 2
+/// flipped, read back (as `kept` says) and restored.
+fn family_check(address: u8, kept: bool) -> Vec<T> {
+    let mut transactions = Vec::new();
+    for register in [0x1D, 0x77] {
+        let read_back = if kept { 0x05 } else { 0x00 };
+        transactions.extend([
+            T::write_read(address, vec![register], vec![0x00]),
+            T::write(address, vec![register, 0x05]),
+            T::write_read(address, vec![register], vec![read_back]),
+            T::write(address, vec![register, 0x00]),
+        ]);
+    }
+    transactions
+}
+
 fn probed(address: u8) -> Sensor {
     let mut answers = vec![who_am_i(0x68, 0).with_error(NACK), who_am_i(0x69, 0x68)];
     if address == 0x68 {
         answers = vec![who_am_i(0x68, 0x68)];
     }
+    answers.extend(family_check(address, false));
     let mut bus = Mock::new(&answers);
     let sensor = block_on(Sensor::probe(&mut bus)).unwrap();
     bus.done();
@@ -27,25 +45,26 @@ fn probed(address: u8) -> Sensor {
 }
 
 #[test]
-fn probe_finds_a_genuine_mpu6050_at_0x68() {
-    let mut bus = Mock::new(&[who_am_i(0x68, 0x68)]);
+fn probe_finds_a_genuine_mpu6050_at_0x68_and_restores_the_registers_it_tried() {
+    let mut bus = Mock::new(&[vec![who_am_i(0x68, 0x68)], family_check(0x68, false)].concat());
     let identity = block_on(Sensor::probe(&mut bus)).unwrap().identity();
-    assert_eq!((identity.address, identity.who_am_i, identity.genuine), (0x68, 0x68, true));
+    assert_eq!((identity.address, identity.who_am_i, identity.family), (0x68, 0x68, Family::Mpu6050));
     bus.done();
 }
 
 #[test]
 fn probe_falls_back_to_0x69_when_0x68_does_not_acknowledge() {
-    let mut bus = Mock::new(&[who_am_i(0x68, 0).with_error(NACK), who_am_i(0x69, 0x68)]);
+    let answers = [vec![who_am_i(0x68, 0).with_error(NACK), who_am_i(0x69, 0x68)], family_check(0x69, false)];
+    let mut bus = Mock::new(&answers.concat());
     assert_eq!(block_on(Sensor::probe(&mut bus)).unwrap().identity().address, 0x69);
     bus.done();
 }
 
 #[test]
-fn probe_accepts_a_register_compatible_clone_and_says_so() {
-    let mut bus = Mock::new(&[who_am_i(0x68, 0x72)]);
+fn probe_runs_a_look_alike_as_the_family_its_registers_show() {
+    let mut bus = Mock::new(&[vec![who_am_i(0x68, 0x72)], family_check(0x68, true)].concat());
     let identity = block_on(Sensor::probe(&mut bus)).unwrap().identity();
-    assert_eq!((identity.who_am_i, identity.genuine), (0x72, false));
+    assert_eq!((identity.who_am_i, identity.family), (0x72, Family::Mpu6500));
     bus.done();
 }
 

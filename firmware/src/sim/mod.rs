@@ -10,6 +10,7 @@
 mod board;
 pub mod flash;
 mod i2c;
+pub mod part;
 pub mod physics;
 pub mod thermal;
 
@@ -19,6 +20,7 @@ use shared::linalg::{self, Vec3};
 use crate::sensor::registers as reg;
 pub use board::{sim_serial_number, SimFlash, SIM_FLASH_RANGE};
 pub use i2c::BusFault;
+use part::SimPart;
 use physics::{Motion, Physics};
 
 /// Register file size: every register address is below 0x80.
@@ -30,7 +32,7 @@ const PWR_MGMT_1_RESET: u8 = 0x40;
 #[derive(Debug, Clone)]
 pub struct SimMpu6050 {
     address: u8,
-    who_am_i: u8,
+    part: SimPart,
     connected: bool,
     registers: [u8; REGISTER_COUNT],
     fifo: Deque<u8, { reg::FIFO_LEN }>,
@@ -51,7 +53,7 @@ impl SimMpu6050 {
         registers[usize::from(reg::PWR_MGMT_1)] = PWR_MGMT_1_RESET;
         SimMpu6050 {
             address: reg::ADDRESSES[0],
-            who_am_i: reg::WHO_AM_I_MPU6050,
+            part: SimPart::mpu6050(),
             connected: true,
             registers,
             fifo: Deque::new(),
@@ -88,8 +90,19 @@ impl SimMpu6050 {
 
     /// Reports another WHO_AM_I (a clone, or an unknown chip).
     pub fn with_who_am_i(mut self, who_am_i: u8) -> Self {
-        self.who_am_i = who_am_i;
+        self.part.who_am_i = who_am_i;
         self
+    }
+
+    /// Becomes another simulated part (register map, temperature formula, self-test).
+    pub fn with_part(mut self, part: SimPart) -> Self {
+        self.part = part;
+        self
+    }
+
+    /// The simulated part.
+    pub fn part(&self) -> &SimPart {
+        &self.part
     }
 
     /// Rests the board with the body-frame direction `up` (any length) pointing up.
@@ -172,7 +185,9 @@ impl SimMpu6050 {
     fn produce_sample(&mut self) {
         let seconds = (self.now_us - self.pose_since_us) as f32 * 1e-6;
         let rate = self.sample_rate_hz();
-        let sample = self.physics.sample(seconds, rate);
+        self.physics.accel_bandwidth_hz = self.part.accel_noise_bandwidth_hz(self.register(part::ACCEL_CONFIG2));
+        let mut sample = self.physics.sample(seconds, rate);
+        self.part.apply_self_test(self.register(reg::ACCEL_CONFIG), self.register(reg::GYRO_CONFIG), &mut sample);
         let accel_lsb = f32::from(16384u16 >> ((self.register(reg::ACCEL_CONFIG) >> reg::FULL_SCALE_SHIFT) & 0x03));
         let gyro_lsb = reg::GYRO_LSB_PER_DPS_BY_FS_SEL
             [usize::from((self.register(reg::GYRO_CONFIG) >> reg::FULL_SCALE_SHIFT) & 0x03)];
@@ -180,7 +195,7 @@ impl SimMpu6050 {
             quantise(sample.accel_g[0] * accel_lsb),
             quantise(sample.accel_g[1] * accel_lsb),
             quantise(sample.accel_g[2] * accel_lsb),
-            quantise((sample.temp_c - reg::TEMP_OFFSET_C) * reg::TEMP_LSB_PER_C),
+            self.part.temperature.raw(sample.temp_c),
             quantise(sample.gyro_dps[0] * gyro_lsb),
             quantise(sample.gyro_dps[1] * gyro_lsb),
             quantise(sample.gyro_dps[2] * gyro_lsb),
@@ -217,6 +232,9 @@ impl SimMpu6050 {
     }
 
     fn write_register(&mut self, address: u8, value: u8) {
+        if !self.part.has_register(address) {
+            return;
+        }
         match address {
             reg::PWR_MGMT_1 if value & reg::PWR_MGMT_1_DEVICE_RESET != 0 => {
                 self.registers = [0; REGISTER_COUNT];
@@ -237,7 +255,6 @@ impl SimMpu6050 {
 
     fn read_register(&mut self, address: u8) -> u8 {
         match address {
-            reg::WHO_AM_I => self.who_am_i,
             reg::INT_STATUS => core::mem::take(&mut self.registers[usize::from(reg::INT_STATUS)]),
             reg::FIFO_COUNT_H => (self.fifo.len() >> 8) as u8,
             reg::FIFO_COUNT_L => self.fifo.len() as u8,
@@ -245,7 +262,7 @@ impl SimMpu6050 {
             a if (reg::ACCEL_XOUT_H..reg::ACCEL_XOUT_H + reg::FIFO_SAMPLE_LEN as u8).contains(&a) => {
                 self.latest[usize::from(a - reg::ACCEL_XOUT_H)]
             }
-            a => self.register(a),
+            a => self.part.read(a, self.register(a)),
         }
     }
 

@@ -8,6 +8,11 @@ use shared::linalg::{self, Mat3, Vec3};
 
 use super::thermal::{Environment, ThermalDrift};
 
+mod filter;
+mod rotation;
+
+use rotation::{rotate, turning_at};
+
 /// Accelerometer white-noise density of the MPU-6050, in g/sqrt(Hz) (Product Specification 6.2).
 pub const ACCEL_NOISE_DENSITY_G: f32 = 400e-6;
 /// Gyro rate-noise density of the MPU-6050, in (deg/s)/sqrt(Hz) (Product Specification 6.1); as an
@@ -119,6 +124,10 @@ pub struct Physics {
     pub noisy: bool,
     /// Whether the biases wander (instability and random walk).
     pub wandering: bool,
+    /// The noise bandwidth of the accelerometer's own filter in Hz (the MPU-6500 family's
+    /// ACCEL_CONFIG2); `None`: white noise over the Nyquist band, as the MPU-6050 model has.
+    pub accel_bandwidth_hz: Option<f32>,
+    accel_filter_state: Option<Vec3<f32>>,
     wander: Wander,
     rng: Xoshiro256PlusPlus,
 }
@@ -162,6 +171,8 @@ impl Physics {
             gyro_g_sensitivity: GYRO_G_SENSITIVITY_DPS_PER_G,
             noisy: true,
             wandering: true,
+            accel_bandwidth_hz: None,
+            accel_filter_state: None,
             wander: Wander::default(),
             rng: Xoshiro256PlusPlus::seed_from_u64(seed),
         }
@@ -202,7 +213,11 @@ impl Physics {
         // NOTE: white noise of density n sampled at f has a standard deviation of n * sqrt(f / 2)
         // (all of it within the Nyquist band), so an average over T seconds has n / sqrt(2 T).
         let band = libm::sqrtf(rate_hz / 2.0);
-        let accel_noise = linalg::add(self.noise(ACCEL_NOISE_DENSITY_G * band), self.accel_wander());
+        let white = match self.accel_bandwidth_hz {
+            Some(bandwidth_hz) => self.filtered_accel_noise(bandwidth_hz, 1.0 / rate_hz),
+            None => self.noise(ACCEL_NOISE_DENSITY_G * band),
+        };
+        let accel_noise = linalg::add(white, self.accel_wander());
         let gyro_noise = linalg::add(self.noise(GYRO_NOISE_DENSITY_DPS * band), self.gyro_wander());
         let felt = truth.gyro_reading_dps(rotation_dps);
         let g_effect = linalg::scale(force, self.gyro_g_sensitivity);
@@ -273,23 +288,4 @@ impl Physics {
         let mut draw = || sigma * <StandardNormal as Distribution<f32>>::sample(&StandardNormal, &mut self.rng);
         [draw(), draw(), draw()]
     }
-}
-
-/// A hand's turn by `angle_deg` over `span_s`, `seconds` after it began: the angle turned so far
-/// in degrees and the rate in deg/s, rate = (angle / span) (1 - cos(2 pi t / span)).
-fn turning_at(angle_deg: f32, span_s: f32, seconds: f32) -> (f32, f32) {
-    if span_s <= 0.0 || seconds >= span_s {
-        return (angle_deg, 0.0);
-    }
-    let phase = 2.0 * core::f32::consts::PI * seconds.max(0.0) / span_s;
-    let mean_rate = angle_deg / span_s;
-    let turned = mean_rate * (seconds.max(0.0) - span_s * libm::sinf(phase) / (2.0 * core::f32::consts::PI));
-    (turned, mean_rate * (1.0 - libm::cosf(phase)))
-}
-
-/// Rodrigues' rotation of v about a unit axis by an angle in radians.
-fn rotate(v: Vec3<f32>, axis: Vec3<f32>, angle: f32) -> Vec3<f32> {
-    let (sin, cos) = (libm::sinf(angle), libm::cosf(angle));
-    let along = linalg::scale(axis, linalg::dot(axis, v) * (1.0 - cos));
-    linalg::add(linalg::add(linalg::scale(v, cos), linalg::scale(linalg::cross(axis, v), sin)), along)
 }

@@ -10,6 +10,8 @@ use super::args::{Device, StreamArgs};
 use crate::calibration::{describe, CalibrationJson};
 use crate::error::Error;
 use crate::link::{explain, serial_ports, StreamRequest};
+use crate::part::{describe as describe_part, part_name};
+use crate::session::BoardRecord;
 
 /// `accelcal ports`: serial ports, ours marked.
 pub(super) fn ports() -> Result<(), Error> {
@@ -27,8 +29,14 @@ pub(super) fn ports() -> Result<(), Error> {
 /// What `accelcal info --json` prints.
 #[derive(Serialize)]
 struct InfoJson {
+    /// The board's serial number, 24 hexadecimal digits (as `ports` and sessions show it).
+    serial: String,
     protocol_version: u8,
     firmware: String,
+    /// The part's name ("unknown" for a WHO_AM_I of no known part); null with no sensor.
+    part: Option<&'static str>,
+    /// The WHO_AM_I value; null with no sensor.
+    who_am_i: Option<u8>,
     sensor: SensorJson,
     range_g: u8,
     sample_rate_hz: u16,
@@ -62,8 +70,11 @@ pub(super) fn info(device: &Device, json: bool) -> Result<(), Error> {
 
 fn info_json(info: &DeviceInfo, active: Option<&Calibration>, stored: Option<&Calibration>) -> InfoJson {
     InfoJson {
+        serial: BoardRecord::of(info).serial,
         protocol_version: info.protocol_version,
         firmware: firmware_version(info),
+        part: info.sensor.as_ref().ok().map(part_name),
+        who_am_i: info.sensor.as_ref().ok().map(|s| s.who_am_i),
         sensor: info.sensor.map_or_else(|e| SensorJson::Missing { error: explain(&e) }, SensorJson::Found),
         range_g: info.config.range.full_scale_g(),
         sample_rate_hz: info.config.sample_rate_hz,
@@ -73,10 +84,10 @@ fn info_json(info: &DeviceInfo, active: Option<&Calibration>, stored: Option<&Ca
 }
 
 fn print_info(info: &DeviceInfo, active: Option<&Calibration>, stored: Option<&Calibration>) {
-    println!("firmware {}, protocol {}", firmware_version(info), info.protocol_version);
+    let serial = BoardRecord::of(info).serial;
+    println!("board serial {serial}, firmware {}, protocol {}", firmware_version(info), info.protocol_version);
     match info.sensor {
-        Ok(s) if s.genuine => println!("sensor: MPU-6050 at 0x{:02x}", s.address),
-        Ok(s) => println!("sensor: MPU-6050-compatible clone (WHO_AM_I 0x{:02x}) at 0x{:02x}", s.who_am_i, s.address),
+        Ok(s) => println!("sensor: {}", describe_part(&s)),
         Err(e) => println!("sensor: {}", explain(&e)),
     }
     println!("range +-{} g, {} Hz", info.config.range.full_scale_g(), info.config.sample_rate_hz);

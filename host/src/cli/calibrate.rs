@@ -151,23 +151,19 @@ fn finish(
 }
 
 /// The run's report: the calibration chosen, the fits beside it, the verification and the gyro's
-/// check, and with `--sim` the simulated sensor's truth (the gyro's at the session's temperature).
+/// check, and with `--sim` the simulated sensor's truth at the calibration's temperature.
 fn report_of(
     opened: &Opened,
     (fitted, gyro): (&Fitted, &GyroOutcome),
     verification: Verification,
     check: Option<TurnCheck>,
 ) -> CalibrateReport {
-    let truth = opened.sim.as_ref().map(|board| board.truth());
     let session_temp_c = calibration::thermal_reference(&fitted.chosen).ref_temp_c;
-    let truth_gyro = opened.sim.as_ref().map(|board| board.truth_at(session_temp_c));
+    let truth = opened.sim.as_ref().map(|board| board.truth_json(session_temp_c));
     let captures = fitted.session.captures.len();
     let chip = fitted.chip.as_ref().map(|c| &c.calibration);
-    CalibrateReport::new(&fitted.chosen, chip, fitted.host.as_ref(), truth, verification, captures).with_gyro(
-        gyro,
-        truth_gyro.as_ref(),
-        check,
-    )
+    CalibrateReport::new(&fitted.chosen, chip, fitted.host.as_ref(), truth, verification, captures)
+        .with_gyro(gyro, check)
 }
 
 /// Saves the verified session again, writes its report and certificate beside it, and says where.

@@ -4,11 +4,36 @@
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use super::args::Device;
+use clap::Args;
+
 use crate::error::Error;
 use crate::link::{open_listening, open_port, resolve_port, serial_ports, Connection, PortOpened, TalkingPort};
 use crate::procedure::{BoardClock, Hand, PersonHand, SimulatedHand};
-use crate::sim::SimBoard;
+use crate::sim::{FaultyAxis, SimBoard, SimPartChoice, SimSensor};
+
+/// Which device to talk to.
+#[derive(Args, Clone)]
+pub struct Device {
+    /// Serial port of the board (see `accelcal ports`), or of `accelcal sim --pty`; or the board's
+    /// serial number as `accelcal ports` shows it.
+    #[arg(long, conflicts_with = "sim")]
+    pub port: Option<String>,
+    /// A simulated board in this process (its flash lasts as long as the command).
+    #[arg(long)]
+    pub sim: bool,
+    /// With --sim: seed of the simulated sensor's noise and of the hand's placement.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// With --sim: the simulated sensor, realistic (warming and drifting) or settled (one temperature).
+    #[arg(long, value_enum, default_value_t = SimSensor::Realistic)]
+    pub sim_sensor: SimSensor,
+    /// With --sim: the simulated part (its register map, temperature formula and self-test).
+    #[arg(long, value_enum, default_value_t = SimPartChoice::Mpu6050)]
+    pub sim_part: SimPartChoice,
+    /// With --sim: this axis' self-test response is 20 % off its factory trim.
+    #[arg(long, value_enum)]
+    pub sim_faulty_axis: Option<FaultyAxis>,
+}
 
 /// How long the tool waits for the simulated board (which it turns itself) to settle.
 const SIM_WAIT_LIMIT: Duration = Duration::from_secs(60);
@@ -45,7 +70,8 @@ impl Device {
                 Ok(Opened { connection, sim: None, opened_at: Instant::now() })
             }
             (None, true) => {
-                let (connection, board) = SimBoard::in_process(self.seed, self.sim_sensor)?;
+                let part = self.sim_part.part(self.sim_faulty_axis);
+                let (connection, board) = SimBoard::in_process_part((self.seed, self.sim_sensor, part))?;
                 Ok(Opened { connection, sim: Some(board), opened_at: Instant::now() })
             }
             (None, false) => Err(Error::WhichDevice),

@@ -19,8 +19,8 @@ use crate::stream::segment::mean_std;
 use crate::stream::timing::{Rate, RateSource};
 use crate::stream::{Layout, LineReader, StreamLog, StreamOptions};
 
-/// A stream silent this long has stopped.
-const QUIET_S: f64 = 5.0;
+/// A stream silent this long has stopped (long enough that a busy machine's pause is not taken for it).
+const QUIET_S: f64 = 10.0;
 /// Lines heard before the dialect is decided.
 const DETECT_LINES: usize = 40;
 /// Still periods before the stop rule is asked.
@@ -31,37 +31,46 @@ const STATUS_EVERY: Duration = Duration::from_secs(1);
 /// Calibrates from the stream of `talking`.
 pub(super) fn calibrate_from_stream(args: &CalibrateArgs, talking: TalkingPort) -> Result<(), Error> {
     let path = args.stream_log.clone().unwrap_or_else(default_log);
-    let file = std::fs::File::create(&path).map_err(|source| Error::WriteFile { path: path.clone(), source })?;
+    let unwritable = |source| Error::WriteFile { path: path.clone(), source };
+    let file = std::fs::File::create(&path).map_err(unwritable)?;
     eprintln!(
         "{} prints its own stream: accelcal writes nothing to it and keeps what it prints in {}",
         talking.path,
         path.display()
     );
-    let interrupt = interrupt_on_ctrl_c();
-    let mut live = LiveStream::new(talking, file).map_err(|source| Error::WriteFile { path: path.clone(), source })?;
+    let mut live = LiveStream::new(talking, file).map_err(unwritable)?;
     let options = args.stream.options(None);
+    let why = listen_until_done(&mut live, &options, args.length.target_mg);
+    let data = data_lines(&live);
+    live.finish(&data).map_err(unwritable)?;
+    eprintln!("{why}: fitting the still periods of {}", path.display());
+    report(args, &path, &options)
+}
+
+/// Reads the stream, telling the person where things stand, until the fit predicts the target,
+/// the stream stops or goes away, or Ctrl-C; why it ended. What was read is kept in any case.
+fn listen_until_done(live: &mut LiveStream, options: &StreamOptions, target_mg: f64) -> String {
+    let interrupt = interrupt_on_ctrl_c();
     let mut last_status = Instant::now();
-    let why = loop {
-        live.poll(Duration::from_millis(200))
-            .map_err(|e| crate::link::LinkError::Disconnected { reason: e.to_string() })?;
+    let mut fitted_periods = 0;
+    loop {
+        if let Err(e) = live.poll(Duration::from_millis(200)) {
+            return format!("the port went away ({e})");
+        }
         if interrupt.load(Ordering::SeqCst) {
-            break "stopped by Ctrl-C";
+            return "stopped by Ctrl-C".to_owned();
         }
         if live.quiet_s() > QUIET_S {
-            break "the stream stopped";
+            return "the stream stopped".to_owned();
         }
         if live.lines.len() < DETECT_LINES || last_status.elapsed() < STATUS_EVERY {
             continue;
         }
         last_status = Instant::now();
-        if let Some(done) = status(&live, &options, args.length.target_mg) {
-            break done;
+        if let Some(done) = status(live, options, target_mg, &mut fitted_periods) {
+            return done.to_owned();
         }
-    };
-    let data = data_lines(&live);
-    live.finish(&data).map_err(|source| Error::WriteFile { path: path.clone(), source })?;
-    eprintln!("{why}: fitting the still periods of {}", path.display());
-    report(args, &path, &options)
+    }
 }
 
 fn default_log() -> PathBuf {
@@ -88,8 +97,14 @@ fn snapshot(live: &LiveStream, options: &StreamOptions) -> Option<StreamLog> {
     StreamLog::new(layout, samples, dropped, rate, options).ok()
 }
 
-/// Tells the person where things stand; `Some` once the fit predicts the target.
-fn status(live: &LiveStream, options: &StreamOptions, target_mg: f64) -> Option<&'static str> {
+/// Tells the person where things stand; `Some` once the fit predicts the target (fitted again
+/// only when a still period was added since `fitted_periods`).
+fn status(
+    live: &LiveStream,
+    options: &StreamOptions,
+    target_mg: f64,
+    fitted_periods: &mut usize,
+) -> Option<&'static str> {
     let log = snapshot(live, options)?;
     let accel = log.accel_g();
     let recent = &accel[accel.len().saturating_sub(5)..];
@@ -109,9 +124,10 @@ fn status(live: &LiveStream, options: &StreamOptions, target_mg: f64) -> Option<
         tilt[2],
         next_turn(up, &rested)
     );
-    if rested.len() < MIN_PERIODS {
+    if rested.len() < MIN_PERIODS || rested.len() == *fitted_periods {
         return None;
     }
+    *fitted_periods = rested.len();
     let report = StreamReport::new(&log, ModelChoice::Only(Model::Ortho9), &FitOptions::default()).ok()?;
     let predicted = report.fit.fit.prediction.as_ref()?.norm_error_mg;
     (predicted <= target_mg).then_some("the fit predicts the target")

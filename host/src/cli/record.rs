@@ -48,6 +48,7 @@ pub(super) fn record(args: &RecordArgs) -> Result<(), Error> {
     let mut recorder = Recorder::create(&args.output, args.rate)?;
     let streamed = stream_into(client, request, &mut recorder);
     let written = recorder.finish()?;
+    leave_as_found(client, opened.connection.info.config);
     let shown = args.output.display();
     // NOTE: Ctrl-C ends the recording as a pulled cable does: short of what was asked, so not a
     // success; the message names the cause and how many samples the file keeps.
@@ -58,6 +59,20 @@ pub(super) fn record(args: &RecordArgs) -> Result<(), Error> {
             eprintln!("{written} samples in {shown}");
             Ok(tally.complete()?)
         }
+    }
+}
+
+/// Sets the board back to the configuration it had before the recording (a board left at 1000 Hz
+/// would make the next calibration run there), and says so; a board that cannot be set back is named.
+fn leave_as_found<P: Port>(client: &mut Client<P>, found: SensorConfig) {
+    // NOTE: after Ctrl-C every request would end as interrupted: the way back must still be sent.
+    client.interrupt_on(std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false)));
+    match client.configure(found) {
+        Ok(_) => eprintln!("the board is back at its {} Hz", found.sample_rate_hz),
+        Err(error) => eprintln!(
+            "the board could not be set back to {} Hz ({error}): it stays at the recording's rate",
+            found.sample_rate_hz
+        ),
     }
 }
 

@@ -12,9 +12,15 @@ use shared::protocol::{Sample, StreamKind};
 
 use super::moves::{Problem, Recording, Watch};
 use super::{Feedback, Hand, ProcedureError};
-use crate::fit::gyro::{turned_deg, GyroFit, Turn};
+use crate::fit::gyro::{rotate_up, GyroFit, Turn};
 use crate::limits::{MAX_MOVE_SECONDS, TURN_CHECK_REST_SECONDS};
 use crate::link::{Client, Port, StreamRequest};
+
+/// Largest angle, in degrees, between the check turn's axis and the horizontal: the accelerometer
+/// sees a turn about a tilted line as a smaller tilt, and a scale error of the gyro less and less.
+// NOTE: a turn over an edge of a board resting on a table is about a horizontal line; 20 degrees
+// leaves a hand's turn in the air room while the tilt still shows 94 % of the turn's angle.
+const MAX_CHECK_AXIS_ELEVATION_DEG: f64 = 20.0;
 
 /// What the verification turn measured, in degrees.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -23,7 +29,7 @@ pub struct TurnCheck {
     pub accel_deg: f64,
     /// Its standard uncertainty (the accelerometer's noise over the rests).
     pub accel_uncertainty_deg: f64,
-    /// The turn's angle by the calibrated gyro, integrated.
+    /// The same tilt by the calibrated gyro: the rest before's up carried through the integrated turn.
     pub gyro_deg: f64,
     /// Its standard uncertainty: the rate noise integrated, and G's standard errors along the turn.
     pub gyro_uncertainty_deg: f64,
@@ -57,7 +63,7 @@ pub fn check_turn<P: Port>(
 ) -> Result<Result<TurnCheck, String>, ProcedureError> {
     let (head, recorded) = stream_turn(client, hand, rate_hz, feedback)?;
     Ok(match recorded {
-        Ok(recording) => Ok(measure(&head, &recording.samples, rate_hz, fit)),
+        Ok(recording) => measure(&head, &recording.samples, rate_hz, fit),
         Err(problem) => Err(format!("gyro check: {problem}")),
     })
 }
@@ -89,8 +95,11 @@ fn stream_turn<P: Port>(
     Ok((head, watch.finish(tally.lost(), "the verification turn")))
 }
 
-/// The turn's angle both ways, from the rest before (`head`), the move and the rest after.
-fn measure(head: &[Sample], moved: &[Sample], rate_hz: u16, fit: Option<&GyroFit>) -> TurnCheck {
+/// The turn's tilt both ways, from the rest before (`head`), the move and the rest after: the angle
+/// between the rests' up directions by the accelerometer, and by the gyro (the rest before's up
+/// carried through the integrated turn); refused, with why, when the turn was not about a
+/// horizontal line.
+fn measure(head: &[Sample], moved: &[Sample], rate_hz: u16, fit: Option<&GyroFit>) -> Result<TurnCheck, String> {
     let tail = &moved[moved.len().saturating_sub(head.len())..];
     let (before, after) = (mean_accel(head), mean_accel(tail));
     let turn = Turn {
@@ -98,18 +107,31 @@ fn measure(head: &[Sample], moved: &[Sample], rate_hz: u16, fit: Option<&GyroFit
         interval_s: 1.0 / f64::from(rate_hz),
         bias_before_dps: mean_gyro(head),
         bias_after_dps: mean_gyro(tail),
-        up_before: before,
-        up_after: after,
+        up_before: unit(before),
+        up_after: unit(after),
     };
-    let gyro_deg = turned_deg(&turn, &Matrix3::identity());
+    let elevation_deg = shared::linalg::dot(turn_axis(&turn), turn.up_before).abs().min(1.0).asin().to_degrees();
+    if elevation_deg > MAX_CHECK_AXIS_ELEVATION_DEG {
+        return Err(format!(
+            "gyro check: the turn was about a line {elevation_deg:.0} degrees from the horizontal, so the accelerometer \
+             saw only part of it; turn the board over one of its edges (about a horizontal line) to check the gyro"
+        ));
+    }
+    let tilt_deg = |g: &Matrix3<f64>| angle_between_deg(turn.up_before, rotate_up(&turn, g).into());
+    let gyro_deg = tilt_deg(&Matrix3::identity());
     let undo = fit.and_then(|f| Matrix3::from(f.matrix).transpose().try_inverse());
-    TurnCheck {
+    Ok(TurnCheck {
         accel_deg: angle_between_deg(before, after),
         accel_uncertainty_deg: accel_uncertainty_deg(head, tail),
         gyro_deg,
         gyro_uncertainty_deg: gyro_uncertainty_deg(head, &turn, gyro_deg, fit),
-        raw_deg: undo.map(|g| turned_deg(&turn, &g)),
-    }
+        raw_deg: undo.map(|g| tilt_deg(&g)),
+    })
+}
+
+fn unit(v: [f64; 3]) -> [f64; 3] {
+    let n = shared::linalg::norm(v).max(1e-12);
+    v.map(|x| x / n)
 }
 
 fn mean_accel(samples: &[Sample]) -> [f64; 3] {
@@ -166,4 +188,46 @@ fn turn_axis(turn: &Turn) -> [f64; 3] {
     let sum = turn.rates_dps.iter().fold([0.0; 3], |a, r| shared::linalg::add(a, *r));
     let n = shared::linalg::norm(sum).max(1e-12);
     sum.map(|v| v / n)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// 1 s at rest with `up` up, at 100 Hz.
+    fn rest(up: [f32; 3]) -> Vec<Sample> {
+        (0..100).map(|i| Sample { index: i, time_us: 0, accel_g: up, gyro_dps: [0.0; 3], temp_c: 25.0 }).collect()
+    }
+
+    /// A quarter turn at 90 deg/s about `axis` from +Z up, then 1 s at rest with `up_after` up.
+    fn quarter_turn(axis: [f32; 3], up_after: [f32; 3]) -> Vec<Sample> {
+        let rate = axis.map(|v| v * 90.0);
+        let turning =
+            (0..100).map(|i| Sample { index: i, time_us: 0, accel_g: up_after, gyro_dps: rate, temp_c: 25.0 });
+        turning.chain(rest(up_after)).collect()
+    }
+
+    #[test]
+    fn a_turn_over_an_edge_is_checked_and_one_about_the_vertical_is_refused() {
+        let head = rest([0.0, 0.0, 1.0]);
+        let check = measure(&head, &quarter_turn([1.0, 0.0, 0.0], [0.0, 1.0, 0.0]), 100, None).unwrap();
+        assert!((check.accel_deg - 90.0).abs() < 1e-4 && (check.gyro_deg - 90.0).abs() < 1e-3, "{check:?}");
+        // About the vertical: the accelerometer sees no tilt at all, so nothing to compare.
+        let why = measure(&head, &quarter_turn([0.0, 0.0, 1.0], [0.0, 0.0, 1.0]), 100, None).unwrap_err();
+        assert!(why.contains("90 degrees from the horizontal"), "{why}");
+    }
+
+    #[test]
+    fn a_turn_about_a_tilted_line_compares_the_tilt_the_gyro_predicts_with_the_accelerometers() {
+        // 90 degrees about a line 15 degrees above the horizontal: the up direction turns by 86.6.
+        let (s, c) = 15f32.to_radians().sin_cos();
+        let axis = [c, 0.0, s];
+        // NOTE: Rodrigues for a quarter turn: z -> (a x z) + a (a . z), the sign of y by the turn's sense.
+        let up_after = [c * s, c, s * s];
+        let turned = quarter_turn(axis, up_after);
+        let check = measure(&rest([0.0, 0.0, 1.0]), &turned, 100, None).unwrap();
+        let expected = (f64::from(s * s)).acos().to_degrees();
+        assert!((check.gyro_deg - expected).abs() < 1e-2, "gyro {} vs {expected}", check.gyro_deg);
+        assert!((check.accel_deg - expected).abs() < 1e-3, "accelerometer {} vs {expected}", check.accel_deg);
+    }
 }

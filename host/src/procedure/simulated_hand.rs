@@ -6,15 +6,14 @@
 
 use std::sync::mpsc::Sender;
 
-use firmware::sim::physics::Motion;
 use rand_xoshiro::rand_core::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
 use shared::linalg::{add, cross, norm, scale};
-use shared::orientation::angle_between_deg;
 
 use super::{Feedback, Hand, Orientation, ProcedureError};
 use crate::limits::FRESH_DEG;
 use crate::sim::random::{gaussian, random_unit};
+use crate::sim::turn::{turn_between, turning};
 use crate::sim::SimCommand;
 
 /// How far beyond [`FRESH_DEG`], in degrees, the hand keeps its verification orientations apart,
@@ -22,12 +21,6 @@ use crate::sim::SimCommand;
 const FRESH_MARGIN_DEG: f64 = 10.0;
 /// Random orientations tried for one clear of those verified before (14 of them fit easily).
 const FRESH_TRIES: usize = 1000;
-/// How long the hand takes for a turn: this many seconds, plus one per [`HAND_TURN_DPS`] degrees.
-///
-/// NOTE: a quarter turn in 1.2 s peaks at 150 deg/s, a half turn in 1.8 s at 200 deg/s: the brisk
-/// but unhurried turn of a person following instructions.
-const HAND_TURN_BASE_S: f64 = 0.6;
-const HAND_TURN_DPS: f64 = 150.0;
 /// A verification turn, in degrees: the quarter turn the user is shown.
 pub const VERIFICATION_TURN_DEG: f64 = 90.0;
 
@@ -61,12 +54,7 @@ impl SimulatedHand {
     /// The turn that carries the body's up from `from` to `to`, about the line perpendicular to
     /// both (horizontal all the way); a half turn goes about a random horizontal line.
     fn turn_command(&mut self, from: [f64; 3], to: [f64; 3]) -> SimCommand {
-        let mut axis = cross(to, from);
-        if norm(axis) < 1e-6 {
-            axis = cross(from, random_unit(&mut self.rng));
-        }
-        let angle_deg = angle_between_deg(from, to);
-        turning(scale(axis, 1.0 / norm(axis)), angle_deg)
+        turn_between(from, to, random_unit(&mut self.rng))
     }
 
     /// A quarter turn about a random horizontal line, from where the board rests.
@@ -126,11 +114,4 @@ impl Hand for SimulatedHand {
     fn avoid(&mut self, orientations: &[[f64; 3]]) {
         self.verified.extend(orientations.iter().map(|&up| scale(up, 1.0 / norm(up))));
     }
-}
-
-/// The board turned by `angle_deg` about the body `axis` (unit), at a hand's pace, then at rest.
-fn turning(axis: [f64; 3], angle_deg: f64) -> SimCommand {
-    let seconds = (HAND_TURN_BASE_S + angle_deg / HAND_TURN_DPS) as f32;
-    let motion = Motion::Turning { axis: axis.map(|v| v as f32), angle_deg: angle_deg as f32, seconds };
-    SimCommand::MoveFor { motion, seconds }
 }

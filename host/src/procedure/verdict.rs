@@ -6,12 +6,13 @@ use serde::Serialize;
 use super::Verification;
 use crate::limits::TRUSTED_AFTER_NOISE_FLOOR;
 
-/// Why a calibration missed its target by more than its noise, and what to do.
-// NOTE: a miss beyond 3 noise floors above the target is beyond 3 noise floors, so it is never
-// trusted: the calibration leaves an error the verification resolves.
-const WHY_MISSED: &str = "the calibration leaves an error the verification resolves (more than 3 noise floors): \
-    the board warmed or moved between the captures and the check, or its mounting shifted; let it warm up, rest it \
-    firmly and calibrate again";
+/// Why a calibration missed its target by more than its noise, and what to do: an error the
+/// verification resolves (not trusted), or captures too noisy for the target.
+const WHY_UNTRUSTED: &str = "the calibration leaves an error the verification resolves (more than 3 noise \
+    floors): the board warmed or moved between the captures and the check, or its mounting shifted; let it warm \
+    up, rest it firmly and calibrate again";
+const WHY_NOISY: &str = "the captures' own noise is too large for this target: rest the board on something \
+    firmer and quieter, or aim at a larger --target-mg";
 
 /// A verification judged against the target asked for.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -46,14 +47,15 @@ impl Verification {
             return TargetVerdict { target_mg, reached: trusted, trusted, missed: false, line };
         };
         let reached = rms <= target_mg;
-        // NOTE: the rms carries its own noise: only a miss beyond it is the calibration's.
-        let missed = rms > target_mg + TRUSTED_AFTER_NOISE_FLOOR * floor;
+        // NOTE: the rms carries its own noise: the error without it must exceed the target by more
+        // than one noise floor for the miss to be the calibration's.
+        let missed = self.after_rms_without_noise_mg > target_mg + floor;
         let judged = if trusted { "trusted" } else { "not trusted" };
         let head = format!("target {target_mg} mg: {rms:.3} mg verified (noise floor {floor:.3} mg, {judged})");
         let line = match (reached, missed) {
             (true, _) => format!("{head}: reached"),
             (false, false) => format!("{head}: above the target by less than its noise explains"),
-            (false, true) => format!("{head}: missed; {WHY_MISSED}"),
+            (false, true) => format!("{head}: missed; {}", if trusted { WHY_NOISY } else { WHY_UNTRUSTED }),
         };
         TargetVerdict { target_mg: Some(target_mg), reached, trusted, missed, line }
     }
@@ -92,9 +94,14 @@ mod tests {
         let reached = verified(0.093, 0.05).against(Some(0.2));
         assert!(reached.reached && !reached.missed && reached.trusted, "{reached:?}");
         assert!(reached.line.ends_with("reached"), "{}", reached.line);
-        // 0.2 + 3 x 0.05 = 0.35 mg: 0.34 mg is above the target but within its noise of it.
-        let near = verified(0.34, 0.05).against(Some(0.2));
+        // 0.26 mg with a 0.1 mg floor is 0.24 mg without it: above 0.2 mg by less than the floor.
+        let near = verified(0.26, 0.1).against(Some(0.2));
         assert!(!near.reached && !near.missed, "{near:?}");
+        // The person's session over sim --pty: 0.673 mg, floor 0.190 mg (0.646 mg without it).
+        let person = verified(0.673, 0.190).against(Some(0.2));
+        assert!(person.missed && !person.trusted, "{person:?}");
+        let noisy = verified(1.2, 0.5).against(Some(0.2));
+        assert!(noisy.missed && noisy.trusted && noisy.line.contains("own noise is too large"), "{noisy:?}");
         // 1.06 mg after a 0.2 mg target with a 0.1 mg floor: missed, and not trusted.
         let missed = verified(1.06, 0.1).against(Some(0.2));
         assert!(missed.missed && !missed.trusted, "{missed:?}");

@@ -4,6 +4,7 @@
 use std::collections::BTreeMap;
 
 use firmware::sim::physics::TrueErrors;
+use firmware::sim::thermal::ThermalDrift;
 use serde::Serialize;
 use shared::Calibration;
 
@@ -19,7 +20,7 @@ use crate::session::Verification;
 pub struct CalibrateReport {
     /// The calibration uploaded and saved.
     pub calibration: ChosenJson,
-    /// The simulated sensor's true errors, under the same convention (only with `--sim`).
+    /// The simulated sensor's truth at the calibration's temperature, and its drift (only with `--sim`).
     pub truth: Option<TruthJson>,
     /// The errors at fresh orientations before and after.
     pub verification: Verification,
@@ -51,17 +52,68 @@ pub struct ChosenJson {
     pub gyro: GyroJson,
 }
 
-/// The simulated sensor's true calibration: a = matrix (m - offset), in g.
+/// The simulated sensor's truth at the temperature the calibration was made at: a = matrix (m - offset) in
+/// g, w = G (w_raw - b), so each compares with `calibration` as it stands.
 #[derive(Debug, Clone, Serialize)]
 pub struct TruthJson {
-    /// True M.
+    /// The temperature it holds at, as the sensor's TEMP_OUT reads it: the calibration's reference (the
+    /// captures' mean temperature), degC.
+    pub temp_c: f32,
+    /// True M at `temp_c`.
     pub matrix: [[f32; 3]; 3],
-    /// True o, in g.
+    /// True o at `temp_c`, in g.
     pub offset: [f32; 3],
-    /// True gyro bias, in deg/s.
-    pub gyro_bias_dps: [f32; 3],
-    /// The true gyro correction at the session's temperature.
-    pub gyro: Option<TruthGyroJson>,
+    /// The true gyro correction at `temp_c`: G and the one bias.
+    pub gyro: TruthGyroJson,
+    /// How the truth moves with the temperature, for the truth at any other (null for the settled
+    /// sensor, whose truth is the same at every temperature).
+    pub drift: Option<DriftJson>,
+}
+
+/// The simulated sensor's drift: at die temperature T (TEMP_OUT minus `reading_offset_c`) and
+/// dT = T - `ref_die_c`, o(T) = `ref_offset` + c1 dT + c2 dT^2, M(T) = `ref_matrix` diag(1 + d1 dT + d2 dT^2)^-1,
+/// b(T) = `ref_gyro_bias_dps` + e1 dT + e2 dT^2; G does not drift.
+#[derive(Debug, Clone, Serialize)]
+pub struct DriftJson {
+    /// How much TEMP_OUT reads above the die, degC.
+    pub reading_offset_c: f32,
+    /// The die temperature the polynomials are taken about, degC.
+    pub ref_die_c: f32,
+    /// True M at `ref_die_c`.
+    pub ref_matrix: [[f32; 3]; 3],
+    /// True o at `ref_die_c`, in g.
+    pub ref_offset: [f32; 3],
+    /// True gyro bias at `ref_die_c`, deg/s.
+    pub ref_gyro_bias_dps: [f32; 3],
+    /// [c1, c2] per axis: g/degC, g/degC^2.
+    pub offset_g: [[f32; 3]; 2],
+    /// [d1, d2] per axis: 1/degC, 1/degC^2.
+    pub scale: [[f32; 3]; 2],
+    /// [e1, e2] per axis: deg/s/degC, deg/s/degC^2.
+    pub gyro_bias_dps: [[f32; 3]; 2],
+}
+
+impl TruthJson {
+    /// The truth `at` the temperature `temp_c` (TEMP_OUT), with the sensor's `drift` when it has one.
+    pub fn new(temp_c: f32, at: &TrueErrors, drift: Option<DriftJson>) -> Self {
+        TruthJson { temp_c, matrix: at.matrix, offset: at.offset_g, gyro: TruthGyroJson::new(at), drift }
+    }
+}
+
+impl DriftJson {
+    /// The `drift` about the die temperature `ref_die_c`, where the truth is `reference`.
+    pub fn new(reference: &TrueErrors, drift: &ThermalDrift, ref_die_c: f32, reading_offset_c: f32) -> Self {
+        DriftJson {
+            reading_offset_c,
+            ref_die_c,
+            ref_matrix: reference.matrix,
+            ref_offset: reference.offset_g,
+            ref_gyro_bias_dps: reference.gyro_bias_dps,
+            offset_g: drift.offset_g,
+            scale: drift.scale,
+            gyro_bias_dps: drift.gyro_bias_dps,
+        }
+    }
 }
 
 /// The host fit's statistics.
@@ -83,18 +135,13 @@ impl CalibrateReport {
         chosen: &Calibration,
         chip: Option<&Calibration>,
         host: Option<&Fit>,
-        truth: Option<TrueErrors>,
+        truth: Option<TruthJson>,
         verification: Verification,
         captures: usize,
     ) -> Self {
         CalibrateReport {
             calibration: ChosenJson::new(chosen, &GyroOutcome::default()),
-            truth: truth.map(|t| TruthJson {
-                matrix: t.matrix,
-                offset: t.offset_g,
-                gyro_bias_dps: t.gyro_bias_dps,
-                gyro: None,
-            }),
+            truth,
             verification,
             captures,
             chip_fit: chip.map(CalibrationJson::from_device),
@@ -106,13 +153,9 @@ impl CalibrateReport {
         }
     }
 
-    /// The report with what the gyro fit gave, the true gyro correction at the session's
-    /// temperature (with `--sim`) and the verification turn.
-    pub fn with_gyro(mut self, outcome: &GyroOutcome, truth: Option<&TrueErrors>, check: Option<TurnCheck>) -> Self {
+    /// The report with what the gyro fit gave and the verification turn.
+    pub fn with_gyro(mut self, outcome: &GyroOutcome, check: Option<TurnCheck>) -> Self {
         self.calibration.gyro = GyroJson::new(&self.calibration.device, outcome);
-        if let (Some(json), Some(truth)) = (self.truth.as_mut(), truth) {
-            json.gyro = Some(TruthGyroJson::new(truth));
-        }
         self.gyro_check = check;
         self
     }

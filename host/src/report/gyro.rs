@@ -61,12 +61,12 @@ impl GyroJson {
 pub struct TruthGyroJson {
     /// True G.
     pub matrix: Mat3<f32>,
-    /// True bias at the session's temperature, deg/s.
+    /// True bias at the truth's temperature, deg/s.
     pub bias_dps: Vec3<f32>,
 }
 
 impl TruthGyroJson {
-    /// From the true errors at the session's temperature.
+    /// From the true errors at one temperature.
     pub fn new(truth: &TrueErrors) -> Self {
         TruthGyroJson { matrix: truth.gyro_matrix, bias_dps: truth.gyro_bias_dps }
     }

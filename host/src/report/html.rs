@@ -52,6 +52,7 @@ fn board(out: &mut String, board: &Board) {
     for (name, value) in [
         ("serial number", text(&board.serial)),
         ("firmware", text(&board.firmware)),
+        ("sensor", text(&board.part)),
         ("sensor configuration", text(&board.sensor_config)),
         ("accelerometer range", range),
         ("captured (UTC)", text(&board.date_utc)),

@@ -20,7 +20,7 @@ pub mod text;
 pub mod thermal;
 mod uploaded;
 
-pub use calibrate::{CalibrateReport, ChosenJson, HostFitSummary, TruthJson};
+pub use calibrate::{CalibrateReport, ChosenJson, DriftJson, HostFitSummary, TruthJson};
 pub use comparison::{ComparedModel, Comparison};
 pub use figure::{axis_role, Figure, Role, Series, SeriesStyle};
 pub use plot::PlotError;

@@ -54,6 +54,8 @@ pub struct Board {
     pub serial: Option<String>,
     /// The firmware version.
     pub firmware: Option<String>,
+    /// The sensor part, named (see `accelcal::part::describe`).
+    pub part: Option<String>,
     /// The sensor configuration (range, filter, sample rate).
     pub sensor_config: Option<String>,
     /// The accelerometer range of the captures, full scale in g.
@@ -209,6 +211,7 @@ impl Board {
         Board {
             serial: board.map(|b| b.serial.clone()),
             firmware: board.map(|b| format!("{}.{}.{}", b.firmware.major, b.firmware.minor, b.firmware.patch)),
+            part: board.and_then(|b| b.sensor.clone()),
             sensor_config: board.map(|b| {
                 let c = b.config;
                 format!(

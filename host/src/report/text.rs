@@ -201,6 +201,9 @@ fn write_board(out: &mut String, board: &Board) {
     let _ = writeln!(out, "board {serial}, firmware {firmware}, sensor {}", or_absent(&board.sensor_config));
     let range = board.range_g.map_or(NOT_RECORDED.to_owned(), |g| format!("+-{g} g"));
     let _ = writeln!(out, "captured {} UTC, range {range}", or_absent(&board.date_utc));
+    if let Some(part) = &board.part {
+        let _ = writeln!(out, "sensor part: {part}");
+    }
 }
 
 #[cfg(test)]

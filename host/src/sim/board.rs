@@ -8,13 +8,16 @@ use std::thread::JoinHandle;
 use embassy_futures::block_on;
 use firmware::device::Device;
 use firmware::server::Server;
+use firmware::sim::part::SimPart;
 use firmware::sim::physics::{Motion, Physics, TrueErrors};
+use firmware::sim::thermal::TRUTH_REF_TEMP_C;
 use firmware::sim::{sim_serial_number, SimFlash, SimMpu6050, SIM_FLASH_RANGE};
 
 use super::clock::Pace;
 use super::serve::serve;
 use super::Port;
 use crate::link::{pipe, Connection, LinkError};
+use crate::report::{DriftJson, TruthJson};
 
 /// What the owner of a simulated board can do to it.
 #[derive(Debug, Clone, PartialEq)]
@@ -25,6 +28,12 @@ pub enum SimCommand {
     Move(Motion),
     /// Move for this many seconds of simulated time, then rest where the motion left the board.
     MoveFor { motion: Motion, seconds: f32 },
+    /// Turn from where the board rests to rest with this body-frame direction up, as a hand does
+    /// (the gyro sees the turn).
+    TurnTo([f32; 3]),
+    /// Tip the board over an edge by this many degrees, as a hand does: about the horizontal line
+    /// across the board's x axis (its y axis when x points up).
+    Tip(f32),
     /// Move the surroundings towards a temperature (degC) at a rate (degC/s; infinite: at once).
     Ambient { target_c: f32, c_per_s: f32 },
     /// Let this many seconds pass at once while idle (a soak), without producing every sample.
@@ -49,6 +58,9 @@ pub enum SimSensor {
     Settled,
 }
 
+/// A simulated sensor: the seed of its noise, its kind and its part.
+pub type SensorChoice = (u64, SimSensor, SimPart);
+
 /// A running simulated board.
 pub struct SimBoard {
     commands: Sender<SimCommand>,
@@ -68,10 +80,18 @@ impl SimBoard {
 
     /// [`Self::spawn`] with the simulated sensor of the owner's choice and simulated time at `pace`.
     pub fn spawn_with<P: Port + 'static>(port: P, flash: SimFlash, seed: u64, kind: SimSensor, pace: Pace) -> Self {
+        Self::spawn_part(port, flash, (seed, kind, SimPart::mpu6050()), pace)
+    }
+
+    /// [`Self::spawn_with`] with a simulated part of the owner's choice: `sensor` is the seed, the
+    /// kind of sensor and the part.
+    pub fn spawn_part<P: Port + 'static>(port: P, flash: SimFlash, sensor: SensorChoice, pace: Pace) -> Self {
+        let (seed, kind, part) = sensor;
         let sensor = match kind {
             SimSensor::Realistic => SimMpu6050::new(seed),
             SimSensor::Settled => SimMpu6050::settled(seed),
-        };
+        }
+        .with_part(part);
         let truth = sensor.physics.truth;
         let (commands, inbox) = channel();
         let now_us = Arc::new(AtomicU64::new(0));
@@ -90,8 +110,13 @@ impl SimBoard {
     /// A fresh simulated board in this process, behind an in-memory pipe, and a session with it; its
     /// clock runs in lockstep with the requests, so a run is repeatable by its seed.
     pub fn in_process(seed: u64, kind: SimSensor) -> Result<(Connection, SimBoard), LinkError> {
+        Self::in_process_part((seed, kind, SimPart::mpu6050()))
+    }
+
+    /// [`Self::in_process`] with a simulated part of the owner's choice.
+    pub fn in_process_part(sensor: SensorChoice) -> Result<(Connection, SimBoard), LinkError> {
         let (host_end, device_end) = pipe();
-        let board = SimBoard::spawn_with(device_end, SimFlash::new(), seed, kind, Pace::Lockstep);
+        let board = SimBoard::spawn_part(device_end, SimFlash::new(), sensor, Pace::Lockstep);
         Ok((Connection::over(Box::new(host_end))?, board))
     }
 
@@ -119,6 +144,21 @@ impl SimBoard {
             SimSensor::Realistic => physics.drift.at(&self.truth, reading_c - physics.environment.reading_offset_c),
             SimSensor::Settled => self.truth,
         }
+    }
+
+    /// The truth at TEMP_OUT `reading_c` degC for a report, with the realistic sensor's drift.
+    pub fn truth_json(&self, reading_c: f32) -> TruthJson {
+        let physics = Physics::new(0);
+        let drift = match self.kind {
+            SimSensor::Realistic => Some(DriftJson::new(
+                &self.truth,
+                &physics.drift,
+                TRUTH_REF_TEMP_C,
+                physics.environment.reading_offset_c,
+            )),
+            SimSensor::Settled => None,
+        };
+        TruthJson::new(reading_c, &self.truth_at(reading_c), drift)
     }
 
     /// The surroundings, in degC, in which the settled sensor reports `reading_c`.

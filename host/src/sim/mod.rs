@@ -10,6 +10,7 @@ mod clock;
 mod commands;
 pub mod noise;
 mod outgoing;
+mod parts;
 pub mod person;
 mod pty;
 pub mod random;
@@ -17,9 +18,11 @@ pub mod replay;
 mod serve;
 pub mod sketch;
 pub mod synthetic;
+pub mod turn;
 
-pub use board::{SimBoard, SimCommand, SimSensor};
+pub use board::{SensorChoice, SimBoard, SimCommand, SimSensor};
 pub use clock::Pace;
+pub use parts::{FaultyAxis, SimPartChoice};
 pub use pty::{serve_pty, SimError};
 
 use crate::link::Port;

@@ -43,12 +43,12 @@ pub fn serve_pty(seed: u64, pace: Pace) -> Result<(), SimError> {
 fn obey_stdin(controls: &Sender<SimCommand>) {
     for line in std::io::stdin().lock().lines().map_while(Result::ok) {
         match parse(&line) {
-            Some(Line::Board(command)) => {
+            Ok(Line::Board(command)) => {
                 let _ = controls.send(command);
             }
-            Some(Line::Help) => print!("{}", help()),
-            None if line.trim().is_empty() => {}
-            None => eprintln!("unknown command {line:?}; the commands are:\n{}", help()),
+            Ok(Line::Help) => print!("{}", help()),
+            Err(_) if line.trim().is_empty() => {}
+            Err(why) => eprintln!("refused: {why} (help lists the commands)"),
         }
         let _ = std::io::stdout().flush();
     }

@@ -18,6 +18,7 @@ use firmware::sim::{SimFlash, SimMpu6050, SIM_FLASH_RANGE};
 use super::board::SimCommand;
 use super::clock::{Clock, Pace};
 use super::outgoing::Outgoing;
+use super::turn::{tip, turn_between};
 use super::Port;
 
 type SimServer = Server<SimMpu6050, SimFlash>;
@@ -94,9 +95,29 @@ impl Service {
         let sensor = server.device_mut().bus_mut();
         // NOTE: only a new motion replaces a timed one; a lost sample or a change of the
         // surroundings during a turn leaves the turn to end where it would have.
-        if matches!(command, SimCommand::Place(_) | SimCommand::Move(_) | SimCommand::MoveFor { .. }) {
+        if matches!(
+            command,
+            SimCommand::Place(_)
+                | SimCommand::Move(_)
+                | SimCommand::MoveFor { .. }
+                | SimCommand::TurnTo(_)
+                | SimCommand::Tip(_)
+        ) {
             self.motion_ends_us = None;
         }
+        let command = match command {
+            SimCommand::TurnTo(up) => {
+                // NOTE: from where it rests now (a turn still running ends where it got to).
+                sensor.stop_motion();
+                let from = sensor.physics.up.map(f64::from);
+                turn_between(from, up.map(f64::from), [1.0, 0.0, 0.0])
+            }
+            SimCommand::Tip(degrees) => {
+                sensor.stop_motion();
+                tip(sensor.physics.up.map(f64::from), f64::from(degrees))
+            }
+            command => command,
+        };
         match command {
             SimCommand::Place(up) => sensor.place(up),
             SimCommand::Move(motion) => sensor.set_motion(motion),
@@ -108,7 +129,7 @@ impl Service {
             SimCommand::Ambient { target_c, c_per_s } => sensor.physics.environment.ramp_to(target_c, c_per_s),
             SimCommand::Elapse(seconds) => soak(sensor, seconds),
             SimCommand::LoseSamples(count) => self.outgoing.lose_samples(count),
-            SimCommand::Restart | SimCommand::Stop => {}
+            SimCommand::Restart | SimCommand::Stop | SimCommand::TurnTo(_) | SimCommand::Tip(_) => {}
         }
     }
 

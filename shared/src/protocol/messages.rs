@@ -5,6 +5,7 @@ use serde::{Deserialize, Serialize};
 use crate::calibration::{AccelRange, Calibration, CalibrationError};
 use crate::orientation::{Position, PositionMap};
 use crate::ortho9::Ortho9Error;
+use crate::part::{Family, Identification, Part};
 use crate::six_position::SixPositionError;
 
 use super::FrameError;
@@ -179,15 +180,22 @@ pub struct FirmwareVersion {
     pub patch: u8,
 }
 
-/// Which chip answered and where.
+/// Which chip answered, where, and the register family it behaves as.
 #[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq, Eq)]
 pub struct SensorIdentity {
     /// 7-bit I2C address, 0x68 or 0x69.
     pub address: u8,
     /// The WHO_AM_I register (0x75) value.
     pub who_am_i: u8,
-    /// True for a genuine MPU-6050 (WHO_AM_I 0x68), false for a register-compatible clone.
-    pub genuine: bool,
+    /// The family the chip behaves as (its registers, not its WHO_AM_I), as the board configures it.
+    pub family: Family,
+}
+
+impl SensorIdentity {
+    /// The part its WHO_AM_I names and the family it behaves as.
+    pub fn identification(&self) -> Identification {
+        Identification { part: Part::from_who_am_i(self.who_am_i), family: self.family }
+    }
 }
 
 /// Where the active calibration came from.

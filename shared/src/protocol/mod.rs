@@ -19,8 +19,9 @@ pub use temperature::{TempBin, TEMP_BINS_PER_MESSAGE};
 /// chip's own 9-parameter fit (`FitOrtho9`, `Ortho9Fitted`, `DeviceError::Ortho9`), captures that stop when
 /// their mean is known well enough ([`Request::CaptureUntil`]) and the chip's temperature bins
 /// (`TakeTemperatureBins`); a host of version 3 would read the new messages as garbled frames, so the version
-/// names the mismatch instead.
-pub const PROTOCOL_VERSION: u8 = 4;
+/// names the mismatch instead. 5 from issue 27: the sensor identity carries the register family
+/// the chip behaves as (the part is named by its WHO_AM_I, [`crate::part`]).
+pub const PROTOCOL_VERSION: u8 = 5;
 
 /// Largest postcard payload of one message, in bytes.
 ///

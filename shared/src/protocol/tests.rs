@@ -9,6 +9,7 @@ use crate::calibration::{
 };
 use crate::orientation::{Position, PositionMap};
 use crate::ortho9::Ortho9Error;
+use crate::part::Family;
 use crate::six_position::SixPositionError;
 
 /// Large values take the most postcard bytes (varints), so sizes here are the worst case: every
@@ -128,7 +129,7 @@ fn every_response() -> Vec<Response> {
     let info = DeviceInfo {
         protocol_version: PROTOCOL_VERSION,
         firmware: FirmwareVersion { major: 255, minor: 255, patch: 255 },
-        sensor: Ok(SensorIdentity { address: 0x69, who_am_i: 0x72, genuine: false }),
+        sensor: Ok(SensorIdentity { address: 0x69, who_am_i: 0x72, family: Family::Mpu6500 }),
         config: SensorConfig::default(),
         active: ActiveCalibration::Unsaved,
         stored: true,

@@ -1,0 +1,8 @@
+//! Finds the optional tools of the host's tests (see optional_tools.rs).
+
+include!("optional_tools.rs");
+
+fn main() {
+    tool_cfg("has_chromium", "chromium", &["--version"]);
+    tool_cfg("has_numpy", "python3", &["-c", "import numpy"]);
+}
