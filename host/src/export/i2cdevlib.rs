@@ -3,7 +3,9 @@
 //! the gyro's in +-1000 deg/s counts (32.8 per deg/s) (InvenSense, MPU Hardware Offset Registers
 //! Application Note); so the export adds to what the chip holds. Offsets only.
 
-use super::loss::{diagonal, loss, Carried};
+use shared::linalg;
+
+use super::loss::{diagonal, loss, spread, Carried};
 use super::statement::{lines, Said};
 use super::{text, Export, Source, GYRO_LSB_PER_DPS, SLASHES};
 
@@ -44,5 +46,22 @@ pub fn i2cdevlib(source: &Source) -> Export {
     for (axis, name) in ["X", "Y", "Z"].iter().enumerate() {
         body.push_str(&format!("mpu.set{name}GyroOffset(mpu.get{name}GyroOffset() + ({}));\n", gyro[axis]));
     }
-    text(lines(source, &I2CDEVLIB_SAID, &loss), &SLASHES, &body, loss)
+    let mut statement = lines(source, &I2CDEVLIB_SAID, &loss);
+    statement.push(imu_zero(source));
+    text(statement, &SLASHES, &body, loss)
+}
+
+/// What i2cdevlib's IMU_Zero sketch would leave: offsets from one pose (+Z up), chosen so that it reads
+/// 0, 0, +1 g there, o' = M^-1 e_z + o - e_z, against the full calibration over the sphere.
+fn imu_zero(source: &Source) -> String {
+    let full = source.full();
+    let up = [0.0, 0.0, 1.0];
+    let reading =
+        linalg::add(linalg::inverse(&full.matrix).map_or(up, |inverse| linalg::mul_vec(&inverse, up)), full.offset_g);
+    let (rms, worst) = spread(&full.matrix, &full.offset_g, &diagonal([1.0; 3]), &linalg::sub(reading, up));
+    format!(
+        "for comparison, i2cdevlib's IMU_Zero (offsets from one pose, +Z up): {:.4} mg rms, {:.4} mg worst",
+        rms * 1e3,
+        worst * 1e3
+    )
 }
