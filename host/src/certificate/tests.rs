@@ -75,3 +75,16 @@ fn the_noise_s_part_of_the_budget_is_the_fit_s_own_standard_error() {
     }
     assert!(certificate.parameters.keys().all(|name| !name.starts_with("c_")));
 }
+
+#[test]
+fn a_drift_the_session_fits_leaves_its_slope_no_temperature_uncertainty_when_the_captures_are_precise() {
+    // Captures known to 0.05 ug over 2 degC: the fitted slope follows any true offset slope (the prior
+    // weighs nothing), so the temperature's share of a slope's u is what the fit misses (the
+    // sensitivity's drift, which aliases into it: measured 0.10 mg/degC), not the spread of offset
+    // slopes between parts (1 mg/degC).
+    let certificate = Certificate::issue(&session(3, 2.0, 1e-6)).unwrap();
+    for name in ["c_x", "c_y", "c_z"] {
+        let temperature = certificate.parameters[name].budget[&Component::Temperature];
+        assert!(temperature < 3e-4, "{name}: {temperature:e} g/degC");
+    }
+}
