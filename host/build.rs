@@ -8,4 +8,5 @@ fn main() {
     tool_cfg("has_gcc", "gcc", &["--version"]);
     tool_cfg("has_octave", "octave", &["--version"]);
     tool_cfg("has_imufusion", "python3", &["-c", "import imufusion, numpy"]);
+    tool_cfg("has_pyyaml", "python3", &["-c", "import yaml"]);
 }

@@ -211,3 +211,22 @@ fn matlab_script_run_by_octave_equals_accelcal_on_1000_raw_readings_within_1e_6_
         numbers(&run(Command::new("octave").args(["--no-gui", "--quiet", "--no-init-file", "--eval", &program])));
     assert_float_rows(&rows, &readings, "MATLAB script (Octave)");
 }
+
+/// The part of `accelcal noise --json` the kalibr export reads (Kalibr's continuous-time densities).
+const KALIBR_NOISE_JSON: &str = r#"{"sample_rate_hz": 1000.0, "kalibr": {"continuous_time": {
+ "accelerometer_noise_density": 1.5e-3, "accelerometer_random_walk": 2e-4,
+ "gyroscope_noise_density": 8e-5, "gyroscope_random_walk": 3e-6}}}"#;
+
+#[test]
+#[cfg_attr(not(has_pyyaml), ignore = "needs PyYAML (pip install pyyaml); CI=true runs it")]
+fn kalibr_imu_yaml_is_read_by_a_yaml_parser_with_the_noise_terms_and_rate() {
+    let noise = simulated().dir.join("kalibr_noise.json");
+    std::fs::write(&noise, KALIBR_NOISE_JSON).unwrap();
+    let file = export("kalibr", "kalibr_imu.yaml", &["--noise", noise.to_str().unwrap()]);
+    let keys = "accelerometer_noise_density accelerometer_random_walk gyroscope_noise_density \
+                gyroscope_random_walk update_rate";
+    let script = "import sys, yaml\nd = yaml.safe_load(open(sys.argv[1]))\n\
+                  print(' '.join(repr(float(d[k])) for k in sys.argv[2].split()))";
+    let text = run(Command::new("python3").args(["-c", script]).arg(&file).arg(keys));
+    assert_eq!(numbers(&text), vec![vec![1.5e-3, 2e-4, 8e-5, 3e-6, 1000.0]], "{file:?}");
+}
