@@ -12,6 +12,8 @@ use crate::data::{Dataset, Row};
 use crate::fit::gyro::TurnSummary;
 use crate::orientation::Orientation;
 
+#[cfg(test)]
+mod fixture;
 mod kind;
 mod outcome;
 mod verification;

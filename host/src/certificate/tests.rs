@@ -1,6 +1,3 @@
-use shared::protocol::CaptureStats;
-use shared::AccelRange;
-
 use super::*;
 use crate::orientation::{corners, faces, Orientation};
 use crate::procedure::drift::{closing, order};
@@ -17,20 +14,9 @@ fn capture(target: &Orientation, temp_c: f64, error_g: [f64; 3], std_g: f32) -> 
     let slope = [0.75e-3, -0.7e-3, 1.4e-3];
     let mean = [0, 1, 2].map(|i| {
         let felt: f64 = (0..3).map(|j| sensor[i][j] * target.up[j]).sum();
-        (felt + offset[i] + slope[i] * (temp_c - 22.0) + error_g[i]) as f32
+        felt + offset[i] + slope[i] * (temp_c - 22.0) + error_g[i]
     });
-    let stats = CaptureStats {
-        samples: 400,
-        seconds: 4.0,
-        mean_g: mean,
-        std_g: [std_g; 3],
-        gyro_mean_dps: [0.0; 3],
-        gyro_std_dps: [0.05; 3],
-        temp_c: temp_c as f32,
-        clipped: 0,
-        range: AccelRange::G2,
-    };
-    CaptureRecord::now(&target.name, Some(target.clone()), None, stats)
+    CaptureRecord::still(target, mean, std_g, 400, temp_c)
 }
 
 /// An adaptive session of the fifteen captures, warming `warming_c` over it, each mean off by its

@@ -49,8 +49,6 @@ pub fn unfitted_after(session: &Session, more: usize) -> bool {
 #[cfg(test)]
 mod tests {
     use shared::linalg;
-    use shared::protocol::CaptureStats;
-    use shared::AccelRange;
 
     use super::*;
     use crate::orientation::{corners, faces};
@@ -63,18 +61,7 @@ mod tests {
         let offset = [0.03, -0.01, -0.08];
         let reading =
             linalg::add(linalg::mul_vec(&sensor, target.up), linalg::add(offset, linalg::scale(slope, temp_c - 22.0)));
-        let stats = CaptureStats {
-            samples: 200,
-            seconds: 2.0,
-            mean_g: reading.map(|v| v as f32),
-            std_g: [std_g; 3],
-            gyro_mean_dps: [0.0; 3],
-            gyro_std_dps: [0.05; 3],
-            temp_c: temp_c as f32,
-            clipped: 0,
-            range: AccelRange::G2,
-        };
-        CaptureRecord::now(&target.name, Some(target.clone()), None, stats)
+        CaptureRecord::still(target, reading, std_g, 200, temp_c)
     }
 
     /// Noise-free captures that state a scatter of `std_g` per sample (200 samples each).

@@ -1,8 +1,6 @@
 //! The session report: its verdict, its dates and its positions as the fit took them.
 
 use shared::linalg;
-use shared::protocol::CaptureStats;
-use shared::AccelRange;
 
 use super::*;
 use crate::orientation::{corners, faces, Orientation};
@@ -34,18 +32,7 @@ fn warming_capture(target: &Orientation, temp_c: f64, slope: [f64; 3]) -> Captur
     let sensor = [[1.01, 0.0, 0.0], [0.0, 0.99, 0.0], [0.0, 0.0, 1.02]];
     let drifted = linalg::add([0.03, -0.01, -0.08], linalg::scale(slope, temp_c - 22.0));
     let reading = linalg::add(linalg::mul_vec(&sensor, target.up), drifted);
-    let stats = CaptureStats {
-        samples: 200,
-        seconds: 2.0,
-        mean_g: reading.map(|v| v as f32),
-        std_g: [1e-6; 3],
-        gyro_mean_dps: [0.0; 3],
-        gyro_std_dps: [0.05; 3],
-        temp_c: temp_c as f32,
-        clipped: 0,
-        range: AccelRange::G2,
-    };
-    CaptureRecord::now(&target.name, Some(target.clone()), None, stats)
+    CaptureRecord::still(target, reading, 1e-6, 200, temp_c)
 }
 
 #[test]
