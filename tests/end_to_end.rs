@@ -205,7 +205,7 @@ fn a_port_that_vanishes_mid_capture_is_an_error_within_2_s_and_the_session_file_
         panic!("no capture")
     };
     let target = Orientation::named("+Z");
-    let record = CaptureRecord { name: "+Z".into(), target, face: None, unix_time_s: 0.0, stats };
+    let record = CaptureRecord { name: "+Z".into(), target, face: None, unix_time_s: 0.0, stats, closing: false };
     let session = Session { captures: vec![record], ..Session::default() };
     let stem = std::env::temp_dir().join(format!("accelcal-vanish-{}", std::process::id()));
     session.save(&stem).unwrap();
