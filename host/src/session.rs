@@ -17,14 +17,16 @@ mod board;
 mod fixture;
 mod kind;
 mod outcome;
+mod source;
 mod verdict;
 mod verification;
 
 pub use board::{Board, BoardRecord};
 pub use kind::SessionKind;
 pub use outcome::{Fitted, Outcome, OutcomeError};
+pub use source::StreamSource;
 pub use verdict::TargetVerdict;
-pub use verification::{TurnCheck, Verification};
+pub use verification::{Check, TurnCheck, Verification};
 
 /// Why a session file could not be written or read.
 #[derive(Debug, thiserror::Error)]
@@ -37,6 +39,8 @@ pub enum SessionError {
     NotASession { path: PathBuf, reason: String },
     #[error("{path} already holds a session; continue it with `--resume {path}`, or give another --session name")]
     Exists { path: PathBuf },
+    #[error("{path} is not a session of a board's own stream; resume it with the board it was captured on, or start a new one without --resume")]
+    NotAStream { path: PathBuf },
     #[error("{path} records no board; only a session written by calibrate can be resumed")]
     NoBoard { path: PathBuf },
     #[error("{path} was captured on another board (serial {session}), this one is {board}: connect that board, or start a new calibration")]
@@ -106,6 +110,9 @@ pub struct Session {
     /// The gyro's turns between the positions, when `calibrate` recorded them.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub gyro_turns: Option<Vec<TurnSummary>>,
+    /// Where a stream session's lines came from (`kind` `stream`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stream: Option<StreamSource>,
 }
 
 impl Session {
@@ -119,9 +126,14 @@ impl Session {
         self.captures.iter().filter(|c| !c.closing).count()
     }
 
-    /// The captures as a data set in g, with their capture statistics.
+    /// The captures as a data set in g, with their capture statistics (a stream's without a
+    /// temperature: it carries none).
     pub fn dataset(&self) -> Dataset {
-        Dataset { rows: self.captures.iter().enumerate().map(|(i, c)| c.row(i + 2)).collect() }
+        let mut rows: Vec<Row> = self.captures.iter().enumerate().map(|(i, c)| c.row(i + 2)).collect();
+        if self.kind == SessionKind::Stream {
+            rows.iter_mut().for_each(|row| row.temp_c = None);
+        }
+        Dataset { rows }
     }
 
     /// The session as the calibration data CSV (readable by `accelcal fit`).

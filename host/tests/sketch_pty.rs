@@ -2,7 +2,8 @@
 //! person's three-minute session, `accelcal::sim::replay`): accelcal writes not one byte to it (a
 //! MicroPython-style board stops its program on 0x03), `ports` and `info` leave it running, and
 //! `calibrate --port` with no flag calibrates from each of the eight sketches' streams, keeping a log
-//! that `fit LOG` turns into the same calibration.
+//! that `fit LOG` turns into the same calibration and verification, and a session that `accelcal
+//! report` takes.
 //!
 //! Real pace: the eight replays run side by side, about three minutes in all. The accuracy over ten
 //! sessions per sketch runs on a simulated clock in tests/sketch_streams.rs.
@@ -23,14 +24,29 @@ fn json(stdout: &[u8]) -> serde_json::Value {
     serde_json::from_slice(stdout).unwrap_or_else(|e| panic!("{e}: {}", String::from_utf8_lossy(stdout)))
 }
 
-/// `calibrate --port` on the replay, then `fit` on the log it kept: both JSON objects.
-fn calibrate_and_refit(sketch: Sketch, path: &str, log: &str) -> (serde_json::Value, serde_json::Value) {
-    let args = ["calibrate", "--port", path, "--yes", "--json", "--stream-log", log];
+/// What one sketch's live session gave: `calibrate --port --json`, `fit` on the log it kept, and
+/// `report --json` on the session it kept.
+struct Run {
+    live: serde_json::Value,
+    refit: serde_json::Value,
+    report: serde_json::Value,
+    session: serde_json::Value,
+}
+
+/// `calibrate --port` on the replay, keeping the session at `stem` (its log `stem.log`), then `fit`
+/// on the log and `report` on the session.
+fn calibrate_and_refit(sketch: Sketch, path: &str, stem: &str) -> Run {
+    let args = ["calibrate", "--port", path, "--yes", "--json", "--session", stem];
     let (live, _) = accelcal_within(&args, LIMIT);
     assert!(live.status.success(), "{sketch:?}: {}", String::from_utf8_lossy(&live.stderr));
-    let (refit, _) = accelcal_within(&["fit", log, "--model", "ortho9", "--json"], LIMIT);
+    let log = format!("{stem}.log");
+    let (refit, _) = accelcal_within(&["fit", &log, "--model", "ortho9", "--json"], LIMIT);
     assert!(refit.status.success(), "{sketch:?}: {}", String::from_utf8_lossy(&refit.stderr));
-    (json(&live.stdout), json(&refit.stdout))
+    let session = format!("{stem}.json");
+    let (report, _) = accelcal_within(&["report", &session, "--json", "-o", &format!("{stem}.html")], LIMIT);
+    assert!(report.status.success(), "{sketch:?}: {}", String::from_utf8_lossy(&report.stderr));
+    let session = serde_json::from_str(&std::fs::read_to_string(&session).unwrap()).unwrap();
+    Run { live: json(&live.stdout), refit: json(&refit.stdout), report: json(&report.stdout), session }
 }
 
 fn dialect(sketch: Sketch) -> (&'static str, &'static str) {
@@ -65,12 +81,12 @@ fn every_sketchs_stream_is_calibrated_live_with_no_flag_and_no_byte_written() {
         .iter()
         .map(|(sketch, replay)| {
             let (sketch, path) = (*sketch, replay.path.clone());
-            let log = dir.join(format!("{sketch:?}.log")).display().to_string();
-            std::thread::spawn(move || (sketch, calibrate_and_refit(sketch, &path, &log)))
+            let stem = dir.join(format!("{sketch:?}")).display().to_string();
+            std::thread::spawn(move || (sketch, calibrate_and_refit(sketch, &path, &stem)))
         })
         .collect();
     for run in runs {
-        let (sketch, (live, refit)) = run.join().unwrap();
+        let (sketch, Run { live, refit, report, session }) = run.join().unwrap();
         let replay = &replays.iter().find(|(s, _)| *s == sketch).unwrap().1;
         assert_eq!(replay.state.written.load(Ordering::SeqCst), 0, "{sketch:?}: bytes were written to the board");
         assert!(!replay.state.stopped.load(Ordering::SeqCst));
@@ -79,8 +95,25 @@ fn every_sketchs_stream_is_calibrated_live_with_no_flag_and_no_byte_written() {
         assert_eq!((live["dialect"].as_str(), live["input_unit"].as_str()), (Some(name), Some(unit)), "{sketch:?}");
         let segments = live["segments"].as_array().unwrap();
         assert!(segments.len() >= 12, "{sketch:?}: {} segments", segments.len());
-        for key in ["dialect", "input_unit", "segments", "matrix", "offset"] {
+        for key in ["dialect", "input_unit", "segments", "matrix", "offset", "verification"] {
             assert_eq!(live[key], refit[key], "{sketch:?}: {key} differs between the live session and fit LOG");
         }
+        // Verified at the fresh orientations the person held (the edges), the session kept with it.
+        let verified = live["verification"]["positions"].as_u64().unwrap_or(0);
+        assert!(verified >= 3, "{sketch:?}: verified at {verified} fresh orientations");
+        assert_eq!(session["kind"], "stream", "{sketch:?}");
+        assert_eq!(session["verification"], live["verification"], "{sketch:?}: the session keeps the verification");
+        let fitted = segments.iter().filter(|s| s["verifies"] == false).count();
+        assert_eq!(
+            session["captures"].as_array().map(Vec::len),
+            Some(fitted),
+            "{sketch:?}: a capture per fitted period"
+        );
+        assert_eq!(
+            report["verification"]["positions"].as_u64(),
+            Some(verified),
+            "{sketch:?}: `report` takes the session"
+        );
+        assert!(report["verdict"]["line"].as_str().is_some_and(|l| l.contains("fresh orientations")), "{report}");
     }
 }

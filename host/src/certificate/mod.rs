@@ -185,6 +185,7 @@ fn method(session: &Session) -> String {
         SessionKind::Adaptive => "each averaged until its mean was known, in drift-cancelling order",
         SessionKind::Quick => "quick set, fixed-length captures",
         SessionKind::Fixed => "fixed-length captures",
+        SessionKind::Stream => "still periods of the board's own stream",
     };
     format!("accelcal calibrate: {positions} static positions ({how}), verified at fresh orientations")
 }

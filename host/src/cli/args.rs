@@ -74,8 +74,8 @@ impl SketchStreamArgs {
 pub struct CalibrateArgs {
     #[command(flatten)]
     pub device: Device,
-    /// On a board that prints its own stream: the file that keeps every line read (default
-    /// accelcal-stream-<time>.log here); `accelcal fit` on it gives the same calibration.
+    /// On a board that prints its own stream: the file that keeps every line read (default: the
+    /// session's SESSION.log); `accelcal fit` on it gives the same calibration.
     #[arg(long, value_name = "LOG")]
     pub stream_log: Option<PathBuf>,
     #[command(flatten)]

@@ -237,7 +237,7 @@ fn resumed(path: &Path, board: &BoardRecord, feedback: &mut dyn Feedback) -> Res
 
 /// Where a new session is kept: `--session` (a folder gets a session named by the time inside it),
 /// or with a real board the current directory; refused when a session is already kept there.
-fn new_session_path(args: &CalibrateArgs) -> Result<Option<PathBuf>, SessionError> {
+pub(super) fn new_session_path(args: &CalibrateArgs) -> Result<Option<PathBuf>, SessionError> {
     let named_by_time = || PathBuf::from(format!("accelcal-session-{}", unix_time_s() as u64));
     let path = match &args.session {
         // NOTE: `DIR/` names a folder even before it exists; the session goes inside it.

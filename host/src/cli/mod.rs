@@ -12,6 +12,8 @@ mod device;
 mod export;
 mod fit;
 mod foreign;
+mod foreign_session;
+mod foreign_status;
 mod gyro;
 mod length;
 mod noise;

@@ -12,21 +12,13 @@ use super::stop_rule::CaptureLength;
 use super::wait::{wait_for_fresh, LIVE_WINDOW};
 use super::{Feedback, Hand, ProcedureError};
 use crate::link::{Client, Port, StreamRequest};
+use crate::session::Check;
 pub use crate::session::Verification;
 
 /// Length of each verification capture, in seconds.
 pub const VERIFY_SECONDS: u8 = 5;
 /// Corrected samples averaged to compare the chip with the host.
 const CHIP_SAMPLES: u32 = 20;
-
-/// The errors at one orientation, in mg.
-struct Check {
-    before_mg: f64,
-    after_mg: f64,
-    noise_mg: f64,
-    on_chip_mg: f64,
-    on_chip_noise_mg: f64,
-}
 
 /// How many times its own noise the chip may differ from the host before it is said to apply
 /// something else (a 3-sigma bound on each axis of the difference).
@@ -97,7 +89,7 @@ pub fn verify_with<P: Port>(
         ));
         checks.push(check);
     }
-    Ok(summary(&checks))
+    Ok(Verification::of(&checks))
 }
 
 /// One capture at the board's orientation, and the chip's corrected samples there.
@@ -139,25 +131,6 @@ fn mean_noise_g(calibration: &Calibration, stats: &CaptureStats, samples: u32) -
     let variance: f64 =
         (0..3).flat_map(|i| (0..3).map(move |j| f64::from(m[i][j] * stats.std_g[j]).powi(2))).sum::<f64>();
     (variance / f64::from(samples.max(1))).sqrt()
-}
-
-fn summary(checks: &[Check]) -> Verification {
-    let rms = |pick: fn(&Check) -> f64| {
-        (checks.iter().map(|c| pick(c).powi(2)).sum::<f64>() / checks.len().max(1) as f64).sqrt()
-    };
-    let (after, floor) = (rms(|c| c.after_mg), rms(|c| c.noise_mg));
-    Verification {
-        positions: checks.len(),
-        before_rms_mg: rms(|c| c.before_mg),
-        after_rms_mg: after,
-        after_rms_without_noise_mg: (after * after - floor * floor).max(0.0).sqrt(),
-        after_max_mg: checks.iter().fold(0.0, |m, c| m.max(c.after_mg.abs())),
-        on_chip_difference_mg: checks.iter().fold(0.0, |m, c| m.max(c.on_chip_mg)),
-        on_chip_noise_mg: checks.iter().fold(0.0, |m, c| m.max(c.on_chip_noise_mg)),
-        noise_floor_mg: floor,
-        before_mg: checks.iter().map(|c| c.before_mg).collect(),
-        after_mg: checks.iter().map(|c| c.after_mg).collect(),
-    }
 }
 
 /// The sensor's sample rate a capture ran at, in Hz (the chip counts its seconds as samples / rate);
@@ -222,8 +195,11 @@ mod tests {
         let stats = capture([0.0, 0.0, 1.0], [0.003; 3], 500);
         let noise_mg = mean_noise_g(&Calibration::identity(AccelRange::G2), &stats, CHIP_SAMPLES) * 1000.0;
         assert!((noise_mg - 1.162).abs() < 0.001, "{noise_mg}");
-        let verification =
-            |difference| Verification { on_chip_difference_mg: difference, on_chip_noise_mg: noise_mg, ..summary(&[]) };
+        let verification = |difference| Verification {
+            on_chip_difference_mg: difference,
+            on_chip_noise_mg: noise_mg,
+            ..Verification::of(&[])
+        };
         assert!(verification(1.13)
             .chip_agreement()
             .starts_with("chip and host agree: they differ by 1.13 mg, within the 1.16 mg noise"));
@@ -235,7 +211,7 @@ mod tests {
         // |a| of 0.9988 g is 1.2 mg short: the worst error is 1.2 mg, not the 0.5 mg above 1 g.
         let check =
             |before_mg, after_mg| Check { before_mg, after_mg, noise_mg: 0.1, on_chip_mg: 0.01, on_chip_noise_mg: 1.0 };
-        let result = summary(&[check(3.0, 0.3), check(-4.0, -1.2), check(2.0, 0.5)]);
+        let result = Verification::of(&[check(3.0, 0.3), check(-4.0, -1.2), check(2.0, 0.5)]);
         assert_eq!(result.after_max_mg, 1.2);
         // sqrt((0.09 + 1.44 + 0.25) / 3) = 0.770 mg
         assert!((result.after_rms_mg - 0.770_281).abs() < 1e-6, "{}", result.after_rms_mg);

@@ -9,9 +9,12 @@ use serde::Serialize;
 use super::json::FitJson;
 use super::FitReport;
 use crate::fit::{FitError, FitOptions, ModelChoice};
+use crate::session::Verification;
 use crate::stream::cost::{costs, Cost};
 use crate::stream::timing::Rate;
 use crate::stream::{AccelUnit, Dialect, Dropped, GyroUnit, SegmentLines, StillPeriods, StreamLog};
+
+mod verify;
 
 /// A stream's fit and everything its renderers show.
 #[derive(Debug, Clone)]
@@ -36,6 +39,8 @@ pub struct StreamReport {
     pub gyro_bias_dps: Option<[f64; 3]>,
     /// The fit of the periods' means (output in g).
     pub fit: FitReport,
+    /// The fit checked at the fresh orientations held out of it, when there were any.
+    pub verification: Option<Verification>,
 }
 
 impl StreamReport {
@@ -44,7 +49,9 @@ impl StreamReport {
         let still = StillPeriods::of(log);
         let options = FitOptions { g: 1.0, ..options.clone() };
         let fit = FitReport::new(&still.dataset, choice, &options)?;
+        let verification = verify::verification(&fit.fit, &still.held_out.rows, log.accel_unit.per_g());
         Ok(StreamReport {
+            verification,
             dialect: log.layout.dialect,
             input_unit: log.accel_unit,
             gyro_unit: log.gyro_unit,
@@ -80,6 +87,7 @@ pub struct StreamJson<'a> {
     costs: &'a [Cost],
     gyro_bias: Option<[f64; 3]>,
     gyro_bias_dps: Option<[f64; 3]>,
+    verification: Option<&'a Verification>,
     #[serde(flatten)]
     fit: FitJson<'a>,
 }
@@ -99,6 +107,7 @@ pub fn json(report: &StreamReport) -> String {
         costs: &report.costs,
         gyro_bias: report.gyro_bias(),
         gyro_bias_dps: report.gyro_bias_dps,
+        verification: report.verification.as_ref(),
         fit: FitJson::new(&report.fit),
     };
     serde_json::to_string_pretty(&view).unwrap_or_default()
@@ -110,9 +119,10 @@ pub fn text(report: &StreamReport) -> String {
     write_stream(&mut out, report);
     let _ = writeln!(out, "{} still periods:", report.segments.len());
     for s in &report.segments {
+        let role = if s.verifies { ", verifies (a fresh orientation)" } else { "" };
         let _ = writeln!(
             out,
-            "  lines {:>6}-{:<6} {:>5} samples, scatter {:.2} mg",
+            "  lines {:>6}-{:<6} {:>5} samples, scatter {:.2} mg{role}",
             s.first_line, s.last_line, s.samples, s.scatter_mg
         );
     }
@@ -127,7 +137,25 @@ pub fn text(report: &StreamReport) -> String {
         out,
         "M and o apply to the values as the sketch prints them: a = M (m - o), a in g, m and o in {unit}"
     );
-    out + &super::text::fit_report(&report.fit)
+    out + &super::text::fit_report(&report.fit) + &verified(report.verification.as_ref())
+}
+
+/// The verification at fresh orientations in words.
+pub fn verified(verification: Option<&Verification>) -> String {
+    match verification {
+        Some(v) => format!(
+            "verified at {} fresh orientations held out of the fit: | |a| - 1 g | rms {:.2} mg before, {:.3} mg after \
+             (worst {:.3} mg); the means' own noise {:.3} mg, {}\n",
+            v.positions,
+            v.before_rms_mg,
+            v.after_rms_mg,
+            v.after_max_mg,
+            v.noise_floor_mg,
+            if v.trusted() { "the error is within that noise" } else { "more than that noise explains" }
+        ),
+        None => "not verified: no still period at a fresh orientation (away from every face and corner) was held out\n"
+            .to_owned(),
+    }
 }
 
 fn write_stream(out: &mut String, report: &StreamReport) {

@@ -17,6 +17,9 @@ pub enum SessionKind {
     /// Each position captured until its mean is known, the offset's drift with the temperature
     /// fitted with the calibration (`ortho9`).
     Adaptive,
+    /// A board's own stream (`calibrate --port` on a port that prints on its own): its still
+    /// periods at faces and corners fitted (`ortho9`), those at fresh orientations its verification.
+    Stream,
 }
 
 impl SessionKind {
@@ -35,6 +38,7 @@ impl SessionKind {
             SessionKind::Quick => "a quick calibration",
             SessionKind::Fixed => "a full calibration of fixed-length captures",
             SessionKind::Adaptive => "an adaptive calibration (each position captured until its mean is known)",
+            SessionKind::Stream => "a calibration from a board's own stream",
         }
     }
 }

@@ -50,7 +50,7 @@ impl Session {
             SessionKind::Quick if self.captures.len() < shared::ortho9::MIN_READINGS => {
                 ModelChoice::Only(Model::SixPosition)
             }
-            SessionKind::Quick | SessionKind::Adaptive => ModelChoice::Only(Model::Ortho9),
+            SessionKind::Quick | SessionKind::Adaptive | SessionKind::Stream => ModelChoice::Only(Model::Ortho9),
             SessionKind::Fixed => ModelChoice::Auto,
         }
     }

@@ -67,3 +67,40 @@ impl TurnCheck {
         )
     }
 }
+
+/// The errors at one fresh orientation, in mg.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Check {
+    /// |m| - 1 g with the raw reading.
+    pub before_mg: f64,
+    /// |a| - 1 g with the calibration.
+    pub after_mg: f64,
+    /// The noise of |a| of the reading's mean.
+    pub noise_mg: f64,
+    /// The chip's corrected mean minus the host's correction (0 where no chip applies it).
+    pub on_chip_mg: f64,
+    /// The noise of the chip's mean it is judged against (0 where no chip applies it).
+    pub on_chip_noise_mg: f64,
+}
+
+impl Verification {
+    /// What the checks at `checks` found.
+    pub fn of(checks: &[Check]) -> Self {
+        let rms = |pick: fn(&Check) -> f64| {
+            (checks.iter().map(|c| pick(c).powi(2)).sum::<f64>() / checks.len().max(1) as f64).sqrt()
+        };
+        let (after, floor) = (rms(|c| c.after_mg), rms(|c| c.noise_mg));
+        Verification {
+            positions: checks.len(),
+            before_rms_mg: rms(|c| c.before_mg),
+            after_rms_mg: after,
+            after_rms_without_noise_mg: (after * after - floor * floor).max(0.0).sqrt(),
+            after_max_mg: checks.iter().fold(0.0, |m, c| m.max(c.after_mg.abs())),
+            on_chip_difference_mg: checks.iter().fold(0.0, |m, c| m.max(c.on_chip_mg)),
+            on_chip_noise_mg: checks.iter().fold(0.0, |m, c| m.max(c.on_chip_noise_mg)),
+            noise_floor_mg: floor,
+            before_mg: checks.iter().map(|c| c.before_mg).collect(),
+            after_mg: checks.iter().map(|c| c.after_mg).collect(),
+        }
+    }
+}

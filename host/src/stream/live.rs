@@ -2,7 +2,7 @@
 //! in a log file as it comes (so Ctrl-C or a pulled cable loses nothing, and `accelcal fit LOG`
 //! reads exactly what the live session read). Nothing is ever written to the port.
 
-use std::io::{Read, Write};
+use std::io::{ErrorKind, Read, Write};
 use std::time::{Duration, Instant};
 
 use crate::link::{Port, TalkingPort};
@@ -22,10 +22,11 @@ pub struct LiveStream {
 }
 
 impl LiveStream {
-    /// Starts from what was heard while listening, keeping lines in `log`.
-    pub fn new(talking: TalkingPort, log: std::fs::File) -> std::io::Result<Self> {
-        let mut live =
-            LiveStream { port: talking.port, pending: Vec::new(), lines: Vec::new(), start: Instant::now(), log };
+    /// Starts from the lines `before` (a resumed session's log, already in `log`) and what was
+    /// heard while listening, keeping lines in `log`.
+    pub fn new(talking: TalkingPort, log: std::fs::File, before: &str) -> std::io::Result<Self> {
+        let lines = before.lines().map(|line| (line.to_owned(), 0.0)).collect();
+        let mut live = LiveStream { port: talking.port, pending: Vec::new(), lines, start: Instant::now(), log };
         live.take(&talking.heard)?;
         // NOTE: lines heard while listening came at unknown times: 0 keeps them out of the rate.
         live.lines.iter_mut().for_each(|line| line.1 = 0.0);
@@ -38,7 +39,8 @@ impl LiveStream {
         let mut buffer = [0u8; 1024];
         match self.port.read(&mut buffer) {
             Ok(n) => self.take(&buffer[..n]),
-            Err(e) if matches!(e.kind(), std::io::ErrorKind::TimedOut | std::io::ErrorKind::WouldBlock) => Ok(0),
+            // NOTE: Ctrl-C interrupts the read: the caller sees it in its flag, not as a port gone.
+            Err(e) if matches!(e.kind(), ErrorKind::TimedOut | ErrorKind::WouldBlock | ErrorKind::Interrupted) => Ok(0),
             Err(e) => Err(e),
         }
     }

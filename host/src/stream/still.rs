@@ -1,6 +1,8 @@
 //! A stream's still periods as the data set a fit takes: one row per segment, its mean in the
 //! stream's own unit (so the calibration applies to the values as the sketch prints them), its
-//! sample count and scatter, and the gyro's mean; and the gyro's bias from them.
+//! sample count and scatter, and the gyro's mean; and the gyro's bias from them. Periods at fresh
+//! orientations (away from every face and corner, [`super::guide::trains`]) are held out to verify
+//! the calibration, when enough others remain to fit it.
 
 use serde::Serialize;
 
@@ -18,7 +20,13 @@ pub struct SegmentLines {
     pub samples: usize,
     /// The accelerometer's scatter, the rms over its axes of the standard deviation, in mg.
     pub scatter_mg: f64,
+    /// Whether it verifies the calibration (a fresh orientation, held out of the fit).
+    pub verifies: bool,
 }
+
+/// Fewest training periods for fresh ones to be held out: the live session's stop rule asks for
+/// twelve, and `ortho9` needs nine.
+pub const MIN_TRAINING: usize = 12;
 
 /// A stream's still periods.
 #[derive(Debug, Clone)]
@@ -29,6 +37,8 @@ pub struct StillPeriods {
     pub lines: Vec<SegmentLines>,
     /// The rows a fit takes.
     pub dataset: Dataset,
+    /// The rows held out to verify it (fresh orientations).
+    pub held_out: Dataset,
 }
 
 impl StillPeriods {
@@ -37,9 +47,16 @@ impl StillPeriods {
         let gyro = log.gyro_dps();
         let segments = segment(&log.accel_g(), gyro.as_deref(), &Stillness::for_rate(log.rate.map(|r| r.hz)));
         let per_g = log.accel_unit.per_g();
-        let rows = segments.iter().map(|s| row(log, s, per_g)).collect();
-        let lines = segments.iter().map(|s| segment_lines(log, s)).collect();
-        StillPeriods { segments, lines, dataset: Dataset { rows } }
+        let trains: Vec<bool> = segments.iter().map(|s| super::guide::trains(s.mean_g)).collect();
+        let hold_out = trains.iter().filter(|&&t| t).count() >= MIN_TRAINING;
+        let verifies: Vec<bool> = trains.iter().map(|&t| hold_out && !t).collect();
+        let (mut dataset, mut held_out) = (Dataset { rows: Vec::new() }, Dataset { rows: Vec::new() });
+        for (segment, &verifying) in segments.iter().zip(&verifies) {
+            let rows = if verifying { &mut held_out.rows } else { &mut dataset.rows };
+            rows.push(row(log, segment, per_g));
+        }
+        let lines = segments.iter().zip(&verifies).map(|(s, &v)| segment_lines(log, s, v)).collect();
+        StillPeriods { segments, lines, dataset, held_out }
     }
 
     /// The gyro's bias in deg/s: its mean over every still sample.
@@ -65,12 +82,13 @@ fn row(log: &StreamLog, segment: &Segment, per_g: f64) -> Row {
     }
 }
 
-fn segment_lines(log: &StreamLog, segment: &Segment) -> SegmentLines {
+fn segment_lines(log: &StreamLog, segment: &Segment, verifies: bool) -> SegmentLines {
     let rms = (segment.std_g.iter().map(|v| v * v).sum::<f64>() / 3.0).sqrt();
     SegmentLines {
         first_line: log.samples[segment.first].line,
         last_line: log.samples[segment.last].line,
         samples: segment.samples,
         scatter_mg: rms * 1e3,
+        verifies,
     }
 }

@@ -1,0 +1,116 @@
+//! A stream session kept on disk: where it goes (`--session`, default `accelcal-session-TIME`,
+//! its log beside it as `SESSION.log` unless `--stream-log`), what it holds (the still periods as
+//! captures in g, the verification once made), and going on with one (`--resume`: its log is
+//! read again and appended to, so the session's every line stays in one log).
+
+use std::path::{Path, PathBuf};
+
+use shared::protocol::CaptureStats;
+use shared::AccelRange;
+
+use super::args::CalibrateArgs;
+use super::calibrate::new_session_path;
+use crate::data::Row;
+use crate::error::Error;
+use crate::session::{stem_file, stem_of, unix_time_s, CaptureRecord, Session, SessionError, SessionKind};
+use crate::session::{StreamSource, Verification};
+use crate::stream::guide::nearest_name;
+use crate::stream::{AccelUnit, StillPeriods, StreamLog};
+
+/// A stream session being kept.
+pub(super) struct Kept {
+    /// The session's path without extension.
+    pub stem: PathBuf,
+    /// The port, the log and what the stream was read as (filled in once read).
+    pub source: StreamSource,
+    /// When the session began, seconds since the Unix epoch: its captures' time.
+    began_unix_s: f64,
+}
+
+impl Kept {
+    /// A new session, or the one `--resume` names with the lines its log already holds.
+    pub fn begin(args: &CalibrateArgs, port: &str) -> Result<(Kept, String), Error> {
+        if let Some(path) = &args.resume {
+            return resume(path, port);
+        }
+        let stem = new_session_path(args)?
+            .unwrap_or_else(|| PathBuf::from(format!("accelcal-session-{}", unix_time_s() as u64)));
+        let log = args.stream_log.clone().unwrap_or_else(|| stem_file(&stem, "log"));
+        let source = StreamSource {
+            port: port.to_owned(),
+            log,
+            dialect: String::new(),
+            input_unit: String::new(),
+            rate_hz: None,
+        };
+        Ok((Kept { stem, source, began_unix_s: unix_time_s() }, String::new()))
+    }
+
+    /// The session's JSON file.
+    pub fn json(&self) -> PathBuf {
+        stem_file(&self.stem, "json")
+    }
+
+    /// Saves the session of `log` so far: its training still periods as captures, and the
+    /// verification once made.
+    pub fn save(&self, log: &StreamLog, verification: Option<Verification>) -> Result<(), SessionError> {
+        let still = StillPeriods::of(log);
+        let source = StreamSource {
+            dialect: log.layout.dialect.name().to_owned(),
+            input_unit: log.accel_unit.name().to_owned(),
+            rate_hz: log.rate.map(|r| r.hz),
+            ..self.source.clone()
+        };
+        // NOTE: the periods held out at fresh orientations are in the verification, not the captures:
+        // the session's fit is the stream's.
+        let captures = still.dataset.rows.iter().map(|row| self.capture(row, log)).collect();
+        let session =
+            Session { kind: SessionKind::Stream, captures, verification, stream: Some(source), ..Session::default() };
+        session.save(&self.stem)
+    }
+
+    /// A still period as a capture, in g.
+    fn capture(&self, row: &Row, log: &StreamLog) -> CaptureRecord {
+        let per_g = log.accel_unit.per_g();
+        let mean_g = row.reading.map(|v| v / per_g);
+        let samples = row.count.unwrap_or(0);
+        let stats = CaptureStats {
+            samples,
+            seconds: log.rate.map_or(0.0, |r| f64::from(samples) / r.hz) as f32,
+            mean_g: mean_g.map(|v| v as f32),
+            std_g: row.std.unwrap_or([0.0; 3]).map(|v| (v / per_g) as f32),
+            gyro_mean_dps: row.gyro_mean_dps.unwrap_or([0.0; 3]).map(|v| v as f32),
+            gyro_std_dps: [0.0; 3],
+            // NOTE: a stream carries no temperature; `Session::dataset` leaves it out of the rows.
+            temp_c: 0.0,
+            clipped: 0,
+            range: range_of(log.accel_unit),
+        };
+        let name = format!("{} from line {}", nearest_name(mean_g), row.line);
+        CaptureRecord { name, target: None, face: None, unix_time_s: self.began_unix_s, stats, closing: false }
+    }
+}
+
+/// The range a stream's counts name; +-2 g (the chip's power-on range) for values in g or m/s^2,
+/// whose range the stream does not say.
+fn range_of(unit: AccelUnit) -> AccelRange {
+    match unit {
+        AccelUnit::Counts4g => AccelRange::G4,
+        AccelUnit::Counts8g => AccelRange::G8,
+        AccelUnit::Counts16g => AccelRange::G16,
+        _ => AccelRange::G2,
+    }
+}
+
+/// The stream session at `path` and the lines its log holds, to go on with on `port`.
+fn resume(path: &Path, port: &str) -> Result<(Kept, String), Error> {
+    let stem = stem_of(path);
+    let session = Session::load(&stem_file(&stem, "json"))?;
+    let Some(source) = session.stream.filter(|_| session.kind == SessionKind::Stream) else {
+        return Err(SessionError::NotAStream { path: path.to_owned() }.into());
+    };
+    let log = source.log.clone();
+    let before = std::fs::read_to_string(&log).map_err(|source| Error::ReadFile { path: log, source })?;
+    let source = StreamSource { port: port.to_owned(), ..source };
+    Ok((Kept { stem, source, began_unix_s: unix_time_s() }, before))
+}

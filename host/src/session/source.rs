@@ -1,0 +1,21 @@
+//! Where a stream session's lines came from: the port, the log that keeps every line, and what the
+//! stream was read as. Its captures are the still periods in g; no temperature comes with them.
+
+use std::path::PathBuf;
+
+use serde::{Deserialize, Serialize};
+
+/// A board's own stream, as a session records it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct StreamSource {
+    /// The port it was read from.
+    pub port: String,
+    /// The log that keeps every line read (`accelcal fit LOG` gives the same calibration).
+    pub log: PathBuf,
+    /// The dialect, as `fit LOG --json` names it.
+    pub dialect: String,
+    /// The unit the stream prints the accelerometer in (`g`, `counts-2g`, ...).
+    pub input_unit: String,
+    /// Samples a second, when known.
+    pub rate_hz: Option<f64>,
+}

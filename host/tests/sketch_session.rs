@@ -1,0 +1,76 @@
+//! A session from a board's own stream is kept as it goes (issue 24): Ctrl-C and a pulled cable
+//! (the replay killed) leave every still period so far in the session file and every line in its
+//! log, and `--resume` goes on with the same session, appending to the same log.
+
+mod common;
+
+use std::path::Path;
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+use common::{wait_or_kill, SimPty};
+
+/// Longer than a few still periods of the CSV sketch (one every 8-11 s).
+const LIMIT: Duration = Duration::from_secs(120);
+
+fn calibrate(args: &[&str]) -> Child {
+    Command::new(env!("CARGO_BIN_EXE_accelcal"))
+        .arg("calibrate")
+        .args(args)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap()
+}
+
+fn session(json: &Path) -> serde_json::Value {
+    std::fs::read_to_string(json).ok().and_then(|text| serde_json::from_str(&text).ok()).unwrap_or_default()
+}
+
+fn captures(json: &Path) -> usize {
+    session(json)["captures"].as_array().map_or(0, Vec::len)
+}
+
+/// Waits until the session at `json` holds more than `count` captures.
+fn wait_for_captures(json: &Path, count: usize) {
+    let started = Instant::now();
+    while captures(json) <= count {
+        assert!(started.elapsed() < LIMIT, "the session held {} captures after {LIMIT:?}", captures(json));
+        std::thread::sleep(Duration::from_millis(250));
+    }
+}
+
+fn stderr_of(child: Child) -> String {
+    String::from_utf8_lossy(&child.wait_with_output().unwrap().stderr).into_owned()
+}
+
+#[test]
+fn ctrl_c_and_a_pulled_cable_lose_no_still_period_and_resume_goes_on_in_the_same_log() {
+    let dir = std::env::temp_dir().join(format!("accelcal-sketch-session-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (stem, json, log) = (dir.join("stream"), dir.join("stream.json"), dir.join("stream.log"));
+    let sim = SimPty::with_seed("3", &["--sketch", "csv"]);
+    let mut first = calibrate(&["--port", &sim.path, "--session", stem.to_str().unwrap()]);
+    wait_for_captures(&json, 2);
+    let kept = captures(&json);
+    Command::new("kill").args(["-INT", &first.id().to_string()]).status().unwrap();
+    wait_or_kill(&mut first, Duration::from_secs(30));
+    let said = stderr_of(first);
+    assert!(said.contains("stopped by Ctrl-C") && said.contains("--resume"), "{said}");
+    assert!(captures(&json) >= kept, "Ctrl-C lost still periods: {} of {kept}", captures(&json));
+    assert_eq!(session(&json)["kind"], "stream");
+    let before = std::fs::read_to_string(&log).unwrap();
+    assert!(before.contains("millis,ax,ay,az,gx,gy,gz"), "the log keeps what the port printed");
+
+    let mut second = calibrate(&["--port", &sim.path, "--resume", json.to_str().unwrap()]);
+    wait_for_captures(&json, captures(&json));
+    let kept = captures(&json);
+    drop(sim);
+    wait_or_kill(&mut second, Duration::from_secs(30));
+    let said = stderr_of(second);
+    assert!(said.contains("the port went away"), "{said}");
+    assert!(captures(&json) >= kept, "the pulled cable lost still periods: {} of {kept}", captures(&json));
+    let after = std::fs::read_to_string(&log).unwrap();
+    assert!(after.starts_with(&before) && after.len() > before.len(), "the resumed run appends to the same log");
+    let _ = std::fs::remove_dir_all(&dir);
+}
