@@ -57,6 +57,8 @@ fn ctrl_c_and_a_pulled_cable_lose_no_still_period_and_resume_goes_on_in_the_same
     wait_or_kill(&mut first, Duration::from_secs(30));
     let said = stderr_of(first);
     assert!(said.contains("stopped by Ctrl-C") && said.contains("--resume"), "{said}");
+    // Each position is held until its mean is known to what the target needs, then the person turns on.
+    assert!(said.contains("+Z taken (its mean known to "), "{said}");
     assert!(captures(&json) >= kept, "Ctrl-C lost still periods: {} of {kept}", captures(&json));
     assert_eq!(session(&json)["kind"], "stream");
     let before = std::fs::read_to_string(&log).unwrap();
