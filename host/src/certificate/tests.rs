@@ -30,7 +30,9 @@ pub(crate) fn session(seed: u64, warming_c: f64, std_g: f32) -> Session {
         let error = [0; 3].map(|_| gaussian(&mut random) * sigma);
         capture(t, 21.5 + warming_c * i as f64 / 14.0, error, std_g)
     });
-    Session { kind: SessionKind::Adaptive, captures: captures.collect(), ..Session::default() }
+    let mut captures: Vec<CaptureRecord> = captures.collect();
+    captures.last_mut().unwrap().closing = true;
+    Session { kind: SessionKind::Adaptive, captures, ..Session::default() }
 }
 
 #[test]
