@@ -21,7 +21,7 @@ fn capture(target: &Orientation, temp_c: f64, error_g: [f64; 3], std_g: f32) -> 
 
 /// An adaptive session of the fifteen captures, warming `warming_c` over it, each mean off by its
 /// noise (`std_g` / sqrt(400)) drawn from `seed`.
-fn session(seed: u64, warming_c: f64, std_g: f32) -> Session {
+pub(crate) fn session(seed: u64, warming_c: f64, std_g: f32) -> Session {
     let mut targets = order(&[faces(), corners()].concat());
     targets.push(closing(&targets[0]));
     let mut random = Xoshiro256PlusPlus::seed_from_u64(seed);
