@@ -23,6 +23,8 @@ use shared::linalg::{mul_vec, norm, sub};
 
 /// Sessions per sketch.
 const SESSIONS: u64 = 10;
+/// How far an entry of the gyro's G fitted from the turns may be from the true one.
+const G_TOLERANCE: f64 = 0.002;
 
 /// The issue's bounds in mg: (mean, worst) of the sessions' rms error; `None` for the Serial Plotter,
 /// whitespace and Kalibr streams, on which the issue measured no good tool: they are held to 1.3x the
@@ -198,4 +200,46 @@ fn a_stream_without_timestamps_gives_no_noise_figures_without_a_rate() {
     let (_, _, csv) = session_log(Sketch::Csv, 4);
     let (segment, series) = longest_still(&csv).unwrap();
     assert_eq!((series.rate_hz.round(), series.axes[0].len()), (100.0, segment.samples));
+}
+
+/// Person 1's CSV log with the gyro's counts halved: the chip at +-500 deg/s (65.5 counts a deg/s).
+fn csv_at_500_dps(text: &str) -> String {
+    let halve = |line: &str| {
+        let values: Vec<&str> = line.split(',').collect();
+        let gyro = values[4..].iter().map(|v| v.parse::<i64>().map_or(v.to_string(), |c| (c / 2).to_string()));
+        values[..4].iter().map(|v| v.to_string()).chain(gyro).collect::<Vec<_>>().join(",")
+    };
+    let data = |line: &str| line.split(',').count() == 7 && line.split(',').all(|v| v.trim().parse::<f64>().is_ok());
+    text.lines().map(|l| if data(l) { halve(l) } else { l.to_owned() }).map(|l| l + "\n").collect()
+}
+
+#[test]
+fn the_gyros_g_comes_from_the_turns_and_a_range_in_counts_is_checked_against_them() {
+    for sketch in [Sketch::Csv, Sketch::Kalibr] {
+        let (session, _, log) = session_log(sketch, 1);
+        let report = StreamReport::new(&log, ModelChoice::Only(Model::Ortho9), &Default::default()).unwrap();
+        let turns = report.gyro_turns.as_ref().expect("the stream has a gyro");
+        let fit = turns.fit.as_ref().unwrap_or_else(|e| panic!("{sketch:?}: G not fitted: {e}"));
+        let truth = session.truth.gyro_matrix;
+        let worst =
+            (0..9).map(|k| (fit.matrix[k / 3][k % 3] - f64::from(truth[k / 3][k % 3])).abs()).fold(0.0, f64::max);
+        eprintln!(
+            "{sketch:?}: {} turns, G {:?} (true {:?}), worst entry off by {worst:.5}, residual {:.3} deg",
+            fit.turns, fit.matrix, truth, fit.residual_deg
+        );
+        assert!(worst <= G_TOLERANCE, "{sketch:?}: G off the true one by {worst:.5}");
+    }
+    let (_, text, log) = session_log(Sketch::Csv, 1);
+    let confirmed = StreamReport::new(&log, ModelChoice::Only(Model::Ortho9), &Default::default()).unwrap();
+    let range = confirmed.gyro_turns.and_then(|g| g.range).unwrap_or_default();
+    assert!(range.starts_with("the turns confirm the gyro's range: counts-250dps"), "{range}");
+    let at_500 = StreamLog::parse(&csv_at_500_dps(&text), &StreamOptions::default()).unwrap();
+    let named = StreamReport::new(&at_500, ModelChoice::Only(Model::Ortho9), &Default::default()).unwrap();
+    let range = named.gyro_turns.and_then(|g| g.range).unwrap_or_default();
+    assert!(range.contains("the turns say the gyro prints counts-500dps, not the assumed counts-250dps"), "{range}");
+    assert!(range.contains("give --gyro-unit counts-500dps"), "{range}");
+    let (_, _, slow) = session_log(Sketch::I2cdevlib, 1);
+    let coarse = StreamReport::new(&slow, ModelChoice::Only(Model::Ortho9), &Default::default()).unwrap();
+    let why = coarse.gyro_turns.map(|g| g.fit.err().unwrap_or_default()).unwrap_or_default();
+    assert!(why.contains("too coarsely sampled") || why.contains("rate is unknown"), "{why}");
 }

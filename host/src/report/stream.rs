@@ -8,10 +8,12 @@ use serde::Serialize;
 
 use super::json::FitJson;
 use super::FitReport;
+use crate::fit::gyro::GyroFit;
 use crate::fit::{FitError, FitOptions, ModelChoice};
 use crate::session::Verification;
 use crate::stream::cost::{costs, Cost};
 use crate::stream::timing::Rate;
+use crate::stream::turns::{self, TurnsFit};
 use crate::stream::{AccelUnit, Dialect, Dropped, GyroUnit, SegmentLines, StillPeriods, StreamLog};
 
 mod verify;
@@ -41,6 +43,8 @@ pub struct StreamReport {
     pub fit: FitReport,
     /// The fit checked at the fresh orientations held out of it, when there were any.
     pub verification: Option<Verification>,
+    /// The gyro's G from the turns between the still periods, when the stream has a gyro.
+    pub gyro_turns: Option<TurnsFit>,
 }
 
 impl StreamReport {
@@ -50,7 +54,12 @@ impl StreamReport {
         let options = FitOptions { g: 1.0, ..options.clone() };
         let fit = FitReport::new(&still.dataset, choice, &options)?;
         let verification = verify::verification(&fit.fit, &still.held_out.rows, log.accel_unit.per_g());
+        let calibration = (&fit.fit.matrix, &fit.fit.offset);
+        let gyro_turns = log
+            .gyro_unit
+            .map(|(unit, assumed)| turns::fit(turns::turns(log, &still.segments, calibration), unit, assumed));
         Ok(StreamReport {
+            gyro_turns,
             verification,
             dialect: log.layout.dialect,
             input_unit: log.accel_unit,
@@ -88,6 +97,9 @@ pub struct StreamJson<'a> {
     gyro_bias: Option<[f64; 3]>,
     gyro_bias_dps: Option<[f64; 3]>,
     verification: Option<&'a Verification>,
+    gyro_fit: Option<&'a GyroFit>,
+    gyro_not_fitted: Option<&'a str>,
+    gyro_range: Option<&'a str>,
     #[serde(flatten)]
     fit: FitJson<'a>,
 }
@@ -108,6 +120,9 @@ pub fn json(report: &StreamReport) -> String {
         gyro_bias: report.gyro_bias(),
         gyro_bias_dps: report.gyro_bias_dps,
         verification: report.verification.as_ref(),
+        gyro_fit: report.gyro_turns.as_ref().and_then(|g| g.fit.as_ref().ok()),
+        gyro_not_fitted: report.gyro_turns.as_ref().and_then(|g| g.fit.as_ref().err()).map(String::as_str),
+        gyro_range: report.gyro_turns.as_ref().and_then(|g| g.range.as_deref()),
         fit: FitJson::new(&report.fit),
     };
     serde_json::to_string_pretty(&view).unwrap_or_default()
@@ -128,6 +143,9 @@ pub fn text(report: &StreamReport) -> String {
     }
     if let Some(bias) = report.gyro_bias_dps {
         let _ = writeln!(out, "gyro bias {:+.3} {:+.3} {:+.3} deg/s", bias[0], bias[1], bias[2]);
+    }
+    if let Some(gyro) = &report.gyro_turns {
+        write_gyro_turns(&mut out, gyro);
     }
     for cost in &report.costs {
         let _ = writeln!(out, "cost: {}", cost.words);
@@ -155,6 +173,20 @@ pub fn verified(verification: Option<&Verification>) -> String {
         ),
         None => "not verified: no still period at a fresh orientation (away from every face and corner) was held out\n"
             .to_owned(),
+    }
+}
+
+fn write_gyro_turns(out: &mut String, gyro: &TurnsFit) {
+    let _ = match &gyro.fit {
+        Ok(g) => writeln!(
+            out,
+            "gyro G from {} turns: scale {:.4} {:.4} {:.4}, residual {:.3} deg (w = G (w_raw - b))",
+            g.turns, g.matrix[0][0], g.matrix[1][1], g.matrix[2][2], g.residual_deg
+        ),
+        Err(why) => writeln!(out, "gyro G not fitted: {why}"),
+    };
+    if let Some(range) = &gyro.range {
+        let _ = writeln!(out, "{range}");
     }
 }
 

@@ -52,7 +52,14 @@ impl Replay {
     }
 }
 
+/// How long a write may wait for the reader: a board's USB serial waits while the host does not
+/// read (a busy host), and goes on once it does.
+const WRITE_WAIT: Duration = Duration::from_secs(60);
+
 fn print_lines(mut master: TTYPort, lines: &[TimedLine], speed: f64, state: &ReplayState) {
+    // NOTE: with the pair's short default timeout a write gave up while the reader was busy for a
+    // moment, and the replay stopped printing for good (a stream taken for stopped under load).
+    let _ = serialport::SerialPort::set_timeout(&mut master, WRITE_WAIT);
     let start = Instant::now();
     for line in lines {
         let due = Duration::from_secs_f64(line.at_s / speed);

@@ -15,6 +15,7 @@ mod log;
 pub mod segment;
 mod still;
 pub mod timing;
+pub mod turns;
 pub mod units;
 
 pub use columns::Columns;

@@ -1,0 +1,89 @@
+//! The gyro's scale and misalignment G from the turns a stream recorded between its still periods:
+//! each turn's gyro samples, integrated through G, must carry the gravity one period measured onto
+//! the next one's (`fit::gyro`, the fit accelcal's own boards use); and the gyro's range in counts,
+//! which a resting gyro cannot tell, checked against the turns (G's scale is the ratio of the true
+//! counts per deg/s to the assumed ones).
+
+use shared::linalg::{mul_vec, norm, scale, sub, Mat3};
+
+use super::log::StreamLog;
+use super::segment::Segment;
+use super::units::GyroUnit;
+use crate::fit::gyro::{fit_gyro, GyroFit, GyroFitError, Turn};
+
+/// Slowest stream whose turns are integrated: a hand's turn of 0.6-2 s at up to 300 deg/s is
+/// followed by 25 or more samples at 40 Hz, each turning the board by at most 8 degrees.
+pub const MIN_TURN_RATE_HZ: f64 = 40.0;
+/// A G scale this close to a range's ratio names that range.
+const RANGE_TOLERANCE: f64 = 0.1;
+/// The MPU-6050's gyro ranges in counts (register map 4.4, FS_SEL 0-3).
+const COUNT_RANGES: [GyroUnit; 4] =
+    [GyroUnit::Counts250, GyroUnit::Counts500, GyroUnit::Counts1000, GyroUnit::Counts2000];
+
+/// The turns between successive still periods of `log`, gravity's direction at each through the
+/// calibration `(matrix, offset)` (in the stream's unit); why there are none.
+pub fn turns(log: &StreamLog, segments: &[Segment], calibration: (&Mat3<f64>, &[f64; 3])) -> Result<Vec<Turn>, String> {
+    let gyro = log.gyro_dps().ok_or("the stream has no gyro")?;
+    let hz = log.rate.map(|r| r.hz).ok_or("the stream's rate is unknown: the turns cannot be integrated")?;
+    if hz < MIN_TURN_RATE_HZ {
+        return Err(format!(
+            "at {hz:.0} Hz a turn is too coarsely sampled to integrate (needs {MIN_TURN_RATE_HZ:.0} Hz)"
+        ));
+    }
+    let per_g = log.accel_unit.per_g();
+    let up = |s: &Segment| {
+        let a = mul_vec(calibration.0, sub(scale(s.mean_g, per_g), *calibration.1));
+        scale(a, 1.0 / norm(a))
+    };
+    let turn = |(a, b): (&Segment, &Segment)| Turn {
+        rates_dps: gyro[a.last + 1..b.first].to_vec(),
+        interval_s: 1.0 / hz,
+        bias_before_dps: a.gyro_mean_dps.unwrap_or_default(),
+        bias_after_dps: b.gyro_mean_dps.unwrap_or_default(),
+        up_before: up(a),
+        up_after: up(b),
+    };
+    Ok(segments.iter().zip(segments.iter().skip(1)).map(turn).collect())
+}
+
+/// G fitted to the turns, and what they say of a gyro range that was assumed.
+#[derive(Debug, Clone)]
+pub struct TurnsFit {
+    /// The fit, or why there is none.
+    pub fit: Result<GyroFit, String>,
+    /// The range check in words, for a gyro in counts.
+    pub range: Option<String>,
+}
+
+/// Fits G to `turns` of a gyro read as `unit` (`assumed` when the stream did not say it).
+pub fn fit(turns: Result<Vec<Turn>, String>, unit: GyroUnit, assumed: bool) -> TurnsFit {
+    let fit = turns.and_then(|t| fit_gyro(&t).map_err(|e: GyroFitError| e.to_string()));
+    let range = fit.as_ref().ok().and_then(|g| range_check(g, unit, assumed));
+    TurnsFit { fit, range }
+}
+
+/// The range whose counts per deg/s G's mean scale implies, in words, when the gyro is in counts.
+fn range_check(fit: &GyroFit, unit: GyroUnit, assumed: bool) -> Option<String> {
+    if !COUNT_RANGES.contains(&unit) {
+        return None;
+    }
+    let g_scale = (0..3).map(|k| fit.matrix[k][k]).sum::<f64>() / 3.0;
+    let implied = unit.per_dps() / g_scale;
+    let near = COUNT_RANGES.iter().find(|r| (r.per_dps() / implied - 1.0).abs() <= RANGE_TOLERANCE);
+    let how = if assumed { "assumed" } else { "given" };
+    Some(match near {
+        Some(&range) if range == unit => {
+            format!("the turns confirm the gyro's range: {} (G's mean scale {g_scale:.4})", unit.name())
+        }
+        Some(range) => format!(
+            "the turns say the gyro prints {}, not the {how} {} (G's mean scale {g_scale:.3}): give --gyro-unit {}",
+            range.name(),
+            unit.name(),
+            range.name()
+        ),
+        None => format!(
+            "the turns fit no gyro range: G's mean scale {g_scale:.3} with {} {how} (is the gyro's unit something else? --gyro-unit)",
+            unit.name()
+        ),
+    })
+}
