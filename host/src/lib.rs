@@ -31,6 +31,7 @@ pub mod part;
 pub mod procedure;
 pub mod recording;
 pub mod report;
+pub mod selftest;
 pub mod session;
 pub mod shown;
 pub mod sim;

@@ -18,6 +18,7 @@ mod noise;
 mod procedure;
 mod record;
 mod report;
+mod selftest;
 mod terminal;
 mod thermal;
 mod thermal_person;
@@ -49,7 +50,7 @@ pub fn run(cli: Cli) -> Result<(), Error> {
     match cli.command {
         Command::Fit(args) => fit::fit(&args),
         Command::Ports => board::ports(),
-        Command::Info { device, json } => board::info(&device, json),
+        Command::Info { device, json, registers } => board::info(&device, json, registers),
         Command::Calibrate(args) => calibrate::calibrate(&args),
         Command::Capture(args) => procedure::capture(&args),
         Command::Report(args) => report::report(&args),
@@ -64,6 +65,7 @@ pub fn run(cli: Cli) -> Result<(), Error> {
         Command::Export(args) => export::export(&args),
         Command::Record(args) => record::record(&args),
         Command::Thermal(args) => thermal::thermal(&args),
+        Command::Selftest(args) => selftest::selftest(&args),
         Command::Sim { pty, seed, sketch: Some(sketch), .. } => sketch_stream(sketch, seed, pty),
         Command::Sim { pty: _, seed, fast, sketch: None } => {
             let pace = if fast { crate::sim::Pace::Fast } else { crate::sim::Pace::RealTime };
