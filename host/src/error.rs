@@ -64,6 +64,8 @@ pub enum Error {
     SelfTestHistory(#[from] crate::selftest::history::HistoryError),
     #[error("the self-test failed: an axis' response is outside +-{} % of its factory trim (see above); the part is damaged or not what it claims", shared::selftest::ACCELCAL_BAND_PERCENT)]
     SelfTestFailed,
+    #[error("repeat needs a power cycle between the sessions, which accelcal cannot do to a board on a port yet: use --sim, or power-cycle the board by hand between `accelcal calibrate --lot LOT` runs and read the spread with `accelcal lot board LOT SERIAL`")]
+    RepeatNeedsSim,
     #[error("which device? give --port PATH (see `accelcal ports`) or --sim")]
     WhichDevice,
     #[error("the device has no calibration to download: calibrate or upload one first")]
