@@ -39,9 +39,14 @@ struct Run {
 
 impl Run {
     fn start(port: &str, extra: &[&str]) -> Self {
+        let calibrate = ["calibrate", "--port", port, "--quick", "--seconds", "5", "--verify", "2"];
+        Run::command(&[&calibrate[..], extra].concat())
+    }
+
+    /// Any `accelcal` command, with its stderr lines on a channel.
+    fn command(args: &[&str]) -> Self {
         let mut child = Command::new(env!("CARGO_BIN_EXE_accelcal"))
-            .args(["calibrate", "--port", port, "--quick", "--seconds", "5", "--verify", "2"])
-            .args(extra)
+            .args(args)
             .stdin(Stdio::null())
             .stdout(Stdio::piped())
             .stderr(Stdio::piped())
@@ -72,6 +77,20 @@ impl Run {
             }
         }
         None
+    }
+
+    /// Every stderr line for `duration`, without turning the board.
+    fn lines_for(&mut self, duration: Duration) -> Vec<String> {
+        let end = std::time::Instant::now() + duration;
+        let mut lines = Vec::new();
+        while let Some(left) = end.checked_duration_since(std::time::Instant::now()) {
+            match self.lines.recv_timeout(left) {
+                Ok(line) => lines.push(line),
+                Err(_) => break,
+            }
+        }
+        self.seen.extend(lines.iter().cloned());
+        lines
     }
 
     fn interrupt(&self) {
@@ -190,4 +209,50 @@ fn ctrl_c_during_the_verification_says_the_calibration_is_already_uploaded_and_s
     assert!(last.contains(&format!("accelcal verify --port {}", sim.path)), "{last}");
     let (active, stored) = calibrations(&sim);
     assert_eq!(active, stored, "what is active is what is saved");
+}
+
+#[test]
+fn ctrl_c_during_verify_says_what_was_verified_and_leaves_the_board_as_it_was() {
+    let mut sim = board_on_the_desk("17");
+    let kept = r#"{"model": "six-position", "matrix": [[1.01,0,0],[0,0.99,0],[0,0,1]], "offset": [0.02, -0.01, 0.03]}"#;
+    let file = temp_stem("verified.json");
+    std::fs::write(&file, kept).unwrap();
+    assert!(accelcal(&["upload", "--port", &sim.path, file.to_str().unwrap(), "--save"]).status.success());
+    let before = calibrations(&sim);
+    let mut run = Run::command(&["verify", "--port", &sim.path.clone(), "--positions", "3"]);
+    assert!(run.follow(&mut sim, "verification 1:").is_some(), "{:?}", run.seen);
+    assert!(run.follow(&mut sim, "Verification 2").is_some(), "{:?}", run.seen);
+    std::thread::sleep(Duration::from_millis(1500));
+    run.interrupt();
+    let (status, _, stderr) = run.finish(&mut sim);
+    assert!(!status.success(), "exit 0 after Ctrl-C: {stderr}");
+    let last = stderr.lines().last().unwrap();
+    assert!(last.contains("interrupted (Ctrl-C)") && last.contains("1 of 3 orientations verified"), "{last}");
+    assert!(last.contains("its calibration is as it was"), "{last}");
+    // The board answers at once (its capture was cancelled, not left running) and holds what it held.
+    assert_eq!(calibrations(&sim), before, "verify changed the board");
+}
+
+#[test]
+fn a_verification_capture_the_board_moved_during_waits_for_a_fresh_orientation_again() {
+    let mut sim = board_on_the_desk("18");
+    let kept = r#"{"model": "six-position", "matrix": [[1.01,0,0],[0,0.99,0],[0,0,1]], "offset": [0.02, -0.01, 0.03]}"#;
+    let file = temp_stem("moved.json");
+    std::fs::write(&file, kept).unwrap();
+    assert!(accelcal(&["upload", "--port", &sim.path, file.to_str().unwrap()]).status.success());
+    let mut run = Run::command(&["verify", "--port", &sim.path.clone(), "--positions", "2"]);
+    assert!(run.follow(&mut sim, "verification 1:").is_some(), "{:?}", run.seen);
+    assert!(run.follow(&mut sim, "Verification 2").is_some(), "{:?}", run.seen);
+    std::thread::sleep(Duration::from_millis(1500));
+    sim.tell("shake 1 0.3");
+    assert!(run.follow(&mut sim, "moved during the capture").is_some(), "{:?}", run.seen);
+    // The person sets it down where verification 1 was made: that is not fresh, so no check there.
+    sim.tell("place 0.707 0 0.707");
+    let there = run.lines_for(Duration::from_secs(10));
+    assert!(!there.iter().any(|l| l.contains("verification 2:")), "verified where it had verified: {there:?}");
+    sim.tell("place -0.707 0.707 0");
+    assert!(run.follow(&mut sim, "verification 2:").is_some(), "{:?}", run.seen);
+    let (status, stdout, stderr) = run.finish(&mut sim);
+    assert!(status.success(), "{stderr}");
+    assert!(stdout.contains("| |a| - 1 g | rms"), "{stdout}");
 }

@@ -101,3 +101,32 @@ fn the_held_out_error_of_noisy_readings_is_their_noise_per_axis() {
     let fit = fit_temperature(&reference(&calibration), &points).unwrap();
     assert!((0.47..0.58).contains(&fit.held_out_mg), "held out {} mg for 0.5 mg of noise", fit.held_out_mg);
 }
+
+#[test]
+fn a_short_warming_gets_no_higher_order_than_its_span_supports() {
+    use rand_distr::{Distribution, Normal};
+    use rand_xoshiro::rand_core::SeedableRng;
+    // A quick 16 degC warming (20 to 36 degC) with 0.1 mg of noise: its held-out error alone would
+    // choose a higher order, which extrapolates to the ends of the operating range the chip applies
+    // it over. One order per 10 degC: linear only.
+    let (calibration, model) = truth();
+    let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(23);
+    let noise = Normal::new(0.0, 0.1e-3).unwrap();
+    let points: Vec<ThermalPoint> = (0..17)
+        .flat_map(|t| FACES.map(|f| reading(&calibration, &model, 20.0 + f64::from(t) * 0.97, f)))
+        .map(|mut p| {
+            p.accel_g = p.accel_g.map(|a| a + noise.sample(&mut rng));
+            p.gyro_dps = p.gyro_dps.map(|w| w + 10.0 * noise.sample(&mut rng));
+            p
+        })
+        .collect();
+    let fit = fit_temperature(&reference(&calibration), &points).unwrap();
+    assert_eq!((fit.accel_order, fit.gyro_order), ([1; 3], [1; 3]));
+    let mut plausible = calibration;
+    plausible.temperature = Some(fit.model);
+    assert_eq!(plausible.validate(), Ok(()), "a first order from 16 degC holds over -40..85 degC");
+    // Thirty degrees support a cubic: the quadratic truth over 15..45 degC still gets its second order.
+    let wide: Vec<ThermalPoint> =
+        (0..31).flat_map(|t| FACES.map(|f| reading(&calibration, &model, 15.0 + f64::from(t) + 0.3, f))).collect();
+    assert!(fit_temperature(&reference(&calibration), &wide).unwrap().accel_order.iter().all(|&o| o >= 2));
+}
