@@ -23,6 +23,7 @@ mod terminal;
 mod thermal;
 mod thermal_person;
 mod transfer;
+mod values;
 
 use std::process::ExitCode;
 
