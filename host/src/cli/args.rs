@@ -207,6 +207,9 @@ pub enum Command {
     Certificate(super::certificate::CertificateArgs),
     /// The lot database: every board's certificates in one SQLite file, the lot's distributions and Cpk.
     Lot(super::lot::LotArgs),
+    /// N calibrations of one simulated board with a power cycle between them: each parameter's spread
+    /// beside the standard error the sessions predicted.
+    Repeat(super::repeat::RepeatArgs),
     /// Uploads a calibration (from `download`, `calibrate --json`, or `fit --json` on data in g) and makes it active.
     Upload {
         #[command(flatten)]
