@@ -86,7 +86,7 @@ pub fn verify_with<P: Port>(
     // NOTE: `used` holds the calibration's directions first, then each one verified.
     let mut used = calibrated.to_vec();
     for index in 0..positions {
-        let fresh = hand.fresh(index, feedback).map_err(ProcedureError::from);
+        let fresh = hand.fresh(index, feedback);
         let check = fresh.and_then(|()| check_fresh(client, &calibration, &mut used, (wait_limit, length), feedback));
         let check = check.map_err(|source| stopped(source, &checks, positions))?;
         feedback.say(&format!(
