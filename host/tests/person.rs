@@ -93,6 +93,15 @@ impl Run {
         lines
     }
 
+    /// Ctrl-C after `wait`; the last stderr line of the run, which must not end with status 0.
+    fn ctrl_c(self, sim: &mut SimPty, wait: Duration) -> String {
+        std::thread::sleep(wait);
+        self.interrupt();
+        let (status, _, stderr) = self.finish(sim);
+        assert!(!status.success(), "exit 0 after Ctrl-C: {stderr}");
+        stderr.lines().last().unwrap().to_owned()
+    }
+
     fn interrupt(&self) {
         let status = Command::new("kill").args(["-INT", &self.child.id().to_string()]).status().unwrap();
         assert!(status.success());
@@ -112,6 +121,14 @@ fn session_captures(stem: &std::path::Path) -> usize {
     json["captures"].as_array().unwrap().len()
 }
 
+/// A known calibration uploaded to the board and saved (kept in a file named after `name`).
+fn upload_and_save(sim: &SimPty, name: &str) {
+    let kept = r#"{"model": "six-position", "matrix": [[1.01,0,0],[0,0.99,0],[0,0,1]], "offset": [0.02, -0.01, 0.03]}"#;
+    let file = temp_stem(&format!("{name}.json"));
+    std::fs::write(&file, kept).unwrap();
+    assert!(accelcal(&["upload", "--port", &sim.path, file.to_str().unwrap(), "--save"]).status.success());
+}
+
 fn temp_stem(name: &str) -> std::path::PathBuf {
     std::env::temp_dir().join(format!("accelcal-person-{}-{name}", std::process::id()))
 }
@@ -119,10 +136,7 @@ fn temp_stem(name: &str) -> std::path::PathBuf {
 #[test]
 fn declining_the_upload_leaves_the_active_and_stored_calibration_as_they_were() {
     let mut sim = board_on_the_desk("11");
-    let kept = r#"{"model": "six-position", "matrix": [[1.01,0,0],[0,0.99,0],[0,0,1]], "offset": [0.02, -0.01, 0.03]}"#;
-    let file = temp_stem("kept.json");
-    std::fs::write(&file, kept).unwrap();
-    assert!(accelcal(&["upload", "--port", &sim.path, file.to_str().unwrap(), "--save"]).status.success());
+    upload_and_save(&sim, "kept");
     let before = calibrations(&sim);
     assert!(before.0.contains("0.0299999") && before.1.contains("0.0299999"), "{before:?}");
     let session = temp_stem("declined");
@@ -140,11 +154,7 @@ fn ctrl_c_keeps_the_captures_so_far_and_resume_completes_them_to_a_verified_cali
     let mut run = Run::start(&sim.path.clone(), &["--session", session.to_str().unwrap()]);
     assert!(run.follow(&mut sim, "captured 2 of 10").is_some(), "{:?}", run.seen);
     // The person stops instead of turning the board to the third face.
-    std::thread::sleep(Duration::from_millis(300));
-    run.interrupt();
-    let (status, _, stderr) = run.finish(&mut sim);
-    assert!(!status.success(), "exit 0 after Ctrl-C: {stderr}");
-    let last = stderr.lines().last().unwrap();
+    let last = run.ctrl_c(&mut sim, Duration::from_millis(300));
     assert!(last.contains("interrupted (Ctrl-C)") && last.contains("2 captures so far are kept in"), "{last}");
     assert!(last.contains(&format!("--resume {}", session.with_extension("json").display())), "{last}");
     assert_eq!(session_captures(&session), 2);
@@ -197,11 +207,7 @@ fn ctrl_c_during_the_verification_says_the_calibration_is_already_uploaded_and_s
     let session = temp_stem("verifying");
     let mut run = Run::start(&sim.path.clone(), &["--yes", "--session", session.to_str().unwrap()]);
     assert!(run.follow(&mut sim, "uploaded and saved; now checking").is_some(), "{:?}", run.seen);
-    std::thread::sleep(Duration::from_millis(300));
-    run.interrupt();
-    let (status, _, stderr) = run.finish(&mut sim);
-    assert!(!status.success(), "exit 0 after Ctrl-C: {stderr}");
-    let last = stderr.lines().last().unwrap();
+    let last = run.ctrl_c(&mut sim, Duration::from_millis(300));
     assert!(
         last.contains("interrupted (Ctrl-C)") && last.contains("already uploaded and saved on the board"),
         "{last}"
@@ -214,19 +220,12 @@ fn ctrl_c_during_the_verification_says_the_calibration_is_already_uploaded_and_s
 #[test]
 fn ctrl_c_during_verify_says_what_was_verified_and_leaves_the_board_as_it_was() {
     let mut sim = board_on_the_desk("17");
-    let kept = r#"{"model": "six-position", "matrix": [[1.01,0,0],[0,0.99,0],[0,0,1]], "offset": [0.02, -0.01, 0.03]}"#;
-    let file = temp_stem("verified.json");
-    std::fs::write(&file, kept).unwrap();
-    assert!(accelcal(&["upload", "--port", &sim.path, file.to_str().unwrap(), "--save"]).status.success());
+    upload_and_save(&sim, "verified");
     let before = calibrations(&sim);
     let mut run = Run::command(&["verify", "--port", &sim.path.clone(), "--positions", "3"]);
     assert!(run.follow(&mut sim, "verification 1:").is_some(), "{:?}", run.seen);
     assert!(run.follow(&mut sim, "Verification 2").is_some(), "{:?}", run.seen);
-    std::thread::sleep(Duration::from_millis(1500));
-    run.interrupt();
-    let (status, _, stderr) = run.finish(&mut sim);
-    assert!(!status.success(), "exit 0 after Ctrl-C: {stderr}");
-    let last = stderr.lines().last().unwrap();
+    let last = run.ctrl_c(&mut sim, Duration::from_millis(1500));
     assert!(last.contains("interrupted (Ctrl-C)") && last.contains("1 of 3 orientations verified"), "{last}");
     assert!(last.contains("its calibration is as it was"), "{last}");
     // The board answers at once (its capture was cancelled, not left running) and holds what it held.
@@ -236,10 +235,7 @@ fn ctrl_c_during_verify_says_what_was_verified_and_leaves_the_board_as_it_was() 
 #[test]
 fn a_verification_capture_the_board_moved_during_waits_for_a_fresh_orientation_again() {
     let mut sim = board_on_the_desk("18");
-    let kept = r#"{"model": "six-position", "matrix": [[1.01,0,0],[0,0.99,0],[0,0,1]], "offset": [0.02, -0.01, 0.03]}"#;
-    let file = temp_stem("moved.json");
-    std::fs::write(&file, kept).unwrap();
-    assert!(accelcal(&["upload", "--port", &sim.path, file.to_str().unwrap()]).status.success());
+    upload_and_save(&sim, "moved");
     let mut run = Run::command(&["verify", "--port", &sim.path.clone(), "--positions", "2"]);
     assert!(run.follow(&mut sim, "verification 1:").is_some(), "{:?}", run.seen);
     assert!(run.follow(&mut sim, "Verification 2").is_some(), "{:?}", run.seen);
