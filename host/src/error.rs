@@ -56,8 +56,6 @@ pub enum Error {
     TargetMissed { line: String },
     #[error("--json cannot ask whether to upload the calibration: add --yes to upload and save it, or leave out --json to be asked")]
     JsonCannotAsk,
-    #[error("which device? give --port PATH (see `accelcal ports`) or --sim")]
-    WhichDevice,
     #[error("the device has no calibration to download: calibrate or upload one first")]
     NothingToDownload,
     #[error("{source}; the bins learned so far (a span of {span_c:.1} degC) are kept in {}: go on from them with `accelcal thermal --port {device} --bins {}`", .path.display(), .path.display())]
