@@ -25,6 +25,7 @@ pub mod export;
 pub mod fit;
 pub mod limits;
 pub mod link;
+pub mod lot;
 pub mod noise;
 pub mod orientation;
 pub mod part;

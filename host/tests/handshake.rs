@@ -35,11 +35,11 @@ fn a_board_with_espressifs_usb_ids_is_found_by_its_handshake() {
     assert!(is_worth_asking(&ports[0]));
     let mut asked = Vec::new();
     let found = find_board(&ports, &mut |entry| asked.push(entry.path.clone())).expect("the board answers its hello");
-    assert_eq!(asked, [board.path.clone()], "the port is asked once, with progress");
+    assert_eq!(asked, std::slice::from_ref(&board.path), "the port is asked once, with progress");
     assert_eq!(found.info.protocol_version, PROTOCOL_VERSION);
     let serial = found.info.serial;
     drop(found);
-    let direct = open_port(&board.path).unwrap();
+    let direct = open_port(&board.path, 115_200).unwrap();
     assert_eq!(direct.info.serial, serial, "the board found is the one on that port");
 }
 
@@ -74,6 +74,15 @@ fn a_silent_port_that_is_no_board_is_greeted_only_after_it_was_listened_to() {
     let first = first_byte_at.lock().unwrap().expect("the silent port was greeted");
     let listened = first - asked_at;
     assert!(listened >= LISTEN_FIRST, "written to after {listened:?}, before listening {LISTEN_FIRST:?}");
+}
+
+#[test]
+fn a_port_that_is_no_usb_device_is_never_asked() {
+    let board = SimPty::start(&["--fast"]);
+    let uart = SerialPortEntry { path: board.path.clone(), is_accelcal: false, serial: None, usb_ids: None };
+    assert!(!is_worth_asking(&uart));
+    let error = find_board(&[uart], &mut |entry| panic!("{} was asked", entry.path)).err().unwrap();
+    assert!(matches!(error, LinkError::NoBoardFound { asked: 0 }), "{error}");
 }
 
 #[test]

@@ -105,6 +105,9 @@ pub struct CalibrateArgs {
     /// Continue the session SESSION.json (same board, range and filter) with the positions it lacks.
     #[arg(long, value_name = "SESSION")]
     pub resume: Option<PathBuf>,
+    /// Add the board's certificate to this lot database (one SQLite file, created when new).
+    #[arg(long, value_name = "LOT")]
+    pub lot: Option<PathBuf>,
     /// With --sim: how many degrees off the tool places the board, as a hand would (0-8).
     #[arg(long, default_value_t = 3.0, value_parser = placement_deg)]
     pub sim_placement_deg: f64,
@@ -201,6 +204,8 @@ pub enum Command {
     Capture(CaptureArgs),
     /// A session's calibration certificate (uncertainties at k = 2, hashed), or the check of one.
     Certificate(super::certificate::CertificateArgs),
+    /// The lot database: every board's certificates in one SQLite file, the lot's distributions and Cpk.
+    Lot(super::lot::LotArgs),
     /// Uploads a calibration (from `download`, `calibrate --json`, or `fit --json` on data in g) and makes it active.
     Upload {
         #[command(flatten)]

@@ -9,7 +9,9 @@ use shared::Calibration;
 use super::args::{Device, StreamArgs};
 use crate::calibration::{describe, CalibrationJson};
 use crate::error::Error;
-use crate::link::{ask, explain, is_worth_asking, serial_ports, Answer, SerialPortEntry, StreamRequest, LISTEN_FIRST};
+use crate::link::{
+    ask, explain, is_worth_asking, serial_ports, Answer, LinkError, SerialPortEntry, StreamRequest, LISTEN_FIRST,
+};
 use crate::part::{describe as describe_part, part_name};
 use crate::session::BoardRecord;
 
@@ -56,7 +58,8 @@ fn answered(answer: Answer) -> String {
             )
         }
         Answer::Talks(heard) => format!("  (prints on its own: {heard}; nothing was written to it)"),
-        Answer::NoBoard(_) => "  (no accelcal board: no answer to its hello)".to_owned(),
+        Answer::NoBoard(LinkError::Silent { .. }) => "  (no accelcal board: silent, and no answer to its hello)".into(),
+        Answer::NoBoard(error) => format!("  (not an accelcal board, or not reachable: {error})"),
     }
 }
 

@@ -14,6 +14,7 @@ mod fit;
 mod foreign;
 mod gyro;
 mod length;
+mod lot;
 mod noise;
 mod procedure;
 mod record;
@@ -54,6 +55,7 @@ pub fn run(cli: Cli) -> Result<(), Error> {
         Command::Capture(args) => procedure::capture(&args),
         Command::Report(args) => report::report(&args),
         Command::Certificate(args) => certificate::certificate(&args),
+        Command::Lot(args) => lot::lot(&args),
         Command::Verify { device, positions } => procedure::verify(&device, usize::from(positions)),
         Command::Upload { device, file, save } => transfer::upload(&device, &file, save),
         Command::Save { device } => transfer::save(&device),

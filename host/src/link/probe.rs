@@ -7,6 +7,7 @@ use super::connect::{open_listening, open_port, Connection, Opened};
 use super::discovery::SerialPortEntry;
 use super::error::LinkError;
 use super::listening::describe;
+use super::port::DEFAULT_BAUD;
 
 /// What a port that matches no accelcal id turned out to be.
 pub enum Answer {
@@ -24,9 +25,10 @@ pub fn is_worth_asking(entry: &SerialPortEntry) -> bool {
     !entry.is_accelcal && entry.usb_ids.is_some()
 }
 
-/// Asks the port at `path`: listens first, then says hello when it stayed silent.
+/// Asks the port at `path`: listens first, then says hello when it stayed silent. (A USB serial
+/// port ignores the baud rate.)
 pub fn ask(path: &str) -> Answer {
-    match open_listening(path) {
+    match open_listening(path, DEFAULT_BAUD) {
         Ok(Opened::Board(connection)) => Answer::Board(connection),
         Ok(Opened::Talking(talking)) => Answer::Talks(describe(&talking.heard, talking.heard.len())),
         Err(error) => Answer::NoBoard(error),
@@ -42,7 +44,7 @@ pub fn find_board(
 ) -> Result<Connection, LinkError> {
     let by_ids: Vec<&str> = ports.iter().filter(|p| p.is_accelcal).map(|p| p.path.as_str()).collect();
     match by_ids.as_slice() {
-        [one] => return open_port(one),
+        [one] => return open_port(one, DEFAULT_BAUD),
         [] => {}
         several => return Err(LinkError::SeveralBoards { paths: several.join(", ") }),
     }
