@@ -58,6 +58,8 @@ pub enum Error {
     TargetMissed { line: String },
     #[error("--json cannot ask whether to upload the calibration: add --yes to upload and save it, or leave out --json to be asked")]
     JsonCannotAsk,
+    #[error("repeat needs a power cycle between the sessions, which accelcal cannot do to a board on a port yet: use --sim, or power-cycle the board by hand between `accelcal calibrate --lot LOT` runs and read the spread with `accelcal lot board LOT SERIAL`")]
+    RepeatNeedsSim,
     #[error("the device has no calibration to download: calibrate or upload one first")]
     NothingToDownload,
     #[error("{source}; the bins learned so far (a span of {span_c:.1} degC) are kept in {}: go on from them with `accelcal thermal --port {device} --bins {}`", .path.display(), .path.display())]

@@ -31,6 +31,7 @@ pub mod orientation;
 pub mod part;
 pub mod procedure;
 pub mod recording;
+pub mod repeat;
 pub mod report;
 pub mod session;
 pub mod shown;
