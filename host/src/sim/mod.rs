@@ -8,6 +8,8 @@
 mod board;
 mod clock;
 mod commands;
+mod emulated;
+mod hand;
 pub mod noise;
 mod outgoing;
 mod parts;
@@ -23,6 +25,7 @@ pub mod turn;
 pub use board::{SensorChoice, SimBoard, SimCommand, SimSensor};
 pub use clock::Pace;
 pub use parts::{FaultyAxis, SimPartChoice};
+pub use emulated::{serve_emulated, EmulatorError};
 pub use pty::{serve_pty, SimError};
 
 use crate::link::Port;
