@@ -13,7 +13,7 @@ use accelcal::calibration::CalibrationJson;
 use accelcal::sim::{SimBoard, SimSensor};
 use common::person::{Moves, Run};
 use common::{accelcal_within, EmulatedPico};
-use shared::protocol::AccelRange;
+use shared::calibration::AccelRange;
 
 fn json(args: &[&str]) -> serde_json::Value {
     let (output, _) = accelcal_within(args, Duration::from_secs(120));
@@ -72,11 +72,15 @@ fn the_default_calibration_on_the_real_pico_binary_is_as_good_as_in_process_and_
     let session = temp_stem("default");
     let args = ["--yes", "--json", "--session", session.to_str().unwrap()];
     let (status, stdout, stderr) = Run::start(&pico.path.clone(), &args, Moves::Turn).finish(&mut pico);
-    assert!(status.success(), "{stderr}");
+    assert!(matches!(status.code(), Some(0 | 2)), "{stderr}");
     let on_the_pico: serde_json::Value = serde_json::from_str(&stdout).unwrap();
 
     let sim_session = temp_stem("in-process");
-    let in_process = json(&["calibrate", "--sim", "--seed", &SEED.to_string(), "--yes", "--json", "--session", sim_session.to_str().unwrap()]);
+    let args = ["calibrate", "--sim", "--seed", &SEED.to_string(), "--yes", "--json", "--session", sim_session.to_str().unwrap()];
+    let (output, _) = accelcal_within(&args, Duration::from_secs(300));
+    // NOTE: exit status 2 is a calibration uploaded and saved that missed --target-mg: it is compared all the same.
+    assert!(matches!(output.status.code(), Some(0 | 2)), "{}", String::from_utf8_lossy(&output.stderr));
+    let in_process: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
     let (pico_mg, sim_mg) = (true_error_mg(SEED, &on_the_pico), true_error_mg(SEED, &in_process));
     println!("true error: {pico_mg:.3} mg on the emulated Pico, {sim_mg:.3} mg in process (seed {SEED})");
     assert!(pico_mg <= 1.5 * sim_mg, "{pico_mg:.3} mg on the Pico, {sim_mg:.3} mg in process");

@@ -7,7 +7,8 @@
 // low) never answers; and it answers every OUT buffer the device arms at once, with zero bytes when it
 // has none, which keeps the emulated CPU busy with empty packets. This host enumerates the device
 // (address, configuration descriptor, configuration, DTR and RTS on the CDC interface), hands the bulk
-// IN endpoint's data to `onData`, and fills an armed OUT buffer only when it has bytes to send.
+// IN endpoint's data to `onData` while the host's port is open, sets DTR and RTS as the host opens
+// and closes the port, and fills an armed OUT buffer only when it has bytes to send.
 
 const SETUP_IN = 0x80;
 const CLASS_INTERFACE_OUT = 0x21;
@@ -22,6 +23,7 @@ const CDC_COMMUNICATION_CLASS = 0x02;
 const CDC_DATA_CLASS = 0x0a;
 const BULK = 2;
 const DTR_AND_RTS = 0b11;
+const LINES_DOWN = 0;
 const DEVICE_ADDRESS = 1;
 
 /** Where an OUT endpoint's buffer control register sits in the USB DPRAM (datasheet 4.1.2.5.1). */
@@ -75,13 +77,14 @@ export function cdcEndpoints(descriptor) {
 }
 
 export class CdcHost {
-  /** `onData(bytes)`: the device sent bytes; `onReady()`: the port is open (DTR high). */
+  /** `onData(bytes)`: the device sent bytes; `onReady()`: the device is enumerated and configured. */
   constructor(usb, { onData, onReady }) {
     this.usb = usb;
     this.onData = onData;
     this.onReady = onReady;
     this.pending = [];
     this.attached = true;
+    this.portOpen = false;
     this.restart();
     usb.onUSBEnabled = () => usb.resetDevice();
     usb.onResetReceived = () => {
@@ -109,6 +112,21 @@ export class CdcHost {
     this.deliver();
   }
 
+  /**
+   * The host's program opened (true) or closed the port: as a host's CDC-ACM driver does, DTR and
+   * RTS rise on open and fall on close (Linux's cdc-acm on the last close, with HUPCL).
+   */
+  setPortOpen(open) {
+    this.portOpen = open;
+    if (!open) this.pending = [];
+    if (this.ready) this.sendLineState();
+  }
+
+  sendLineState() {
+    const lines = this.portOpen ? DTR_AND_RTS : LINES_DOWN;
+    this.request(setup(CLASS_INTERFACE_OUT, SET_CONTROL_LINE_STATE, lines, this.endpoints.control, 0), 'lines');
+  }
+
   /** The cable: pulled (nothing passes) or plugged in again (a bus reset, then a fresh enumeration). */
   setAttached(attached) {
     this.attached = attached;
@@ -126,7 +144,7 @@ export class CdcHost {
   written(endpoint, bytes) {
     if (!this.attached) return;
     if (endpoint !== 0) {
-      if (endpoint === this.endpoints.in && bytes.length > 0) this.onData(bytes);
+      if (endpoint === this.endpoints.in && bytes.length > 0 && this.portOpen) this.onData(bytes);
       return;
     }
     if (this.stage === 'address') {
@@ -141,11 +159,12 @@ export class CdcHost {
         this.request(setup(0, SET_CONFIGURATION, 1, 0, 0), 'configuration');
       }
     } else if (this.stage === 'configuration') {
-      this.request(setup(CLASS_INTERFACE_OUT, SET_CONTROL_LINE_STATE, DTR_AND_RTS, this.endpoints.control, 0), 'dtr');
-    } else if (this.stage === 'dtr') {
       this.stage = null;
       this.ready = true;
+      this.sendLineState();
       this.onReady();
+    } else if (this.stage === 'lines') {
+      this.stage = null;
       this.deliver();
     }
   }
@@ -161,7 +180,7 @@ export class CdcHost {
   }
 
   deliver() {
-    if (!this.attached || !this.ready || this.outArmed === 0 || this.pending.length === 0) return;
+    if (!this.attached || !this.ready || this.stage || this.outArmed === 0 || this.pending.length === 0) return;
     const chunk = new Uint8Array(this.pending.splice(0, this.outArmed));
     this.outArmed = 0;
     this.usb.endpointReadDone(this.endpoints.out, chunk);

@@ -11,10 +11,11 @@
 //   r               the chip reads a byte; answered "b BYTE"
 //   p               stop
 //   u HEX           the device sent these bytes over USB
-//   open            the USB serial port is open (enumerated, DTR high)
+//   open            the USB serial port exists (the device is enumerated and configured)
 //   t NS CYCLES     a poll: emulated time and the cycles the CPU has executed (not asleep) so far;
 //                   answered by lines "h HEX" (bytes for the device), "power" (a power cycle: the chip
 //                   restarts from its flash), "cable 0" / "cable 1" (the USB cable pulled / plugged in),
+//                   "port 0" / "port 1" (the host's program closed / opened the port: DTR falls / rises),
 //                   then "."
 // Anything wrong (a fault, a ROM function the stand-in lacks) is said on stderr and ends the process.
 
@@ -43,7 +44,12 @@ class Bridge {
     this.chunk = Buffer.alloc(65536);
   }
   send(line) {
-    writeSync(1, `${line}\n`);
+    try {
+      writeSync(1, `${line}\n`);
+    } catch (e) {
+      if (e.code === 'EPIPE') process.exit(0); // the bridge is gone
+      throw e;
+    }
   }
   receive() {
     while (!this.buffer.includes('\n')) {
@@ -149,6 +155,7 @@ function main() {
   const bridge = new Bridge();
   let chip = new Chip(flash, bridge, 0);
   let cycles = 0;
+  let portOpen = false;
   for (;;) {
     chip.run(POLL_NS);
     bridge.send(`t ${Math.round(chip.nanos)} ${cycles + chip.busyCycles}`);
@@ -159,8 +166,10 @@ function main() {
         cycles += chip.busyCycles;
         chip = new Chip(chip.mcu.flash.slice(0, flash.length), bridge, chip.nanos);
       } else if (line === 'cable 0' || line === 'cable 1') chip.usb.setAttached(line === 'cable 1');
+      else if (line === 'port 0' || line === 'port 1') portOpen = line === 'port 1';
       else fail(`the bridge sent '${line}'`);
     }
+    if (chip.usb.portOpen !== portOpen) chip.usb.setPortOpen(portOpen);
   }
 }
 

@@ -24,7 +24,7 @@ pub(super) enum Event {
     Stop,
     /// The device sent these bytes over USB.
     FromDevice(Vec<u8>),
-    /// The USB serial port is open (enumerated, DTR high).
+    /// The USB serial port exists (the device is enumerated and configured).
     Open,
     /// A poll at this emulated time, after this many executed CPU cycles; answer with
     /// [`Harness::answer_poll`].
@@ -40,6 +40,8 @@ pub(super) enum Control {
     PowerCycle,
     /// The USB cable plugged in (true) or pulled (false).
     Cable(bool),
+    /// A program on the host opened (true) or closed (false) the port: DTR rises or falls.
+    Port(bool),
 }
 
 /// The emulator process and its two pipes.
@@ -92,6 +94,7 @@ impl Harness {
                 Control::ToDevice(bytes) => format!("h {}\n", hex(bytes)),
                 Control::PowerCycle => "power\n".into(),
                 Control::Cable(plugged) => format!("cable {}\n", u8::from(*plugged)),
+                Control::Port(open) => format!("port {}\n", u8::from(*open)),
             };
         }
         self.say(&(text + "."))

@@ -6,6 +6,7 @@
 //! the sensor's time is the emulated chip's, and the bridge holds the emulator to the wall clock, so
 //! a person (or a test playing one) turns the board in real time, as with `sim --pty`.
 
+mod fit_timer;
 mod harness;
 mod port;
 
@@ -15,6 +16,7 @@ use std::sync::mpsc::{channel, Receiver};
 use std::time::{Duration, Instant};
 
 use firmware::sim::{BytewiseTarget, SimMpu6050};
+use fit_timer::FitTimer;
 use harness::{Control, Event, Harness};
 use port::HostPort;
 
@@ -57,6 +59,7 @@ struct Bridge {
     port: HostPort,
     started: Instant,
     orders: Receiver<Order>,
+    fits: FitTimer,
 }
 
 /// Serves the Pico binary `uf2` under the emulator until killed, with the simulated sensor of
@@ -77,7 +80,7 @@ pub fn serve_emulated(uf2: &Path, seed: u64, kind: SimSensor) -> Result<(), Emul
     };
     let mut harness = Harness::start(dir, uf2)?;
     let (bus, hand, port, started) = (BytewiseTarget::default(), Hand::default(), HostPort::plugged()?, Instant::now());
-    let mut bridge = Bridge { sensor, hand, bus, port, started, orders: read_orders() };
+    let mut bridge = Bridge { sensor, hand, bus, port, started, orders: read_orders(), fits: FitTimer::default() };
     loop {
         let event = harness.next()?;
         bridge.handle(event, &mut harness)?;
@@ -92,12 +95,16 @@ impl Bridge {
             Event::Write(value) => self.bus.write(&mut self.sensor, value),
             Event::Read => harness.byte(self.bus.read(&mut self.sensor))?,
             Event::RepeatedStart | Event::Stop => {}
-            Event::FromDevice(bytes) => self.port.to_host(&bytes),
+            Event::FromDevice(bytes) => {
+                self.fits.device_sent(&bytes);
+                self.port.to_host(&bytes);
+            }
             Event::Open => announce(self.port.path()),
-            Event::Poll { at_ns, .. } => {
+            Event::Poll { at_ns, cycles } => {
                 self.advance_to(at_ns);
                 self.keep_to_the_wall_clock(at_ns);
-                let controls = self.controls()?;
+                self.fits.poll(at_ns, cycles);
+                let controls = self.controls(at_ns, cycles)?;
                 harness.answer_poll(&controls)?;
             }
         }
@@ -119,7 +126,7 @@ impl Bridge {
     }
 
     /// What the chip is to do now: the person's orders, then what the host wrote.
-    fn controls(&mut self) -> Result<Vec<Control>, EmulatorError> {
+    fn controls(&mut self, at_ns: u64, cycles: u64) -> Result<Vec<Control>, EmulatorError> {
         let mut controls = Vec::new();
         while let Ok(order) = self.orders.try_recv() {
             match order {
@@ -131,9 +138,13 @@ impl Bridge {
                 }
             }
         }
+        let (bytes, open) = self.port.from_host();
+        // NOTE: the port's state before its bytes, so that what the host wrote reaches a device
+        // that sees DTR high.
+        controls.push(Control::Port(open));
         self.port.flush();
-        let bytes = self.port.from_host();
         if !bytes.is_empty() {
+            self.fits.host_wrote(&bytes, at_ns, cycles);
             controls.push(Control::ToDevice(bytes));
         }
         Ok(controls)
