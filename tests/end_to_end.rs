@@ -30,7 +30,7 @@ fn pty_board(flash: SimFlash, seed: u64) -> PtyBoard {
 }
 
 fn connect_serial(path: &str) -> Client<Box<dyn Port>> {
-    let port = open_serial(path).expect("the pseudo-terminal opens");
+    let port = open_serial(path, accelcal::link::port::DEFAULT_BAUD).expect("the pseudo-terminal opens");
     Client::connect(Box::new(port) as Box<dyn Port>).expect("the simulated board answers").0
 }
 
@@ -69,7 +69,7 @@ fn default_calibration_over_a_pty_survives_a_restart_and_verifies_below_1_mg() {
     // Restart the board on the same flash, behind a new pseudo-terminal.
     let flash = pty.board.stop();
     let pty = pty_board(flash, 12);
-    let port = open_serial(&pty.path).unwrap();
+    let port = open_serial(&pty.path, accelcal::link::port::DEFAULT_BAUD).unwrap();
     let (mut client, info) = Client::connect(Box::new(port) as Box<dyn Port>).unwrap();
     assert_eq!(info.active, ActiveCalibration::Stored);
     assert_eq!(client.calibration(CalibrationSlot::Active).unwrap(), Some(calibration));
@@ -205,7 +205,7 @@ fn a_port_that_vanishes_mid_capture_is_an_error_within_2_s_and_the_session_file_
         panic!("no capture")
     };
     let target = Orientation::named("+Z");
-    let record = CaptureRecord { name: "+Z".into(), target, face: None, unix_time_s: 0.0, stats };
+    let record = CaptureRecord { name: "+Z".into(), target, face: None, unix_time_s: 0.0, stats, closing: false };
     let session = Session { captures: vec![record], ..Session::default() };
     let stem = std::env::temp_dir().join(format!("accelcal-vanish-{}", std::process::id()));
     session.save(&stem).unwrap();

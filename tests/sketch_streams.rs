@@ -22,13 +22,15 @@ use shared::linalg::{mul_vec, norm, sub};
 /// Sessions per sketch.
 const SESSIONS: u64 = 10;
 
-/// The issue's bounds in mg: (mean, worst) of the sessions' rms error.
+/// The issue's bounds in mg: (mean, worst) of the sessions' rms error. The issue measured no good
+/// tool on the Serial Plotter, whitespace and Kalibr streams: each is held to the bounds of the
+/// issue's stream it is like (filtered, 50 Hz: the plotter's; filtered, 100 Hz or more: the CSV's).
 fn bounds(sketch: Sketch) -> (f64, f64) {
     match sketch {
         Sketch::I2cdevlib => (0.83, 1.17),
         Sketch::Motioncal => (0.33, 0.48),
-        Sketch::Plotter => (0.12, 0.16),
-        Sketch::Csv => (0.10, 0.15),
+        Sketch::Plotter | Sketch::SerialPlotter => (0.12, 0.16),
+        Sketch::Csv | Sketch::Whitespace | Sketch::Kalibr => (0.10, 0.15),
         Sketch::Micropython => (0.57, 0.73),
     }
 }
@@ -40,6 +42,9 @@ fn dialect(sketch: Sketch) -> Dialect {
         Sketch::Plotter => Dialect::AdafruitPlotter,
         Sketch::Csv => Dialect::Csv,
         Sketch::Micropython => Dialect::Micropython,
+        Sketch::SerialPlotter => Dialect::SerialPlotter,
+        Sketch::Whitespace => Dialect::Whitespace,
+        Sketch::Kalibr => Dialect::Kalibr,
     }
 }
 

@@ -46,6 +46,8 @@ pub enum Error {
     Plot(#[from] PlotError),
     #[error(transparent)]
     Certificate(#[from] crate::certificate::SealError),
+    #[error(transparent)]
+    Lot(#[from] crate::lot::LotError),
     #[error("--g must be a positive number, got {g}")]
     BadGravity { g: f64 },
     #[error("{source}; {} so far {} kept in {}: continue with `accelcal calibrate {device} --resume {}`", count(*.captures, "capture"), if *.captures == 1 { "is" } else { "are" }, .path.display(), .path.display())]
@@ -58,6 +60,8 @@ pub enum Error {
     TargetMissed { line: String },
     #[error("--json cannot ask whether to upload the calibration: add --yes to upload and save it, or leave out --json to be asked")]
     JsonCannotAsk,
+    #[error("repeat needs a power cycle between the sessions, which accelcal cannot do to a board on a port yet: use --sim, or power-cycle the board by hand between `accelcal calibrate --lot LOT` runs and read the spread with `accelcal lot board LOT SERIAL`")]
+    RepeatNeedsSim,
     #[error("which device? give --port PATH (see `accelcal ports`) or --sim")]
     WhichDevice,
     #[error("the device has no calibration to download: calibrate or upload one first")]

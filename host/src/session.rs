@@ -5,22 +5,26 @@
 use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
-use shared::protocol::{CaptureStats, DeviceInfo, FirmwareVersion, SensorConfig};
+use shared::protocol::CaptureStats;
 use shared::{Calibration, Position};
 
 use crate::data::{Dataset, Row};
 use crate::fit::gyro::TurnSummary;
 use crate::orientation::Orientation;
 
+mod board;
 #[cfg(test)]
 mod fixture;
 mod kind;
 mod outcome;
+mod verdict;
 mod verification;
 
+pub use board::{Board, BoardRecord};
 pub use kind::SessionKind;
 pub use outcome::{Fitted, Outcome, OutcomeError};
-pub use verification::Verification;
+pub use verdict::TargetVerdict;
+pub use verification::{TurnCheck, Verification};
 
 /// Why a session file could not be written or read.
 #[derive(Debug, thiserror::Error)]
@@ -41,55 +45,6 @@ pub enum SessionError {
     OtherSetting { path: PathBuf, session: String, board: String },
 }
 
-/// How far, as a fraction, a board's sample rate may be from a session's for it to be resumed.
-const RESUME_RATE_TOLERANCE: f64 = 0.05;
-
-/// The board a session was captured on: a resumed session must continue on the same board, at the
-/// same range and filter.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct BoardRecord {
-    /// The board's serial number, 24 hexadecimal digits.
-    pub serial: String,
-    /// The firmware version that captured.
-    pub firmware: FirmwareVersion,
-    /// Range, sample rate and filter of the sensor.
-    pub config: SensorConfig,
-    /// The sensor part as [`crate::part::describe`] names it (absent in sessions before issue 27).
-    #[serde(default)]
-    pub sensor: Option<String>,
-}
-
-impl BoardRecord {
-    /// The board that answered `info`.
-    pub fn of(info: &DeviceInfo) -> Self {
-        let serial = String::from_utf8_lossy(&info.serial.hex()).into_owned();
-        let sensor = info.sensor.as_ref().ok().map(crate::part::describe);
-        BoardRecord { serial, firmware: info.firmware, config: info.config, sensor }
-    }
-
-    /// Whether a session captured on `self` may continue on `board`; the reason when not.
-    pub fn check_same(&self, board: &BoardRecord, path: &Path) -> Result<(), SessionError> {
-        let path = path.to_owned();
-        if self.serial != board.serial {
-            return Err(SessionError::OtherBoard { path, session: self.serial.clone(), board: board.serial.clone() });
-        }
-        let setting =
-            |c: &SensorConfig| format!("{:?} with the {:?} filter at {} Hz", c.range, c.filter, c.sample_rate_hz);
-        let (rate, other_rate) = (f64::from(self.config.sample_rate_hz), f64::from(board.config.sample_rate_hz));
-        // NOTE: a rate the board achieves a little differently (99 for 100 Hz) measures the same; a
-        // board left at 1000 Hz by `record` filters and averages otherwise.
-        let rate_differs = (rate - other_rate).abs() > RESUME_RATE_TOLERANCE * rate;
-        if (self.config.range, self.config.filter) != (board.config.range, board.config.filter) || rate_differs {
-            return Err(SessionError::OtherSetting {
-                path,
-                session: setting(&self.config),
-                board: setting(&board.config),
-            });
-        }
-        Ok(())
-    }
-}
-
 /// One capture of a session.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CaptureRecord {
@@ -103,12 +58,16 @@ pub struct CaptureRecord {
     pub unix_time_s: f64,
     /// The device's statistics of the capture.
     pub stats: CaptureStats,
+    /// Whether this is an adaptive session's closing capture: its first position again, which
+    /// measures the drift and is no position of its own (written only when true).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub closing: bool,
 }
 
 impl CaptureRecord {
     /// A capture that ended now.
     pub fn now(name: &str, target: Option<Orientation>, face: Option<Position>, stats: CaptureStats) -> Self {
-        CaptureRecord { name: name.to_owned(), target, face, unix_time_s: unix_time_s(), stats }
+        CaptureRecord { name: name.to_owned(), target, face, unix_time_s: unix_time_s(), stats, closing: false }
     }
 
     /// The capture as a data row in g.
@@ -155,6 +114,11 @@ impl Session {
         self.captures.iter().any(|c| c.name == name)
     }
 
+    /// The positions the captures were taken at: every capture but the closing one.
+    pub fn positions(&self) -> usize {
+        self.captures.iter().filter(|c| !c.closing).count()
+    }
+
     /// The captures as a data set in g, with their capture statistics.
     pub fn dataset(&self) -> Dataset {
         Dataset { rows: self.captures.iter().enumerate().map(|(i, c)| c.row(i + 2)).collect() }
@@ -177,7 +141,19 @@ impl Session {
     /// Reads a session written by [`Session::save`] (the JSON file).
     pub fn load(path: &Path) -> Result<Self, SessionError> {
         let text = std::fs::read_to_string(path).map_err(|source| SessionError::Read { path: path.into(), source })?;
-        serde_json::from_str(&text).map_err(|e| SessionError::NotASession { path: path.into(), reason: e.to_string() })
+        let session: Session = serde_json::from_str(&text)
+            .map_err(|e| SessionError::NotASession { path: path.into(), reason: e.to_string() })?;
+        Ok(session.with_closing_marked())
+    }
+
+    /// The session with its closing capture marked as such when it was written before captures
+    /// carried the mark: an adaptive session's capture named after its first position and " again"
+    /// (no other adaptive capture is named so).
+    fn with_closing_marked(mut self) -> Self {
+        if self.kind == SessionKind::Adaptive && !self.captures.iter().any(|c| c.closing) {
+            self.captures.iter_mut().filter(|c| c.name.ends_with(" again")).for_each(|c| c.closing = true);
+        }
+        self
     }
 
     /// The session at `PATH.json` when it exists, else an empty one.
@@ -246,7 +222,14 @@ mod tests {
 
     fn record(face: Position, z: f32, unix_time_s: f64) -> CaptureRecord {
         let target = Some(Orientation::face(face));
-        CaptureRecord { name: face.name().into(), target, face: Some(face), unix_time_s, stats: stats(z) }
+        CaptureRecord {
+            name: face.name().into(),
+            target,
+            face: Some(face),
+            unix_time_s,
+            stats: stats(z),
+            closing: false,
+        }
     }
 
     #[test]
@@ -270,48 +253,34 @@ mod tests {
     }
 
     #[test]
+    fn the_closing_capture_is_marked_and_old_adaptive_files_mark_it_by_its_name() {
+        let mut again = record(Position::PosZ, 1.0, 30.0);
+        again.name = "+Z again".into();
+        let marked = CaptureRecord { closing: true, ..again.clone() };
+        let captures = vec![record(Position::PosZ, 1.0, 1.5), record(Position::NegZ, -1.0, 20.0), marked];
+        let session = Session { kind: SessionKind::Adaptive, captures, ..Session::default() };
+        assert_eq!(session.positions(), 2);
+        let stem = std::env::temp_dir().join(format!("accelcal-closing-{}", std::process::id()));
+        let path = stem_file(&stem, "json");
+        session.save(&stem).unwrap();
+        assert_eq!(Session::load(&path).unwrap(), session);
+        // Written before the mark: the adaptive session's "+Z again" is its closing capture.
+        let old = std::fs::read_to_string(&path).unwrap().replace(",\n      \"closing\": true", "");
+        assert!(!old.contains("closing"), "{old}");
+        std::fs::write(&path, &old).unwrap();
+        assert_eq!(Session::load(&path).unwrap(), session);
+        // A capture that a person named so in a session of fixed captures is a position of its own.
+        std::fs::write(&path, old.replace("\"adaptive\"", "\"fixed\"")).unwrap();
+        assert_eq!(Session::load(&path).unwrap().positions(), 3);
+        let _ = [stem_file(&stem, "csv"), path].map(std::fs::remove_file);
+    }
+
+    #[test]
     fn a_session_name_keeps_its_dots_and_its_json_file_gives_the_same_stem() {
         let (one, two) = (Path::new("out/board.1"), Path::new("out/board.2"));
         assert_eq!(stem_file(one, "json"), Path::new("out/board.1.json"));
         assert_ne!(stem_file(one, "csv"), stem_file(two, "csv"));
         assert_eq!(stem_of(Path::new("out/board.1.json")), one);
         assert_eq!(stem_of(one), one);
-    }
-
-    #[test]
-    fn a_session_resumes_only_on_its_board_at_its_range_and_filter() {
-        use shared::protocol::LowPassFilter;
-        let serial = "0123456789abcdef01234567".to_owned();
-        let firmware = FirmwareVersion { major: 0, minor: 1, patch: 0 };
-        let board = |serial: &str, range, filter| BoardRecord {
-            serial: serial.to_owned(),
-            firmware,
-            config: SensorConfig { range, sample_rate_hz: 100, filter },
-            sensor: None,
-        };
-        let recorded = board(&serial, AccelRange::G2, LowPassFilter::Hz44);
-        let path = Path::new("session.json");
-        // A sample rate the board achieves differently does not change what a capture measures.
-        let mut same = recorded.clone();
-        same.config.sample_rate_hz = 99;
-        assert!(recorded.check_same(&same, path).is_ok());
-        let other = |b: BoardRecord| recorded.check_same(&b, path).unwrap_err();
-        let error = other(board(&serial, AccelRange::G2, LowPassFilter::Hz21));
-        assert!(matches!(error, SessionError::OtherSetting { .. }), "another filter: {error}");
-        assert!(
-            error.to_string().contains("G2 with the Hz44 filter at 100 Hz, the board is set to G2 with the Hz21"),
-            "{error}"
-        );
-        let error = other(board(&serial, AccelRange::G4, LowPassFilter::Hz44));
-        assert!(matches!(error, SessionError::OtherSetting { .. }), "another range: {error}");
-        let error = other(board("ffffffffffffffffffffffff", AccelRange::G2, LowPassFilter::Hz44));
-        assert!(matches!(error, SessionError::OtherBoard { .. }), "another board: {error}");
-        let mut fast = recorded.clone();
-        fast.config.sample_rate_hz = 1000;
-        let error = other(fast);
-        assert!(
-            error.to_string().contains("at 100 Hz, the board is set to G2 with the Hz44 filter at 1000 Hz"),
-            "{error}"
-        );
     }
 }

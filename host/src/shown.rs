@@ -1,4 +1,5 @@
-//! Numbers as the tool shows them to a person, in text and in the report.
+//! Values as the tool shows them to a person, in text, in the report and in the certificate: numbers
+//! without a -0 sign, dates to the minute in UTC, text made safe inside an HTML page.
 
 /// `value` as shown with `digits` decimals: a value that rounds to zero is shown as zero, never as
 /// the `-0.00` a tiny negative number would print.
@@ -11,8 +12,29 @@ pub fn shown(value: f64, digits: usize) -> f64 {
     }
 }
 
+/// Seconds since the Unix epoch as `YYYY-MM-DD HH:MM` UTC (the epoch itself for a time `time`
+/// cannot represent).
+pub fn utc_minutes(unix_time_s: f64) -> String {
+    let at = time::OffsetDateTime::from_unix_timestamp(unix_time_s.max(0.0) as i64)
+        .unwrap_or(time::OffsetDateTime::UNIX_EPOCH);
+    let (year, month, day) = (at.year(), u8::from(at.month()), at.day());
+    format!("{year:04}-{month:02}-{day:02} {:02}:{:02}", at.hour(), at.minute())
+}
+
+/// `text` made safe inside an HTML element or a quoted attribute.
+pub fn escape(text: &str) -> String {
+    text.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+}
+
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn dates_are_utc_calendar_dates() {
+        assert_eq!(super::utc_minutes(0.0), "1970-01-01 00:00");
+        assert_eq!(super::utc_minutes(951_782_400.0 + 3_660.0), "2000-02-29 01:01");
+        assert_eq!(super::utc_minutes(1_795_000_000.0), "2026-11-18 11:06");
+    }
+
     #[test]
     fn a_value_that_rounds_to_zero_is_shown_without_a_sign() {
         assert_eq!(format!("{:.2}", super::shown(-0.004, 2)), "0.00");

@@ -67,7 +67,34 @@ fn noise_json_has_every_axis_in_its_named_units_and_finds_the_white_noise() {
     assert!(close(kalibr, ACCEL_DENSITY_G * 9.80665 / 2f64.sqrt(), 0.05), "{kalibr}");
     // White noise keeps falling: the capture limit is only a lower bound, the longest tau analysed.
     assert_eq!(json["calibration"]["capture_limit_is_lower_bound"], true, "{}", json["calibration"]);
+    // The one schema reads back what it wrote, every number where the untyped object has it.
+    let typed = accelcal::noise::json::read(&String::from_utf8_lossy(&output.stdout)).expect("read typed");
+    for axis in ["accel_x", "accel_y", "accel_z", "gyro_x", "gyro_y", "gyro_z"] {
+        let read = typed.axis(axis).expect("every axis");
+        assert_eq!(read.white_noise_density, json[axis]["white_noise_density"].as_f64(), "{axis}");
+        assert_eq!(read.adev.len(), json[axis]["adev"].as_array().map_or(0, Vec::len), "{axis}");
+        assert_eq!(read.bias_instability_resolved, json[axis]["bias_instability_resolved"] == true, "{axis}");
+    }
+    assert!(typed.calibration.capture_limit_is_lower_bound && typed.sample_rate_hz == Some(RATE_HZ));
+    let kalibr = typed.kalibr.expect("kalibr").continuous_time.accelerometer_noise_density;
+    assert_eq!(Some(kalibr), json["kalibr"]["continuous_time"]["accelerometer_noise_density"].as_f64());
     let svg = std::fs::read_to_string(&plot).expect("the plot is written");
     assert!(svg.starts_with("<svg") && svg.contains("gyro_z"), "{}", &svg[..svg.len().min(200)]);
     let _ = (std::fs::remove_file(recording), std::fs::remove_file(plot));
+}
+
+#[test]
+fn an_older_noise_report_without_the_newer_fields_still_reads() {
+    // Written before `bias_instability_resolved`, `adev_low`/`adev_high` and `kalibr.discrete_time`.
+    let old = r#"{"sample_rate_hz": 100.0, "samples": 6000,
+        "accel_x": {"tau_s": [0.01, 0.1], "adev": [300.0, 95.0], "white_noise_density": 42.0},
+        "kalibr": {"continuous_time": {"accelerometer_noise_density": 1e-3, "accelerometer_random_walk": 2e-4,
+        "gyroscope_noise_density": 8e-5, "gyroscope_random_walk": 3e-6}}}"#;
+    let report = accelcal::noise::json::read(old).expect("an older report reads");
+    let axis = report.axis("accel_x").unwrap();
+    assert!(axis.bias_instability_resolved, "older reports did not say: taken as resolved");
+    assert_eq!((axis.white_noise_density, axis.adev.len()), (Some(42.0), 2));
+    assert!(report.axis("gyro_z").unwrap_err().contains("it has no gyro_z"));
+    assert!(report.calibration.capture_limit_s.is_none() && !report.calibration.capture_limit_is_lower_bound);
+    assert!(report.kalibr.unwrap().discrete_time.is_none());
 }

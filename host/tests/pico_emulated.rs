@@ -22,7 +22,10 @@ fn json(args: &[&str]) -> serde_json::Value {
 }
 
 #[test]
-#[cfg_attr(not(has_pico_emulator), ignore = "needs node, `npm ci` in boards/pico/emulator and `cargo xtask dist` (CI=true runs it)")]
+#[cfg_attr(
+    not(has_pico_emulator),
+    ignore = "needs node, `npm ci` in boards/pico/emulator and `cargo xtask dist` (CI=true runs it)"
+)]
 fn the_real_pico_binary_answers_info_and_streams_the_simulated_sensor_over_its_usb_port() {
     let mut pico = EmulatedPico::boot("3");
     let info = json(&["info", "--port", &pico.path, "--json"]);
@@ -36,8 +39,7 @@ fn the_real_pico_binary_answers_info_and_streams_the_simulated_sensor_over_its_u
     pico.tell("place -X");
     let (output, _) = accelcal_within(&["stream", "--port", &pico.path, "--count", "10"], Duration::from_secs(120));
     let csv = String::from_utf8(output.stdout).unwrap();
-    let rows: Vec<Vec<f64>> =
-        csv.lines().skip(1).map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect();
+    let rows: Vec<Vec<f64>> = csv.lines().skip(1).map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect();
     assert_eq!(rows.len(), 10, "{csv}");
     for row in &rows {
         assert!((row[2] + 1.0).abs() < 0.1 && row[3].abs() < 0.1 && row[4].abs() < 0.1, "not -X up: {row:?}");
@@ -64,7 +66,10 @@ fn active_calibration(path: &str) -> serde_json::Value {
 }
 
 #[test]
-#[cfg_attr(not(has_pico_emulator), ignore = "needs node, `npm ci` in boards/pico/emulator and `cargo xtask dist` (CI=true runs it)")]
+#[cfg_attr(
+    not(has_pico_emulator),
+    ignore = "needs node, `npm ci` in boards/pico/emulator and `cargo xtask dist` (CI=true runs it)"
+)]
 fn the_default_calibration_on_the_real_pico_binary_is_as_good_as_in_process_and_survives_a_power_cycle() {
     const SEED: u64 = 21;
     let mut pico = EmulatedPico::boot(&SEED.to_string());
@@ -76,7 +81,16 @@ fn the_default_calibration_on_the_real_pico_binary_is_as_good_as_in_process_and_
     let on_the_pico: serde_json::Value = serde_json::from_str(&stdout).unwrap();
 
     let sim_session = temp_stem("in-process");
-    let args = ["calibrate", "--sim", "--seed", &SEED.to_string(), "--yes", "--json", "--session", sim_session.to_str().unwrap()];
+    let args = [
+        "calibrate",
+        "--sim",
+        "--seed",
+        &SEED.to_string(),
+        "--yes",
+        "--json",
+        "--session",
+        sim_session.to_str().unwrap(),
+    ];
     let (output, _) = accelcal_within(&args, Duration::from_secs(300));
     // NOTE: exit status 2 is a calibration uploaded and saved that missed --target-mg: it is compared all the same.
     assert!(matches!(output.status.code(), Some(0 | 2)), "{}", String::from_utf8_lossy(&output.stderr));
@@ -95,7 +109,10 @@ fn the_default_calibration_on_the_real_pico_binary_is_as_good_as_in_process_and_
 }
 
 #[test]
-#[cfg_attr(not(has_pico_emulator), ignore = "needs node, `npm ci` in boards/pico/emulator and `cargo xtask dist` (CI=true runs it)")]
+#[cfg_attr(
+    not(has_pico_emulator),
+    ignore = "needs node, `npm ci` in boards/pico/emulator and `cargo xtask dist` (CI=true runs it)"
+)]
 fn a_pulled_usb_cable_mid_session_keeps_the_captures_and_resume_on_the_replugged_pico_completes_them() {
     let mut pico = EmulatedPico::boot("22");
     pico.tell("place 0.3 0.4 0.866");

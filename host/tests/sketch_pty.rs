@@ -1,10 +1,10 @@
 //! A board running someone's own sketch, on a pseudo-terminal at the sketch's own pace (a simulated
 //! person's three-minute session, `accelcal::sim::replay`): accelcal writes not one byte to it (a
 //! MicroPython-style board stops its program on 0x03), `ports` and `info` leave it running, and
-//! `calibrate --port` with no flag calibrates from each of the five sketches' streams, keeping a log
+//! `calibrate --port` with no flag calibrates from each of the eight sketches' streams, keeping a log
 //! that `fit LOG` turns into the same calibration.
 //!
-//! Real pace: the five replays run side by side, about three minutes in all. The accuracy over ten
+//! Real pace: the eight replays run side by side, about three minutes in all. The accuracy over ten
 //! sessions per sketch runs on a simulated clock in tests/sketch_streams.rs.
 
 mod common;
@@ -40,6 +40,9 @@ fn dialect(sketch: Sketch) -> (&'static str, &'static str) {
         Sketch::Plotter => ("adafruit-plotter", "m/s2"),
         Sketch::Csv => ("csv", "counts-2g"),
         Sketch::Micropython => ("micropython", "g"),
+        Sketch::SerialPlotter => ("serial-plotter", "counts-2g"),
+        Sketch::Whitespace => ("whitespace", "counts-2g"),
+        Sketch::Kalibr => ("kalibr", "m/s2"),
     }
 }
 

@@ -5,6 +5,7 @@ usage: python3 host/tools/import_circles.py [host/src]
 Prints the circles between top-level modules (folders and files under src/), then between files.
 A file's module is its path; `crate::a::b::c` names file a/b.rs or a/b/mod.rs (or a.rs) whichever exists.
 Tests (files named tests.rs, and `mod tests` blocks) are left out: they may reach anywhere.
+Exits with 1 when it finds a circle (CI runs it: .ci/run), 0 when there is none.
 """
 import os, re, sys
 import networkx as nx
@@ -51,8 +52,11 @@ for p, text in files.items():
             if top(p) != top(target):
                 by_top.add_edge(top(p), top(target))
 
+found = 0
 for title, graph in (("across folders (top-level modules)", by_top), ("between files", by_file)):
     cycles = sorted(sorted(c) for c in nx.simple_cycles(graph))
+    found += len(cycles)
     print(f"{len(cycles)} circles {title}:")
     for c in cycles:
         print("  " + " <-> ".join(c))
+sys.exit(1 if found else 0)

@@ -3,7 +3,7 @@
 use std::fmt::Write;
 
 use super::{Certificate, CertifiedValue, Component, Interval};
-use crate::report::html::escape;
+use crate::shown::escape;
 
 const STYLE: &str = "body{font-family:sans-serif;max-width:52em;margin:2em auto;color:#111}\
 table{border-collapse:collapse;margin:0.5em 0}td,th{border:1px solid #999;padding:0.2em 0.5em;text-align:right}\

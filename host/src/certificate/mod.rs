@@ -14,9 +14,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::fit::drift;
 use crate::fit::FitError;
-use crate::procedure::Verification;
-use crate::report::Board;
-use crate::session::{Session, SessionKind};
+use crate::session::{Board, Session, SessionKind, Verification};
 pub use budget::{budget, Budget, Component};
 pub use estimate::Estimate;
 pub use seal::{check, SealError};
@@ -122,7 +120,7 @@ impl Certificate {
             format: FORMAT,
             board: Board::of(session),
             part: None,
-            date_utc: session.captures.last().map(|c| crate::report::utc_minutes(c.unix_time_s)),
+            date_utc: session.captures.last().map(|c| crate::shown::utc_minutes(c.unix_time_s)),
             method: method(session),
             model: model(&estimate),
             conditions: Conditions {
@@ -144,6 +142,13 @@ impl Certificate {
         };
         certificate.sha256 = seal::digest(&certificate);
         Ok(certificate)
+    }
+
+    /// The same certificate sealed again after a test changed it.
+    #[cfg(test)]
+    pub(crate) fn resealed(mut self) -> Self {
+        self.sha256 = seal::digest(&self);
+        self
     }
 
     /// The certificate as pretty JSON.
@@ -170,7 +175,7 @@ fn parameters(estimate: &Estimate, budget: &Budget) -> BTreeMap<String, Certifie
 }
 
 /// A parameter's unit by its name: offsets in g, drift slopes in g/degC, the matrix's dimensionless.
-fn unit(name: &str) -> &'static str {
+pub fn unit(name: &str) -> &'static str {
     if name.starts_with("o_") {
         "g"
     } else if name.starts_with("c_") {
@@ -182,7 +187,7 @@ fn unit(name: &str) -> &'static str {
 
 /// How the captures were taken, in words.
 fn method(session: &Session) -> String {
-    let positions = crate::procedure::drift::positions(session);
+    let positions = session.positions();
     let how = match session.kind {
         SessionKind::Adaptive => "each averaged until its mean was known, in drift-cancelling order",
         SessionKind::Quick => "quick set, fixed-length captures",
@@ -202,4 +207,4 @@ fn model(estimate: &Estimate) -> String {
 }
 
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;

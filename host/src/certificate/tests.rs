@@ -21,7 +21,7 @@ fn capture(target: &Orientation, temp_c: f64, error_g: [f64; 3], std_g: f32) -> 
 
 /// An adaptive session of the fifteen captures, warming `warming_c` over it, each mean off by its
 /// noise (`std_g` / sqrt(400)) drawn from `seed`.
-fn session(seed: u64, warming_c: f64, std_g: f32) -> Session {
+pub(crate) fn session(seed: u64, warming_c: f64, std_g: f32) -> Session {
     let mut targets = order(&[faces(), corners()].concat());
     targets.push(closing(&targets[0]));
     let mut random = Xoshiro256PlusPlus::seed_from_u64(seed);
@@ -30,7 +30,9 @@ fn session(seed: u64, warming_c: f64, std_g: f32) -> Session {
         let error = [0; 3].map(|_| gaussian(&mut random) * sigma);
         capture(t, 21.5 + warming_c * i as f64 / 14.0, error, std_g)
     });
-    Session { kind: SessionKind::Adaptive, captures: captures.collect(), ..Session::default() }
+    let mut captures: Vec<CaptureRecord> = captures.collect();
+    captures.last_mut().unwrap().closing = true;
+    Session { kind: SessionKind::Adaptive, captures, ..Session::default() }
 }
 
 #[test]

@@ -3,15 +3,16 @@
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
-use shared::protocol::{SensorConfig, DEFAULT_CAPTURE_SECONDS, MAX_CAPTURE_SECONDS, MIN_CAPTURE_SECONDS};
+use shared::protocol::DEFAULT_CAPTURE_SECONDS;
 
 pub use super::device::Device;
 pub use super::export::ExportArgs;
 pub use super::record::RecordArgs;
 pub use super::report::ReportArgs;
+use super::values::{placement_deg, rate_help, seconds, seconds_help, stream_rate, target_span_c};
 use crate::data::RowList;
 use crate::fit::ModelChoice;
-use crate::limits::{FACE_TOLERANCE_DEG, MIN_THERMAL_SPAN_C};
+use crate::limits::{FACE_TOLERANCE_DEG, MAX_VERIFY_POSITIONS};
 
 /// Calibrates the accelerometer of an MPU-6050.
 #[derive(Parser)]
@@ -105,6 +106,9 @@ pub struct CalibrateArgs {
     /// Continue the session SESSION.json (same board, range and filter) with the positions it lacks.
     #[arg(long, value_name = "SESSION")]
     pub resume: Option<PathBuf>,
+    /// Add the board's certificate to this lot database (one SQLite file, created when new).
+    #[arg(long, value_name = "LOT")]
+    pub lot: Option<PathBuf>,
     /// With --sim: how many degrees off the tool places the board, as a hand would (0-8).
     #[arg(long, default_value_t = 3.0, value_parser = placement_deg)]
     pub sim_placement_deg: f64,
@@ -201,6 +205,11 @@ pub enum Command {
     Capture(CaptureArgs),
     /// A session's calibration certificate (uncertainties at k = 2, hashed), or the check of one.
     Certificate(super::certificate::CertificateArgs),
+    /// The lot database: every board's certificates in one SQLite file, the lot's distributions and Cpk.
+    Lot(super::lot::LotArgs),
+    /// N calibrations of one simulated board with a power cycle between them: each parameter's spread
+    /// beside the standard error the sessions predicted.
+    Repeat(super::repeat::RepeatArgs),
     /// Uploads a calibration (from `download`, `calibrate --json`, or `fit --json` on data in g) and makes it active.
     Upload {
         #[command(flatten)]
@@ -270,66 +279,4 @@ pub enum Command {
         #[arg(long, value_name = "UF2", conflicts_with_all = ["sketch", "fast"])]
         pico: Option<std::path::PathBuf>,
     },
-}
-
-/// Most fresh orientations a verification asks for.
-// NOTE: each must be 20 degrees from the calibration's 14 positions and from the others, and the
-// simulated hand keeps 30 degrees: measured, `calibrate --sim --quick --verify 20` waited 64 s and
-// failed (seed 1) while 16 and 17 passed in 2 s (16 on seeds 1-7); a person would not turn the board
-// more often than that anyway.
-const MAX_VERIFY_POSITIONS: i64 = 16;
-/// Largest placement error of the simulated hand, in degrees.
-// NOTE: beyond this a face is no longer reliably within the face tolerance's reach after the
-// sensor's own offset tilts it, and the run would wait for a face it never reaches: measured,
-// `calibrate --sim --sim-placement-deg 10` waited 60 s and failed (seed 1), 9 passed, 8 on seeds 1-7.
-const MAX_PLACEMENT_DEG: f64 = 8.0;
-/// Largest thermal learning target, in degC.
-// NOTE: the MPU-6050 works from -40 to +85 degC (Product Specification 6.1); no board warms from
-// one end to the other while it is being learned, and a larger target could never be reached.
-const MAX_THERMAL_SPAN_C: f64 = 100.0;
-
-/// The capture lengths the device accepts, refused when parsed.
-fn seconds() -> clap::builder::RangedI64ValueParser<u8> {
-    clap::value_parser!(u8).range(i64::from(MIN_CAPTURE_SECONDS)..=i64::from(MAX_CAPTURE_SECONDS))
-}
-
-/// A placement error in degrees within 0-[`MAX_PLACEMENT_DEG`].
-fn placement_deg(text: &str) -> Result<f64, String> {
-    let deg: f64 = text.parse().map_err(|_| format!("{text:?} is not a number of degrees"))?;
-    if (0.0..=MAX_PLACEMENT_DEG).contains(&deg) {
-        Ok(deg)
-    } else {
-        Err(format!("{deg} is not in 0-{MAX_PLACEMENT_DEG} degrees"))
-    }
-}
-
-/// A thermal learning target in [`MIN_THERMAL_SPAN_C`]-[`MAX_THERMAL_SPAN_C`] degC.
-fn target_span_c(text: &str) -> Result<f64, String> {
-    let span: f64 = text.parse().map_err(|_| format!("{text:?} is not a number of degC"))?;
-    if (MIN_THERMAL_SPAN_C..=MAX_THERMAL_SPAN_C).contains(&span) {
-        Ok(span)
-    } else {
-        Err(format!("{span} is not in {MIN_THERMAL_SPAN_C}-{MAX_THERMAL_SPAN_C} degC (a temperature model needs at least {MIN_THERMAL_SPAN_C})"))
-    }
-}
-
-/// A stream rate that divides the sensor's sample rate.
-fn stream_rate(text: &str) -> Result<u16, String> {
-    let sample_rate_hz = SensorConfig::default().sample_rate_hz;
-    let rate: u16 = text.parse().map_err(|_| format!("{text:?} is not a whole number of samples per second"))?;
-    if rate > 0 && sample_rate_hz % rate == 0 {
-        Ok(rate)
-    } else {
-        Err(format!("{rate} does not divide the {sample_rate_hz} Hz sample rate (for example 1, 10, 50 or 100)"))
-    }
-}
-
-/// Help for a capture length, with the limits the device accepts.
-fn seconds_help(what: &str) -> String {
-    format!("{what} ({MIN_CAPTURE_SECONDS}-{MAX_CAPTURE_SECONDS})")
-}
-
-/// Help for a stream rate, with the sample rate it must divide.
-fn rate_help() -> String {
-    format!("Samples per second (must divide the {} Hz sample rate)", SensorConfig::default().sample_rate_hz)
 }

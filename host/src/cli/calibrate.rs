@@ -141,6 +141,9 @@ fn finish(
     if let Some(stem) = kept_at {
         keep_with_report(&verified, &certificate, stem, feedback)?;
     }
+    if let Some(lot) = &args.lot {
+        feedback.say(&super::lot::add_issued(lot, &certificate)?);
+    }
     let mut report = report_of(opened, (fitted, gyro), verification, check);
     report.board_seconds = board_seconds;
     report.certificate = Some(certificate);

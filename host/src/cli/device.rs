@@ -7,6 +7,7 @@ use std::time::{Duration, Instant};
 use clap::Args;
 
 use crate::error::Error;
+use crate::link::port::{BAUD_RANGE, DEFAULT_BAUD};
 use crate::link::{open_listening, open_port, resolve_port, serial_ports, Connection, PortOpened, TalkingPort};
 use crate::procedure::{BoardClock, Hand, PersonHand, SimulatedHand};
 use crate::sim::{FaultyAxis, SimBoard, SimPartChoice, SimSensor};
@@ -18,6 +19,9 @@ pub struct Device {
     /// serial number as `accelcal ports` shows it.
     #[arg(long, conflicts_with = "sim")]
     pub port: Option<String>,
+    /// With --port: the baud rate of a UART bridge (the sketch's `Serial.begin`); USB serial ignores it.
+    #[arg(long, default_value_t = DEFAULT_BAUD, value_parser = baud, conflicts_with = "sim")]
+    pub baud: u32,
     /// A simulated board in this process (its flash lasts as long as the command).
     #[arg(long)]
     pub sim: bool,
@@ -33,6 +37,22 @@ pub struct Device {
     /// With --sim: this axis' self-test response is 20 % off its factory trim.
     #[arg(long, value_enum)]
     pub sim_faulty_axis: Option<FaultyAxis>,
+}
+
+/// A baud rate within [`BAUD_RANGE`]; the cause when not.
+fn baud(text: &str) -> Result<u32, String> {
+    let baud: u32 =
+        text.parse().map_err(|_| format!("{text:?} is not a baud rate: give a whole number such as 115200"))?;
+    if BAUD_RANGE.contains(&baud) {
+        Ok(baud)
+    } else {
+        Err(format!(
+            "{baud} Bd is not in {}-{} Bd: below it no sketch prints a sensor, above it no USB UART bridge goes; \
+             give the number in the sketch's Serial.begin",
+            BAUD_RANGE.start(),
+            BAUD_RANGE.end()
+        ))
+    }
 }
 
 /// How long the tool waits for the simulated board (which it turns itself) to settle.
@@ -52,7 +72,7 @@ impl Device {
     /// Opens the device, or, when its port talks on its own, hands the port over unwritten.
     pub(super) fn open_or_talking(&self) -> Result<Result<Opened, Box<TalkingPort>>, Error> {
         match &self.port {
-            Some(name) => match open_listening(&resolve_port(name, serial_ports)?)? {
+            Some(name) => match open_listening(&resolve_port(name, serial_ports)?, self.baud)? {
                 PortOpened::Board(connection) => {
                     Ok(Ok(Opened { connection: *connection, sim: None, opened_at: Instant::now() }))
                 }
@@ -66,7 +86,7 @@ impl Device {
     pub(super) fn open(&self) -> Result<Opened, Error> {
         match (&self.port, self.sim) {
             (Some(name), _) => {
-                let connection = open_port(&resolve_port(name, serial_ports)?)?;
+                let connection = open_port(&resolve_port(name, serial_ports)?, self.baud)?;
                 Ok(Opened { connection, sim: None, opened_at: Instant::now() })
             }
             (None, true) => {
@@ -120,5 +140,15 @@ mod tests {
         let (first, second) = (opened.clock(), opened.clock());
         assert!(first() >= 5.0 && second() >= 5.0, "{} s and {} s since it was opened 5 s ago", first(), second());
         assert!((second() - first()).abs() < 0.5);
+    }
+
+    #[test]
+    fn a_baud_rate_is_taken_within_what_bridges_go_and_a_nonsense_one_refused_with_its_cause() {
+        assert_eq!(baud("38400"), Ok(38_400));
+        assert_eq!(baud("300"), Ok(300));
+        let zero = baud("0").unwrap_err();
+        assert!(zero.contains("0 Bd is not in 300-6000000 Bd") && zero.contains("Serial.begin"), "{zero}");
+        assert!(baud("9000000").unwrap_err().contains("no USB UART bridge"));
+        assert!(baud("fast").unwrap_err().contains("\"fast\" is not a baud rate"));
     }
 }

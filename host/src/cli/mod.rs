@@ -14,14 +14,17 @@ mod fit;
 mod foreign;
 mod gyro;
 mod length;
+mod lot;
 mod noise;
 mod procedure;
 mod record;
+mod repeat;
 mod report;
 mod terminal;
 mod thermal;
 mod thermal_person;
 mod transfer;
+mod values;
 
 use std::process::ExitCode;
 
@@ -54,6 +57,8 @@ pub fn run(cli: Cli) -> Result<(), Error> {
         Command::Capture(args) => procedure::capture(&args),
         Command::Report(args) => report::report(&args),
         Command::Certificate(args) => certificate::certificate(&args),
+        Command::Lot(args) => lot::lot(&args),
+        Command::Repeat(args) => repeat::repeat(&args),
         Command::Verify { device, positions } => procedure::verify(&device, usize::from(positions)),
         Command::Upload { device, file, save } => transfer::upload(&device, &file, save),
         Command::Save { device } => transfer::save(&device),

@@ -77,11 +77,9 @@ fn noise_section(path: &Path) -> Result<(AllanSection, report::Figure), Error> {
     let refused = |reason: String| Error::ReportInput { path: path.into(), reason };
     let bytes = std::fs::read(path).map_err(|source| Error::ReadFile { path: path.into(), source })?;
     let json = if bytes.trim_ascii_start().starts_with(b"{") {
-        serde_json::from_slice(&bytes).map_err(|e| refused(format!("{e}; give the output of accelcal noise --json")))?
+        noise::json::read(&String::from_utf8_lossy(&bytes)).map_err(refused)?
     } else {
-        let series = noise::input::read_path(path, None)?;
-        let rendered = noise::json::render(&noise::analyse(&series));
-        serde_json::from_str(&rendered).map_err(|e| refused(e.to_string()))?
+        noise::json::NoiseJson::of(&noise::analyse(&noise::input::read_path(path, None)?))
     };
     AllanSection::new(&json).map_err(refused)
 }

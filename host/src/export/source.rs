@@ -8,6 +8,7 @@ use shared::{AccelRange, Calibration};
 use super::loss::Carried;
 use super::ExportError;
 use crate::calibration::{self, CalibrationJson};
+use crate::noise;
 use crate::session::{OutcomeError, Session};
 
 /// A calibration to export and where it came from.
@@ -98,20 +99,17 @@ impl Source {
 impl Noise {
     /// Kalibr's numbers from `accelcal noise --json` (its `kalibr.continuous_time` and `sample_rate_hz`).
     pub fn from_text(text: &str) -> Result<Self, ExportError> {
-        let value: serde_json::Value =
-            serde_json::from_str(text).map_err(|e| ExportError::NoiseFile { reason: e.to_string() })?;
-        let terms = &value["kalibr"]["continuous_time"];
-        let number = |v: &serde_json::Value, name: &str| {
-            v.get(name).and_then(serde_json::Value::as_f64).ok_or_else(|| ExportError::NoiseFile {
-                reason: format!("no {name}: give the output of `accelcal noise RECORDING --json`"),
-            })
+        let report = noise::json::read(text).map_err(|reason| ExportError::NoiseFile { reason })?;
+        let lacks = |name: &str| ExportError::NoiseFile {
+            reason: format!("no {name}: give the output of `accelcal noise RECORDING --json`"),
         };
+        let terms = report.kalibr.ok_or_else(|| lacks("kalibr"))?.continuous_time;
         Ok(Noise {
-            accel_noise_density: number(terms, "accelerometer_noise_density")?,
-            accel_random_walk: number(terms, "accelerometer_random_walk")?,
-            gyro_noise_density: number(terms, "gyroscope_noise_density")?,
-            gyro_random_walk: number(terms, "gyroscope_random_walk")?,
-            rate_hz: number(&value, "sample_rate_hz")?,
+            accel_noise_density: terms.accelerometer_noise_density,
+            accel_random_walk: terms.accelerometer_random_walk,
+            gyro_noise_density: terms.gyroscope_noise_density,
+            gyro_random_walk: terms.gyroscope_random_walk,
+            rate_hz: report.sample_rate_hz.ok_or_else(|| lacks("sample_rate_hz"))?,
         })
     }
 }

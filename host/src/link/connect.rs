@@ -51,9 +51,9 @@ pub enum Opened {
     Talking(TalkingPort),
 }
 
-/// Opens the serial port at `path`, listens, and says hello only when it stayed silent.
-pub fn open_listening(path: &str) -> Result<Opened, LinkError> {
-    let port = open_serial(path).map_err(|e| LinkError::opening(path, e))?;
+/// Opens the serial port at `path` at `baud`, listens, and says hello only when it stayed silent.
+pub fn open_listening(path: &str, baud: u32) -> Result<Opened, LinkError> {
+    let port = open_serial(path, baud).map_err(|e| LinkError::opening(path, e))?;
     let mut port: Box<dyn Port> = Box::new(port);
     let heard = listen(&mut port, LISTEN_FIRST)?;
     if heard.is_empty() {
@@ -62,9 +62,10 @@ pub fn open_listening(path: &str) -> Result<Opened, LinkError> {
     Ok(Opened::Talking(TalkingPort { path: path.to_owned(), port, heard }))
 }
 
-/// Opens the serial port at `path` and says hello; a port that talks on its own is refused unwritten.
-pub fn open_port(path: &str) -> Result<Connection, LinkError> {
-    match open_listening(path)? {
+/// Opens the serial port at `path` at `baud` and says hello; a port that talks on its own is refused
+/// unwritten.
+pub fn open_port(path: &str, baud: u32) -> Result<Connection, LinkError> {
+    match open_listening(path, baud)? {
         Opened::Board(connection) => Ok(*connection),
         Opened::Talking(talking) => {
             Err(LinkError::TalksOnItsOwn { path: talking.path, seen: describe(&talking.heard, talking.heard.len()) })

@@ -45,12 +45,16 @@ impl Port for serialport::TTYPort {
     }
 }
 
-/// Baud rate of the serial port. NOTE: USB CDC ignores it; it matters only to UART bridges.
-const BAUD: u32 = 115_200;
+/// The baud rate a port opens at unless told otherwise (`--baud`): accelcal's firmware and most
+/// sketches' `Serial.begin(115200)`. NOTE: USB CDC ignores it; it matters only to UART bridges.
+pub const DEFAULT_BAUD: u32 = 115_200;
+/// The baud rates a port may be opened at: from the slowest rate a sketch prints a sensor at to
+/// the fastest USB UART bridges (CP2102 and FT232R 3 MBd, CH343 6 MBd).
+pub const BAUD_RANGE: std::ops::RangeInclusive<u32> = 300..=6_000_000;
 
-/// Opens a serial port (the board, or a pseudo-terminal of `accelcal sim --pty`).
-pub fn open_serial(path: &str) -> Result<Box<dyn SerialPort>, serialport::Error> {
-    serialport::new(path, BAUD).timeout(Duration::from_millis(100)).open()
+/// Opens a serial port (the board, or a pseudo-terminal of `accelcal sim --pty`) at `baud`.
+pub fn open_serial(path: &str, baud: u32) -> Result<Box<dyn SerialPort>, serialport::Error> {
+    serialport::new(path, baud).timeout(Duration::from_millis(100)).open()
 }
 
 /// One end of an in-memory duplex pipe.
@@ -151,5 +155,15 @@ mod tests {
         assert_eq!(b.read(&mut buffer).unwrap_err().kind(), io::ErrorKind::TimedOut);
         drop(a);
         assert_eq!(b.read(&mut buffer).unwrap_err().kind(), io::ErrorKind::BrokenPipe);
+    }
+
+    #[test]
+    fn a_serial_port_opens_at_the_baud_rate_it_is_given() {
+        let (_master, slave) = serialport::TTYPort::pair().expect("a pseudo-terminal pair");
+        let path = slave.name().expect("the pseudo-terminal has a path");
+        for baud in [38_400, DEFAULT_BAUD] {
+            let port = open_serial(&path, baud).expect("the pseudo-terminal opens");
+            assert_eq!(port.baud_rate().expect("its baud rate reads back"), baud);
+        }
     }
 }

@@ -1,12 +1,15 @@
 //! `accelcal noise --json`: one object, per axis the deviation curve and the fitted terms in the usual
 //! units (ug for the accelerometer, deg/s for the gyro), a `units` object naming each unit, what the
-//! noise means for a calibration, and Kalibr's four numbers in continuous and discrete time.
+//! noise means for a calibration, and Kalibr's four numbers in continuous and discrete time. The one
+//! schema of that object: `accelcal noise --json` writes it, the report, `calibrate --noise` and the
+//! Kalibr export read it ([`read`]). Every part may be absent on reading (older reports, or only the
+//! part a reader takes); each reader names what it lacks.
 
 use std::collections::BTreeMap;
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
-use super::{AxisNoise, NoiseReport};
+use super::{AxisNoise, NoiseReport, AXES};
 use crate::noise::text::{capture_limit_is_lower_bound, capture_limit_s, CAPTURE_SECONDS_SHOWN};
 
 /// Micro-g per g.
@@ -14,24 +17,39 @@ pub const UG_PER_G: f64 = 1e6;
 /// Standard gravity in m/s^2 per g (Kalibr takes SI units).
 pub const STANDARD_GRAVITY: f64 = 9.80665;
 
-/// One axis in the usual units.
-#[derive(Serialize)]
-struct AxisJson {
-    tau_s: Vec<f64>,
-    adev: Vec<f64>,
-    adev_low: Vec<f64>,
-    adev_high: Vec<f64>,
-    white_noise_density: Option<f64>,
-    bias_instability: Option<f64>,
-    bias_instability_tau_s: Option<f64>,
-    /// Whether the curve resolves the bias instability (else it is only what the fit left there).
-    bias_instability_resolved: bool,
-    random_walk: Option<f64>,
+/// One axis in the usual units (ug for the accelerometer, deg/s for the gyro; `units` names them).
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(default)]
+pub struct AxisJson {
+    /// Averaging times, s.
+    pub tau_s: Vec<f64>,
+    /// The Allan deviation at each.
+    pub adev: Vec<f64>,
+    /// Its 68 % interval's lower end.
+    pub adev_low: Vec<f64>,
+    /// Its 68 % interval's upper end.
+    pub adev_high: Vec<f64>,
+    /// White noise density, one-sided as datasheets give it.
+    pub white_noise_density: Option<f64>,
+    /// Bias instability.
+    pub bias_instability: Option<f64>,
+    /// Where the fitted deviation is smallest, s.
+    pub bias_instability_tau_s: Option<f64>,
+    /// Whether the curve resolves the bias instability (else it is only what the fit left there;
+    /// reports before the flag do not say: taken as resolved).
+    #[serde(default = "resolved_unless_said")]
+    pub bias_instability_resolved: bool,
+    /// Random walk.
+    pub random_walk: Option<f64>,
+}
+
+fn resolved_unless_said() -> bool {
+    true
 }
 
 /// The unit of each number of one axis.
-#[derive(Serialize)]
-struct AxisUnits {
+#[derive(Debug, Serialize)]
+pub struct AxisUnits {
     tau_s: &'static str,
     adev: &'static str,
     adev_low: &'static str,
@@ -65,60 +83,128 @@ const GYRO_UNITS: AxisUnits = AxisUnits {
 };
 
 /// Kalibr's IMU noise numbers: the largest of the three axes of each sensor, in SI units.
-#[derive(Serialize)]
-struct KalibrJson {
-    /// What the four numbers of each part are and in which unit.
-    note: &'static str,
-    continuous_time: KalibrNumbers,
-    discrete_time: KalibrNumbers,
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct KalibrJson {
+    /// What the four numbers of each part are and in which unit (written, not read).
+    #[serde(skip_deserializing)]
+    pub note: &'static str,
+    /// What Kalibr's imu.yaml takes.
+    pub continuous_time: KalibrNumbers,
+    /// Per sample at `sample_rate_hz` (a reader may leave it out).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub discrete_time: Option<KalibrNumbers>,
 }
 
 /// accelerometer_noise_density, accelerometer_random_walk, gyroscope_noise_density, gyroscope_random_walk.
-#[derive(Serialize)]
-struct KalibrNumbers {
-    accelerometer_noise_density: f64,
-    accelerometer_random_walk: f64,
-    gyroscope_noise_density: f64,
-    gyroscope_random_walk: f64,
+#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
+pub struct KalibrNumbers {
+    pub accelerometer_noise_density: f64,
+    pub accelerometer_random_walk: f64,
+    pub gyroscope_noise_density: f64,
+    pub gyroscope_random_walk: f64,
 }
 
 /// What the noise means for the six-position captures.
-#[derive(Serialize)]
-struct CalibrationJson {
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(default)]
+pub struct CaptureAdviceJson {
     /// Averaging time in seconds beyond which no accelerometer axis improves with a longer capture.
-    capture_limit_s: Option<f64>,
+    pub capture_limit_s: Option<f64>,
     /// True when the deviation still fell at the longest averaging time analysed: the limit is at least that.
-    capture_limit_is_lower_bound: bool,
+    pub capture_limit_is_lower_bound: bool,
     /// Capture lengths in seconds and the 1-sigma error of each accelerometer axis's mean, ug.
-    accuracy_ug: Vec<(f64, [Option<f64>; 3])>,
+    pub accuracy_ug: Vec<(f64, [Option<f64>; 3])>,
 }
 
-/// The whole object.
-#[derive(Serialize)]
-struct NoiseJson {
-    sample_rate_hz: f64,
-    samples: usize,
+/// The whole object `accelcal noise --json` prints.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(default)]
+pub struct NoiseJson {
+    /// Samples per second of the recording.
+    pub sample_rate_hz: Option<f64>,
+    /// Samples per axis.
+    pub samples: Option<usize>,
+    /// The six axes, each a key of the object.
     #[serde(flatten)]
-    axes: BTreeMap<&'static str, AxisJson>,
-    units: BTreeMap<&'static str, &'static AxisUnits>,
-    /// Which of the two noise density conventions `white_noise_density` follows.
-    white_noise_convention: &'static str,
-    calibration: CalibrationJson,
-    kalibr: Option<KalibrJson>,
+    pub axes: AxesJson,
+    /// The unit of each number of each axis (written, not read).
+    #[serde(skip_deserializing)]
+    pub units: BTreeMap<&'static str, &'static AxisUnits>,
+    /// Which of the two noise density conventions `white_noise_density` follows (written, not read).
+    #[serde(skip_deserializing)]
+    pub white_noise_convention: &'static str,
+    /// What the noise means for a calibration's captures.
+    pub calibration: CaptureAdviceJson,
+    /// Kalibr's numbers (absent when an axis has no fitted terms).
+    pub kalibr: Option<KalibrJson>,
+}
+
+impl NoiseJson {
+    /// The report in the usual units.
+    pub fn of(report: &NoiseReport) -> Self {
+        NoiseJson {
+            sample_rate_hz: Some(report.rate_hz),
+            samples: Some(report.samples),
+            axes: AxesJson::of(report),
+            units: report
+                .axes
+                .iter()
+                .map(|a| (a.name, if a.is_accel() { &ACCEL_UNITS } else { &GYRO_UNITS }))
+                .collect(),
+            white_noise_convention: WHITE_NOISE_CONVENTION,
+            calibration: calibration_json(report),
+            kalibr: kalibr_json(report),
+        }
+    }
+
+    /// The axis called `name` (`accel_x` ... `gyro_z`); the reason when the report has none.
+    pub fn axis(&self, name: &str) -> Result<&AxisJson, String> {
+        let found = self.axes.all().into_iter().find(|(n, _)| *n == name).and_then(|(_, axis)| axis.as_ref());
+        found.ok_or_else(|| format!("it has no {name}: is it `accelcal noise --json` output?"))
+    }
+}
+
+/// The six axes of a noise report, each under its own name.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(default)]
+pub struct AxesJson {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub accel_x: Option<AxisJson>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub accel_y: Option<AxisJson>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub accel_z: Option<AxisJson>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub gyro_x: Option<AxisJson>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub gyro_y: Option<AxisJson>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub gyro_z: Option<AxisJson>,
+}
+
+impl AxesJson {
+    /// Every axis of the report in the usual units.
+    fn of(report: &NoiseReport) -> Self {
+        let axis = |name: &str| report.axes.iter().find(|a| a.name == name).map(axis_json);
+        let [accel_x, accel_y, accel_z, gyro_x, gyro_y, gyro_z] = AXES.map(axis);
+        AxesJson { accel_x, accel_y, accel_z, gyro_x, gyro_y, gyro_z }
+    }
+
+    /// Each axis with its name, in [`AXES`] order.
+    fn all(&self) -> [(&'static str, &Option<AxisJson>); 6] {
+        let axes = [&self.accel_x, &self.accel_y, &self.accel_z, &self.gyro_x, &self.gyro_y, &self.gyro_z];
+        std::array::from_fn(|k| (AXES[k], axes[k]))
+    }
 }
 
 /// The report as one pretty-printed JSON object.
 pub fn render(report: &NoiseReport) -> String {
-    let json = NoiseJson {
-        sample_rate_hz: report.rate_hz,
-        samples: report.samples,
-        axes: report.axes.iter().map(|a| (a.name, axis_json(a))).collect(),
-        units: report.axes.iter().map(|a| (a.name, if a.is_accel() { &ACCEL_UNITS } else { &GYRO_UNITS })).collect(),
-        white_noise_convention: WHITE_NOISE_CONVENTION,
-        calibration: calibration_json(report),
-        kalibr: kalibr_json(report),
-    };
-    serde_json::to_string_pretty(&json).unwrap_or_default()
+    serde_json::to_string_pretty(&NoiseJson::of(report)).unwrap_or_default()
+}
+
+/// A noise report as `accelcal noise --json` wrote it; the reason when the text is not one.
+pub fn read(text: &str) -> Result<NoiseJson, String> {
+    serde_json::from_str(text).map_err(|e| format!("{e}; give the output of `accelcal noise RECORDING --json`"))
 }
 
 /// The factor from the axis's own unit to the usual one: g to ug, deg/s unchanged.
@@ -146,7 +232,7 @@ fn axis_json(axis: &AxisNoise) -> AxisJson {
     }
 }
 
-fn calibration_json(report: &NoiseReport) -> CalibrationJson {
+fn calibration_json(report: &NoiseReport) -> CaptureAdviceJson {
     let accuracy = |seconds: f64| {
         let mut axes = [None; 3];
         for (slot, axis) in axes.iter_mut().zip(report.axes.iter().filter(|a| a.is_accel())) {
@@ -154,7 +240,7 @@ fn calibration_json(report: &NoiseReport) -> CalibrationJson {
         }
         (seconds, axes)
     };
-    CalibrationJson {
+    CaptureAdviceJson {
         capture_limit_s: capture_limit_s(report),
         capture_limit_is_lower_bound: capture_limit_is_lower_bound(report),
         accuracy_ug: CAPTURE_SECONDS_SHOWN.iter().map(|&s| accuracy(s)).collect(),
@@ -173,7 +259,7 @@ fn kalibr_json(report: &NoiseReport) -> Option<KalibrJson> {
         gyroscope_random_walk: largest(false, |t| t.random_walk)? * to_rad,
     };
     let discrete = discrete_time(&continuous, report.rate_hz);
-    Some(KalibrJson { note: KALIBR_NOTE, continuous_time: continuous, discrete_time: discrete })
+    Some(KalibrJson { note: KALIBR_NOTE, continuous_time: continuous, discrete_time: Some(discrete) })
 }
 
 /// See the NOTE in [`super::fit`].

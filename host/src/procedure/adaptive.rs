@@ -71,8 +71,9 @@ pub fn collect_adaptive<P: Port>(
         say_prediction(session, options.rule.target_mg, feedback);
     }
     let closing = drift::closing(&order[0]);
-    if !session.has_capture(&closing.name) {
+    if !session.captures.iter().any(|c| c.closing) {
         take(client, (hand, moves), &closing, options, feedback, session, &mut collected)?;
+        session.captures.last_mut().into_iter().for_each(|c| c.closing = true);
         keep(session)?;
     }
     Ok(collected)
@@ -111,7 +112,7 @@ fn say_prediction(session: &Session, target_mg: f64, feedback: &mut dyn Feedback
 
 /// "N positions predict P mg ...", and why when P misses the target.
 fn prediction_line(session: &Session, predicted_mg: f64, target_mg: f64) -> String {
-    let n = drift::positions(session);
+    let n = session.positions();
     let head = format!("{n} positions predict {predicted_mg:.3} mg at a fresh orientation at their mean temperature");
     if predicted_mg <= target_mg {
         return format!("{head}, the {target_mg} mg wanted");
@@ -181,7 +182,8 @@ mod tests {
 
     #[test]
     fn the_prediction_counts_positions_not_the_closing_capture_and_says_why_it_misses() {
-        let captures = vec![captured("+Z", 8.0), captured("-Z", 8.0), captured("+X", 2.0), captured("+Z again", 8.0)];
+        let closing = CaptureRecord { closing: true, ..captured("+Z again", 8.0) };
+        let captures = vec![captured("+Z", 8.0), captured("-Z", 8.0), captured("+X", 2.0), closing];
         let session = Session { captures, ..Session::default() };
         let reached = prediction_line(&session, 0.19, 0.2);
         assert!(

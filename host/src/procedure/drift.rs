@@ -17,7 +17,8 @@ use crate::session::Session;
 const ORDER: [&str; 14] = [
     "+Z", "+X-Y+Z", "+X+Y+Z", "+X+Y-Z", "-X+Y-Z", "-X-Y-Z", "-X-Y+Z", "+X-Y-Z", "-Z", "-X", "-Y", "+X", "+Y", "-X+Y+Z",
 ];
-/// What the closing capture of the first position is called after it.
+/// What the closing capture of the first position is called after it (a name for people: the
+/// capture carries its own mark).
 const AGAIN: &str = " again";
 
 /// The wanted orientations in drift-cancelling order (those not in the table keep their place at
@@ -29,12 +30,8 @@ pub fn order(targets: &[Orientation]) -> Vec<Orientation> {
     ordered
 }
 
-/// The positions a session's captures were taken at: its captures but the closing one.
-pub fn positions(session: &Session) -> usize {
-    session.captures.iter().filter(|c| !c.name.ends_with(AGAIN)).count()
-}
-
-/// The closing capture: the first position again, under its own name.
+/// The closing capture's orientation: the first position again, under its own name (the capture
+/// itself is marked [`crate::session::CaptureRecord::closing`]).
 pub fn closing(first: &Orientation) -> Orientation {
     Orientation { name: format!("{}{AGAIN}", first.name), ..first.clone() }
 }

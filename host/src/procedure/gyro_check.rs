@@ -6,7 +6,6 @@
 //! seconds would hide the scale error being checked.
 
 use nalgebra::Matrix3;
-use serde::Serialize;
 use shared::orientation::angle_between_deg;
 use shared::protocol::{Sample, StreamKind};
 
@@ -15,42 +14,13 @@ use super::{Feedback, Hand, ProcedureError};
 use crate::fit::gyro::{rotate_up, GyroFit, Turn};
 use crate::limits::{MAX_MOVE_SECONDS, TURN_CHECK_REST_SECONDS};
 use crate::link::{Client, Port, StreamRequest};
+use crate::session::TurnCheck;
 
 /// Largest angle, in degrees, between the check turn's axis and the horizontal: the accelerometer
 /// sees a turn about a tilted line as a smaller tilt, and a scale error of the gyro less and less.
 // NOTE: a turn over an edge of a board resting on a table is about a horizontal line; 20 degrees
 // leaves a hand's turn in the air room while the tilt still shows 94 % of the turn's angle.
 const MAX_CHECK_AXIS_ELEVATION_DEG: f64 = 20.0;
-
-/// What the verification turn measured, in degrees.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct TurnCheck {
-    /// The turn's angle by the calibrated accelerometer (between the rests before and after).
-    pub accel_deg: f64,
-    /// Its standard uncertainty (the accelerometer's noise over the rests).
-    pub accel_uncertainty_deg: f64,
-    /// The same tilt by the calibrated gyro: the rest before's up carried through the integrated turn.
-    pub gyro_deg: f64,
-    /// Its standard uncertainty: the rate noise integrated, and G's standard errors along the turn.
-    pub gyro_uncertainty_deg: f64,
-    /// The same turn through the raw gyro (bias removed, G undone), when G was fitted.
-    pub raw_deg: Option<f64>,
-}
-
-impl TurnCheck {
-    /// The line shown to the user.
-    pub fn line(&self) -> String {
-        let raw = self
-            .raw_deg
-            .map_or(" (the gyro's scale is not calibrated: the uncertainty is its noise alone)".to_owned(), |r| {
-                format!(" (uncalibrated {r:.2})")
-            });
-        format!(
-            "gyro check: a {:.2} +- {:.2} degree turn (by the accelerometer) now reads {:.2} +- {:.2} degrees{raw}",
-            self.accel_deg, self.accel_uncertainty_deg, self.gyro_deg, self.gyro_uncertainty_deg
-        )
-    }
-}
 
 /// Streams the board at rest, asks `hand` for a quarter turn, and streams until it rests again;
 /// `Ok(Err(why))` when the turn could not be measured.

@@ -10,25 +10,26 @@ mod gyro_check;
 mod hand;
 mod moves;
 mod simulated_hand;
+mod simulated_session;
 pub mod stop_rule;
 pub mod thermal;
 mod turns;
-mod verdict;
 mod verify;
 mod wait;
 
 use std::time::Duration;
 
 pub use crate::orientation::{corners, faces, quick_set, Orientation};
+pub use crate::session::{TargetVerdict, TurnCheck};
 pub use adaptive::{collect_adaptive, AdaptiveOptions, BoardClock, Collected};
 pub use collect::{collect, collect_into};
 pub use feedback::{Feedback, Silent};
-pub use gyro_check::{check_turn, TurnCheck};
+pub use gyro_check::check_turn;
 pub use hand::{Hand, PersonHand};
 pub use moves::{Moves, RecordedMove};
 pub use simulated_hand::SimulatedHand;
+pub use simulated_session::SimulatedSession;
 pub use turns::{fit_moves, turn_summaries, turns_of};
-pub use verdict::TargetVerdict;
 pub use verify::{verify, verify_clear_of, verify_with, Verification, VERIFY_SECONDS};
 
 use crate::fit::FitError;

@@ -151,18 +151,18 @@ impl StopRule {
 pub fn noise_from_report(path: &Path) -> Result<Noise, ProcedureError> {
     let unreadable = |reason: String| ProcedureError::NoiseReport { path: path.to_owned(), reason };
     let text = std::fs::read_to_string(path).map_err(|e| unreadable(e.to_string()))?;
-    let value: serde_json::Value = serde_json::from_str(&text).map_err(|e| unreadable(e.to_string()))?;
+    let report = crate::noise::json::read(&text).map_err(unreadable)?;
     let mut white_noise_g = [0.0; 3];
     for (axis, name) in ["accel_x", "accel_y", "accel_z"].iter().enumerate() {
-        let density = value[name]["white_noise_density"].as_f64().filter(|d| *d > 0.0 && d.is_finite());
+        let density = report.axis(name).ok().and_then(|a| a.white_noise_density).filter(|d| *d > 0.0 && d.is_finite());
         let density = density.ok_or_else(|| unreadable(format!("it has no {name}.white_noise_density")))?;
         // NOTE: the report's density is one-sided (noise/fit.rs); a mean errs by the two-sided N / sqrt(T).
         white_noise_g[axis] = density * 1e-6 / std::f64::consts::SQRT_2;
     }
     // NOTE: a limit that is only a lower bound (the deviation still fell at the longest averaging
     // time the recording allowed) caps nothing.
-    let lower_bound = value["calibration"]["capture_limit_is_lower_bound"].as_bool().unwrap_or(false);
-    let capture_limit_s = value["calibration"]["capture_limit_s"].as_f64().filter(|_| !lower_bound);
+    let advice = &report.calibration;
+    let capture_limit_s = advice.capture_limit_s.filter(|_| !advice.capture_limit_is_lower_bound);
     Ok(Noise::Report { white_noise_g, capture_limit_s })
 }
 

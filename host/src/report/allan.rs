@@ -3,9 +3,9 @@
 //! axis and a log-log plot of the accelerometer's deviation with the fitted curve.
 
 use serde::Serialize;
-use serde_json::Value;
 
 use super::figure::{axis_role, Figure, Series, SeriesStyle};
+use crate::noise::json::{AxisJson, NoiseJson};
 use crate::noise::{NoiseTerms, AXES};
 
 /// The noise of the board, as the report shows it.
@@ -42,17 +42,14 @@ pub struct AllanAxis {
 
 impl AllanSection {
     /// The section and its plot from a noise report's JSON; `Err` says what it lacks.
-    pub fn new(noise: &Value) -> Result<(Self, Figure), String> {
-        let number = |pointer: &str| noise.pointer(pointer).and_then(Value::as_f64);
-        let axes: Vec<AllanAxis> = AXES.iter().map(|&name| axis(noise, name)).collect::<Result<_, _>>()?;
+    pub fn new(noise: &NoiseJson) -> Result<(Self, Figure), String> {
+        let axes =
+            AXES.iter().map(|&name| Ok(AllanAxis::new(name, noise.axis(name)?))).collect::<Result<_, String>>()?;
         let section = AllanSection {
-            sample_rate_hz: number("/sample_rate_hz").ok_or("it has no sample_rate_hz")?,
-            samples: noise.pointer("/samples").and_then(Value::as_u64).ok_or("it has no samples")?,
-            capture_limit_s: number("/calibration/capture_limit_s"),
-            capture_limit_is_lower_bound: noise
-                .pointer("/calibration/capture_limit_is_lower_bound")
-                .and_then(Value::as_bool)
-                .unwrap_or(false),
+            sample_rate_hz: noise.sample_rate_hz.ok_or("it has no sample_rate_hz")?,
+            samples: noise.samples.ok_or("it has no samples")? as u64,
+            capture_limit_s: noise.calibration.capture_limit_s,
+            capture_limit_is_lower_bound: noise.calibration.capture_limit_is_lower_bound,
             axes,
         };
         let figure = figure(noise, &section.axes[..3])?;
@@ -60,26 +57,30 @@ impl AllanSection {
     }
 }
 
-fn axis(noise: &Value, name: &'static str) -> Result<AllanAxis, String> {
-    let axis = noise.get(name).ok_or_else(|| format!("it has no {name}: is it `accelcal noise --json` output?"))?;
-    let term = |key: &str| axis.get(key).and_then(Value::as_f64);
-    Ok(AllanAxis {
-        name,
-        white_noise_density: term("white_noise_density"),
-        bias_instability: term("bias_instability"),
-        bias_instability_tau_s: term("bias_instability_tau_s"),
-        bias_instability_resolved: axis.get("bias_instability_resolved").and_then(Value::as_bool).unwrap_or(true),
-        random_walk: term("random_walk"),
-    })
+impl AllanAxis {
+    fn new(name: &'static str, axis: &AxisJson) -> Self {
+        AllanAxis {
+            name,
+            white_noise_density: axis.white_noise_density,
+            bias_instability: axis.bias_instability,
+            bias_instability_tau_s: axis.bias_instability_tau_s,
+            bias_instability_resolved: axis.bias_instability_resolved,
+            random_walk: axis.random_walk,
+        }
+    }
 }
 
 /// The accelerometer's deviation per axis (markers) and the fitted curve (a line), log-log, in ug.
-fn figure(noise: &Value, accel: &[AllanAxis]) -> Result<Figure, String> {
+fn figure(noise: &NoiseJson, accel: &[AllanAxis]) -> Result<Figure, String> {
     let mut series = Vec::new();
     for (k, axis) in accel.iter().enumerate() {
-        let (taus, adev) = (list(noise, axis.name, "tau_s")?, list(noise, axis.name, "adev")?);
+        let curve = noise.axis(axis.name)?;
+        let (taus, adev) = (&curve.tau_s, &curve.adev);
+        if taus.is_empty() || taus.len() != adev.len() {
+            return Err(format!("{} has no deviation curve (tau_s and adev of one length)", axis.name));
+        }
         let short = ["x", "y", "z"][k];
-        let measured = taus.iter().zip(&adev).map(|(t, a)| [*t, *a]).collect();
+        let measured = taus.iter().zip(adev).map(|(t, a)| [*t, *a]).collect();
         series.push(Series::new(&format!("{short} deviation"), axis_role(k), SeriesStyle::Points, measured));
         if let Some(terms) = fitted(axis) {
             let curve = taus.iter().map(|&t| [t, terms.adev(t)]).collect();
@@ -87,12 +88,6 @@ fn figure(noise: &Value, accel: &[AllanAxis]) -> Result<Figure, String> {
         }
     }
     Ok(deviation_axes(series))
-}
-
-/// The numbers of the list `key` of axis `name`.
-fn list(noise: &Value, name: &str, key: &str) -> Result<Vec<f64>, String> {
-    let values = noise[name][key].as_array().ok_or_else(|| format!("{name}.{key} is not a list"))?;
-    Ok(values.iter().filter_map(Value::as_f64).collect())
 }
 
 fn deviation_axes(series: Vec<Series>) -> Figure {

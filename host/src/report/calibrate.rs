@@ -12,8 +12,7 @@ use super::gyro::{GyroJson, GyroOutcome, TruthGyroJson};
 use crate::calibration::CalibrationJson;
 use crate::certificate::Certificate;
 use crate::fit::Fit;
-use crate::procedure::{TargetVerdict, TurnCheck};
-use crate::session::Verification;
+use crate::session::{TargetVerdict, TurnCheck, Verification};
 
 /// The object `accelcal calibrate --json` prints.
 #[derive(Debug, Clone, Serialize)]

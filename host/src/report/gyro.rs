@@ -9,7 +9,7 @@ use shared::linalg::{identity, Mat3, Vec3};
 use super::figure::{Figure, Role, Series, SeriesStyle};
 use crate::calibration::CalibrationJson;
 use crate::fit::gyro::{GyroFit, TurnSummary};
-use crate::procedure::TurnCheck;
+use crate::session::TurnCheck;
 
 /// `calibration.gyro` of `accelcal calibrate --json`: w = matrix (w_raw - bias_dps).
 #[derive(Debug, Clone, PartialEq, Serialize)]

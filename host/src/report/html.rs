@@ -6,9 +6,10 @@ use std::fmt::Write;
 
 use super::figure::{Figure, SeriesStyle};
 use super::plot::{self, PlotError};
-use super::session::{Board, PositionResult, SessionReport, NOT_RECORDED};
+use super::session::{PositionResult, SessionReport, NOT_RECORDED};
 use super::Comparison;
-use crate::session::Verification;
+use crate::session::{Board, Verification};
+use crate::shown::escape;
 
 /// Said where a section's data is not in the session.
 pub const ABSENT: &str = "not part of this session";
@@ -266,9 +267,4 @@ pub fn shown(value: f64, digits: usize) -> String {
 
 pub(super) fn absent(what: &str) -> String {
     format!("<p class=\"absent\">{what}</p>")
-}
-
-/// Text made safe for HTML.
-pub fn escape(text: &str) -> String {
-    text.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
 }

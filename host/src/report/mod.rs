@@ -2,7 +2,8 @@
 //! as text for a person ([`text`]), as the JSON of DESIGN.md ([`json`]), and for a session as an
 //! HTML page with plots ([`html`]).
 
-pub use crate::shown::shown;
+pub use crate::session::Board;
+pub use crate::shown::{shown, utc_minutes};
 
 pub mod allan;
 mod calibrate;
@@ -24,7 +25,7 @@ pub use calibrate::{CalibrateReport, ChosenJson, DriftJson, HostFitSummary, Trut
 pub use comparison::{ComparedModel, Comparison};
 pub use figure::{axis_role, Figure, Role, Series, SeriesStyle};
 pub use plot::PlotError;
-pub use session::{utc_minutes, Board, Figures, FitSummary, PositionResult, SessionReport, Verdict, NOT_RECORDED};
+pub use session::{Figures, FitSummary, PositionResult, SessionReport, Verdict, NOT_RECORDED};
 
 use crate::data::Dataset;
 use crate::fit::{self, Evaluation, Fit, FitError, FitOptions, ModelChoice};

@@ -2,7 +2,7 @@
 //! the fit with its uncertainties and the models it was chosen from, the verification, and the
 //! figures drawn from them. Computed once; [`super::html`], [`super::text`] and JSON render it.
 
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 use shared::linalg;
 
 use super::allan::AllanSection;
@@ -13,8 +13,7 @@ use super::{Comparison, FitReport};
 use crate::data::Dataset;
 use crate::fit::gyro::TurnSummary;
 use crate::fit::{FitError, FitOptions, Parameter};
-use crate::session::Session;
-use crate::session::Verification;
+use crate::session::{Board, Session, Verification};
 
 /// Shown for what the session does not carry.
 pub const NOT_RECORDED: &str = "not recorded";
@@ -45,23 +44,6 @@ pub struct SessionReport {
     pub figures: Figures,
     /// The gyro's turns between the positions, when the session recorded them.
     pub gyro_turns: Option<Vec<TurnSummary>>,
-}
-
-/// What the session records of the board; `None` where it records nothing.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Board {
-    /// The board's serial number.
-    pub serial: Option<String>,
-    /// The firmware version.
-    pub firmware: Option<String>,
-    /// The sensor part, named (see `accelcal::part::describe`).
-    pub part: Option<String>,
-    /// The sensor configuration (range, filter, sample rate).
-    pub sensor_config: Option<String>,
-    /// The accelerometer range of the captures, full scale in g.
-    pub range_g: Option<u8>,
-    /// When the first capture ended, UTC (YYYY-MM-DD HH:MM).
-    pub date_utc: Option<String>,
 }
 
 /// The one-line verdict.
@@ -204,29 +186,6 @@ fn summary(report: &FitReport, positions: &[PositionResult]) -> FitSummary {
     }
 }
 
-impl Board {
-    pub fn of(session: &Session) -> Self {
-        let first = session.captures.first();
-        let board = session.board.as_ref();
-        Board {
-            serial: board.map(|b| b.serial.clone()),
-            firmware: board.map(|b| format!("{}.{}.{}", b.firmware.major, b.firmware.minor, b.firmware.patch)),
-            part: board.and_then(|b| b.sensor.clone()),
-            sensor_config: board.map(|b| {
-                let c = b.config;
-                format!(
-                    "+-{} g, {} Hz, low-pass {} Hz",
-                    c.range.full_scale_g(),
-                    c.sample_rate_hz,
-                    c.filter.bandwidth_hz()
-                )
-            }),
-            range_g: first.map(|c| c.stats.range.full_scale_g()),
-            date_utc: first.map(|c| utc_minutes(c.unix_time_s)),
-        }
-    }
-}
-
 impl Verdict {
     fn new(fit: &FitSummary, verification: Option<&Verification>) -> Self {
         let Some(v) = verification else {
@@ -259,15 +218,6 @@ impl Figures {
             gyro_turns: None,
         }
     }
-}
-
-/// Seconds since the Unix epoch as `YYYY-MM-DD HH:MM` UTC (the epoch itself for a time `time`
-/// cannot represent).
-pub fn utc_minutes(unix_time_s: f64) -> String {
-    let at = time::OffsetDateTime::from_unix_timestamp(unix_time_s.max(0.0) as i64)
-        .unwrap_or(time::OffsetDateTime::UNIX_EPOCH);
-    let (year, month, day) = (at.year(), u8::from(at.month()), at.day());
-    format!("{year:04}-{month:02}-{day:02} {:02}:{:02}", at.hour(), at.minute())
 }
 
 #[cfg(test)]

@@ -42,7 +42,7 @@ pub fn html_section(out: &mut String, report: &SessionReport) {
     let Some(uploaded) = &report.uploaded else {
         return;
     };
-    let _ = write!(out, "<section><h2>Uploaded to the board</h2><p>{}</p>", super::html::escape(&uploaded.line));
+    let _ = write!(out, "<section><h2>Uploaded to the board</h2><p>{}</p>", crate::shown::escape(&uploaded.line));
     out.push_str("<div class=\"table-wrap\"><table><tr><th>row</th><th colspan=\"3\">M</th><th>o (g)</th>");
     out.push_str("<th colspan=\"3\">gyro G</th></tr>");
     for i in 0..3 {

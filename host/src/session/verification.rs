@@ -1,4 +1,5 @@
-//! What a session's verification found: the calibration checked at fresh orientations.
+//! What a session's verification found: the calibration checked at fresh orientations, and the
+//! gyro's check turn.
 
 use serde::{Deserialize, Serialize};
 
@@ -35,4 +36,34 @@ pub struct Verification {
     /// |a| - 1 g at each orientation with the calibration, in mg.
     #[serde(default)]
     pub after_mg: Vec<f64>,
+}
+
+/// What the verification turn measured, in degrees.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct TurnCheck {
+    /// The turn's angle by the calibrated accelerometer (between the rests before and after).
+    pub accel_deg: f64,
+    /// Its standard uncertainty (the accelerometer's noise over the rests).
+    pub accel_uncertainty_deg: f64,
+    /// The same tilt by the calibrated gyro: the rest before's up carried through the integrated turn.
+    pub gyro_deg: f64,
+    /// Its standard uncertainty: the rate noise integrated, and G's standard errors along the turn.
+    pub gyro_uncertainty_deg: f64,
+    /// The same turn through the raw gyro (bias removed, G undone), when G was fitted.
+    pub raw_deg: Option<f64>,
+}
+
+impl TurnCheck {
+    /// The line shown to the user.
+    pub fn line(&self) -> String {
+        let raw = self
+            .raw_deg
+            .map_or(" (the gyro's scale is not calibrated: the uncertainty is its noise alone)".to_owned(), |r| {
+                format!(" (uncalibrated {r:.2})")
+            });
+        format!(
+            "gyro check: a {:.2} +- {:.2} degree turn (by the accelerometer) now reads {:.2} +- {:.2} degrees{raw}",
+            self.accel_deg, self.accel_uncertainty_deg, self.gyro_deg, self.gyro_uncertainty_deg
+        )
+    }
 }

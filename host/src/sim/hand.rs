@@ -20,29 +20,10 @@ impl Hand {
     pub(super) fn obey(&mut self, sensor: &mut SimMpu6050, command: SimCommand) -> bool {
         // NOTE: only a new motion replaces a timed one; a change of the surroundings during a turn
         // leaves the turn to end where it would have.
-        if matches!(
-            command,
-            SimCommand::Place(_)
-                | SimCommand::Move(_)
-                | SimCommand::MoveFor { .. }
-                | SimCommand::TurnTo(_)
-                | SimCommand::Tip(_)
-        ) {
+        if starts_motion(&command) {
             self.motion_ends_us = None;
         }
-        let command = match command {
-            SimCommand::TurnTo(up) => {
-                // NOTE: from where it rests now (a turn still running ends where it got to).
-                sensor.stop_motion();
-                turn_between(sensor.physics.up.map(f64::from), up.map(f64::from), [1.0, 0.0, 0.0])
-            }
-            SimCommand::Tip(degrees) => {
-                sensor.stop_motion();
-                tip(sensor.physics.up.map(f64::from), f64::from(degrees))
-            }
-            command => command,
-        };
-        match command {
+        match as_motion(sensor, command) {
             SimCommand::Place(up) => sensor.place(up),
             SimCommand::Move(motion) => sensor.set_motion(motion),
             SimCommand::MoveFor { motion, seconds } => {
@@ -64,6 +45,35 @@ impl Hand {
             self.motion_ends_us = None;
             sensor.stop_motion();
         }
+    }
+}
+
+/// Whether `command` starts a new motion (which replaces a timed one).
+fn starts_motion(command: &SimCommand) -> bool {
+    matches!(
+        command,
+        SimCommand::Place(_)
+            | SimCommand::Move(_)
+            | SimCommand::MoveFor { .. }
+            | SimCommand::TurnTo(_)
+            | SimCommand::Tip(_)
+    )
+}
+
+/// A turn or a tip as the motion that makes it, from where the sensor rests now (a turn still
+/// running ends where it got to); any other command as it is.
+fn as_motion(sensor: &mut SimMpu6050, command: SimCommand) -> SimCommand {
+    match command {
+        SimCommand::TurnTo(up) => {
+            sensor.stop_motion();
+            let from = sensor.physics.up.map(f64::from);
+            turn_between(from, up.map(f64::from), [1.0, 0.0, 0.0])
+        }
+        SimCommand::Tip(degrees) => {
+            sensor.stop_motion();
+            tip(sensor.physics.up.map(f64::from), f64::from(degrees))
+        }
+        command => command,
     }
 }
 

@@ -17,8 +17,8 @@ use firmware::sim::{SimFlash, SimMpu6050, SIM_FLASH_RANGE};
 
 use super::board::SimCommand;
 use super::clock::{Clock, Pace};
-use super::outgoing::Outgoing;
 use super::hand::Hand;
+use super::outgoing::Outgoing;
 use super::Port;
 
 type SimServer = Server<SimMpu6050, SimFlash>;

@@ -1,4 +1,4 @@
-//! Five sketches people run on an MPU-6050, each printing a [`PersonSession`] as it would: the
+//! Eight sketches people run on an MPU-6050, each printing a [`PersonSession`] as it would: the
 //! lines it prints before its data, each sample's line (and the records it prints between), its
 //! pace, and its line ending. What `sim --sketch` replays on a pseudo-terminal and the stream tests
 //! read.
@@ -20,6 +20,12 @@ pub enum Sketch {
     Csv,
     /// MicroPython on a Pico: the REPL banner, then `(ax, ay, az)` in g with four decimals, about 19 Hz, LF.
     Micropython,
+    /// A sketch for the Arduino Serial Plotter: `ax:..,ay:..,...,gz:..` counts, about 50 Hz, low-pass 44 Hz.
+    SerialPlotter,
+    /// A C program on a single-board computer: six counts separated by spaces, 100 Hz, low-pass 44 Hz, LF.
+    Whitespace,
+    /// A logger writing Kalibr's IMU CSV: a header, then ns, rad/s and m/s^2, 200 Hz, low-pass 94 Hz, LF.
+    Kalibr,
 }
 
 /// What the ESP32's ROM prints at power-on (the logger's lines come after it).
@@ -38,8 +44,16 @@ pub struct TimedLine {
 
 impl Sketch {
     /// Every sketch.
-    pub const ALL: [Sketch; 5] =
-        [Sketch::I2cdevlib, Sketch::Motioncal, Sketch::Plotter, Sketch::Csv, Sketch::Micropython];
+    pub const ALL: [Sketch; 8] = [
+        Sketch::I2cdevlib,
+        Sketch::Motioncal,
+        Sketch::Plotter,
+        Sketch::Csv,
+        Sketch::Micropython,
+        Sketch::SerialPlotter,
+        Sketch::Whitespace,
+        Sketch::Kalibr,
+    ];
 
     /// How it reads the chip.
     pub fn reading(self) -> Reading {
@@ -49,6 +63,9 @@ impl Sketch {
             Sketch::Plotter => (57.0, true),
             Sketch::Csv => (100.0, true),
             Sketch::Micropython => (19.0, false),
+            Sketch::SerialPlotter => (50.0, true),
+            Sketch::Whitespace => (100.0, true),
+            Sketch::Kalibr => (200.0, true),
         };
         Reading { rate_hz, filtered }
     }
@@ -56,9 +73,9 @@ impl Sketch {
     /// The units of its accelerometer's values in a g, as it prints them.
     pub fn accel_per_g(self) -> f64 {
         match self {
-            Sketch::I2cdevlib | Sketch::Csv => 16384.0,
+            Sketch::I2cdevlib | Sketch::Csv | Sketch::SerialPlotter | Sketch::Whitespace => 16384.0,
             Sketch::Motioncal => 9.80665 * 8192.0 / 9.8,
-            Sketch::Plotter => 9.80665,
+            Sketch::Plotter | Sketch::Kalibr => 9.80665,
             Sketch::Micropython => 1.0,
         }
     }
@@ -82,6 +99,9 @@ impl Sketch {
             Sketch::Micropython => {
                 "MicroPython v1.22.2 on 2024-02-22; Raspberry Pi Pico with RP2040\nType \"help()\" for more information.\n>>> import logger\n"
             }
+            Sketch::SerialPlotter => "MPU6050 ready\r\n",
+            Sketch::Whitespace => "",
+            Sketch::Kalibr => "timestamp,omega_x,omega_y,omega_z,alpha_x,alpha_y,alpha_z\n",
         }
     }
 
@@ -94,6 +114,9 @@ impl Sketch {
             Sketch::Plotter => plotter(s),
             Sketch::Csv => format!("{},{ax},{ay},{az},{gx},{gy},{gz}\r\n", (s.at_s * 1000.0).round() as i64 + 312),
             Sketch::Micropython => format!("({:.4}, {:.4}, {:.4})\n", ax / 16384.0, ay / 16384.0, az / 16384.0),
+            Sketch::SerialPlotter => format!("ax:{ax},ay:{ay},az:{az},gx:{gx},gy:{gy},gz:{gz}\r\n"),
+            Sketch::Whitespace => format!("{ax} {ay} {az} {gx} {gy} {gz}\n"),
+            Sketch::Kalibr => kalibr(s),
         }
     }
 }
@@ -124,4 +147,13 @@ fn plotter(s: &ChipSample) -> String {
         "AccelX:{:.2},AccelY:{:.2},AccelZ:{:.2}, GyroX:{:.2},GyroY:{:.2},GyroZ:{:.2}\r\n",
         ms2[0], ms2[1], ms2[2], rads[0], rads[1], rads[2]
     )
+}
+
+/// Kalibr's IMU CSV: nanoseconds (from an epoch of November 2026), rad/s and m/s^2, as such loggers
+/// write them (full precision; six decimals here).
+fn kalibr(s: &ChipSample) -> String {
+    let ns = 1_795_000_000_000_000_000u64 + (s.at_s * 1e9).round() as u64;
+    let ms2 = s.accel.map(|c| f64::from(c) / 16384.0 * 9.80665);
+    let rads = s.gyro.map(|c| (f64::from(c) / 131.0).to_radians());
+    format!("{ns},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6}\n", rads[0], rads[1], rads[2], ms2[0], ms2[1], ms2[2])
 }

@@ -1,4 +1,4 @@
-//! The session report: its verdict, its dates and its positions as the fit took them.
+//! The session report: its verdict and its positions as the fit took them.
 
 use shared::linalg;
 
@@ -17,13 +17,6 @@ fn a_calibration_is_trusted_within_three_noise_floors_and_only_when_verified() {
     assert!(!Verdict::new(&fit, Some(&verified(0.38, 0.125))).trusted);
     let unverified = Verdict::new(&fit, None);
     assert!(!unverified.trusted && unverified.line.contains("not verified"), "{}", unverified.line);
-}
-
-#[test]
-fn dates_are_utc_calendar_dates() {
-    assert_eq!(utc_minutes(0.0), "1970-01-01 00:00");
-    assert_eq!(utc_minutes(951_782_400.0 + 3_660.0), "2000-02-29 01:01");
-    assert_eq!(utc_minutes(1_795_000_000.0), "2026-11-18 11:06");
 }
 
 /// A noise-free capture at `up` of a sensor read through a scale and offset whose offset drifts by

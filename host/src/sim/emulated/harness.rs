@@ -101,7 +101,9 @@ impl Harness {
     }
 
     fn say(&mut self, text: &str) -> Result<(), EmulatorError> {
-        writeln!(self.answers, "{text}").and_then(|()| self.answers.flush()).map_err(|e| EmulatorError::Node(e.to_string()))
+        writeln!(self.answers, "{text}")
+            .and_then(|()| self.answers.flush())
+            .map_err(|e| EmulatorError::Node(e.to_string()))
     }
 }
 

@@ -133,7 +133,11 @@ impl Bridge {
                 Order::Sensor(command) => drop(self.hand.obey(&mut self.sensor, command)),
                 Order::PowerCycle => controls.push(Control::PowerCycle),
                 Order::Cable(plugged) => {
-                    if plugged { self.port.plug()? } else { self.port.pull() }
+                    if plugged {
+                        self.port.plug()?
+                    } else {
+                        self.port.pull()
+                    }
                     controls.push(Control::Cable(plugged));
                 }
             }

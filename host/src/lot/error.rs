@@ -1,0 +1,41 @@
+//! Why the lot database cannot do what was asked, each with the way out.
+
+use std::path::PathBuf;
+
+/// A lot database's failure.
+#[derive(Debug, thiserror::Error)]
+pub enum LotError {
+    #[error("cannot open the lot database {}: {source}; give a writable path (a new file is created) or a lot file `accelcal lot add` wrote", .path.display())]
+    Open { path: PathBuf, source: rusqlite::Error },
+    #[error("{} is no lot database: there is no such file; add certificates to it first with `accelcal lot add {} CERT.json` or `accelcal calibrate --lot {}`", .path.display(), .path.display(), .path.display())]
+    Missing { path: PathBuf },
+    #[error("{} is not an accelcal lot of this version (schema {found}, this accelcal reads 1); give the lot file `accelcal lot add` wrote, or a new path", .path.display())]
+    NotALot { path: PathBuf, found: i64 },
+    #[error("the lot database {} failed: {source}; nothing of the board being written was kept, run the command again (a lot another process is writing is waited for up to 30 s)", .path.display())]
+    Sql { path: PathBuf, source: rusqlite::Error },
+    #[error("the lot database {} is held by another writer for more than 30 s; run again once the other session has written its board", .path.display())]
+    Busy { path: PathBuf },
+    #[error("a certificate in {} does not read back ({reason}); it was stored by another accelcal version: read it with that version", .path.display())]
+    Unreadable { path: PathBuf, reason: String },
+    #[error("the certificate names no board serial, so the lot cannot key it: issue it from a session that recorded its board (calibrate or capture on the board)")]
+    NoSerial,
+    #[error("the lot {} holds no board with serial {serial}; `accelcal lot show {}` lists its boards", .path.display(), .path.display())]
+    UnknownBoard { path: PathBuf, serial: String },
+    #[error("cannot read the spec file {}: {reason}; write it as TOML, one `[limits.NAME]` table per parameter with `low` and/or `high` in the certificate's units (docs/production.md)", .path.display())]
+    Spec { path: PathBuf, reason: String },
+}
+
+impl LotError {
+    /// An SQLite failure at `path`: a lot another process holds is named as such, the rest as `make`.
+    pub(super) fn from_sqlite(
+        path: &std::path::Path,
+        source: rusqlite::Error,
+        make: fn(PathBuf, rusqlite::Error) -> Self,
+    ) -> Self {
+        use rusqlite::ErrorCode::{DatabaseBusy, DatabaseLocked};
+        match source.sqlite_error_code() {
+            Some(DatabaseBusy | DatabaseLocked) => LotError::Busy { path: path.into() },
+            _ => make(path.into(), source),
+        }
+    }
+}

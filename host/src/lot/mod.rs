@@ -1,0 +1,208 @@
+//! The lot database (issue 28): every board's certificates in one SQLite file (embedded, no server),
+//! keyed by the board's serial and the calibration's time. Each certificate goes in as one
+//! transaction, so a writer killed part way leaves the file as it was before that board; the file is
+//! in WAL mode, so another process reads the lot while a session writes to it.
+
+mod error;
+pub mod spec;
+pub mod summary;
+pub mod text;
+
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+use rusqlite::{params, Connection, OpenFlags, TransactionBehavior};
+
+use crate::certificate::Certificate;
+pub use error::LotError;
+pub use spec::{Limits, Spec};
+pub use summary::{Distribution, LotSummary};
+
+/// The schema's version, in SQLite's `user_version`.
+const SCHEMA_VERSION: i64 = 1;
+/// How long a writer waits for another writer's transaction to end before it gives up.
+const BUSY_WAIT: Duration = Duration::from_secs(30);
+/// One row per certificate (the whole sealed JSON) and one row per certified parameter, for queries.
+const SCHEMA: &str = "
+CREATE TABLE IF NOT EXISTS certificates (
+    id INTEGER PRIMARY KEY,
+    serial TEXT NOT NULL,
+    date_utc TEXT NOT NULL,
+    sha256 TEXT NOT NULL UNIQUE,
+    json TEXT NOT NULL
+);
+CREATE INDEX IF NOT EXISTS certificates_by_board ON certificates (serial, date_utc);
+CREATE TABLE IF NOT EXISTS parameters (
+    certificate INTEGER NOT NULL REFERENCES certificates (id),
+    name TEXT NOT NULL,
+    value REAL NOT NULL,
+    u REAL NOT NULL,
+    expanded REAL NOT NULL,
+    unit TEXT NOT NULL,
+    PRIMARY KEY (certificate, name)
+);";
+
+/// An open lot database.
+pub struct Lot {
+    connection: Connection,
+    path: PathBuf,
+    /// A pause inside each write transaction, after the certificate's row and before its
+    /// parameters: only for the tests that kill a writer or read beside one mid-transaction.
+    pub pause_in_write: Option<Duration>,
+}
+
+/// What adding a certificate did.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Added {
+    New,
+    /// The same certificate (by its hash) was already in the lot.
+    AlreadyThere,
+}
+
+impl Lot {
+    /// Opens the lot at `path` for writing, creating the file and its tables when it is new.
+    pub fn create_or_open(path: &Path) -> Result<Self, LotError> {
+        let connection = Connection::open(path).map_err(|source| LotError::from_sqlite(path, source, open_failed))?;
+        let lot = Lot { connection, path: path.into(), pause_in_write: None };
+        lot.prepare().map_err(|source| LotError::from_sqlite(path, source, open_failed))?;
+        lot.check_version()?;
+        Ok(lot)
+    }
+
+    /// Opens an existing lot for reading; a missing file is refused, never created.
+    pub fn open_existing(path: &Path) -> Result<Self, LotError> {
+        if !path.is_file() {
+            return Err(LotError::Missing { path: path.into() });
+        }
+        let flags = OpenFlags::SQLITE_OPEN_READ_WRITE | OpenFlags::SQLITE_OPEN_NO_MUTEX;
+        let connection = Connection::open_with_flags(path, flags)
+            .map_err(|source| LotError::from_sqlite(path, source, open_failed))?;
+        let lot = Lot { connection, path: path.into(), pause_in_write: None };
+        lot.connection.busy_timeout(BUSY_WAIT).map_err(|source| LotError::from_sqlite(path, source, open_failed))?;
+        lot.check_version()?;
+        Ok(lot)
+    }
+
+    /// WAL (readers never wait for a writer), the wait for other writers, the tables.
+    fn prepare(&self) -> rusqlite::Result<()> {
+        self.connection.busy_timeout(BUSY_WAIT)?;
+        self.connection.pragma_update_and_check(None, "journal_mode", "WAL", |_| Ok(()))?;
+        // NOTE: FULL: a committed board survives a power cut too, not only a killed process.
+        self.connection.pragma_update(None, "synchronous", "FULL")?;
+        self.connection.execute_batch(SCHEMA)?;
+        self.connection.pragma_update(None, "user_version", SCHEMA_VERSION)
+    }
+
+    /// Refuses a file that is not a lot of this schema (another program's SQLite file, a newer lot).
+    fn check_version(&self) -> Result<(), LotError> {
+        let version: i64 = self
+            .connection
+            .pragma_query_value(None, "user_version", |row| row.get(0))
+            .map_err(|source| LotError::from_sqlite(&self.path, source, open_failed))?;
+        match version {
+            SCHEMA_VERSION => Ok(()),
+            found => Err(LotError::NotALot { path: self.path.clone(), found }),
+        }
+    }
+
+    /// Adds a certificate as one transaction: its row and every parameter's, or nothing.
+    pub fn add(&mut self, certificate: &Certificate) -> Result<Added, LotError> {
+        let serial = certificate.board.serial.as_deref().ok_or(LotError::NoSerial)?;
+        let date = certificate.date_utc.as_deref().unwrap_or("");
+        let (pause, path) = (self.pause_in_write, self.path.clone());
+        let sql = |source| LotError::from_sqlite(&path, source, sql_failed);
+        let tx = self.connection.transaction_with_behavior(TransactionBehavior::Immediate).map_err(sql)?;
+        let json = certificate.to_json();
+        let row = "INSERT OR IGNORE INTO certificates (serial, date_utc, sha256, json) VALUES (?1, ?2, ?3, ?4)";
+        if tx.execute(row, params![serial, date, certificate.sha256, json]).map_err(sql)? == 0 {
+            return Ok(Added::AlreadyThere);
+        }
+        let id = tx.last_insert_rowid();
+        if let Some(pause) = pause {
+            eprintln!("lot: inside the transaction of board {serial}");
+            std::thread::sleep(pause);
+        }
+        let insert =
+            "INSERT INTO parameters (certificate, name, value, u, expanded, unit) VALUES (?1, ?2, ?3, ?4, ?5, ?6)";
+        for (name, p) in &certificate.parameters {
+            tx.execute(insert, params![id, name, p.value, p.u, p.expanded, p.unit]).map_err(sql)?;
+        }
+        tx.commit().map_err(sql)?;
+        Ok(Added::New)
+    }
+
+    /// Every board's latest certificate, by serial.
+    pub fn latest(&self) -> Result<Vec<Certificate>, LotError> {
+        let all = self.certificates("SELECT json FROM certificates ORDER BY serial, date_utc, id", [])?;
+        let mut latest: Vec<Certificate> = Vec::new();
+        for certificate in all {
+            match latest.last_mut() {
+                Some(last) if last.board.serial == certificate.board.serial => *last = certificate,
+                _ => latest.push(certificate),
+            }
+        }
+        Ok(latest)
+    }
+
+    /// Every certificate of one board, oldest first; refused when the lot has none.
+    pub fn board(&self, serial: &str) -> Result<Vec<Certificate>, LotError> {
+        let sql = "SELECT json FROM certificates WHERE serial = ?1 ORDER BY date_utc, id";
+        let found = self.certificates(sql, [serial])?;
+        match found.is_empty() {
+            true => Err(LotError::UnknownBoard { path: self.path.clone(), serial: serial.into() }),
+            false => Ok(found),
+        }
+    }
+
+    /// The certificates a query selects (its one column the JSON), read back as issued.
+    fn certificates<P: rusqlite::Params>(&self, query: &str, bound: P) -> Result<Vec<Certificate>, LotError> {
+        let sql = |source| LotError::from_sqlite(&self.path, source, sql_failed);
+        let mut statement = self.connection.prepare(query).map_err(sql)?;
+        let rows = statement.query_map(bound, |row| row.get::<_, String>(0)).map_err(sql)?;
+        let texts: Vec<String> = rows.collect::<Result<_, _>>().map_err(sql)?;
+        let read = |text: &String| {
+            serde_json::from_str(text)
+                .map_err(|e| LotError::Unreadable { path: self.path.clone(), reason: e.to_string() })
+        };
+        texts.iter().map(read).collect()
+    }
+
+    /// The number of certificates and of parameter rows, and whether every certificate has all of its
+    /// parameters (SQLite's own integrity check included): what a killed writer must not break.
+    pub fn consistency(&self) -> Result<Consistency, LotError> {
+        let sql = |source| LotError::from_sqlite(&self.path, source, sql_failed);
+        let count = |query: &str| self.connection.query_row(query, [], |row| row.get::<_, i64>(0)).map_err(sql);
+        let integrity: String =
+            self.connection.query_row("PRAGMA integrity_check", [], |row| row.get(0)).map_err(sql)?;
+        let certificates = count("SELECT count(*) FROM certificates")?;
+        let parameters = count("SELECT count(*) FROM parameters")?;
+        let stated = self.stated_parameter_count()?;
+        Ok(Consistency { certificates, parameters, complete: integrity == "ok" && stated == parameters })
+    }
+
+    /// The parameters the stored certificates state between them.
+    fn stated_parameter_count(&self) -> Result<i64, LotError> {
+        let all = self.certificates("SELECT json FROM certificates", [])?;
+        Ok(all.iter().map(|c| c.parameters.len() as i64).sum())
+    }
+}
+
+fn open_failed(path: PathBuf, source: rusqlite::Error) -> LotError {
+    LotError::Open { path, source }
+}
+
+fn sql_failed(path: PathBuf, source: rusqlite::Error) -> LotError {
+    LotError::Sql { path, source }
+}
+
+/// What [`Lot::consistency`] found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Consistency {
+    pub certificates: i64,
+    pub parameters: i64,
+    /// SQLite's integrity check passed and the parameter rows are exactly those the certificates state.
+    pub complete: bool,
+}
+
+#[cfg(test)]
+mod tests;
