@@ -29,7 +29,7 @@ fn json(args: &[&str]) -> serde_json::Value {
 fn the_real_pico_binary_answers_info_and_streams_the_simulated_sensor_over_its_usb_port() {
     let mut pico = EmulatedPico::boot("3");
     let info = json(&["info", "--port", &pico.path, "--json"]);
-    assert_eq!(info["protocol_version"], 5, "{info}");
+    assert_eq!(info["protocol_version"], shared::protocol::PROTOCOL_VERSION, "{info}");
     assert_eq!(info["part"], "MPU-6050", "{info}");
     assert_eq!(info["who_am_i"], 0x68, "{info}");
     assert_eq!(info["sensor"]["address"], 0x68, "{info}");

@@ -97,7 +97,7 @@ impl Bridge {
             Event::RepeatedStart | Event::Stop => {}
             Event::FromDevice(bytes) => {
                 self.fits.device_sent(&bytes);
-                self.port.to_host(&bytes);
+                self.port.send(&bytes);
             }
             Event::Open => announce(self.port.path()),
             Event::Poll { at_ns, cycles } => {
@@ -142,7 +142,7 @@ impl Bridge {
                 }
             }
         }
-        let (bytes, open) = self.port.from_host();
+        let (bytes, open) = self.port.take_written();
         // NOTE: the port's state before its bytes, so that what the host wrote reaches a device
         // that sees DTR high.
         controls.push(Control::Port(open));
@@ -179,10 +179,10 @@ fn read_orders() -> Receiver<Order> {
                 }
                 (_, Ok(Line::Board(command))) => Order::Sensor(command),
                 (_, Ok(Line::Help)) => {
-                    print!("{}cable out|cable in        pull or plug the USB cable\n", help());
+                    println!("{}cable out|cable in        pull or plug the USB cable", help());
                     continue;
                 }
-                (text, Err(_)) if text.is_empty() => continue,
+                ("", Err(_)) => continue,
                 (_, Err(why)) => {
                     eprintln!("refused: {why} (help lists the commands)");
                     continue;

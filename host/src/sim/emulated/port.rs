@@ -53,7 +53,7 @@ impl HostPort {
     /// What the host wrote since the last call (nothing while the cable is out), and whether a
     /// program has the port open now; what the device sent is dropped when the port closes, as the
     /// kernel drops a closed serial port's unread input.
-    pub(super) fn from_host(&mut self) -> (Vec<u8>, bool) {
+    pub(super) fn take_written(&mut self) -> (Vec<u8>, bool) {
         let mut bytes = Vec::new();
         let Some((master, _)) = self.pty.as_mut() else { return (bytes, false) };
         let mut buffer = [0u8; 4096];
@@ -77,7 +77,7 @@ impl HostPort {
     }
 
     /// Queues what the device sent and writes as much as the host has room for.
-    pub(super) fn to_host(&mut self, bytes: &[u8]) {
+    pub(super) fn send(&mut self, bytes: &[u8]) {
         if self.open {
             self.to_host.extend(bytes);
         }
