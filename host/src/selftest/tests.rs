@@ -160,3 +160,18 @@ fn ctrl_c_during_the_self_test_ends_it_as_interrupted_with_the_configuration_wri
     client.take_interrupt();
     assert_eq!(client.read_registers(0x19, 5).unwrap(), before);
 }
+
+#[test]
+fn the_text_shows_the_previous_deviation_beside_each_axis_and_the_family_verdict_beside_accelcals() {
+    let test = self_test(part("mpu6500").with_faulty_axis(0), &mut Still::default()).unwrap();
+    let axes: Vec<_> = (0..6).map(|i| serde_json::json!({ "deviation_percent": 1.5 + i as f64 })).collect();
+    let previous =
+        history::HistoryEntry { date_utc: "2026-11-24 10:00".into(), result: serde_json::json!({ "axes": axes }) };
+    let text = report::text(&test, Some(&previous));
+    let line = |axis: &str| text.lines().find(|l| l.starts_with(axis)).unwrap_or_default().to_owned();
+    assert!(text.contains("previous (2026-11-24 10:00)"), "{text}");
+    assert!(line("accel_x").contains("FAIL") && line("accel_x").ends_with("+1.5 %"), "{text}");
+    assert!(line("gyro_z").contains("pass") && line("gyro_z").ends_with("+6.5 %"), "{text}");
+    let verdict = text.lines().last().unwrap_or_default();
+    assert!(verdict.starts_with("FAILED: accel_x, gyro_x outside +-14 %") && verdict.ends_with("it passes"), "{text}");
+}
