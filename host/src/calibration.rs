@@ -203,8 +203,10 @@ pub fn from_fit(fit: &Fit, captures: &Dataset, config: SensorConfig) -> Result<C
 
 /// What the chip applies at `temp_c` degC, as a = matrix (m - offset): M diag(1 + d(T))^-1 and o(T).
 pub fn applied_at(calibration: &Calibration, temp_c: f32) -> ([[f64; 3]; 3], [f64; 3]) {
-    let (offset, scale) = calibration.offset_and_scale_at(temp_c);
-    let matrix = calibration.matrix.map(|row| [0, 1, 2].map(|j| f64::from(row[j]) / f64::from(scale[j])));
+    let Some((offset, scale)) = calibration.accel_terms_at(temp_c) else {
+        return static_part(calibration);
+    };
+    let matrix = calibration.matrix.map(|row| [0, 1, 2].map(|j| f64::from(row[j]) / (1.0 + f64::from(scale[j]))));
     (matrix, offset.map(f64::from))
 }
 
