@@ -175,7 +175,7 @@ fn parameters(estimate: &Estimate, budget: &Budget) -> BTreeMap<String, Certifie
 }
 
 /// A parameter's unit by its name: offsets in g, drift slopes in g/degC, the matrix's dimensionless.
-fn unit(name: &str) -> &'static str {
+pub fn unit(name: &str) -> &'static str {
     if name.starts_with("o_") {
         "g"
     } else if name.starts_with("c_") {

@@ -10,7 +10,7 @@ use super::args::{Device, StreamArgs};
 use crate::calibration::{describe, CalibrationJson};
 use crate::error::Error;
 use crate::link::{explain, serial_ports, StreamRequest};
-use crate::part::{describe as describe_part, part_name};
+use crate::part::{describe as describe_part, format_dump, part_name, register_dump};
 use crate::session::BoardRecord;
 
 /// `accelcal ports`: serial ports, ours marked.
@@ -42,6 +42,9 @@ struct InfoJson {
     sample_rate_hz: u16,
     active: Option<CalibrationJson>,
     stored: Option<CalibrationJson>,
+    /// With `--registers`: registers 0x00-0x7F, null where not read (FIFO_R_W, 0x74); absent without.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    registers: Option<Vec<Option<u8>>>,
 }
 
 /// The sensor the board found, or why it found none.
@@ -52,20 +55,30 @@ enum SensorJson {
     Missing { error: String },
 }
 
-/// `accelcal info [--json]`.
-pub(super) fn info(device: &Device, json: bool) -> Result<(), Error> {
+/// `accelcal info [--json] [--registers]`.
+pub(super) fn info(device: &Device, json: bool, registers: bool) -> Result<(), Error> {
     let mut opened = device.open()?;
     let client = &mut opened.connection.client;
     let active = client.calibration(CalibrationSlot::Active)?;
     let stored = client.calibration(CalibrationSlot::Stored)?;
+    let dump = if registers { Some(register_dump(client)?) } else { None };
     let info = &opened.connection.info;
     if json {
-        let output = info_json(info, active.as_ref(), stored.as_ref());
+        let output = InfoJson { registers: dump, ..info_json(info, active.as_ref(), stored.as_ref()) };
         println!("{}", serde_json::to_string_pretty(&output).unwrap_or_default());
     } else {
         print_info(info, active.as_ref(), stored.as_ref());
+        if let Some(dump) = dump {
+            print!("\n{}", format_dump(&dump_heading(info), &dump));
+        }
     }
     Ok(())
+}
+
+/// The first line of a register dump: what a person reporting an unknown part is asked for.
+fn dump_heading(info: &DeviceInfo) -> String {
+    let sensor = info.sensor.map_or_else(|e| explain(&e), |s| describe_part(&s));
+    format!("accelcal {} register dump, firmware {}: {sensor}", env!("CARGO_PKG_VERSION"), firmware_version(info))
 }
 
 fn info_json(info: &DeviceInfo, active: Option<&Calibration>, stored: Option<&Calibration>) -> InfoJson {
@@ -80,6 +93,7 @@ fn info_json(info: &DeviceInfo, active: Option<&Calibration>, stored: Option<&Ca
         sample_rate_hz: info.config.sample_rate_hz,
         active: active.map(CalibrationJson::from_device),
         stored: stored.map(CalibrationJson::from_device),
+        registers: None,
     }
 }
 

@@ -18,7 +18,9 @@ mod lot;
 mod noise;
 mod procedure;
 mod record;
+mod repeat;
 mod report;
+mod selftest;
 mod terminal;
 mod thermal;
 mod thermal_person;
@@ -51,12 +53,13 @@ pub fn run(cli: Cli) -> Result<(), Error> {
     match cli.command {
         Command::Fit(args) => fit::fit(&args),
         Command::Ports => board::ports(),
-        Command::Info { device, json } => board::info(&device, json),
+        Command::Info { device, json, registers } => board::info(&device, json, registers),
         Command::Calibrate(args) => calibrate::calibrate(&args),
         Command::Capture(args) => procedure::capture(&args),
         Command::Report(args) => report::report(&args),
         Command::Certificate(args) => certificate::certificate(&args),
         Command::Lot(args) => lot::lot(&args),
+        Command::Repeat(args) => repeat::repeat(&args),
         Command::Verify { device, positions } => procedure::verify(&device, usize::from(positions)),
         Command::Upload { device, file, save } => transfer::upload(&device, &file, save),
         Command::Save { device } => transfer::save(&device),
@@ -67,6 +70,7 @@ pub fn run(cli: Cli) -> Result<(), Error> {
         Command::Export(args) => export::export(&args),
         Command::Record(args) => record::record(&args),
         Command::Thermal(args) => thermal::thermal(&args),
+        Command::Selftest(args) => selftest::selftest(&args),
         Command::Sim { pty, seed, sketch: Some(sketch), .. } => sketch_stream(sketch, seed, pty),
         Command::Sim { pty: _, seed, fast, sketch: None } => {
             let pace = if fast { crate::sim::Pace::Fast } else { crate::sim::Pace::RealTime };

@@ -10,6 +10,7 @@ mod gyro_check;
 mod hand;
 mod moves;
 mod simulated_hand;
+mod simulated_session;
 pub mod stop_rule;
 pub mod thermal;
 mod turns;
@@ -27,6 +28,7 @@ pub use gyro_check::check_turn;
 pub use hand::{Hand, PersonHand};
 pub use moves::{Moves, RecordedMove};
 pub use simulated_hand::SimulatedHand;
+pub use simulated_session::SimulatedSession;
 pub use turns::{fit_moves, turn_summaries, turns_of};
 pub use verify::{verify, verify_clear_of, verify_with, Verification, VERIFY_SECONDS};
 

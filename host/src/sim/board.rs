@@ -61,6 +61,14 @@ pub enum SimSensor {
 /// A simulated sensor: the seed of its noise, its kind and its part.
 pub type SensorChoice = (u64, SimSensor, SimPart);
 
+/// Which power-on of a simulated board: the `cycle`-th (0: the first; each its own noise), with a
+/// turn-on bias of standard deviation `turn_on_bias_g` (g) drawn at it.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct PowerOn {
+    pub cycle: u64,
+    pub turn_on_bias_g: f32,
+}
+
 /// A running simulated board.
 pub struct SimBoard {
     commands: Sender<SimCommand>,
@@ -86,12 +94,24 @@ impl SimBoard {
     /// [`Self::spawn_with`] with a simulated part of the owner's choice: `sensor` is the seed, the
     /// kind of sensor and the part.
     pub fn spawn_part<P: Port + 'static>(port: P, flash: SimFlash, sensor: SensorChoice, pace: Pace) -> Self {
+        Self::spawn_powered(port, flash, sensor, PowerOn::default(), pace)
+    }
+
+    /// [`Self::spawn_part`] at a given power-on of the same board (`accelcal repeat`).
+    pub fn spawn_powered<P: Port + 'static>(
+        port: P,
+        flash: SimFlash,
+        sensor: SensorChoice,
+        power: PowerOn,
+        pace: Pace,
+    ) -> Self {
         let (seed, kind, part) = sensor;
-        let sensor = match kind {
+        let mut sensor = match kind {
             SimSensor::Realistic => SimMpu6050::new(seed),
             SimSensor::Settled => SimMpu6050::settled(seed),
         }
         .with_part(part);
+        sensor.physics.power_on(power.cycle, power.turn_on_bias_g);
         let truth = sensor.physics.truth;
         let (commands, inbox) = channel();
         let now_us = Arc::new(AtomicU64::new(0));
@@ -115,8 +135,13 @@ impl SimBoard {
 
     /// [`Self::in_process`] with a simulated part of the owner's choice.
     pub fn in_process_part(sensor: SensorChoice) -> Result<(Connection, SimBoard), LinkError> {
+        Self::in_process_powered(sensor, PowerOn::default())
+    }
+
+    /// [`Self::in_process_part`] at a given power-on of the same board.
+    pub fn in_process_powered(sensor: SensorChoice, power: PowerOn) -> Result<(Connection, SimBoard), LinkError> {
         let (host_end, device_end) = pipe();
-        let board = SimBoard::spawn_part(device_end, SimFlash::new(), sensor, Pace::Lockstep);
+        let board = SimBoard::spawn_powered(device_end, SimFlash::new(), sensor, power, Pace::Lockstep);
         Ok((Connection::over(Box::new(host_end))?, board))
     }
 

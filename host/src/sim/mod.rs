@@ -20,7 +20,7 @@ pub mod sketch;
 pub mod synthetic;
 pub mod turn;
 
-pub use board::{SensorChoice, SimBoard, SimCommand, SimSensor};
+pub use board::{PowerOn, SensorChoice, SimBoard, SimCommand, SimSensor};
 pub use clock::Pace;
 pub use parts::{FaultyAxis, SimPartChoice};
 pub use pty::{serve_pty, SimError};
