@@ -66,8 +66,6 @@ pub enum Error {
     SelfTestFailed,
     #[error("repeat needs a power cycle between the sessions, which accelcal cannot do to a board on a port yet: use --sim, or power-cycle the board by hand between `accelcal calibrate --lot LOT` runs and read the spread with `accelcal lot board LOT SERIAL`")]
     RepeatNeedsSim,
-    #[error("which device? give --port PATH (see `accelcal ports`) or --sim")]
-    WhichDevice,
     #[error("the device has no calibration to download: calibrate or upload one first")]
     NothingToDownload,
     #[error("{source}; the bins learned so far (a span of {span_c:.1} degC) are kept in {}: go on from them with `accelcal thermal --port {device} --bins {}`", .path.display(), .path.display())]
