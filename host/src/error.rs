@@ -26,6 +26,8 @@ pub enum Error {
     Calibration(#[from] CalibrationRecordError),
     #[error(transparent)]
     Sim(#[from] SimError),
+    #[error(transparent)]
+    Emulator(#[from] crate::sim::EmulatorError),
     #[error("{}: {source}", .path.display())]
     DataFile { path: PathBuf, source: DataError },
     #[error("{}: cannot fit {model}: {source}", .path.display())]
@@ -50,8 +52,10 @@ pub enum Error {
     BadGravity { g: f64 },
     #[error("{source}; {} so far {} kept in {}: continue with `accelcal calibrate {device} --resume {}`", count(*.captures, "capture"), if *.captures == 1 { "is" } else { "are" }, .path.display(), .path.display())]
     Stopped { source: Box<ProcedureError>, captures: usize, path: PathBuf, device: String },
-    #[error("{source}; the calibration is already uploaded and saved on the board: check it with `accelcal verify {device}`")]
-    AfterUpload { source: Box<ProcedureError>, device: String },
+    #[error("{source}; the calibration is already uploaded and saved on the board: {check_later}")]
+    AfterUpload { source: Box<ProcedureError>, check_later: String },
+    #[error("{source}; verifying changes nothing on the board: its calibration is as it was")]
+    VerifyStopped { source: Box<ProcedureError> },
     #[error(
         "the calibration uploaded and saved misses --target-mg by more than its noise ({line}); it stays on the board"
     )]
@@ -66,8 +70,6 @@ pub enum Error {
     SelfTestFailed,
     #[error("repeat needs a power cycle between the sessions, which accelcal cannot do to a board on a port yet: use --sim, or power-cycle the board by hand between `accelcal calibrate --lot LOT` runs and read the spread with `accelcal lot board LOT SERIAL`")]
     RepeatNeedsSim,
-    #[error("which device? give --port PATH (see `accelcal ports`) or --sim")]
-    WhichDevice,
     #[error("the device has no calibration to download: calibrate or upload one first")]
     NothingToDownload,
     #[error("{source}; the bins learned so far (a span of {span_c:.1} degC) are kept in {}: go on from them with `accelcal thermal --port {device} --bins {}`", .path.display(), .path.display())]

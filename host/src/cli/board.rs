@@ -9,21 +9,58 @@ use shared::Calibration;
 use super::args::{Device, StreamArgs};
 use crate::calibration::{describe, CalibrationJson};
 use crate::error::Error;
-use crate::link::{explain, serial_ports, StreamRequest};
+use crate::link::{
+    ask, explain, is_worth_asking, serial_ports, Answer, LinkError, SerialPortEntry, StreamRequest, LISTEN_FIRST,
+};
 use crate::part::{describe as describe_part, format_dump, part_name, register_dump};
 use crate::session::BoardRecord;
 
-/// `accelcal ports`: serial ports, ours marked.
+/// `accelcal ports`: serial ports, ours marked; a USB port of another identity is asked (listened to
+/// first, then greeted) whether an accelcal board is behind it.
 pub(super) fn ports() -> Result<(), Error> {
     let ports = serial_ports()?;
     if ports.is_empty() {
         println!("no serial ports found; is the board plugged in?");
     }
     for port in ports {
-        let serial = port.serial.map_or(String::new(), |s| format!("  serial {s}"));
-        println!("{}{serial}{}", port.path, if port.is_accelcal { "  <- accelcal board" } else { "" });
+        let serial = port.serial.as_ref().map_or(String::new(), |s| format!("  serial {s}"));
+        let behind = if port.is_accelcal {
+            "  <- accelcal board".to_owned()
+        } else if is_worth_asking(&port) {
+            asking(&port);
+            answered(ask(&port.path))
+        } else {
+            String::new()
+        };
+        println!("{}{serial}{behind}", port.path);
     }
     Ok(())
+}
+
+/// The progress line before a port is asked (which takes over a second).
+pub(super) fn asking(port: &SerialPortEntry) {
+    let (vendor, product) = port.usb_ids.unwrap_or_default();
+    eprintln!(
+        "asking {} (USB {vendor:04x}:{product:04x}, not accelcal's ids): listening {:.1} s first, then accelcal's hello",
+        port.path,
+        LISTEN_FIRST.as_secs_f64()
+    );
+}
+
+/// What `ports` shows after a port of another USB identity: the board found by its handshake, or
+/// what it is not.
+fn answered(answer: Answer) -> String {
+    match answer {
+        Answer::Board(connection) => {
+            format!(
+                "  <- accelcal board (found by its handshake), board serial {}",
+                BoardRecord::of(&connection.info).serial
+            )
+        }
+        Answer::Talks(heard) => format!("  (prints on its own: {heard}; nothing was written to it)"),
+        Answer::NoBoard(LinkError::Silent { .. }) => "  (no accelcal board: silent, and no answer to its hello)".into(),
+        Answer::NoBoard(error) => format!("  (not an accelcal board, or not reachable: {error})"),
+    }
 }
 
 /// What `accelcal info --json` prints.

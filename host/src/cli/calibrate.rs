@@ -42,7 +42,10 @@ pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
         Err(talking) => return super::foreign::calibrate_from_stream(args, *talking),
     };
     opened.connection.info.sensor.map_err(LinkError::from)?;
-    let mut feedback = feedback(args.json, args.yes || (args.json && opened.sim.is_some()));
+    // NOTE: with --json only the simulated board (turned by the tool) is silent: a person at a real
+    // board still needs the instructions, which go to stderr, leaving stdout to the JSON.
+    let simulated = opened.sim.is_some();
+    let mut feedback = feedback(args.json && simulated, args.yes || (args.json && simulated));
     let mut kept = start_session(args, &opened.connection.info, feedback.as_mut())?;
     let interrupt = interrupt_on_ctrl_c();
     opened.connection.client.interrupt_on(interrupt.clone());
@@ -126,7 +129,7 @@ fn finish(
     let (rate_hz, clock) = (opened.connection.info.config.sample_rate_hz, opened.clock());
     let client = &mut opened.connection.client;
     let calibrated: Vec<[f64; 3]> = fitted.session.captures.iter().map(|c| c.stats.mean_g.map(f64::from)).collect();
-    let on_board = |source| Error::AfterUpload { source: Box::new(source), device: device_flags(args) };
+    let on_board = |source| Error::AfterUpload { source: Box::new(source), check_later: check_later(args) };
     let verification =
         procedure::verify_with(client, hand.as_mut(), positions, wait_limit, feedback, &calibrated, length)
             .map_err(on_board)?;
@@ -263,6 +266,18 @@ fn device_flags(args: &CalibrateArgs) -> String {
     match &args.device.port {
         Some(port) => format!("--port {port}"),
         None => format!("--sim --seed {}", args.device.seed),
+    }
+}
+
+/// How to check an uploaded calibration after this run.
+// NOTE: `--sim`'s board lives in this process: a later `verify --sim` gets a fresh board without it.
+fn check_later(args: &CalibrateArgs) -> String {
+    match &args.device.port {
+        Some(port) => format!("check it with `accelcal verify --port {port}`"),
+        None => "the simulated board ended with this run, so it cannot be checked later; to keep a simulated \
+                 board between commands, serve one with `accelcal sim --pty` and run `accelcal calibrate --port PTY`, \
+                 then `accelcal verify --port PTY`"
+            .to_owned(),
     }
 }
 
