@@ -58,10 +58,14 @@ pub enum Error {
     TargetMissed { line: String },
     #[error("--json cannot ask whether to upload the calibration: add --yes to upload and save it, or leave out --json to be asked")]
     JsonCannotAsk,
+    #[error(transparent)]
+    SelfTest(#[from] crate::selftest::SelfTestError),
+    #[error(transparent)]
+    SelfTestHistory(#[from] crate::selftest::history::HistoryError),
+    #[error("the self-test failed: an axis' response is outside +-{} % of its factory trim (see above); the part is damaged or not what it claims", shared::selftest::ACCELCAL_BAND_PERCENT)]
+    SelfTestFailed,
     #[error("repeat needs a power cycle between the sessions, which accelcal cannot do to a board on a port yet: use --sim, or power-cycle the board by hand between `accelcal calibrate --lot LOT` runs and read the spread with `accelcal lot board LOT SERIAL`")]
     RepeatNeedsSim,
-    #[error("which device? give --port PATH (see `accelcal ports`) or --sim")]
-    WhichDevice,
     #[error("the device has no calibration to download: calibrate or upload one first")]
     NothingToDownload,
     #[error("{source}; the bins learned so far (a span of {span_c:.1} degC) are kept in {}: go on from them with `accelcal thermal --port {device} --bins {}`", .path.display(), .path.display())]
@@ -99,10 +103,11 @@ impl From<crate::session::OutcomeError> for Error {
 pub const TARGET_MISSED_EXIT: u8 = 2;
 
 impl Error {
-    /// The process's exit status for this error: [`TARGET_MISSED_EXIT`] for a missed target, else 1.
+    /// The process's exit status for this error: [`TARGET_MISSED_EXIT`] for a missed target or a failed
+    /// self-test (done, but its check failed), else 1.
     pub fn exit_code(&self) -> u8 {
         match self {
-            Error::TargetMissed { .. } => TARGET_MISSED_EXIT,
+            Error::TargetMissed { .. } | Error::SelfTestFailed => TARGET_MISSED_EXIT,
             _ => 1,
         }
     }

@@ -33,6 +33,7 @@ pub mod procedure;
 pub mod recording;
 pub mod repeat;
 pub mod report;
+pub mod selftest;
 pub mod session;
 pub mod shown;
 pub mod sim;

@@ -14,19 +14,22 @@ pub struct Footprint {
 }
 
 /// Flash and static RAM by section: code, read-only data, the boot blocks and the
-/// initial values of .data in flash; .data, .bss and .uninit in RAM.
+/// initial values of .data in flash; .data, .bss and .uninit in RAM. The ESP32-C3's trap vectors,
+/// its code run from RAM (.rwtext, copied from flash at boot) and its application descriptor count
+/// as flash.
 pub fn footprint(elf: &[u8]) -> Result<Footprint> {
     let file = object::File::parse(elf).context("not an ELF file")?;
     let mut footprint = Footprint { flash: 0, ram: 0 };
     for section in file.sections() {
         let size = section.size();
         match section.name().unwrap_or("") {
-            ".vector_table" | ".text" | ".rodata" | ".boot2" | ".start_block" | ".rwtext" => footprint.flash += size,
+            ".vector_table" | ".text" | ".rodata" | ".boot2" | ".start_block" | ".rwtext" | ".trap"
+            | ".flash.appdesc" => footprint.flash += size,
             ".data" => {
                 footprint.flash += size;
                 footprint.ram += size;
             }
-            ".bss" | ".uninit" => footprint.ram += size,
+            ".bss" | ".uninit" | ".noinit" => footprint.ram += size,
             _ => {}
         }
     }

@@ -1,8 +1,10 @@
 //! `cargo xtask dist`: builds every board once and writes `dist/` (the interface is in DESIGN.md):
 //! accelcal-blackpill-f411.bin, accelcal-blackpill-f401.bin, accelcal-pico.uf2, accelcal-pico2.uf2,
-//! with each ELF file beside its image; fails when a board outgrows its flash or RAM budget.
+//! accelcal-esp32c3.bin, with each ELF file beside its image; fails when a board outgrows its flash
+//! or RAM budget.
 
 mod elf;
+mod esp;
 mod uf2;
 
 use std::path::{Path, PathBuf};
@@ -17,6 +19,8 @@ enum Format {
     Bin,
     /// A UF2 file for the boot ROM's USB drive, with the chip's family id.
     Uf2 { family: u32 },
+    /// An ESP32 image merged with its bootloader and partition table (`espflash save-image --merge`).
+    EspMerged { chip: &'static str, partitions: &'static str },
 }
 
 /// One board: the crate, target and feature that build it, and its budget.
@@ -25,7 +29,8 @@ struct Board {
     package: &'static str,
     binary: &'static str,
     target: &'static str,
-    feature: &'static str,
+    /// The board crate's feature that picks the chip, when the crate builds several.
+    feature: Option<&'static str>,
     format: Format,
     flash_budget: u64,
     ram_budget: u64,
@@ -33,13 +38,13 @@ struct Board {
 
 const KIB: u64 = 1024;
 
-const BOARDS: [Board; 4] = [
+const BOARDS: [Board; 5] = [
     Board {
         name: "blackpill-f411",
         package: "board-blackpill",
         binary: "accelcal-blackpill",
         target: "thumbv7em-none-eabihf",
-        feature: "f411",
+        feature: Some("f411"),
         format: Format::Bin,
         flash_budget: 64 * KIB,
         ram_budget: 32 * KIB,
@@ -49,7 +54,7 @@ const BOARDS: [Board; 4] = [
         package: "board-blackpill",
         binary: "accelcal-blackpill",
         target: "thumbv7em-none-eabihf",
-        feature: "f401",
+        feature: Some("f401"),
         format: Format::Bin,
         flash_budget: 64 * KIB,
         ram_budget: 32 * KIB,
@@ -59,7 +64,7 @@ const BOARDS: [Board; 4] = [
         package: "board-pico",
         binary: "accelcal-pico",
         target: "thumbv6m-none-eabi",
-        feature: "pico",
+        feature: Some("pico"),
         format: Format::Uf2 { family: uf2::RP2040_FAMILY },
         flash_budget: 64 * KIB,
         ram_budget: 32 * KIB,
@@ -69,9 +74,19 @@ const BOARDS: [Board; 4] = [
         package: "board-pico",
         binary: "accelcal-pico",
         target: "thumbv8m.main-none-eabihf",
-        feature: "pico2",
+        feature: Some("pico2"),
         format: Format::Uf2 { family: uf2::RP2350_ARM_S_FAMILY },
         flash_budget: 64 * KIB,
+        ram_budget: 32 * KIB,
+    },
+    Board {
+        name: "esp32c3",
+        package: "board-esp32c3",
+        binary: "accelcal-esp32c3",
+        target: "riscv32imc-unknown-none-elf",
+        feature: None,
+        format: Format::EspMerged { chip: "esp32c3", partitions: "boards/esp32c3/partitions.csv" },
+        flash_budget: 128 * KIB,
         ram_budget: 32 * KIB,
     },
 ];
@@ -91,10 +106,8 @@ fn dist() -> Result<()> {
     std::fs::create_dir_all(&dist).with_context(|| format!("creating {}", dist.display()))?;
     let mut over_budget = Vec::new();
     for board in &BOARDS {
-        eprintln!(
-            "== {}: cargo build -p {} --target {} --features {}",
-            board.name, board.package, board.target, board.feature
-        );
+        let features = board.feature.map(|f| format!(" --features {f}")).unwrap_or_default();
+        eprintln!("== {}: cargo build -p {} --target {}{features}", board.name, board.package, board.target);
         build(&root, board)?;
         if !write_board(&root, &dist, board)? {
             over_budget.push(board.name);
@@ -112,11 +125,12 @@ fn workspace_root() -> PathBuf {
 
 fn build(root: &Path, board: &Board) -> Result<()> {
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-    let status = Command::new(cargo)
-        .current_dir(root)
-        .args(["build", "--release", "-p", board.package, "--target", board.target, "--features", board.feature])
-        .status()
-        .context("running cargo build")?;
+    let mut command = Command::new(cargo);
+    command.current_dir(root).args(["build", "--release", "-p", board.package, "--target", board.target]);
+    if let Some(feature) = board.feature {
+        command.args(["--features", feature]);
+    }
+    let status = command.status().context("running cargo build")?;
     if !status.success() {
         bail!("the {} build failed", board.name);
     }
@@ -139,12 +153,32 @@ fn write_board(root: &Path, dist: &Path, board: &Board) -> Result<bool> {
         if within { "" } else { "  OVER BUDGET" }
     );
     let stem = format!("accelcal-{}", board.name);
-    std::fs::write(dist.join(format!("{stem}.elf")), &elf)?;
-    let (base, image) = elf::flat_image(&elf)?;
-    let (file, bytes) = match board.format {
-        Format::Bin => (format!("{stem}.bin"), image),
-        Format::Uf2 { family } => (format!("{stem}.uf2"), uf2::encode(&image, base, family)),
-    };
-    std::fs::write(dist.join(&file), bytes).with_context(|| format!("writing dist/{file}"))?;
+    let elf_path = dist.join(format!("{stem}.elf"));
+    std::fs::write(&elf_path, &elf)?;
+    let file = dist.join(format!("{stem}.{}", board.format.extension()));
+    write_image(board.format, root, &elf_path, &file).with_context(|| format!("writing {}", file.display()))?;
     Ok(within)
+}
+
+impl Format {
+    fn extension(self) -> &'static str {
+        match self {
+            Format::Bin | Format::EspMerged { .. } => "bin",
+            Format::Uf2 { .. } => "uf2",
+        }
+    }
+}
+
+/// Writes the image of the ELF file at `elf_path` to `file`, as `format` says.
+fn write_image(format: Format, root: &Path, elf_path: &Path, file: &Path) -> Result<()> {
+    let elf = std::fs::read(elf_path)?;
+    match format {
+        Format::Bin => std::fs::write(file, elf::flat_image(&elf)?.1)?,
+        Format::Uf2 { family } => {
+            let (base, image) = elf::flat_image(&elf)?;
+            std::fs::write(file, uf2::encode(&image, base, family))?;
+        }
+        Format::EspMerged { chip, partitions } => esp::merged_image(elf_path, chip, &root.join(partitions), file)?,
+    }
+    Ok(())
 }

@@ -43,7 +43,7 @@ where
                 Ok(Response::TemperatureBins(self.temperature_bins.take(self.config.range)))
             }
             _ if self.is_busy() => Err(DeviceError::Busy),
-            Request::Configure(config) => self.configure(config).await,
+            request @ (Request::Configure(_) | Request::Register { .. }) => self.sensor_request(request).await,
             Request::ClearPositions => {
                 self.positions.clear();
                 self.kept.clear();
@@ -81,8 +81,24 @@ where
         })
     }
 
-    async fn configure(&mut self, config: SensorConfig) -> Result<Response, DeviceError> {
-        self.with_sensor(SensorOp::Configure(config)).await?;
+    /// The requests that are one driver operation: configure, and a register's write and read.
+    ///
+    /// NOTE: one await for both: every await in the request path costs flash.
+    async fn sensor_request(&mut self, request: Request) -> Result<Response, DeviceError> {
+        let operation = match request {
+            Request::Register { register, write } => SensorOp::Register(register, write),
+            Request::Configure(config) => SensorOp::Configure(config),
+            _ => return Err(DeviceError::Busy),
+        };
+        let value = self.with_sensor(operation).await?;
+        Ok(match request {
+            Request::Configure(config) => self.configured(config),
+            _ => Response::Register(value as u8),
+        })
+    }
+
+    /// The device's configuration after the sensor was configured for `config`.
+    fn configured(&mut self, config: SensorConfig) -> Response {
         let achieved = self.sensor.map_or(config, |sensor| sensor.config());
         if achieved.range != self.config.range {
             // Captures and bins belong to the range they were taken at.
@@ -91,6 +107,6 @@ where
             self.kept.clear();
         }
         self.config = achieved;
-        Ok(Response::Configured(achieved))
+        Response::Configured(achieved)
     }
 }

@@ -1,10 +1,12 @@
 //! The guards of the device, each against the case it exists for: a calibrated stream at another
-//! range, stream decimation, and an implausible on-chip fit.
+//! range, stream decimation, an implausible on-chip fit, and register access during a stream.
 
 use shared::protocol::{DeviceError, Request, Response, SensorConfig, StreamKind};
 use shared::{AccelRange, Calibration, CalibrationError, Position};
 
-use super::tests::{ask, boot, capture_at, run, Flash, SimDevice};
+use embassy_futures::block_on;
+
+use super::tests::{ask, boot, capture_at, drain, run, Flash, SimDevice};
 use crate::sim::SimMpu6050;
 
 fn samples(device: &mut SimDevice, kind: StreamKind, rate_hz: u16, count: u32) -> Vec<shared::protocol::Sample> {
@@ -86,4 +88,29 @@ fn a_reading_far_from_1_g_is_no_face_however_it_points() {
     }
     assert!(shared::protocol::reads_gravity(1.0 - shared::protocol::MAX_GRAVITY_ERROR_G));
     assert!(!shared::protocol::reads_gravity(1.0 - 1.01 * shared::protocol::MAX_GRAVITY_ERROR_G));
+}
+
+#[test]
+fn register_access_is_refused_while_a_stream_runs_and_every_hello_writes_the_configuration_again() {
+    let mut device = boot(SimMpu6050::new(24), Flash::new());
+    let read = |register| Request::Register { register, write: None };
+    // GYRO_CONFIG (0x1B) and ACCEL_CONFIG (0x1C) as the board configures them: +-1000 deg/s, +-2 g.
+    assert_eq!(ask(&mut device, 1, read(0x1B)), Response::Register(0x10));
+    assert_eq!(ask(&mut device, 1, read(0x1C)), Response::Register(0x00));
+    assert_eq!(ask(&mut device, 1, read(0x75)), Response::Register(0x68));
+    block_on(device.handle(2, Request::Stream { kind: StreamKind::Raw, rate_hz: 100, count: 0 }));
+    let busy = Response::Error(DeviceError::Busy);
+    assert_eq!(ask(&mut device, 3, Request::Register { register: 0x1B, write: Some(0xE0) }), busy);
+    assert_eq!(ask(&mut device, 4, read(0x1B)), busy);
+    block_on(device.handle(5, Request::Cancel));
+    drain(&mut device);
+    // Self-test on at +-250 deg/s and +-8 g, as the self-test writes it, read back in the answer.
+    for (register, value) in [(0x1B, 0xE0), (0x1C, 0xF0)] {
+        let answer = ask(&mut device, 6, Request::Register { register, write: Some(value) });
+        assert_eq!(answer, Response::Register(value));
+    }
+    let hello = ask(&mut device, 8, Request::Hello { protocol_version: shared::protocol::PROTOCOL_VERSION });
+    assert!(matches!(hello, Response::Hello(_)), "{hello:?}");
+    assert_eq!(ask(&mut device, 9, read(0x1B)), Response::Register(0x10));
+    assert_eq!(ask(&mut device, 9, read(0x1C)), Response::Register(0x00));
 }

@@ -3,7 +3,6 @@
 
 use embedded_hal_async::i2c::I2c;
 use embedded_storage_async::nor_flash::NorFlash;
-use shared::orientation::DEFAULT_FACE_TOLERANCE_DEG;
 use shared::protocol::{ActiveCalibration, CaptureGoal, CaptureStats, DeviceError, Response, StreamKind};
 use shared::Position;
 
@@ -240,5 +239,5 @@ pub(super) fn face_of(mean_g: shared::linalg::Vec3<f32>) -> Option<Position> {
     if !shared::protocol::reads_gravity(shared::linalg::norm(mean_g)) {
         return None;
     }
-    Position::detect(mean_g, DEFAULT_FACE_TOLERANCE_DEG).ok().map(|(p, _)| p)
+    Position::within_default_tolerance(mean_g)
 }

@@ -164,7 +164,7 @@ where
     }
 
     /// Runs one driver operation on the sensor (found again first if it was missing); the samples
-    /// a FIFO read took, 0 for the others.
+    /// a FIFO read took, the value a register read, 0 for the others.
     ///
     /// NOTE: an operation is data, not a closure: one instance of this state machine, with its
     /// sensor recovery, serves every operation (closures cost 400 bytes of flash each).
@@ -178,6 +178,7 @@ where
             SensorOp::Configure(config) => sensor.configure(bus, config).await.map(|_| 0),
             SensorOp::StartFifo => sensor.start_fifo(bus).await.map(|()| 0),
             SensorOp::ReadFifo(batch) => sensor.read_fifo(bus, batch).await,
+            SensorOp::Register(register, write) => sensor.register(bus, register, write).await.map(usize::from),
         };
         match result {
             Ok(samples) => Ok(samples),
@@ -194,6 +195,8 @@ enum SensorOp<'a> {
     StartFifo,
     /// Reads whole samples from the FIFO into the batch.
     ReadFifo(&'a mut [crate::sensor::RawSample]),
+    /// Writes the value to the register when there is one, then reads the register.
+    Register(u8, Option<u8>),
 }
 
 /// Parses a decimal version component at compile time (0 when it is not a number below 256).

@@ -37,3 +37,13 @@ pub async fn read_register<I: I2c>(bus: &mut I, address: u8, register: u8) -> Re
     read_registers(bus, address, register, &mut value).await?;
     Ok(value[0])
 }
+
+impl super::Sensor {
+    /// Writes `write` to `register` of the sensor when given, then reads the register.
+    pub async fn register<I: I2c>(&self, bus: &mut I, register: u8, write: Option<u8>) -> Result<u8, Error<I::Error>> {
+        if let Some(value) = write {
+            write_register(bus, self.identity.address, register, value).await?;
+        }
+        read_register(bus, self.identity.address, register).await
+    }
+}

@@ -49,6 +49,9 @@ pub const FIFO_OFLOW: u8 = 1 << 4;
 pub const USER_CTRL_FIFO_EN: u8 = 1 << 6;
 /// USER_CTRL: FIFO reset bit (self-clearing).
 pub const USER_CTRL_FIFO_RESET: u8 = 1 << 2;
+/// GYRO_CONFIG and ACCEL_CONFIG: the self-test bits of the x, y and z axes, bits 7:5 (sections
+/// 4.4, 4.5; the same on the MPU-6500 family).
+pub const SELF_TEST_BITS: u8 = 0b1110_0000;
 /// Bit position of the full-scale field in GYRO_CONFIG and ACCEL_CONFIG (sections 4.4, 4.5).
 pub const FULL_SCALE_SHIFT: u8 = 3;
 /// GYRO_CONFIG's FS_SEL for +-1000 deg/s (section 4.4); see [`GYRO_LSB_PER_DPS`] for why.

@@ -6,6 +6,7 @@ use shared::part::{Family, Part, TemperatureFormula};
 use shared::selftest::{self, GYRO_LSB_PER_DPS_AT_250};
 
 use super::physics::PhysicalSample;
+use crate::sensor::registers as reg;
 
 /// How far off its factory trim a faulty axis' self-test response is (the `--sim-faulty-axis` fault).
 pub const FAULTY_AXIS_ERROR: f32 = 0.20;
@@ -51,7 +52,10 @@ impl SimPart {
             who_am_i: 0x70,
             family: Family::Mpu6500,
             temperature: TemperatureFormula::MPU6500,
-            codes: [171, 168, 182, 209, 201, 215],
+            // NOTE: accelerometer codes 112-125 stand for 0.48-0.55 g, inside the 225-675 mg a healthy
+            // part's response lies in (AN-MPU-6500A's criteria B), so that gravity plus a response 20 %
+            // too large stays within +-2 g; gyro codes 201-215 for 146-168 deg/s (at least 60).
+            codes: [118, 112, 125, 209, 201, 215],
             response_ratio: HEALTHY,
         }
     }
@@ -149,10 +153,11 @@ impl SimPart {
     /// ACCEL_CONFIG and GYRO_CONFIG: x, y, z; RM-MPU-6000A 4.4-4.5, the same on the MPU-6500).
     pub fn apply_self_test(&self, accel_config: u8, gyro_config: u8, sample: &mut PhysicalSample) {
         for i in 0..3 {
-            if accel_config & (0x80 >> i) != 0 {
+            let bit = reg::SELF_TEST_BITS & (0x80 >> i);
+            if accel_config & bit != 0 {
                 sample.accel_g[i] += self.self_test_response(i);
             }
-            if gyro_config & (0x80 >> i) != 0 {
+            if gyro_config & bit != 0 {
                 sample.gyro_dps[i] += self.self_test_response(i + 3);
             }
         }

@@ -196,7 +196,12 @@ pub enum Command {
         /// Print one JSON object.
         #[arg(long)]
         json: bool,
+        /// Also dump the sensor's registers 0x00-0x7F (to paste into a report of a part accelcal does not know).
+        #[arg(long)]
+        registers: bool,
     },
+    /// The datasheet self-test of the sensor: each axis's response against its factory trim, beside the board's previous one.
+    Selftest(super::selftest::SelftestArgs),
     /// The guided calibration: positions, captures, fit, upload, save, verification.
     Calibrate(CalibrateArgs),
     /// Writes a session's report: one self-contained HTML page with plots (and text or JSON on stdout).

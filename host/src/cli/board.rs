@@ -9,21 +9,58 @@ use shared::Calibration;
 use super::args::{Device, StreamArgs};
 use crate::calibration::{describe, CalibrationJson};
 use crate::error::Error;
-use crate::link::{explain, serial_ports, StreamRequest};
-use crate::part::{describe as describe_part, part_name};
+use crate::link::{
+    ask, explain, is_worth_asking, serial_ports, Answer, LinkError, SerialPortEntry, StreamRequest, LISTEN_FIRST,
+};
+use crate::part::{describe as describe_part, format_dump, part_name, register_dump};
 use crate::session::BoardRecord;
 
-/// `accelcal ports`: serial ports, ours marked.
+/// `accelcal ports`: serial ports, ours marked; a USB port of another identity is asked (listened to
+/// first, then greeted) whether an accelcal board is behind it.
 pub(super) fn ports() -> Result<(), Error> {
     let ports = serial_ports()?;
     if ports.is_empty() {
         println!("no serial ports found; is the board plugged in?");
     }
     for port in ports {
-        let serial = port.serial.map_or(String::new(), |s| format!("  serial {s}"));
-        println!("{}{serial}{}", port.path, if port.is_accelcal { "  <- accelcal board" } else { "" });
+        let serial = port.serial.as_ref().map_or(String::new(), |s| format!("  serial {s}"));
+        let behind = if port.is_accelcal {
+            "  <- accelcal board".to_owned()
+        } else if is_worth_asking(&port) {
+            asking(&port);
+            answered(ask(&port.path))
+        } else {
+            String::new()
+        };
+        println!("{}{serial}{behind}", port.path);
     }
     Ok(())
+}
+
+/// The progress line before a port is asked (which takes over a second).
+pub(super) fn asking(port: &SerialPortEntry) {
+    let (vendor, product) = port.usb_ids.unwrap_or_default();
+    eprintln!(
+        "asking {} (USB {vendor:04x}:{product:04x}, not accelcal's ids): listening {:.1} s first, then accelcal's hello",
+        port.path,
+        LISTEN_FIRST.as_secs_f64()
+    );
+}
+
+/// What `ports` shows after a port of another USB identity: the board found by its handshake, or
+/// what it is not.
+fn answered(answer: Answer) -> String {
+    match answer {
+        Answer::Board(connection) => {
+            format!(
+                "  <- accelcal board (found by its handshake), board serial {}",
+                BoardRecord::of(&connection.info).serial
+            )
+        }
+        Answer::Talks(heard) => format!("  (prints on its own: {heard}; nothing was written to it)"),
+        Answer::NoBoard(LinkError::Silent { .. }) => "  (no accelcal board: silent, and no answer to its hello)".into(),
+        Answer::NoBoard(error) => format!("  (not an accelcal board, or not reachable: {error})"),
+    }
 }
 
 /// What `accelcal info --json` prints.
@@ -42,6 +79,9 @@ struct InfoJson {
     sample_rate_hz: u16,
     active: Option<CalibrationJson>,
     stored: Option<CalibrationJson>,
+    /// With `--registers`: registers 0x00-0x7F, null where not read (FIFO_R_W, 0x74); absent without.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    registers: Option<Vec<Option<u8>>>,
 }
 
 /// The sensor the board found, or why it found none.
@@ -52,20 +92,30 @@ enum SensorJson {
     Missing { error: String },
 }
 
-/// `accelcal info [--json]`.
-pub(super) fn info(device: &Device, json: bool) -> Result<(), Error> {
+/// `accelcal info [--json] [--registers]`.
+pub(super) fn info(device: &Device, json: bool, registers: bool) -> Result<(), Error> {
     let mut opened = device.open()?;
     let client = &mut opened.connection.client;
     let active = client.calibration(CalibrationSlot::Active)?;
     let stored = client.calibration(CalibrationSlot::Stored)?;
+    let dump = if registers { Some(register_dump(client)?) } else { None };
     let info = &opened.connection.info;
     if json {
-        let output = info_json(info, active.as_ref(), stored.as_ref());
+        let output = InfoJson { registers: dump, ..info_json(info, active.as_ref(), stored.as_ref()) };
         println!("{}", serde_json::to_string_pretty(&output).unwrap_or_default());
     } else {
         print_info(info, active.as_ref(), stored.as_ref());
+        if let Some(dump) = dump {
+            print!("\n{}", format_dump(&dump_heading(info), &dump));
+        }
     }
     Ok(())
+}
+
+/// The first line of a register dump: what a person reporting an unknown part is asked for.
+fn dump_heading(info: &DeviceInfo) -> String {
+    let sensor = info.sensor.map_or_else(|e| explain(&e), |s| describe_part(&s));
+    format!("accelcal {} register dump, firmware {}: {sensor}", env!("CARGO_PKG_VERSION"), firmware_version(info))
 }
 
 fn info_json(info: &DeviceInfo, active: Option<&Calibration>, stored: Option<&Calibration>) -> InfoJson {
@@ -80,6 +130,7 @@ fn info_json(info: &DeviceInfo, active: Option<&Calibration>, stored: Option<&Ca
         sample_rate_hz: info.config.sample_rate_hz,
         active: active.map(CalibrationJson::from_device),
         stored: stored.map(CalibrationJson::from_device),
+        registers: None,
     }
 }
 

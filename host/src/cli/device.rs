@@ -8,7 +8,9 @@ use clap::Args;
 
 use crate::error::Error;
 use crate::link::port::{BAUD_RANGE, DEFAULT_BAUD};
-use crate::link::{open_listening, open_port, resolve_port, serial_ports, Connection, PortOpened, TalkingPort};
+use crate::link::{
+    find_board, open_listening, open_port, resolve_port, serial_ports, Connection, PortOpened, TalkingPort,
+};
 use crate::procedure::{BoardClock, Hand, PersonHand, SimulatedHand};
 use crate::sim::{FaultyAxis, SimBoard, SimPartChoice, SimSensor};
 
@@ -16,7 +18,8 @@ use crate::sim::{FaultyAxis, SimBoard, SimPartChoice, SimSensor};
 #[derive(Args, Clone)]
 pub struct Device {
     /// Serial port of the board (see `accelcal ports`), or of `accelcal sim --pty`; or the board's
-    /// serial number as `accelcal ports` shows it.
+    /// serial number as `accelcal ports` shows it. Without --port or --sim: the one accelcal board
+    /// plugged in (by its USB ids, or by its handshake on a USB port of another identity).
     #[arg(long, conflicts_with = "sim")]
     pub port: Option<String>,
     /// With --port: the baud rate of a UART bridge (the sketch's `Serial.begin`); USB serial ignores it.
@@ -95,7 +98,10 @@ impl Device {
                 let (connection, board) = SimBoard::in_process_part((self.seed, self.sim_sensor, part))?;
                 Ok(Opened { connection, sim: Some(board), opened_at: Instant::now() })
             }
-            (None, false) => Err(Error::WhichDevice),
+            (None, false) => {
+                let connection = find_board(&serial_ports()?, &mut super::board::asking)?;
+                Ok(Opened { connection, sim: None, opened_at: Instant::now() })
+            }
         }
     }
 }

@@ -20,6 +20,7 @@ mod procedure;
 mod record;
 mod repeat;
 mod report;
+mod selftest;
 mod terminal;
 mod thermal;
 mod thermal_person;
@@ -52,7 +53,7 @@ pub fn run(cli: Cli) -> Result<(), Error> {
     match cli.command {
         Command::Fit(args) => fit::fit(&args),
         Command::Ports => board::ports(),
-        Command::Info { device, json } => board::info(&device, json),
+        Command::Info { device, json, registers } => board::info(&device, json, registers),
         Command::Calibrate(args) => calibrate::calibrate(&args),
         Command::Capture(args) => procedure::capture(&args),
         Command::Report(args) => report::report(&args),
@@ -69,6 +70,7 @@ pub fn run(cli: Cli) -> Result<(), Error> {
         Command::Export(args) => export::export(&args),
         Command::Record(args) => record::record(&args),
         Command::Thermal(args) => thermal::thermal(&args),
+        Command::Selftest(args) => selftest::selftest(&args),
         Command::Sim { pty, seed, sketch: Some(sketch), .. } => sketch_stream(sketch, seed, pty),
         Command::Sim { pty: _, seed, fast, sketch: None } => {
             let pace = if fast { crate::sim::Pace::Fast } else { crate::sim::Pace::RealTime };

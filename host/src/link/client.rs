@@ -49,6 +49,12 @@ impl<P: Port> Client<P> {
         self.interrupt = Some(flag);
     }
 
+    /// Takes the Ctrl-C flag away (until given again), for what must still be said to the device
+    /// after an interruption (writing its configuration back).
+    pub fn take_interrupt(&mut self) -> Option<Arc<AtomicBool>> {
+        self.interrupt.take()
+    }
+
     fn interrupted(&self) -> bool {
         self.interrupt.as_ref().is_some_and(|flag| flag.load(Ordering::SeqCst))
     }
@@ -185,6 +191,7 @@ pub(super) fn request_name(request: &Request) -> &'static str {
         Request::TakeTemperatureBins => "TakeTemperatureBins",
         Request::FitOrtho9 => "FitOrtho9",
         Request::CaptureUntil(_) => "CaptureUntil",
+        Request::Register { .. } => "Register",
     }
 }
 

@@ -1,5 +1,5 @@
-//! Finding accelcal boards among the serial ports, by the USB ids of `shared::protocol`, and naming
-//! a board by its serial number.
+//! The serial ports, accelcal's own USB ids (`shared::protocol`) marked, and naming a board by its
+//! serial number. A board with another USB identity is found by its handshake (`probe.rs`).
 
 use shared::protocol::{USB_PID, USB_VID};
 
@@ -14,6 +14,8 @@ pub struct SerialPortEntry {
     pub is_accelcal: bool,
     /// The USB serial number string, when the port is a USB device that has one.
     pub serial: Option<String>,
+    /// The USB vendor and product ids, when the port is a USB device.
+    pub usb_ids: Option<(u16, u16)>,
 }
 
 /// Every serial port of this machine.
@@ -24,6 +26,7 @@ pub fn serial_ports() -> Result<Vec<SerialPortEntry>, LinkError> {
         .map(|port| SerialPortEntry {
             is_accelcal: is_accelcal(&port),
             serial: usb_serial(&port),
+            usb_ids: usb_ids(&port),
             path: port.port_name,
         })
         .collect())
@@ -69,8 +72,15 @@ fn usb_serial(port: &serialport::SerialPortInfo) -> Option<String> {
     }
 }
 
+fn usb_ids(port: &serialport::SerialPortInfo) -> Option<(u16, u16)> {
+    match &port.port_type {
+        serialport::SerialPortType::UsbPort(usb) => Some((usb.vid, usb.pid)),
+        _ => None,
+    }
+}
+
 fn is_accelcal(port: &serialport::SerialPortInfo) -> bool {
-    matches!(&port.port_type, serialport::SerialPortType::UsbPort(usb) if usb.vid == USB_VID && usb.pid == USB_PID)
+    usb_ids(port) == Some((USB_VID, USB_PID))
 }
 
 #[cfg(test)]
@@ -78,7 +88,8 @@ mod tests {
     use super::*;
 
     fn entry(path: &str, serial: Option<&str>) -> SerialPortEntry {
-        SerialPortEntry { path: path.into(), is_accelcal: serial.is_some(), serial: serial.map(str::to_owned) }
+        let usb_ids = serial.map(|_| (USB_VID, USB_PID));
+        SerialPortEntry { path: path.into(), is_accelcal: serial.is_some(), serial: serial.map(str::to_owned), usb_ids }
     }
 
     fn listed() -> Result<Vec<SerialPortEntry>, LinkError> {

@@ -1,5 +1,6 @@
 //! The link to a device: byte transports, the protocol client with one typed method per request,
-//! opening a serial port, and finding accelcal boards among the serial ports.
+//! opening a serial port, and finding accelcal boards among the serial ports (by USB ids, or by
+//! their handshake after listening first).
 
 mod client;
 mod connect;
@@ -8,6 +9,7 @@ mod error;
 mod explain;
 mod listening;
 pub mod port;
+mod probe;
 mod requests;
 mod tally;
 
@@ -17,5 +19,6 @@ pub use discovery::{resolve_port, serial_ports, SerialPortEntry};
 pub use error::LinkError;
 pub use explain::explain;
 pub use port::{open_serial, pipe, PipeEnd, Port};
+pub use probe::{ask, find_board, is_worth_asking, Answer};
 pub use requests::{ChipOrtho9, StreamRequest};
 pub use tally::Tally;

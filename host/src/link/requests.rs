@@ -186,6 +186,25 @@ impl<P: Port> Client<P> {
         }
     }
 
+    /// Writes `write` to a sensor register when given, then reads it: the value it holds.
+    pub fn register(&mut self, register: u8, write: Option<u8>) -> Result<u8, LinkError> {
+        let request = Request::Register { register, write };
+        match self.call(request.clone())? {
+            Response::Register(value) => Ok(value),
+            other => Err(unexpected(&request, &other)),
+        }
+    }
+
+    /// `count` consecutive sensor registers from `first`, one request each.
+    pub fn read_registers(&mut self, first: u8, count: u8) -> Result<Vec<u8>, LinkError> {
+        (first..first.saturating_add(count)).map(|register| self.register(register, None)).collect()
+    }
+
+    /// Writes one sensor register; the value it holds afterwards.
+    pub fn write_register(&mut self, register: u8, value: u8) -> Result<u8, LinkError> {
+        self.register(register, Some(value))
+    }
+
     fn expect_done(&mut self, request: Request) -> Result<(), LinkError> {
         match self.call(request.clone())? {
             Response::Done => Ok(()),

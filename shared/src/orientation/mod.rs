@@ -17,6 +17,8 @@ pub use position_map::PositionMap;
 /// degrees from its face. 20 degrees accepts that plus a hand's placement, and still refuses a reading
 /// halfway between faces (at least 45 degrees from every face).
 pub const DEFAULT_FACE_TOLERANCE_DEG: f32 = 20.0;
+/// cos([`DEFAULT_FACE_TOLERANCE_DEG`]), for the check without an angle (a test holds the two together).
+pub const DEFAULT_FACE_TOLERANCE_COS: f32 = 0.939_692_6;
 
 /// A position, named by the body axis that points up (so that axis reads +1 g).
 #[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -89,6 +91,21 @@ impl Position {
         let mut up = [T::zero(); 3];
         up[self.axis()] = if self.sign() > 0 { T::one() } else { -T::one() };
         up
+    }
+
+    /// The face a reading (any unit) lies within [`DEFAULT_FACE_TOLERANCE_DEG`] of: as
+    /// [`Position::detect`] without the tilt, so without an arc tangent (the chip's check; its
+    /// flash has no room for `atan2`).
+    pub fn within_default_tolerance(reading: Vec3<f32>) -> Option<Position> {
+        let magnitude = linalg::norm(reading);
+        if !magnitude.is_finite() || magnitude == 0.0 {
+            return None;
+        }
+        let axis = dominant_axis(reading);
+        // NOTE: the angle to the nearest face is within the tolerance when the reading's component
+        // along that face's axis is at least the tolerance's cosine times its length.
+        let within = reading[axis].abs() >= DEFAULT_FACE_TOLERANCE_COS * magnitude;
+        within.then(|| Position::from_axis(axis, reading[axis] > 0.0))
     }
 
     /// The position of a reading (any unit) within `tolerance_deg` of a face, with its tilt from it.
@@ -184,6 +201,21 @@ pub fn from_inclination_toolface<T: Float>(inclination_deg: T, toolface_deg: T) 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_check_without_an_angle_agrees_with_detect_on_either_side_of_the_tolerance() {
+        assert!((DEFAULT_FACE_TOLERANCE_COS - DEFAULT_FACE_TOLERANCE_DEG.to_radians().cos()).abs() < 1e-7);
+        for position in Position::ALL {
+            for tilt in [0.0, 10.0, 19.9, 20.1, 30.0, 44.0] {
+                let reading = tilted(position, tilt).map(|v| v * 9.8);
+                let detected = Position::detect(reading, DEFAULT_FACE_TOLERANCE_DEG).ok().map(|(p, _)| p);
+                assert_eq!(Position::within_default_tolerance(reading), detected, "{position:?} {tilt}");
+                assert_eq!(detected.is_some(), tilt < 20.0, "{position:?} {tilt}");
+            }
+        }
+        assert_eq!(Position::within_default_tolerance([0.0; 3]), None);
+        assert_eq!(Position::within_default_tolerance([f32::NAN, 1.0, 0.0]), None);
+    }
 
     /// A unit vector tilted `tilt_deg` from `position` toward the next axis.
     fn tilted(position: Position, tilt_deg: f32) -> Vec3<f32> {

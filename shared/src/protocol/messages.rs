@@ -51,6 +51,12 @@ pub enum Request {
     /// Averages the still sensor until its mean is known well enough (see [`CaptureGoal`]); progress,
     /// then [`Response::Captured`], whose `samples` tell whether the goal or the maximum ended it.
     CaptureUntil(CaptureGoal),
+    /// Writes `write` to a sensor register when given, then reads the register; answered with
+    /// [`Response::Register`]. Refused while a capture or stream runs. The board's own configuration
+    /// stays as it was: [`Request::Configure`] and every [`Request::Hello`] write it to the sensor again.
+    // NOTE: one register a request, read and write in one: a buffer of registers and a second
+    // request cost the board more flash than the Pico has left; a dump of the map is 127 requests.
+    Register { register: u8, write: Option<u8> },
 }
 
 /// When a [`Request::CaptureUntil`] stops: once at least `min_samples` are averaged and the standard
@@ -99,6 +105,8 @@ pub enum Response {
     /// Answer to [`Request::FitOrtho9`]: the fit (its `residual_mg` is the RMS of |a| - 1 g over
     /// the captures, in mg), how many captures it used and the solver's iterations. Not active.
     Ortho9Fitted { calibration: Calibration, captures: u8, iterations: u8 },
+    /// Answer to [`Request::Register`]: the register's value.
+    Register(u8),
 }
 
 /// Which copy of the calibration to read.

@@ -20,8 +20,10 @@ pub use temperature::{TempBin, TEMP_BINS_PER_MESSAGE};
 /// their mean is known well enough ([`Request::CaptureUntil`]) and the chip's temperature bins
 /// (`TakeTemperatureBins`); a host of version 3 would read the new messages as garbled frames, so the version
 /// names the mismatch instead. 5 from issue 27: the sensor identity carries the register family
-/// the chip behaves as (the part is named by its WHO_AM_I, [`crate::part`]).
-pub const PROTOCOL_VERSION: u8 = 5;
+/// the chip behaves as (the part is named by its WHO_AM_I, [`crate::part`]). 6 from issue 27: register
+/// access ([`Request::Register`], [`Response::Register`]), through which the host runs the datasheet
+/// self-test and dumps an unknown part's registers.
+pub const PROTOCOL_VERSION: u8 = 6;
 
 /// Largest postcard payload of one message, in bytes.
 ///

@@ -70,6 +70,8 @@ fn every_request() -> Vec<Request> {
         Request::TakeTemperatureBins,
         Request::FitOrtho9,
         Request::CaptureUntil(CaptureGoal { mean_std_g: f32::MAX, min_samples: u32::MAX, max_samples: u32::MAX }),
+        Request::Register { register: u8::MAX, write: Some(u8::MAX) },
+        Request::Register { register: 0, write: None },
     ];
     // NOTE: the match fails to compile when a variant is added without being listed above.
     for request in &all {
@@ -87,7 +89,8 @@ fn every_request() -> Vec<Request> {
             | Request::Stream { .. }
             | Request::TakeTemperatureBins
             | Request::FitOrtho9
-            | Request::CaptureUntil(_) => {}
+            | Request::CaptureUntil(_)
+            | Request::Register { .. } => {}
         }
     }
     all
@@ -156,6 +159,7 @@ fn every_response() -> Vec<Response> {
         Response::Done,
         Response::TemperatureBins(full_temperature_bins()),
         Response::Ortho9Fitted { calibration: calibration(), captures: u8::MAX, iterations: u8::MAX },
+        Response::Register(u8::MAX),
     ];
     all.extend(every_error().into_iter().map(Response::Error));
     for response in &all {
@@ -171,7 +175,8 @@ fn every_response() -> Vec<Response> {
             | Response::Done
             | Response::Error(_)
             | Response::TemperatureBins(_)
-            | Response::Ortho9Fitted { .. } => {}
+            | Response::Ortho9Fitted { .. }
+            | Response::Register(_) => {}
         }
     }
     all

@@ -1,0 +1,103 @@
+//! `accelcal selftest`: the datasheet self-test, beside the board's previous one.
+
+use std::io::Write;
+use std::path::PathBuf;
+
+use clap::Args;
+use serde::Serialize;
+
+use super::args::Device;
+use crate::error::Error;
+use crate::selftest::history::{self, History, HistoryEntry};
+use crate::selftest::report::{text, SelfTestJson};
+use crate::selftest::{run, PhaseName, Watcher};
+use crate::session::BoardRecord;
+
+/// `accelcal selftest`.
+#[derive(Args)]
+pub struct SelftestArgs {
+    #[command(flatten)]
+    pub device: Device,
+    /// Print one JSON object.
+    #[arg(long)]
+    pub json: bool,
+    /// The folder that keeps each board's self-tests (`selftest-SERIAL.json`); a real board's go to
+    /// $XDG_DATA_HOME/accelcal (~/.local/share/accelcal) unless given; a simulated board's are kept
+    /// only when given.
+    #[arg(long)]
+    pub history: Option<PathBuf>,
+}
+
+/// What `selftest --json` prints: the result's fields, the board's previous self-test and where
+/// they are kept.
+#[derive(Serialize)]
+struct SelftestOutput<'a> {
+    #[serde(flatten)]
+    result: &'a SelfTestJson,
+    /// The board's previous self-test (`date_utc`, `result`); null for the first.
+    previous: Option<&'a HistoryEntry>,
+    /// The history file; null when none is kept.
+    history: Option<PathBuf>,
+}
+
+/// What the procedure shows a person on stderr (nothing with `--json`).
+struct Lines {
+    quiet: bool,
+}
+
+impl Watcher for Lines {
+    fn phase(&mut self, attempt: u8, phase: PhaseName) {
+        if !self.quiet {
+            eprintln!("attempt {attempt}: {} (1 s)", phase.label());
+        }
+    }
+
+    fn moved(&mut self, attempt: u8, why: &str) {
+        if !self.quiet {
+            eprintln!("attempt {attempt}: the board moved ({why}); keep your hands off it, trying again");
+        }
+    }
+}
+
+/// `accelcal selftest (--port P | --sim) [--json] [--history DIR]`: exits 2 when an axis failed.
+pub(super) fn selftest(args: &SelftestArgs) -> Result<(), Error> {
+    let mut opened = args.device.open()?;
+    let history = history_of(args, &BoardRecord::of(&opened.connection.info).serial);
+    let previous = match &history {
+        Some(history) => history.entries()?.pop(),
+        None => None,
+    };
+    if !args.json {
+        eprintln!("rest the board on a table and keep your hands off it (about 3 s)");
+    }
+    let connection = &mut opened.connection;
+    connection.client.interrupt_on(super::calibrate::interrupt_on_ctrl_c());
+    let test = run(&mut connection.client, &connection.info, &mut Lines { quiet: args.json })?;
+    let result = SelfTestJson::of(&test);
+    if args.json {
+        let history_path = history.as_ref().map(|h| h.path().to_path_buf());
+        let output = SelftestOutput { result: &result, previous: previous.as_ref(), history: history_path };
+        // NOTE: a reader that went away (`| head`) is no reason to lose the history entry below.
+        let _ = writeln!(std::io::stdout(), "{}", serde_json::to_string_pretty(&output).unwrap_or_default());
+    } else {
+        let _ = write!(std::io::stdout(), "{}", text(&test, previous.as_ref()));
+    }
+    if let Some(history) = &history {
+        history.append(HistoryEntry::now(&result))?;
+    }
+    if test.passed() {
+        Ok(())
+    } else {
+        Err(Error::SelfTestFailed)
+    }
+}
+
+/// The board's history: in `--history`, or for a real board in the default folder.
+fn history_of(args: &SelftestArgs, serial: &str) -> Option<History> {
+    let dir = match (&args.history, args.device.sim) {
+        (Some(dir), _) => Some(dir.clone()),
+        (None, false) => history::default_dir(),
+        (None, true) => None,
+    };
+    dir.map(|dir| History::of(&dir, serial))
+}

@@ -1,0 +1,101 @@
+//! Finding an accelcal board whose USB identity is not accelcal's (the ESP32-C3's USB-Serial-JTAG
+//! has Espressif's fixed ids) by its handshake: the simulated board on a pseudo-terminal stands for
+//! it, listed with Espressif's ids. A port that prints on its own is never written to; a silent
+//! port that is no board gets accelcal's hello only after it was listened to.
+
+mod common;
+
+use std::io::Read;
+use std::sync::atomic::Ordering;
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+use accelcal::link::{ask, find_board, is_worth_asking, open_port, Answer, LinkError, SerialPortEntry, LISTEN_FIRST};
+use accelcal::sim::replay::Replay;
+use accelcal::sim::sketch::Sketch;
+use common::SimPty;
+use shared::protocol::PROTOCOL_VERSION;
+
+/// The ESP32-C3's USB-Serial-JTAG ids (Espressif's vendor id, its fixed product id).
+const ESPRESSIF_USB_SERIAL_JTAG: (u16, u16) = (0x303A, 0x1001);
+
+fn listed_as_esp32c3(path: &str) -> SerialPortEntry {
+    SerialPortEntry {
+        path: path.to_owned(),
+        is_accelcal: false,
+        serial: Some("58:CF:79:E1:A2:B4".to_owned()),
+        usb_ids: Some(ESPRESSIF_USB_SERIAL_JTAG),
+    }
+}
+
+#[test]
+fn a_board_with_espressifs_usb_ids_is_found_by_its_handshake() {
+    let board = SimPty::start(&["--fast"]);
+    let ports = [listed_as_esp32c3(&board.path)];
+    assert!(is_worth_asking(&ports[0]));
+    let mut asked = Vec::new();
+    let found = find_board(&ports, &mut |entry| asked.push(entry.path.clone())).expect("the board answers its hello");
+    assert_eq!(asked, std::slice::from_ref(&board.path), "the port is asked once, with progress");
+    assert_eq!(found.info.protocol_version, PROTOCOL_VERSION);
+    let serial = found.info.serial;
+    drop(found);
+    let direct = open_port(&board.path, 115_200).unwrap();
+    assert_eq!(direct.info.serial, serial, "the board found is the one on that port");
+}
+
+#[test]
+fn a_port_that_prints_on_its_own_is_named_and_never_written_to() {
+    let sketch = Replay::spawn(Sketch::I2cdevlib, 3, 1.0).expect("a pseudo-terminal");
+    let answer = ask(&sketch.path);
+    assert!(matches!(&answer, Answer::Talks(heard) if heard.starts_with("text such as")), "not named as talking");
+    let error = find_board(&[listed_as_esp32c3(&sketch.path)], &mut |_| {}).err().expect("no board there");
+    assert!(matches!(error, LinkError::NoBoardFound { asked: 1 }), "{error}");
+    assert_eq!(sketch.state.written.load(Ordering::SeqCst), 0, "bytes were written to a port that talks");
+}
+
+#[test]
+fn a_silent_port_that_is_no_board_is_greeted_only_after_it_was_listened_to() {
+    let (mut master, slave) = serialport::TTYPort::pair().unwrap();
+    let path = serialport::SerialPort::name(&slave).unwrap();
+    let first_byte_at: Arc<Mutex<Option<Instant>>> = Arc::default();
+    let seen = first_byte_at.clone();
+    std::thread::spawn(move || {
+        let _ = serialport::SerialPort::set_timeout(&mut master, Duration::from_millis(50));
+        let mut buffer = [0u8; 64];
+        loop {
+            if matches!(master.read(&mut buffer), Ok(n) if n > 0) {
+                seen.lock().unwrap().get_or_insert_with(Instant::now);
+            }
+        }
+    });
+    let asked_at = Instant::now();
+    let answer = ask(&path);
+    assert!(matches!(answer, Answer::NoBoard(LinkError::Silent { .. })), "a silent port is no board");
+    let first = first_byte_at.lock().unwrap().expect("the silent port was greeted");
+    let listened = first - asked_at;
+    assert!(listened >= LISTEN_FIRST, "written to after {listened:?}, before listening {LISTEN_FIRST:?}");
+}
+
+#[test]
+fn a_port_that_is_no_usb_device_is_never_asked() {
+    let board = SimPty::start(&["--fast"]);
+    let uart = SerialPortEntry { path: board.path.clone(), is_accelcal: false, serial: None, usb_ids: None };
+    assert!(!is_worth_asking(&uart));
+    let error = find_board(&[uart], &mut |entry| panic!("{} was asked", entry.path)).err().unwrap();
+    assert!(matches!(error, LinkError::NoBoardFound { asked: 0 }), "{error}");
+}
+
+#[test]
+fn several_boards_and_none_are_refused_naming_the_way_out() {
+    let none = find_board(&[], &mut |_| {}).err().unwrap().to_string();
+    assert!(none.contains("no accelcal board found") && none.contains("--port"), "{none}");
+    let ours = |path: &str| SerialPortEntry {
+        path: path.into(),
+        is_accelcal: true,
+        serial: None,
+        usb_ids: Some((0x1209, 0x0001)),
+    };
+    let several = find_board(&[ours("/dev/ttyACM0"), ours("/dev/ttyACM1")], &mut |_| panic!("nothing is asked"));
+    let message = several.err().unwrap().to_string();
+    assert!(message.contains("/dev/ttyACM0, /dev/ttyACM1") && message.contains("--port"), "{message}");
+}
