@@ -37,7 +37,7 @@ pub enum LinkError {
     Interrupted,
     #[error("no serial port has the serial number {serial} ({found}): give the serial number `accelcal ports` shows, or the port's path")]
     NoSuchSerial { serial: String, found: String },
-    #[error("no accelcal board found: no serial port has accelcal's USB ids, and none of the {asked} USB serial ports of another identity answered accelcal's hello (each was listened to first); plug the board in, or give --port PATH (see `accelcal ports`) or --sim")]
+    #[error("no accelcal board found: no serial port has accelcal's USB ids, and no other USB serial port answered accelcal's hello ({asked} asked, each listened to first); plug the board in, or give --port PATH (see `accelcal ports`) or --sim")]
     NoBoardFound { asked: usize },
     #[error("several accelcal boards are plugged in ({paths}): give --port with the path or the serial number of one (`accelcal ports` lists them)")]
     SeveralBoards { paths: String },
