@@ -17,40 +17,11 @@ use accelcal::session::Session;
 use accelcal::sim::{Pace, SimBoard, SimSensor};
 use firmware::sim::SimFlash;
 use shared::protocol::{SensorConfig, StreamKind};
-use shared::Calibration;
 
 const PLACEMENT_DEG: f64 = 3.0;
 const TARGET_MG: f64 = 0.2;
 const SEEDS: u64 = 20;
 const WAIT: Option<Duration> = Some(Duration::from_secs(60));
-/// Fresh orientations the true error is averaged over (a Fibonacci sphere).
-const FRESH: usize = 200;
-
-fn fresh_orientations() -> Vec<[f32; 3]> {
-    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
-    (0..FRESH)
-        .map(|i| {
-            let z = 1.0 - 2.0 * (i as f64 + 0.5) / FRESH as f64;
-            let (r, angle) = ((1.0 - z * z).sqrt(), golden * i as f64);
-            [(r * angle.cos()) as f32, (r * angle.sin()) as f32, z as f32]
-        })
-        .collect()
-}
-
-/// RMS | |a| - 1 g | in mg of `calibration` against the board's noise-free truth when TEMP_OUT reads
-/// `reading_c`, at fresh orientations (corrected at that temperature, as the chip does).
-fn true_error_mg(board: &SimBoard, calibration: &Calibration, reading_c: f32) -> f64 {
-    let truth = board.truth_at(reading_c);
-    let squares: f64 = fresh_orientations()
-        .iter()
-        .map(|&u| {
-            let corrected = calibration.apply_at(truth.reading_g(u), reading_c);
-            ((f64::from(shared::linalg::norm(corrected)) - 1.0) * 1000.0).powi(2)
-        })
-        .sum();
-    (squares / FRESH as f64).sqrt()
-}
-
 /// The die temperature TEMP_OUT reads now (one raw sample: 10 ms of the board's time).
 fn reading_now(client: &mut Client<PipeEnd>) -> f32 {
     let mut temp_c = f32::NAN;
@@ -111,14 +82,11 @@ fn session(seed: u64, kind: SimSensor, target_mg: f64) -> Outcome {
         captures: session.captures.len(),
         board_seconds,
         temp_change_c: high - low,
-        at_end_mg: true_error_mg(&board, &calibration, end_c),
-        at_mean_mg: true_error_mg(&board, &calibration, accelcal::fit::drift::mean_temp_c(&session.dataset()) as f32),
-        static_at_end_mg: true_error_mg(&board, &static_calibration, end_c),
-        static_at_mean_mg: true_error_mg(
-            &board,
-            &static_calibration,
-            accelcal::fit::drift::mean_temp_c(&session.dataset()) as f32,
-        ),
+        at_end_mg: board.true_error_mg(&calibration, end_c),
+        at_mean_mg: board.true_error_mg(&calibration, accelcal::fit::drift::mean_temp_c(&session.dataset()) as f32),
+        static_at_end_mg: board.true_error_mg(&static_calibration, end_c),
+        static_at_mean_mg: board
+            .true_error_mg(&static_calibration, accelcal::fit::drift::mean_temp_c(&session.dataset()) as f32),
         verified_mg: verification.after_rms_mg,
     }
 }

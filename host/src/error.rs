@@ -26,6 +26,8 @@ pub enum Error {
     Calibration(#[from] CalibrationRecordError),
     #[error(transparent)]
     Sim(#[from] SimError),
+    #[error(transparent)]
+    Emulator(#[from] crate::sim::EmulatorError),
     #[error("{}: {source}", .path.display())]
     DataFile { path: PathBuf, source: DataError },
     #[error("{}: cannot fit {model}: {source}", .path.display())]

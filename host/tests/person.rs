@@ -2,13 +2,12 @@
 //! the person on stderr and turns the simulated board through the simulator's stdin, as a person
 //! would; it declines, presses Ctrl-C, pulls the cable and resumes.
 
-use std::io::{BufRead, BufReader};
-use std::process::{Child, Command, Output, Stdio};
-use std::sync::mpsc::{channel, Receiver};
+use std::process::{Command, Output};
 use std::time::Duration;
 
 mod common;
 
+use common::person::{Moves, Run};
 use common::SimPty;
 
 fn accelcal(args: &[&str]) -> Output {
@@ -30,61 +29,10 @@ fn calibrations(sim: &SimPty) -> (String, String) {
     (String::from_utf8(active.stdout).unwrap(), String::from_utf8(stored.stdout).unwrap())
 }
 
-/// `accelcal calibrate` against the simulated board, with its stderr lines on a channel.
-struct Run {
-    child: Child,
-    lines: Receiver<String>,
-    seen: Vec<String>,
-}
-
-impl Run {
-    fn start(port: &str, extra: &[&str]) -> Self {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_accelcal"))
-            .args(["calibrate", "--port", port, "--quick", "--seconds", "5", "--verify", "2"])
-            .args(extra)
-            .stdin(Stdio::null())
-            .stdout(Stdio::piped())
-            .stderr(Stdio::piped())
-            .spawn()
-            .unwrap();
-        let (send, lines) = channel();
-        let stderr = BufReader::new(child.stderr.take().unwrap());
-        std::thread::spawn(move || stderr.lines().map_while(Result::ok).for_each(|line| drop(send.send(line))));
-        Run { child, lines, seen: Vec::new() }
-    }
-
-    /// Plays the person: turns the board as each instruction says, until a line contains `until`
-    /// (or the run ends: `None`).
-    fn follow(&mut self, sim: &mut SimPty, until: &str) -> Option<String> {
-        // NOTE: midpoints of cube edges: 45 degrees from the faces and 35 from the corners the
-        // calibration asked for, so each is fresh (limits::FRESH_DEG is 20).
-        let fresh = ["place 0.707 0 0.707", "place 0 0.707 -0.707", "place -0.707 0.707 0"];
-        while let Ok(line) = self.lines.recv_timeout(Duration::from_secs(60)) {
-            self.seen.push(line.clone());
-            if let Some(rest) = line.strip_prefix("Rest the board with ") {
-                sim.tell(&format!("place {}", rest.split_whitespace().next().unwrap()));
-            } else if let Some(rest) = line.strip_prefix("Verification ") {
-                let k: usize = rest.split(':').next().unwrap().parse().unwrap();
-                sim.tell(fresh[k - 1]);
-            }
-            if line.contains(until) {
-                return Some(line);
-            }
-        }
-        None
-    }
-
-    fn interrupt(&self) {
-        let status = Command::new("kill").args(["-INT", &self.child.id().to_string()]).status().unwrap();
-        assert!(status.success());
-    }
-
-    /// Waits for the end; the exit status, stdout and every stderr line.
-    fn finish(mut self, sim: &mut SimPty) -> (std::process::ExitStatus, String, String) {
-        self.follow(sim, "\u{0}never");
-        let output = self.child.wait_with_output().unwrap();
-        (output.status, String::from_utf8(output.stdout).unwrap(), self.seen.join("\n"))
-    }
+/// `accelcal calibrate --quick` against the simulated board, the person placing it.
+fn quick_run(port: &str, extra: &[&str]) -> Run {
+    let args = [&["--quick", "--seconds", "5", "--verify", "2"][..], extra].concat();
+    Run::start(port, &args, Moves::Place)
 }
 
 fn session_captures(stem: &std::path::Path) -> usize {
@@ -107,7 +55,7 @@ fn declining_the_upload_leaves_the_active_and_stored_calibration_as_they_were() 
     let before = calibrations(&sim);
     assert!(before.0.contains("0.0299999") && before.1.contains("0.0299999"), "{before:?}");
     let session = temp_stem("declined");
-    let run = Run::start(&sim.path.clone(), &["--session", session.to_str().unwrap()]);
+    let run = quick_run(&sim.path.clone(), &["--session", session.to_str().unwrap()]);
     let (status, _, stderr) = run.finish(&mut sim);
     assert!(status.success(), "{stderr}");
     assert!(stderr.contains("not uploaded; the board keeps its previous calibration"), "{stderr}");
@@ -118,7 +66,7 @@ fn declining_the_upload_leaves_the_active_and_stored_calibration_as_they_were() 
 fn ctrl_c_keeps_the_captures_so_far_and_resume_completes_them_to_a_verified_calibration() {
     let mut sim = board_on_the_desk("12");
     let session = temp_stem("interrupted");
-    let mut run = Run::start(&sim.path.clone(), &["--session", session.to_str().unwrap()]);
+    let mut run = quick_run(&sim.path.clone(), &["--session", session.to_str().unwrap()]);
     assert!(run.follow(&mut sim, "captured 2 of 10").is_some(), "{:?}", run.seen);
     // The person stops instead of turning the board to the third face.
     std::thread::sleep(Duration::from_millis(300));
@@ -131,7 +79,7 @@ fn ctrl_c_keeps_the_captures_so_far_and_resume_completes_them_to_a_verified_cali
     assert_eq!(session_captures(&session), 2);
 
     let json = session.with_extension("json");
-    let run = Run::start(&sim.path.clone(), &["--resume", json.to_str().unwrap(), "--yes"]);
+    let run = quick_run(&sim.path.clone(), &["--resume", json.to_str().unwrap(), "--yes"]);
     let (status, stdout, stderr) = run.finish(&mut sim);
     assert!(status.success(), "{stderr}");
     assert!(stderr.contains("2 of 10 positions captured"), "{stderr}");
@@ -145,7 +93,7 @@ fn ctrl_c_keeps_the_captures_so_far_and_resume_completes_them_to_a_verified_cali
 fn a_pulled_cable_keeps_the_captures_so_far_and_resume_on_another_board_is_refused_by_serial() {
     let mut sim = board_on_the_desk("13");
     let session = temp_stem("pulled");
-    let mut run = Run::start(&sim.path.clone(), &["--session", session.to_str().unwrap()]);
+    let mut run = quick_run(&sim.path.clone(), &["--session", session.to_str().unwrap()]);
     assert!(run.follow(&mut sim, "captured 3 of 10").is_some(), "{:?}", run.seen);
     drop(sim); // the cable is pulled
     let mut other = board_on_the_desk("14");
@@ -176,7 +124,7 @@ fn a_session_in_a_missing_directory_is_refused_before_the_first_capture() {
 fn ctrl_c_during_the_verification_says_the_calibration_is_already_uploaded_and_saved() {
     let mut sim = board_on_the_desk("16");
     let session = temp_stem("verifying");
-    let mut run = Run::start(&sim.path.clone(), &["--yes", "--session", session.to_str().unwrap()]);
+    let mut run = quick_run(&sim.path.clone(), &["--yes", "--session", session.to_str().unwrap()]);
     assert!(run.follow(&mut sim, "uploaded and saved; now checking").is_some(), "{:?}", run.seen);
     std::thread::sleep(Duration::from_millis(300));
     run.interrupt();

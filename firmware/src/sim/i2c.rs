@@ -77,3 +77,38 @@ impl SimMpu6050 {
         address
     }
 }
+
+/// The chip's side of a bus that arrives one event at a time (an emulated I2C controller's start,
+/// address, byte and stop, host `sim::emulated`): the register pointer carries over between
+/// transactions, as on the chip, so that a write of the register address and a repeated-start read
+/// from it meet as they do in [`embedded_hal::i2c::I2c::transaction`].
+#[derive(Debug, Default, Clone, Copy, PartialEq, Eq)]
+pub struct BytewiseTarget {
+    pointer: u8,
+    /// Whether the next written byte is a register address (the first of a write).
+    expects_address: bool,
+}
+
+impl BytewiseTarget {
+    /// The controller addresses `address`: whether the chip acknowledges.
+    pub fn address(&mut self, chip: &mut SimMpu6050, address: u8) -> bool {
+        self.expects_address = true;
+        chip.acknowledge(address).is_ok()
+    }
+
+    /// The controller writes `value`: a register address first, then values from it on.
+    pub fn write(&mut self, chip: &mut SimMpu6050, value: u8) {
+        if core::mem::take(&mut self.expects_address) {
+            self.pointer = value;
+        } else {
+            self.pointer = chip.write_from(&[self.pointer, value], self.pointer);
+        }
+    }
+
+    /// The controller reads a byte.
+    pub fn read(&mut self, chip: &mut SimMpu6050) -> u8 {
+        let mut byte = [0];
+        self.pointer = chip.read_into(&mut byte, self.pointer);
+        byte[0]
+    }
+}

@@ -19,7 +19,7 @@ use shared::linalg::{self, Vec3};
 
 use crate::sensor::registers as reg;
 pub use board::{sim_serial_number, SimFlash, SIM_FLASH_RANGE};
-pub use i2c::BusFault;
+pub use i2c::{BusFault, BytewiseTarget};
 use part::SimPart;
 use physics::{Motion, Physics};
 

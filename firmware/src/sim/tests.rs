@@ -190,3 +190,46 @@ fn parts_drawn_by_seed_spread_as_the_datasheet_tolerances_say_and_the_first_powe
     first.power_on(0, 0.0);
     assert_eq!(first.truth, Physics::new(7).truth);
 }
+
+/// The register accesses of a bytewise bus: `(register, bytes)` writes, then reads of `count` bytes.
+fn bytewise_reads(chip: &mut SimMpu6050, writes: &[(u8, &[u8])], reads: &[(u8, usize)]) -> Vec<u8> {
+    let mut bus = super::BytewiseTarget::default();
+    for (register, values) in writes {
+        assert!(bus.address(chip, 0x68));
+        bus.write(chip, *register);
+        values.iter().for_each(|&v| bus.write(chip, v));
+    }
+    let mut read = Vec::new();
+    for &(register, count) in reads {
+        assert!(bus.address(chip, 0x68));
+        bus.write(chip, register);
+        assert!(bus.address(chip, 0x68)); // the repeated start, to read
+        read.extend((0..count).map(|_| bus.read(chip)));
+    }
+    read
+}
+
+#[test]
+fn a_bus_that_arrives_byte_by_byte_reads_and_writes_as_whole_transactions_do() {
+    use embedded_hal::i2c::I2c;
+    // PWR_MGMT_1 (0x6B) awake, USER_CTRL (0x6A) FIFO on, FIFO_EN (0x23) accelerometer and gyro.
+    let writes: [(u8, &[u8]); 2] = [(0x6B, &[0x00]), (0x6A, &[0x40])];
+    let fifo_en: (u8, &[u8]) = (0x23, &[0x78]);
+    let (mut bytewise, mut whole) = (SimMpu6050::new(5), SimMpu6050::new(5));
+    for (register, values) in writes.iter().chain([&fifo_en]) {
+        whole.write(0x68, &[&[*register][..], values].concat()).unwrap();
+    }
+    bytewise_reads(&mut bytewise, &[writes[0], writes[1], fifo_en], &[]);
+    bytewise.advance_us(30_000);
+    whole.advance_us(30_000);
+    // WHO_AM_I (0x75), the data registers from ACCEL_XOUT_H (0x3B), 24 bytes of FIFO_R_W (0x74).
+    let read = bytewise_reads(&mut bytewise, &[], &[(0x75, 1), (0x3B, 14), (0x74, 24)]);
+    let mut expected = vec![0u8; 39];
+    whole.write_read(0x68, &[0x75], &mut expected[..1]).unwrap();
+    whole.write_read(0x68, &[0x3B], &mut expected[1..15]).unwrap();
+    whole.write_read(0x68, &[0x74], &mut expected[15..]).unwrap();
+    assert_eq!(read[0], 0x68);
+    assert_eq!(read, expected);
+    assert_ne!(read[15..27], read[27..], "two FIFO samples read as one: FIFO_R_W must pop, not advance");
+    assert!(!super::BytewiseTarget::default().address(&mut bytewise, 0x69), "0x69 acknowledged");
+}

@@ -278,5 +278,10 @@ pub enum Command {
         /// a second); by default it runs in real time, as a board does.
         #[arg(long)]
         fast: bool,
+        /// Instead of the firmware library in this process, the real Pico binary from this UF2
+        /// (dist/accelcal-pico.uf2) in the rp2040js emulator, the simulated sensor on its I2C bus
+        /// (needs Node.js and `npm ci` in boards/pico/emulator; docs/boards.md).
+        #[arg(long, value_name = "UF2", conflicts_with_all = ["sketch", "fast"])]
+        pico: Option<std::path::PathBuf>,
     },
 }

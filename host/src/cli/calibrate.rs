@@ -42,7 +42,10 @@ pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
         Err(talking) => return super::foreign::calibrate_from_stream(args, *talking),
     };
     opened.connection.info.sensor.map_err(LinkError::from)?;
-    let mut feedback = feedback(args.json, args.yes || (args.json && opened.sim.is_some()));
+    // NOTE: with --json only the simulated board (turned by the tool) is silent: a person at a real
+    // board still needs the instructions, which go to stderr, leaving stdout to the JSON.
+    let simulated = opened.sim.is_some();
+    let mut feedback = feedback(args.json && simulated, args.yes || (args.json && simulated));
     let mut kept = start_session(args, &opened.connection.info, feedback.as_mut())?;
     let interrupt = interrupt_on_ctrl_c();
     opened.connection.client.interrupt_on(interrupt.clone());

@@ -72,7 +72,10 @@ pub fn run(cli: Cli) -> Result<(), Error> {
         Command::Thermal(args) => thermal::thermal(&args),
         Command::Selftest(args) => selftest::selftest(&args),
         Command::Sim { pty, seed, sketch: Some(sketch), .. } => sketch_stream(sketch, seed, pty),
-        Command::Sim { pty: _, seed, fast, sketch: None } => {
+        Command::Sim { seed, pico: Some(uf2), .. } => {
+            Ok(crate::sim::serve_emulated(&uf2, seed, crate::sim::SimSensor::Realistic)?)
+        }
+        Command::Sim { pty: _, seed, fast, sketch: None, pico: None } => {
             let pace = if fast { crate::sim::Pace::Fast } else { crate::sim::Pace::RealTime };
             Ok(crate::sim::serve_pty(seed, pace)?)
         }

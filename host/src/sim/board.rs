@@ -12,12 +12,16 @@ use firmware::sim::part::SimPart;
 use firmware::sim::physics::{Motion, Physics, TrueErrors};
 use firmware::sim::thermal::{ThermalDrift, TRUTH_REF_TEMP_C};
 use firmware::sim::{sim_serial_number, SimFlash, SimMpu6050, SIM_FLASH_RANGE};
+use shared::Calibration;
 
 use super::clock::Pace;
 use super::serve::serve;
 use super::Port;
 use crate::link::{pipe, Connection, LinkError};
 use crate::report::{DriftJson, TruthJson};
+
+/// Orientations [`SimBoard::true_error_mg`] averages over.
+pub const TRUE_ERROR_ORIENTATIONS: usize = 200;
 
 /// What the owner of a simulated board can do to it.
 #[derive(Debug, Clone, PartialEq)]
@@ -179,6 +183,25 @@ impl SimBoard {
             }
             SimSensor::Settled => self.truth,
         }
+    }
+
+    /// The true error of `calibration` at TEMP_OUT `reading_c` degC: the rms of | |a| - 1 g |, in
+    /// mg, over [`TRUE_ERROR_ORIENTATIONS`] orientations evenly over the sphere (a Fibonacci lattice),
+    /// each this sensor's noise-free reading there corrected as the chip corrects it at that temperature.
+    pub fn true_error_mg(&self, calibration: &Calibration, reading_c: f32) -> f64 {
+        let truth = self.truth_at(reading_c);
+        let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+        let count = TRUE_ERROR_ORIENTATIONS;
+        let squares: f64 = (0..count)
+            .map(|i| {
+                let z = 1.0 - 2.0 * (i as f64 + 0.5) / count as f64;
+                let (r, angle) = ((1.0 - z * z).sqrt(), golden * i as f64);
+                let up = [(r * angle.cos()) as f32, (r * angle.sin()) as f32, z as f32];
+                let corrected = calibration.apply_at(truth.reading_g(up), reading_c);
+                ((f64::from(shared::linalg::norm(corrected)) - 1.0) * 1000.0).powi(2)
+            })
+            .sum();
+        (squares / count as f64).sqrt()
     }
 
     /// The truth at TEMP_OUT `reading_c` degC for a report, with the realistic sensor's drift.

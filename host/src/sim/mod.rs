@@ -8,6 +8,8 @@
 mod board;
 mod clock;
 mod commands;
+mod emulated;
+mod hand;
 pub mod noise;
 mod outgoing;
 mod parts;
@@ -22,6 +24,7 @@ pub mod turn;
 
 pub use board::{PowerOn, SensorChoice, SimBoard, SimCommand, SimSensor};
 pub use clock::Pace;
+pub use emulated::{serve_emulated, EmulatorError};
 pub use parts::{FaultyAxis, SimPartChoice};
 pub use pty::{serve_pty, SimError};
 

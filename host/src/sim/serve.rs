@@ -17,8 +17,8 @@ use firmware::sim::{SimFlash, SimMpu6050, SIM_FLASH_RANGE};
 
 use super::board::SimCommand;
 use super::clock::{Clock, Pace};
+use super::hand::Hand;
 use super::outgoing::Outgoing;
-use super::turn::{tip, turn_between};
 use super::Port;
 
 type SimServer = Server<SimMpu6050, SimFlash>;
@@ -32,8 +32,8 @@ const PTY_RETRY: std::time::Duration = std::time::Duration::from_millis(10);
 struct Service {
     clock: Clock,
     outgoing: Outgoing,
-    /// Simulated time at which a timed motion stops, in microseconds.
-    motion_ends_us: Option<u64>,
+    /// The owner's hand on the sensor.
+    hand: Hand,
     /// The simulated time now, in microseconds, for the board's owner.
     now_us: Arc<AtomicU64>,
 }
@@ -47,7 +47,7 @@ pub(super) fn serve<P: Port>(
     now_us: Arc<AtomicU64>,
 ) -> SimFlash {
     let (clock, outgoing) = (Clock::new(pace), Outgoing::default());
-    let mut service = Service { clock, outgoing, motion_ends_us: None, now_us };
+    let mut service = Service { clock, outgoing, hand: Hand::default(), now_us };
     let mut buffer = [0u8; 256];
     'serving: while let Some(received) = service.read(&mut port, &server, &mut buffer) {
         // NOTE: the owner's commands are applied after the read and before the bytes are handled, so
@@ -72,16 +72,6 @@ pub(super) fn serve<P: Port>(
     server.into_device().into_parts().1
 }
 
-/// Lets `seconds` pass in steps short enough for a ramp of the surroundings to stay smooth.
-fn soak(sensor: &mut SimMpu6050, seconds: f32) {
-    const STEP_S: f32 = 5.0;
-    let mut left = seconds;
-    while left > 0.0 {
-        sensor.elapse_seconds(left.min(STEP_S));
-        left -= STEP_S;
-    }
-}
-
 /// Reboots the board on its own sensor, flash and serial number (RAM state is lost).
 fn restart(server: SimServer) -> Option<SimServer> {
     let serial = server.device().serial();
@@ -89,56 +79,13 @@ fn restart(server: SimServer) -> Option<SimServer> {
     block_on(Device::boot(sensor, flash, SIM_FLASH_RANGE, serial)).ok().map(Server::new)
 }
 
-/// Whether `command` starts a new motion (which replaces a timed one).
-fn starts_motion(command: &SimCommand) -> bool {
-    matches!(
-        command,
-        SimCommand::Place(_)
-            | SimCommand::Move(_)
-            | SimCommand::MoveFor { .. }
-            | SimCommand::TurnTo(_)
-            | SimCommand::Tip(_)
-    )
-}
-
-/// A turn or a tip as the motion that makes it, from where the sensor rests now (a turn still
-/// running ends where it got to); any other command as it is.
-fn as_motion(sensor: &mut SimMpu6050, command: SimCommand) -> SimCommand {
-    match command {
-        SimCommand::TurnTo(up) => {
-            sensor.stop_motion();
-            let from = sensor.physics.up.map(f64::from);
-            turn_between(from, up.map(f64::from), [1.0, 0.0, 0.0])
-        }
-        SimCommand::Tip(degrees) => {
-            sensor.stop_motion();
-            tip(sensor.physics.up.map(f64::from), f64::from(degrees))
-        }
-        command => command,
-    }
-}
-
 impl Service {
     /// Applies a command to the simulated sensor or link.
     fn obey(&mut self, server: &mut SimServer, command: SimCommand) {
-        let sensor = server.device_mut().bus_mut();
-        // NOTE: only a new motion replaces a timed one; a lost sample or a change of the
-        // surroundings during a turn leaves the turn to end where it would have.
-        if starts_motion(&command) {
-            self.motion_ends_us = None;
-        }
-        match as_motion(sensor, command) {
-            SimCommand::Place(up) => sensor.place(up),
-            SimCommand::Move(motion) => sensor.set_motion(motion),
-            SimCommand::MoveFor { motion, seconds } => {
-                sensor.set_motion(motion);
-                self.motion_ends_us = Some(sensor.now_us() + (f64::from(seconds) * 1e6) as u64);
-            }
-            SimCommand::Connect(connected) => sensor.set_connected(connected),
-            SimCommand::Ambient { target_c, c_per_s } => sensor.physics.environment.ramp_to(target_c, c_per_s),
-            SimCommand::Elapse(seconds) => soak(sensor, seconds),
-            SimCommand::LoseSamples(count) => self.outgoing.lose_samples(count),
-            SimCommand::Restart | SimCommand::Stop | SimCommand::TurnTo(_) | SimCommand::Tip(_) => {}
+        if let SimCommand::LoseSamples(count) = command {
+            self.outgoing.lose_samples(count);
+        } else {
+            self.hand.obey(server.device_mut().bus_mut(), command);
         }
     }
 
@@ -191,15 +138,11 @@ impl Service {
         self.clock.in_lockstep() && server.device().is_busy() && !port.peer_settled()
     }
 
-    /// Advances the sensor's time, ending a timed motion when it is due.
+    /// Advances the sensor's time (the hand ends a timed motion when it is due).
     fn let_time_pass(&mut self, server: &mut SimServer) {
-        let busy = server.device().is_busy();
+        let step_us = self.clock.step_us(server.device().is_busy());
         let sensor = server.device_mut().bus_mut();
-        sensor.advance_us(self.clock.step_us(busy));
-        if self.motion_ends_us.is_some_and(|end| sensor.now_us() >= end) {
-            self.motion_ends_us = None;
-            sensor.stop_motion();
-        }
+        self.hand.advance(sensor, step_us);
         self.now_us.store(sensor.now_us(), Ordering::Relaxed);
     }
 }

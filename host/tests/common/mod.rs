@@ -3,6 +3,8 @@
 // NOTE: each test binary uses a part of these helpers.
 #![allow(dead_code)]
 
+pub mod person;
+
 use std::io::{BufRead, Read};
 use std::process::{Child, Command, Output, Stdio};
 use std::time::{Duration, Instant};
@@ -92,6 +94,55 @@ impl SimPty {
 }
 
 impl Drop for SimPty {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// The real Pico binary (dist/accelcal-pico.uf2) under `accelcal sim --pty --pico`, killed when
+/// dropped; its path is read once the emulated board's USB port is open.
+pub struct EmulatedPico {
+    child: Child,
+    lines: std::sync::mpsc::Receiver<String>,
+    /// The pseudo-terminal's path (a new one after each `cable in`).
+    pub path: String,
+}
+
+impl EmulatedPico {
+    /// Boots the binary with the realistic simulated sensor of `seed`; waits at most 60 s for its port.
+    pub fn boot(seed: &str) -> Self {
+        let uf2 = concat!(env!("CARGO_MANIFEST_DIR"), "/../dist/accelcal-pico.uf2");
+        let mut child = Command::new(env!("CARGO_BIN_EXE_accelcal"))
+            .args(["sim", "--pty", "--seed", seed, "--pico", uf2])
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let (send, lines) = std::sync::mpsc::channel();
+        let stdout = std::io::BufReader::new(child.stdout.take().unwrap());
+        std::thread::spawn(move || stdout.lines().map_while(Result::ok).for_each(|line| drop(send.send(line))));
+        let mut pico = EmulatedPico { child, lines, path: String::new() };
+        pico.path = pico.next_path();
+        pico
+    }
+
+    /// The next path the bridge prints (the port after boot or after the cable is plugged in).
+    pub fn next_path(&mut self) -> String {
+        let line = self.lines.recv_timeout(Duration::from_secs(60));
+        line.expect("the emulated Pico opened no USB port within 60 s (see its stderr)")
+    }
+
+    /// Writes one command line to the bridge's stdin.
+    pub fn tell(&mut self, line: &str) {
+        use std::io::Write;
+        let stdin = self.child.stdin.as_mut().unwrap();
+        writeln!(stdin, "{line}").unwrap();
+        stdin.flush().unwrap();
+    }
+}
+
+impl Drop for EmulatedPico {
     fn drop(&mut self) {
         let _ = self.child.kill();
         let _ = self.child.wait();
