@@ -10,7 +10,7 @@ use shared::protocol::{
     MAX_STILL_GYRO_STD_DPS, MIN_CAPTURE_SECONDS, MIN_GOAL_SAMPLES,
 };
 
-use crate::sensor::registers::{GYRO_LSB_PER_DPS, TEMP_LSB_PER_C, TEMP_OFFSET_C};
+use crate::sensor::registers::{temp_c, GYRO_LSB_PER_DPS};
 use crate::sensor::RawSample;
 
 /// Integer sums over the samples of a capture.
@@ -165,7 +165,7 @@ impl Capture {
             std_g: [0, 1, 2].map(|k| s.std(s.accel[k], s.accel_squares[k]) / lsb),
             gyro_mean_dps: [0, 1, 2].map(|k| s.mean(s.gyro[k]) / GYRO_LSB_PER_DPS),
             gyro_std_dps: [0, 1, 2].map(|k| s.std(s.gyro[k], s.gyro_squares[k]) / GYRO_LSB_PER_DPS),
-            temp_c: s.mean(s.temp) / TEMP_LSB_PER_C + TEMP_OFFSET_C,
+            temp_c: temp_c(s.mean(s.temp)),
             clipped: s.clipped,
             range: self.config.range,
         }

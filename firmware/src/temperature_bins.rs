@@ -6,7 +6,7 @@
 use shared::protocol::{TempBin, TEMP_BINS_PER_MESSAGE};
 use shared::AccelRange;
 
-use crate::sensor::registers::{GYRO_LSB_PER_DPS, TEMP_LSB_PER_C, TEMP_OFFSET_C};
+use crate::sensor::registers::{temp_c, GYRO_LSB_PER_DPS};
 use crate::sensor::RawSample;
 
 /// The coolest bin, in degC.
@@ -47,7 +47,7 @@ impl TemperatureBins {
     /// Adds samples to the bins of their die temperatures.
     pub fn add(&mut self, samples: &[RawSample]) {
         for sample in samples {
-            let temp_c = f32::from(sample.temp) / TEMP_LSB_PER_C + TEMP_OFFSET_C;
+            let temp_c = temp_c(f32::from(sample.temp));
             let index = (libm::floorf(temp_c) as i32 - i32::from(FIRST_DEGREE_C)).clamp(0, BIN_COUNT as i32 - 1);
             let bin = &mut self.bins[index as usize];
             if bin.samples >= MAX_BIN_SAMPLES {
@@ -88,7 +88,7 @@ fn message(index: usize, bin: &Sums, range: AccelRange) -> TempBin {
     TempBin {
         degree_c: FIRST_DEGREE_C + index as i8,
         samples: bin.samples,
-        temp_c: mean(bin.temp) / TEMP_LSB_PER_C + TEMP_OFFSET_C,
+        temp_c: temp_c(mean(bin.temp)),
         accel_g: bin.accel.map(|sum| mean(sum) / range.lsb_per_g()),
         gyro_dps: bin.gyro.map(|sum| mean(sum) / GYRO_LSB_PER_DPS),
     }

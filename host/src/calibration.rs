@@ -7,7 +7,7 @@ mod reason;
 pub use reason::calibration_reason;
 
 use serde::{Deserialize, Serialize};
-use shared::calibration::{drift, GyroCalibration, ModelTag, Origin, Procedure, TemperatureModel, MODEL_TAG_LEN};
+use shared::calibration::{GyroCalibration, ModelTag, Origin, Procedure, TemperatureModel, MODEL_TAG_LEN};
 use shared::linalg;
 use shared::protocol::{LowPassFilter, SensorConfig};
 use shared::{AccelRange, Calibration, CalibrationError};
@@ -203,13 +203,10 @@ pub fn from_fit(fit: &Fit, captures: &Dataset, config: SensorConfig) -> Result<C
 
 /// What the chip applies at `temp_c` degC, as a = matrix (m - offset): M diag(1 + d(T))^-1 and o(T).
 pub fn applied_at(calibration: &Calibration, temp_c: f32) -> ([[f64; 3]; 3], [f64; 3]) {
-    let Some(model) = &calibration.temperature else {
+    let Some((offset, scale)) = calibration.accel_terms_at(temp_c) else {
         return static_part(calibration);
     };
-    let dt = model.delta_c(temp_c);
-    let scale = drift(&model.scale, dt);
     let matrix = calibration.matrix.map(|row| [0, 1, 2].map(|j| f64::from(row[j]) / (1.0 + f64::from(scale[j]))));
-    let offset = linalg::add(calibration.offset_g, drift(&model.offset_g, dt));
     (matrix, offset.map(f64::from))
 }
 
@@ -220,8 +217,7 @@ pub fn static_part(calibration: &Calibration) -> ([[f64; 3]; 3], [f64; 3]) {
 
 /// The gyro bias b(T) the chip subtracts at `temp_c` degC, in deg/s.
 pub fn gyro_bias_at(calibration: &Calibration, temp_c: f32) -> [f64; 3] {
-    let extra = calibration.temperature.map_or([0.0; 3], |m| drift(&m.gyro_bias_dps, m.delta_c(temp_c)));
-    linalg::add(calibration.gyro.bias_dps, extra).map(f64::from)
+    calibration.gyro_bias_at(temp_c).map(f64::from)
 }
 
 /// What a temperature model is fitted around: the captures' mean temperature and M.

@@ -33,7 +33,7 @@ impl RawSample {
 
     /// Temperature in degC.
     pub fn temp_c(&self) -> f32 {
-        f32::from(self.temp) / reg::TEMP_LSB_PER_C + reg::TEMP_OFFSET_C
+        reg::temp_c(f32::from(self.temp))
     }
 }
 

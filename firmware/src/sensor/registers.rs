@@ -84,3 +84,9 @@ pub const GYRO_LSB_PER_DPS: f32 = GYRO_LSB_PER_DPS_BY_FS_SEL[2];
 pub const TEMP_LSB_PER_C: f32 = shared::part::TemperatureFormula::MPU6050.lsb_per_c;
 /// Temperature offset in degC.
 pub const TEMP_OFFSET_C: f32 = shared::part::TemperatureFormula::MPU6050.offset_c;
+
+/// The temperature, in degC, of a reading in the driver's encoding: one raw value, or the mean of
+/// several (the one conversion after the driver: samples, captures and temperature bins).
+pub fn temp_c(raw: f32) -> f32 {
+    raw / TEMP_LSB_PER_C + TEMP_OFFSET_C
+}
