@@ -52,8 +52,10 @@ pub enum Error {
     BadGravity { g: f64 },
     #[error("{source}; {} so far {} kept in {}: continue with `accelcal calibrate {device} --resume {}`", count(*.captures, "capture"), if *.captures == 1 { "is" } else { "are" }, .path.display(), .path.display())]
     Stopped { source: Box<ProcedureError>, captures: usize, path: PathBuf, device: String },
-    #[error("{source}; the calibration is already uploaded and saved on the board: check it with `accelcal verify {device}`")]
-    AfterUpload { source: Box<ProcedureError>, device: String },
+    #[error("{source}; the calibration is already uploaded and saved on the board: {check_later}")]
+    AfterUpload { source: Box<ProcedureError>, check_later: String },
+    #[error("{source}; verifying changes nothing on the board: its calibration is as it was")]
+    VerifyStopped { source: Box<ProcedureError> },
     #[error(
         "the calibration uploaded and saved misses --target-mg by more than its noise ({line}); it stays on the board"
     )]

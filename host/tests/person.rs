@@ -139,3 +139,53 @@ fn ctrl_c_during_the_verification_says_the_calibration_is_already_uploaded_and_s
     let (active, stored) = calibrations(&sim);
     assert_eq!(active, stored, "what is active is what is saved");
 }
+
+/// A known calibration uploaded to the board and saved (kept in a file named after `name`).
+fn upload_and_save(sim: &SimPty, name: &str) {
+    let kept = r#"{"model": "six-position", "matrix": [[1.01,0,0],[0,0.99,0],[0,0,1]], "offset": [0.02, -0.01, 0.03]}"#;
+    let file = temp_stem(&format!("{name}.json"));
+    std::fs::write(&file, kept).unwrap();
+    assert!(accelcal(&["upload", "--port", &sim.path, file.to_str().unwrap(), "--save"]).status.success());
+}
+
+#[test]
+fn ctrl_c_during_verify_says_what_was_verified_and_leaves_the_board_as_it_was() {
+    let mut sim = board_on_the_desk("17");
+    upload_and_save(&sim, "verified");
+    let before = calibrations(&sim);
+    let mut run = Run::command(&["verify", "--port", &sim.path.clone(), "--positions", "3"], Moves::Place);
+    assert!(run.follow(&mut sim, "verification 1:").is_some(), "{:?}", run.seen);
+    assert!(run.follow(&mut sim, "Verification 2").is_some(), "{:?}", run.seen);
+    std::thread::sleep(Duration::from_millis(1500));
+    run.interrupt();
+    let (status, _, stderr) = run.finish(&mut sim);
+    assert!(!status.success(), "exit 0 after Ctrl-C: {stderr}");
+    let last = stderr.lines().last().unwrap();
+    assert!(last.contains("interrupted (Ctrl-C)") && last.contains("1 of 3 orientations verified"), "{last}");
+    assert!(last.contains("its calibration is as it was"), "{last}");
+    // The board answers at once (its capture was cancelled, not left running) and holds what it held.
+    assert_eq!(calibrations(&sim), before, "verify changed the board");
+}
+
+#[test]
+fn a_verification_capture_the_board_moved_during_waits_for_a_fresh_orientation_again() {
+    let mut sim = board_on_the_desk("18");
+    upload_and_save(&sim, "moved");
+    let mut run = Run::command(&["verify", "--port", &sim.path.clone(), "--positions", "2"], Moves::Place);
+    assert!(run.follow(&mut sim, "verification 1:").is_some(), "{:?}", run.seen);
+    assert!(run.follow(&mut sim, "Verification 2").is_some(), "{:?}", run.seen);
+    // A knock 3 s after the board was set down: inside its 5 s capture (the wait takes about one second).
+    std::thread::sleep(Duration::from_secs(3));
+    sim.tell("shake 0.3 0.3");
+    let knocked = run.lines_for(Duration::from_secs(8));
+    assert!(knocked.iter().any(|l| l.contains("moved during the capture")), "{:?}", run.seen);
+    // The person sets it down where verification 1 was made: that is not fresh, so no check there.
+    sim.tell("place 0.707 0 0.707");
+    let there = run.lines_for(Duration::from_secs(10));
+    assert!(!there.iter().any(|l| l.contains("verification 2:")), "verified where it had verified: {there:?}");
+    sim.tell("place -0.707 0.707 0");
+    assert!(run.follow(&mut sim, "verification 2:").is_some(), "{:?}", run.seen);
+    let (status, stdout, stderr) = run.finish(&mut sim);
+    assert!(status.success(), "{stderr}");
+    assert!(stdout.contains("| |a| - 1 g | rms"), "{stdout}");
+}

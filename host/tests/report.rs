@@ -35,7 +35,7 @@ fn simulated_session(dir: &Path) -> PathBuf {
 }
 
 /// What `report --thermal` and `--noise` take, made in `dir`: the simulated board's `thermal --json`
-/// and a 60 s recording at 1 kHz with its `noise --json`.
+/// (the session's board: seed 7) and a 60 s recording at 1 kHz with its `noise --json`.
 struct Extras {
     thermal: PathBuf,
     recording: PathBuf,
@@ -44,15 +44,44 @@ struct Extras {
 
 fn extras(dir: &Path) -> Extras {
     let (thermal, recording, noise) = (dir.join("thermal.json"), dir.join("rec.npy"), dir.join("noise.json"));
-    let output = accelcal(&["thermal", "--sim", "--json", "--seed", "3"]);
-    assert!(output.status.success(), "{}", text(&output.stderr));
-    std::fs::write(&thermal, &output.stdout).unwrap();
+    thermal_json(&thermal, "7");
     let output = accelcal(&["record", "--sim", "--seconds", "60", "-o", recording.to_str().unwrap()]);
     assert!(output.status.success(), "{}", text(&output.stderr));
     let output = accelcal(&["noise", recording.to_str().unwrap(), "--json"]);
     assert!(output.status.success(), "{}", text(&output.stderr));
     std::fs::write(&noise, &output.stdout).unwrap();
     Extras { thermal, recording, noise }
+}
+
+/// `thermal --sim --json` of the simulated board of `seed`, written to `path`.
+fn thermal_json(path: &Path, seed: &str) {
+    let output = accelcal(&["thermal", "--sim", "--json", "--seed", seed]);
+    assert!(output.status.success(), "{}", text(&output.stderr));
+    std::fs::write(path, &output.stdout).unwrap();
+}
+
+#[test]
+fn a_thermal_json_of_another_board_is_refused_and_one_naming_no_board_is_read_with_a_caveat() {
+    let dir = scratch("other-board");
+    let session = simulated_session(&dir);
+    let other = dir.join("other.json");
+    thermal_json(&other, "3");
+    let output = accelcal(&["report", session.to_str().unwrap(), "--json", "--thermal", other.to_str().unwrap()]);
+    let stderr = text(&output.stderr);
+    assert!(!output.status.success(), "another board's thermal model was added: {stderr}");
+    assert!(stderr.contains("it was learned on board 53494D000000000000000003"), "{stderr}");
+    assert!(stderr.contains("the session was taken on board 53494D000000000000000007"), "{stderr}");
+    // A file written before the serial was recorded: read, and said to be unchecked.
+    let mut json: Value = serde_json::from_str(&std::fs::read_to_string(&other).unwrap()).unwrap();
+    json.as_object_mut().unwrap().remove("serial");
+    let older = dir.join("older.json");
+    std::fs::write(&older, json.to_string()).unwrap();
+    let output = accelcal(&["report", session.to_str().unwrap(), "--json", "--thermal", older.to_str().unwrap()]);
+    let stderr = text(&output.stderr);
+    assert!(output.status.success(), "{stderr}");
+    assert!(stderr.contains("names no board") && stderr.contains("is not checked"), "{stderr}");
+    let report: Value = serde_json::from_slice(&output.stdout).unwrap();
+    assert!(report["temperature"].is_object(), "{report}");
 }
 
 fn report_json(session: &Path) -> Value {

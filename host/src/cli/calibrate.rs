@@ -129,7 +129,7 @@ fn finish(
     let (rate_hz, clock) = (opened.connection.info.config.sample_rate_hz, opened.clock());
     let client = &mut opened.connection.client;
     let calibrated: Vec<[f64; 3]> = fitted.session.captures.iter().map(|c| c.stats.mean_g.map(f64::from)).collect();
-    let on_board = |source| Error::AfterUpload { source: Box::new(source), device: device_flags(args) };
+    let on_board = |source| Error::AfterUpload { source: Box::new(source), check_later: check_later(args) };
     let verification =
         procedure::verify_with(client, hand.as_mut(), positions, wait_limit, feedback, &calibrated, length)
             .map_err(on_board)?;
@@ -266,6 +266,18 @@ fn device_flags(args: &CalibrateArgs) -> String {
     match &args.device.port {
         Some(port) => format!("--port {port}"),
         None => format!("--sim --seed {}", args.device.seed),
+    }
+}
+
+/// How to check an uploaded calibration after this run.
+// NOTE: `--sim`'s board lives in this process: a later `verify --sim` gets a fresh board without it.
+fn check_later(args: &CalibrateArgs) -> String {
+    match &args.device.port {
+        Some(port) => format!("check it with `accelcal verify --port {port}`"),
+        None => "the simulated board ended with this run, so it cannot be checked later; to keep a simulated \
+                 board between commands, serve one with `accelcal sim --pty` and run `accelcal calibrate --port PTY`, \
+                 then `accelcal verify --port PTY`"
+            .to_owned(),
     }
 }
 

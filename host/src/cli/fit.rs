@@ -25,11 +25,10 @@ pub(super) fn fit(args: &FitArgs) -> Result<(), Error> {
 }
 
 fn fit_dataset(args: &FitArgs, dataset: &Dataset) -> Result<(), Error> {
-    let report = FitReport::new(dataset, args.model, &options(args)).map_err(|source| Error::CannotFit {
-        path: args.file.clone(),
-        model: args.model,
-        source,
-    })?;
+    let spinner = super::terminal::working(format!("fitting {} rows (--model {})", dataset.rows.len(), args.model));
+    let report = FitReport::new(dataset, args.model, &options(args));
+    spinner.finish_and_clear();
+    let report = report.map_err(|source| Error::CannotFit { path: args.file.clone(), model: args.model, source })?;
     if args.json {
         println!("{}", report::json::fit_report(&report));
     } else {

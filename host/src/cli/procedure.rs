@@ -2,6 +2,7 @@
 //! `calibrate`, is in [`super::calibrate`]).
 
 use super::args::{CaptureArgs, Device};
+use super::calibrate::interrupt_on_ctrl_c;
 use super::device::Opened;
 use super::terminal::Terminal;
 use crate::error::Error;
@@ -41,13 +42,16 @@ pub(super) fn capture(args: &CaptureArgs) -> Result<(), Error> {
     Ok(())
 }
 
-/// `accelcal verify`.
+/// `accelcal verify`. Ctrl-C cancels the capture on the board and says what was verified so far;
+/// verifying changes nothing on the board.
 pub(super) fn verify(device: &Device, positions: usize) -> Result<(), Error> {
     let mut opened: Opened = device.open()?;
     let mut feedback = Terminal::new(true);
+    opened.connection.client.interrupt_on(interrupt_on_ctrl_c());
     let (mut hand, wait_limit) = opened.hand(VERIFY_PLACEMENT_DEG, device.seed);
     let client = &mut opened.connection.client;
-    let v = procedure::verify(client, hand.as_mut(), positions, wait_limit, &mut feedback)?;
+    let v = procedure::verify(client, hand.as_mut(), positions, wait_limit, &mut feedback)
+        .map_err(|source| Error::VerifyStopped { source: Box::new(source) })?;
     println!(
         "| |a| - 1 g | rms {:.2} mg raw, {:.3} mg calibrated (worst {:.3} mg); {}",
         v.before_rms_mg,

@@ -54,7 +54,8 @@ fn with_given(args: &ReportArgs) -> Result<SessionReport, Error> {
     let session = Session::load(&args.session)?;
     let mut report = build(&session, &args.session)?;
     if let Some(path) = &args.thermal {
-        report = report.with_temperature(thermal_section(path)?);
+        let serial = session.board.as_ref().map(|b| b.serial.as_str());
+        report = report.with_temperature(thermal_section(path, serial)?);
     }
     if let Some(path) = &args.noise {
         report = report.with_allan_deviation(noise_section(path)?);
@@ -62,12 +63,27 @@ fn with_given(args: &ReportArgs) -> Result<SessionReport, Error> {
     Ok(report)
 }
 
-/// The temperature section from the output of `accelcal thermal --json` at `path`.
-fn thermal_section(path: &Path) -> Result<(TemperatureSection, report::Figure), Error> {
+/// The temperature section from the output of `accelcal thermal --json` at `path`, refused when it
+/// was learned on another board than the session's (`serial`).
+fn thermal_section(path: &Path, serial: Option<&str>) -> Result<(TemperatureSection, report::Figure), Error> {
     let refused = |reason: String| Error::ReportInput { path: path.into(), reason };
     let text = std::fs::read_to_string(path).map_err(|source| Error::ReadFile { path: path.into(), source })?;
     let thermal: ThermalReport =
         serde_json::from_str(&text).map_err(|e| refused(format!("{e}; give the output of accelcal thermal --json")))?;
+    match (thermal.serial.as_deref(), serial) {
+        (Some(learned), Some(session)) if learned != session => {
+            return Err(refused(format!(
+                "it was learned on board {learned}, the session was taken on board {session}: give the thermal \
+                 JSON of the session's board"
+            )));
+        }
+        (None, _) => eprintln!(
+            "note: {} names no board (written before accelcal recorded the serial): that it is this session's board \
+             is not checked",
+            path.display()
+        ),
+        _ => {}
+    }
     TemperatureSection::new(&thermal).map_err(refused)
 }
 

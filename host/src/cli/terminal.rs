@@ -95,3 +95,15 @@ pub(super) fn feedback(json: bool, yes: bool) -> Box<dyn Feedback> {
         Box::new(Terminal::new(yes))
     }
 }
+
+/// A spinner on stderr with the time so far, for work of unknown length that can take seconds (drawn
+/// only where stderr is a terminal); clear it with `finish_and_clear`.
+pub(super) fn working(message: String) -> ProgressBar {
+    let spinner = ProgressBar::new_spinner();
+    let style = ProgressStyle::with_template("{spinner} {msg} ({elapsed})")
+        .unwrap_or_else(|_| ProgressStyle::default_spinner());
+    spinner.set_style(style);
+    spinner.set_message(message);
+    spinner.enable_steady_tick(std::time::Duration::from_millis(100));
+    spinner
+}

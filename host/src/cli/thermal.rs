@@ -20,6 +20,7 @@ use crate::link::{Connection, LinkError};
 use crate::procedure::thermal::{capture_now, learn, LearnEnd, LearnOptions, LearnStatus, ThermalBins, ThermalBoard};
 use crate::procedure::{corners, faces, ProcedureError};
 use crate::report::thermal::{ThermalFitJson, ThermalReport, ThermalRow};
+use crate::session::BoardRecord;
 use crate::sim::{random, SimBoard, SimCommand};
 
 /// The reported temperatures the simulated story verifies at, in degC.
@@ -109,7 +110,8 @@ fn sim_story(connection: &mut Connection, board: &SimBoard, args: &ThermalArgs) 
         sim.settle_at(temp_c)?;
         verification.push(verify_row(connection, &mut sim, &calibration, usize::from(args.verify), &mut rng)?);
     }
-    Ok(ThermalReport { calibration: CalibrationJson::from_device(&calibration), fit: fit_json, verification })
+    let serial = Some(BoardRecord::of(&connection.info).serial);
+    Ok(ThermalReport { serial, calibration: CalibrationJson::from_device(&calibration), fit: fit_json, verification })
 }
 
 /// The six faces captured and fitted on the chip: the static calibration.

@@ -72,7 +72,8 @@ pub(super) fn person_run(connection: &mut Connection, args: &ThermalArgs) -> Res
         device: args.device.port.clone().unwrap_or_default(),
     })?;
     eprintln!("the learned bins are kept in {}", path.display());
-    Ok(ThermalReport { calibration: CalibrationJson::from_device(&calibration), fit, verification: Vec::new() })
+    let (serial, calibration) = (Some(serial), CalibrationJson::from_device(&calibration));
+    Ok(ThermalReport { serial, calibration, fit, verification: Vec::new() })
 }
 
 /// The bins an earlier run kept at `path` on this board, or none when there is no such file.

@@ -52,13 +52,14 @@ pub fn evaluate(
     training_lines: &[usize],
 ) -> Evaluation {
     let nominal = nominal_scale(dataset, g);
+    let training: std::collections::HashSet<usize> = training_lines.iter().copied().collect();
     let rows = dataset
         .rows
         .iter()
         .map(|row| {
             let corrected = linalg::mul_vec(matrix, linalg::sub(row.reading, *offset));
             let before = nominal.map_or(row.reading, |(c, s)| linalg::scale(linalg::sub(row.reading, c), s));
-            evaluate_row(row, (before, corrected), g, training_lines.contains(&row.line))
+            evaluate_row(row, (before, corrected), g, training.contains(&row.line))
         })
         .collect();
     Evaluation { rows, before_nominal: nominal.is_some() }

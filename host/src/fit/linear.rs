@@ -12,29 +12,23 @@ use crate::data::Dataset;
 
 /// Known-orientation rows needed to determine 12 parameters (each row gives three equations, but the
 /// four columns of [a 1] must be independent).
-const MIN_REFERENCES: usize = 4;
+pub(super) const MIN_REFERENCES: usize = 4;
 
 /// A reading paired with its known specific force.
 #[derive(Debug, Clone, Copy)]
-struct Pair {
-    row: usize,
+pub(super) struct Pair {
+    /// Index of the row in the data set.
+    pub row: usize,
     line: usize,
-    reading: Vec3<f64>,
-    reference: Vec3<f64>,
+    pub reading: Vec3<f64>,
+    pub reference: Vec3<f64>,
     /// Samples averaged into the reading, where the file says.
     count: Option<u32>,
 }
 
 /// Linear least squares of m = X a + y over every row with a known orientation.
 pub(super) fn linear12(dataset: &Dataset, options: &FitOptions) -> Result<Fit, FitError> {
-    let pairs: Vec<Pair> = dataset
-        .rows
-        .iter()
-        .enumerate()
-        .filter_map(|(row, r)| {
-            r.reference.map(|reference| Pair { row, line: r.line, reading: r.reading, reference, count: r.count })
-        })
-        .collect();
+    let pairs = reference_pairs(dataset);
     if pairs.len() < MIN_REFERENCES {
         let model = Model::Linear12.name();
         return Err(FitError::TooFewReferences { model, needed: MIN_REFERENCES, found: pairs.len() });
@@ -44,6 +38,24 @@ pub(super) fn linear12(dataset: &Dataset, options: &FitOptions) -> Result<Fit, F
     let matrix = linalg::inverse(&solution.sensor_matrix).ok_or(FitError::Degenerate)?;
     let offset = solution.offset;
     Ok(solution.into_fit(Model::Linear12, (matrix, offset), &pairs, dataset, options.g))
+}
+
+/// Every row with a known orientation, in row order.
+pub(super) fn reference_pairs(dataset: &Dataset) -> Vec<Pair> {
+    let pair = |(row, r): (usize, &crate::data::Row)| {
+        r.reference.map(|reference| Pair { row, line: r.line, reading: r.reading, reference, count: r.count })
+    };
+    dataset.rows.iter().enumerate().filter_map(pair).collect()
+}
+
+/// Each pair's weight: its sample count relative to the mean where `per_sample` noise is known and
+/// the model is `linear12` (the six-position closed form weighs its six readings alike).
+pub(super) fn pair_weights(pairs: &[Pair], model: Model, per_sample: Option<Vector3<f64>>) -> Vec<f64> {
+    let counts: Option<Vec<f64>> = pairs.iter().map(|p| p.count.map(f64::from)).collect();
+    match (counts, per_sample, model) {
+        (Some(counts), Some(_), Model::Linear12) => uncertainty::relative_weights(&counts),
+        _ => vec![1.0; pairs.len()],
+    }
 }
 
 /// The six-position closed form of `shared` (in f64), with standard errors from the equivalent
@@ -86,16 +98,12 @@ struct LinearSolution {
 }
 
 impl LinearSolution {
-    /// Weighted by the rows' sample counts where `per_sample` noise is known and the model is
-    /// `linear12` (the six-position closed form weighs its six readings alike).
+    /// Weighted as [`pair_weights`] says.
     fn solve(pairs: &[Pair], model: Model, per_sample: Option<Vector3<f64>>) -> Result<Self, FitError> {
         check_spread(pairs, model)?;
         let n = pairs.len();
         let counts: Option<Vec<f64>> = pairs.iter().map(|p| p.count.map(f64::from)).collect();
-        let weights = match (&counts, per_sample, model) {
-            (Some(counts), Some(_), Model::Linear12) => uncertainty::relative_weights(counts),
-            _ => vec![1.0; n],
-        };
+        let weights = pair_weights(pairs, model, per_sample);
         let root = |i: usize| weights[i].sqrt();
         let design = DMatrix::from_fn(n, 4, |i, j| root(i) * if j < 3 { pairs[i].reference[j] } else { 1.0 });
         let readings = DMatrix::from_fn(n, 3, |i, j| root(i) * pairs[i].reading[j]);

@@ -5,11 +5,14 @@ mod evaluate;
 mod faces;
 pub mod gyro;
 pub mod hysteresis;
+mod influence;
+mod left_out;
 mod linear;
 mod model;
 mod models;
 mod nonlinear;
 mod normalization;
+mod observability;
 mod ortho9;
 mod prediction;
 mod selection;
@@ -19,6 +22,7 @@ pub mod thermal;
 mod uncertainty;
 mod verdict;
 
+use std::collections::HashSet;
 use std::fmt;
 use std::str::FromStr;
 
@@ -29,9 +33,10 @@ use shared::Position;
 use crate::data::Dataset;
 
 pub use evaluate::{evaluate, Evaluation, RowEvaluation};
+pub use left_out::leave_one_out_rms;
 pub use model::Model;
 pub use prediction::{axis_angles_deg, predict, Prediction, Quadratic};
-pub use selection::{leave_one_out_rms, Selection};
+pub use selection::Selection;
 pub use statistics::{misalignment_deg, NoiseTest};
 
 /// The model asked for on the command line.
@@ -114,14 +119,16 @@ impl FitOptions {
                 return Err(FitError::NoSuchRow { row, rows: count });
             }
         }
+        let set = |rows: &Option<Vec<usize>>| rows.as_ref().map(|r| r.iter().copied().collect::<HashSet<usize>>());
+        let (training, references) = (set(&self.training_rows), set(&self.reference_rows));
         let rows = dataset
             .rows
             .iter()
             .enumerate()
-            .filter(|(i, _)| self.training_rows.as_ref().is_none_or(|rows| rows.contains(&(i + 1))))
+            .filter(|(i, _)| training.as_ref().is_none_or(|rows| rows.contains(&(i + 1))))
             .map(|(i, row)| {
                 let mut row = row.clone();
-                if self.reference_rows.as_ref().is_some_and(|rows| !rows.contains(&(i + 1))) {
+                if references.as_ref().is_some_and(|rows| !rows.contains(&(i + 1))) {
                     row.reference = None;
                 }
                 row

@@ -3,28 +3,18 @@
 
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 
-use super::nonlinear::{solve, Observation, Problem, Solution};
+use super::nonlinear::{solve, Observation, Solution};
 use super::normalization::Normalization;
+use super::observability::{check_conditioning, check_positions};
 use super::ortho9;
 use super::prediction::{self, Prediction};
 use super::shape::Shape;
 use super::{statistics, uncertainty, verdict, Fit, FitError, FitOptions, Model, NoiseTest, Parameter};
 use crate::data::{Dataset, Row};
-use crate::limits::{AXIS_SPREAD, INDEPENDENT_REFERENCES_DEG};
-use levenberg_marquardt::LeastSquaresProblem;
 use shared::linalg::{Mat3, Vec3};
 
-/// Known orientations `reference-norm12` needs at least [`INDEPENDENT_REFERENCES_DEG`] apart: two fix
-/// the rotation that the |a| = g rows cannot see.
-const INDEPENDENT_REFERENCES: usize = 2;
-/// Below this ratio of smallest to largest singular value the parameters are not observable.
-/// NOTE: the ratio comes from eigenvalues of J^T J, whose rounding floor is 1e-16 relative: 1e-7 in
-/// singular values stays clear of it.
-const UNOBSERVABLE_RATIO: f64 = 1e-7;
-/// Below this ratio the condition number is worth a warning.
-const POORLY_CONDITIONED_RATIO: f64 = 1e-3;
-
-fn shape_of(model: Model) -> Shape {
+/// The shape of M in a least-squares model.
+pub(super) fn shape_of(model: Model) -> Shape {
     match model {
         Model::Diag6 => Shape::Diagonal,
         Model::Ortho9 => Shape::TriangularTimesDiagonal,
@@ -34,14 +24,7 @@ fn shape_of(model: Model) -> Shape {
 
 /// Fits one of the least-squares models to the training rows.
 pub(super) fn least_squares(training: &Dataset, model: Model, options: &FitOptions) -> Result<Fit, FitError> {
-    let shape = shape_of(model);
-    let normalization = Normalization::of_dataset(training);
-    check_positions(training, model, shape, &normalization)?;
-    let observations = observations(training, model, &normalization, options.g);
-    let start = DVector::from_iterator(shape.len() + 3, shape.identity().into_iter().chain([0.0; 3]));
-    let mut warnings = Vec::new();
-    check_conditioning(model, shape, &observations, &start, &mut warnings)?;
-    let solution = ortho9::solve_or(shape, &observations, || solve(shape, &observations, start))?;
+    let Solved { shape, normalization, observations, solution, mut warnings } = solved(training, model, options)?;
     let (scatter, noise, inflation, reported) = errors(training, shape, &solution, &observations, &normalization);
     let errors = ([scatter.as_ref(), noise.as_ref()], inflation);
     let parameters = file_parameters(shape, &solution, errors, &normalization, options.g);
@@ -63,6 +46,29 @@ pub(super) fn least_squares(training: &Dataset, model: Model, options: &FitOptio
         selection: None,
         prediction,
     })
+}
+
+/// A least-squares model solved in the solver's units, with what the solve needs to be read.
+pub(super) struct Solved {
+    pub shape: Shape,
+    pub normalization: Normalization,
+    pub observations: Vec<Observation>,
+    pub solution: Solution,
+    /// The condition number's warning, where it is poor.
+    pub warnings: Vec<String>,
+}
+
+/// Checks that the training rows determine the model, and solves it.
+pub(super) fn solved(training: &Dataset, model: Model, options: &FitOptions) -> Result<Solved, FitError> {
+    let shape = shape_of(model);
+    let normalization = Normalization::of_dataset(training);
+    check_positions(training, model, shape, &normalization)?;
+    let observations = observations(training, model, &normalization, options.g);
+    let start = DVector::from_iterator(shape.len() + 3, shape.identity().into_iter().chain([0.0; 3]));
+    let mut warnings = Vec::new();
+    check_conditioning(model, shape, &observations, &start, &mut warnings)?;
+    let solution = ortho9::solve_or(shape, &observations, || solve(shape, &observations, start))?;
+    Ok(Solved { shape, normalization, observations, solution, warnings })
 }
 
 /// The prediction at fresh orientations from the covariance in the solver's units.
@@ -151,112 +157,6 @@ fn calibration_of(shape: Shape, parameters: &[Parameter]) -> (Mat3<f64>, Vec3<f6
     let matrix = shape.matrix(&values[..shape.len()]);
     let offset = [0, 1, 2].map(|k| values[shape.len() + k]);
     ([0, 1, 2].map(|i| [0, 1, 2].map(|j| matrix[(i, j)])), offset)
-}
-
-/// Refuses, before fitting, positions that cannot determine the model, naming what to add; judged on
-/// the normalised readings, so that the file's zero and unit do not matter.
-fn check_positions(
-    training: &Dataset,
-    model: Model,
-    shape: Shape,
-    normalization: &Normalization,
-) -> Result<(), FitError> {
-    if model == Model::ReferenceNorm12 {
-        return check_references(training, model, shape);
-    }
-    let needed = shape.len() + 3;
-    if training.rows.len() < needed {
-        return Err(FitError::TooFewPositions { model: model.name(), needed, found: training.rows.len() });
-    }
-    for (axis, letter) in ['x', 'y', 'z'].into_iter().enumerate() {
-        for up in [true, false] {
-            if !points_along(training, normalization, axis, up) {
-                return Err(FitError::NoSpread { model: model.name(), axis: letter, up });
-            }
-        }
-    }
-    Ok(())
-}
-
-/// `reference-norm12` needs two independent known orientations and one residual per parameter.
-fn check_references(training: &Dataset, model: Model, shape: Shape) -> Result<(), FitError> {
-    let name = model.name();
-    let references: Vec<[f64; 3]> = training.rows.iter().filter_map(|r| r.reference).collect();
-    let independent =
-        references.iter().any(|a| references.iter().any(|b| angle_between(a, b) > INDEPENDENT_REFERENCES_DEG));
-    if !independent {
-        return Err(FitError::TooFewReferences {
-            model: name,
-            needed: INDEPENDENT_REFERENCES,
-            found: references.len().min(1),
-        });
-    }
-    let residuals = training.rows.len() + 2 * references.len();
-    if residuals < shape.len() + 3 {
-        let needed = training.rows.len() + shape.len() + 3 - residuals;
-        return Err(FitError::TooFewPositions { model: name, needed, found: training.rows.len() });
-    }
-    Ok(())
-}
-
-/// Whether some normalised reading points `axis` up (or down) within the spread the fits need.
-fn points_along(training: &Dataset, normalization: &Normalization, axis: usize, up: bool) -> bool {
-    let sign = if up { 1.0 } else { -1.0 };
-    training.rows.iter().any(|r| {
-        let m = normalization.apply(r.reading);
-        sign * m[axis] > AXIS_SPREAD * m.norm()
-    })
-}
-
-fn angle_between(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    shared::orientation::angle_between_deg(*a, *b)
-}
-
-/// Refuses parameters the positions cannot determine, from the column-scaled Jacobian at the start;
-/// warns when the condition number is poor.
-fn check_conditioning(
-    model: Model,
-    shape: Shape,
-    observations: &[Observation],
-    start: &DVector<f64>,
-    warnings: &mut Vec<String>,
-) -> Result<(), FitError> {
-    let jacobian = Problem::new(shape, observations, start.clone()).jacobian().ok_or(FitError::Degenerate)?;
-    let (ratio, weakest) = conditioning(shape, &jacobian);
-    if ratio < UNOBSERVABLE_RATIO {
-        return Err(FitError::Unobservable { model: model.name(), parameter: weakest });
-    }
-    if ratio < POORLY_CONDITIONED_RATIO {
-        warnings.push(format!(
-            "poor condition number {:.1e}: the positions barely determine {weakest}; add positions spread over the sphere",
-            1.0 / ratio
-        ));
-    }
-    Ok(())
-}
-
-/// The ratio of smallest to largest singular value of the column-scaled Jacobian, and the parameter
-/// the smallest one weighs most.
-fn conditioning(shape: Shape, jacobian: &DMatrix<f64>) -> (f64, String) {
-    // NOTE: the singular values of the column-scaled Jacobian are the square roots of the
-    // eigenvalues of its small normal matrix, which is much cheaper to decompose than J itself.
-    let scaled = column_scaled(jacobian);
-    let eigen = (scaled.transpose() * &scaled).symmetric_eigen();
-    let (largest, smallest) = (eigen.eigenvalues.max().max(0.0).sqrt(), eigen.eigenvalues.min().max(0.0).sqrt());
-    let ratio = if largest > 0.0 { smallest / largest } else { 0.0 };
-    let (index, _) = eigen.eigenvalues.argmin();
-    (ratio, parameter_name(shape, eigen.eigenvectors.column(index).iamax()))
-}
-
-fn column_scaled(jacobian: &DMatrix<f64>) -> DMatrix<f64> {
-    let mut scaled = jacobian.clone();
-    for mut column in scaled.column_iter_mut() {
-        let norm = column.norm();
-        if norm > 0.0 {
-            column /= norm;
-        }
-    }
-    scaled
 }
 
 pub(super) fn parameter_name(shape: Shape, index: usize) -> String {

@@ -3,6 +3,7 @@
 
 use serde::Serialize;
 
+use super::left_out::leave_one_out_rms;
 use super::{fit_model, Fit, FitError, FitOptions, Model, RICHEST_FIRST};
 use crate::data::Dataset;
 
@@ -55,22 +56,6 @@ fn reason(scores: &[(&'static str, Option<f64>)], index: usize, g: f64) -> Strin
         }
         None => format!("{name} is the richest model that fits; no model can be tested on rows it did not see"),
     }
-}
-
-/// RMS over the rows of | |a| - g | at each row, from the model fitted without it; `None` when the
-/// model cannot be fitted with some row left out.
-pub fn leave_one_out_rms(training: &Dataset, model: Model, options: &FitOptions) -> Option<f64> {
-    let mut sum = 0.0;
-    for (i, row) in training.rows.iter().enumerate() {
-        let mut without = training.clone();
-        without.rows.remove(i);
-        let fit = fit_model(&without, model, options).ok()?;
-        let m = row.reading;
-        let a =
-            shared::linalg::mul_vec(&fit.matrix, [m[0] - fit.offset[0], m[1] - fit.offset[1], m[2] - fit.offset[2]]);
-        sum += (shared::linalg::norm(a) - options.g).powi(2);
-    }
-    (!training.rows.is_empty()).then(|| (sum / training.rows.len() as f64).sqrt())
 }
 
 /// How many positions (or known orientations) a refusal says are missing: the distance from the

@@ -7,7 +7,7 @@
 //! not vary and only p (the offset) is fitted. Per gyro axis, w_k = b_k(dT) + g . f (the
 //! g-sensitivity, not a function of T). The polynomial order (1-3) of each axis is the one with the
 //! smallest held-out error: the points are split into alternate temperature bins, each half predicts
-//! the other.
+//! the other; an order is tried only where the span learned supports it (10 degC per order).
 
 use nalgebra::{DMatrix, DVector};
 use shared::calibration::{TempCoefficients, TemperatureModel, MAX_TEMP_ORDER};
@@ -100,8 +100,26 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
-/// The order (1..=3) with the smallest held-out error, with that error; both folds count.
-fn choose_order(build: impl Fn(usize) -> Vec<Vec<f64>>, values: &[f64], fold: &[bool]) -> (usize, f64) {
+/// The learned span each polynomial order needs, in degC: order k is tried from k times this.
+/// NOTE: the chip applies the model over the whole operating range (-40..85 degC), mostly outside
+/// the span learned, where a polynomial's error grows as (distance / span)^order: a cubic fitted to
+/// a quick 16 degC warming once drifted past the 0.5 g plausibility limit at -40 degC and the fit was
+/// refused. 10 degC is also the smallest span `thermal` accepts, so a first order is always allowed.
+const SPAN_PER_ORDER_C: f64 = 10.0;
+
+/// The highest order the points' temperature span supports (1..=3).
+fn highest_order(points: &[ThermalPoint]) -> usize {
+    let (low, high) =
+        points.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| (l.min(p.temp_c), h.max(p.temp_c)));
+    ((high - low) / SPAN_PER_ORDER_C).floor().clamp(1.0, MAX_TEMP_ORDER as f64) as usize
+}
+
+/// The order (1..=`highest`) with the smallest held-out error, with that error; both folds count.
+fn choose_order(
+    build: impl Fn(usize) -> Vec<Vec<f64>>,
+    values: &[f64],
+    (fold, highest): (&[bool], usize),
+) -> (usize, f64) {
     let other: Vec<bool> = fold.iter().map(|f| !f).collect();
     let error = |order: usize| {
         let rows = build(order);
@@ -109,13 +127,16 @@ fn choose_order(build: impl Fn(usize) -> Vec<Vec<f64>>, values: &[f64], fold: &[
         let b = held_out_rms(&rows, values, &other).unwrap_or(f64::INFINITY);
         ((a * a + b * b) / 2.0).sqrt()
     };
-    (1..=MAX_TEMP_ORDER).map(|order| (order, error(order))).fold((1, f64::INFINITY), |best, c| {
-        if c.1 < best.1 {
-            c
-        } else {
-            best
-        }
-    })
+    (1..=highest).map(|order| (order, error(order))).fold(
+        (1, f64::INFINITY),
+        |best, c| {
+            if c.1 < best.1 {
+                c
+            } else {
+                best
+            }
+        },
+    )
 }
 
 /// Powers 1..=order of a fitted polynomial, divided by `norm`, as a model's coefficient column.
@@ -134,6 +155,7 @@ pub fn fit_temperature(reference: &ThermalReference, points: &[ThermalPoint]) ->
         return Err(ThermalFitError::TooFewBins { bins: distinct });
     }
     let fold: Vec<bool> = bins.iter().map(|b| b.rem_euclid(2) == 0).collect();
+    let folds = (fold.as_slice(), highest_order(points));
     let sensor = linalg::inverse(&reference.matrix).unwrap_or(linalg::identity());
     let mut fit = ThermalFit {
         model: TemperatureModel::flat(reference.ref_temp_c),
@@ -148,7 +170,7 @@ pub fn fit_temperature(reference: &ThermalReference, points: &[ThermalPoint]) ->
         let scale = u.iter().fold(0.0f64, |m, v| m.max(v.abs())) > 0.5 && u.iter().any(|v| *v < -0.5);
         let values: Vec<f64> = points.iter().map(|p| p.accel_g[axis]).collect();
         let build = |order| points.iter().zip(&u).map(|(p, u)| accel_row(p.temp_c - ref_c, *u, order, scale)).collect();
-        let (order, error) = choose_order(build, &values, &fold);
+        let (order, error) = choose_order(build, &values, folds);
         let solution = solve(&build(order), &values)?;
         coefficients_into(&mut fit.model.offset_g, axis, &solution[..=order], 1.0);
         if scale {
@@ -157,7 +179,7 @@ pub fn fit_temperature(reference: &ThermalReference, points: &[ThermalPoint]) ->
         fit.scale_fitted |= scale;
         fit.accel_order[axis] = order;
         squares += error * error;
-        fit_gyro_axis(&mut fit, points, ref_c, axis, &fold)?;
+        fit_gyro_axis(&mut fit, points, ref_c, axis, folds)?;
     }
     fit.held_out_mg = (squares / 3.0).sqrt() * 1000.0;
     Ok(fit)
@@ -173,11 +195,11 @@ fn fit_gyro_axis(
     points: &[ThermalPoint],
     ref_c: f64,
     axis: usize,
-    fold: &[bool],
+    folds: (&[bool], usize),
 ) -> Result<(), ThermalFitError> {
     let values: Vec<f64> = points.iter().map(|p| p.gyro_dps[axis]).collect();
     let build = |order| points.iter().map(|p| gyro_row(p.temp_c - ref_c, p.force_g, order)).collect();
-    let (order, _) = choose_order(build, &values, fold);
+    let (order, _) = choose_order(build, &values, folds);
     let solution = solve(&build(order), &values)?;
     coefficients_into(&mut fit.model.gyro_bias_dps, axis, &solution[..=order], 1.0);
     fit.gyro_order[axis] = order;

@@ -11,7 +11,7 @@ use crate::link::{explain, Client, LinkError, Port};
 use crate::session::{CaptureRecord, Session, SessionError};
 
 /// Captures of a position tried before giving up on a board that keeps moving.
-const CAPTURE_ATTEMPTS: usize = 5;
+pub(super) const CAPTURE_ATTEMPTS: usize = 5;
 
 /// Captures every target, in whatever order the board arrives at them.
 pub fn collect<P: Port>(
@@ -91,23 +91,4 @@ pub(super) fn capture_at<P: Port>(
         return Ok(None);
     }
     Ok(Some((stats, face)))
-}
-
-/// One capture with its progress shown, retried while the board moves.
-pub(super) fn capture<P: Port>(
-    client: &mut Client<P>,
-    length: CaptureLength,
-    feedback: &mut dyn Feedback,
-) -> Result<(CaptureStats, Option<Position>), ProcedureError> {
-    for attempt in 1..=CAPTURE_ATTEMPTS {
-        let result = length.capture(client, feedback);
-        feedback.progress_done();
-        match result {
-            Err(LinkError::Device(error @ DeviceError::Moved { .. })) if attempt < CAPTURE_ATTEMPTS => {
-                feedback.say(&format!("{}; trying again", explain(&error)));
-            }
-            other => return Ok(other?),
-        }
-    }
-    Err(ProcedureError::KeptMoving { attempts: CAPTURE_ATTEMPTS })
 }

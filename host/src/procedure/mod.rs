@@ -50,6 +50,8 @@ pub enum ProcedureError {
     KeptMoving { attempts: usize },
     #[error("the device has no active calibration to verify: calibrate or upload one first")]
     NoActiveCalibration,
+    #[error("{source}; {verified}")]
+    VerificationStopped { source: Box<ProcedureError>, verified: String },
     #[error(
         "the temperature spanned only {:.1} degC ({low_c:.1} to {high_c:.1} degC); a temperature model needs at least {needed_c} degC: start with the board cold (rested in a cool place or just powered on) and let it warm, or move it between a cool and a warm place", high_c - low_c
     )]

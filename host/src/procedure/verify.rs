@@ -4,14 +4,14 @@
 use std::time::Duration;
 
 use shared::linalg;
-use shared::protocol::{CalibrationSlot, CaptureStats, StreamKind};
+use shared::protocol::{CalibrationSlot, CaptureStats, DeviceError, StreamKind};
 use shared::Calibration;
 
-use super::collect::capture;
+use super::collect::CAPTURE_ATTEMPTS;
 use super::stop_rule::CaptureLength;
 use super::wait::{wait_for_fresh, LIVE_WINDOW};
 use super::{Feedback, Hand, ProcedureError};
-use crate::link::{Client, Port, StreamRequest};
+use crate::link::{explain, Client, LinkError, Port, StreamRequest};
 pub use crate::session::Verification;
 
 /// Length of each verification capture, in seconds.
@@ -83,12 +83,12 @@ pub fn verify_with<P: Port>(
     let calibration = client.calibration(CalibrationSlot::Active)?.ok_or(ProcedureError::NoActiveCalibration)?;
     hand.avoid(calibrated);
     let mut checks = Vec::with_capacity(positions);
+    // NOTE: `used` holds the calibration's directions first, then each one verified.
     let mut used = calibrated.to_vec();
     for index in 0..positions {
-        hand.fresh(index, feedback)?;
-        // NOTE: `used` holds the calibration's directions first, then each one verified.
-        used.push(wait_for_fresh(client, &used, (wait_limit, length.settle_seconds()), feedback)?);
-        let check = check(client, &calibration, length, feedback)?;
+        let fresh = hand.fresh(index, feedback);
+        let check = fresh.and_then(|()| check_fresh(client, &calibration, &mut used, (wait_limit, length), feedback));
+        let check = check.map_err(|source| stopped(source, &checks, positions))?;
         feedback.say(&format!(
             "verification {}: | |a| - 1 g | {:.2} mg raw, {:.3} mg calibrated",
             index + 1,
@@ -100,14 +100,57 @@ pub fn verify_with<P: Port>(
     Ok(summary(&checks))
 }
 
-/// One capture at the board's orientation, and the chip's corrected samples there.
+/// A check at a fresh orientation, which only a capture that ran still uses up: after a capture the
+/// board moved during, the wait for a fresh orientation starts again (the board may be anywhere now,
+/// and the orientation it was brought to is still fresh).
+fn check_fresh<P: Port>(
+    client: &mut Client<P>,
+    calibration: &Calibration,
+    used: &mut Vec<[f64; 3]>,
+    (wait_limit, length): (Option<Duration>, CaptureLength),
+    feedback: &mut dyn Feedback,
+) -> Result<Check, ProcedureError> {
+    for _ in 0..CAPTURE_ATTEMPTS {
+        let direction = wait_for_fresh(client, used, (wait_limit, length.settle_seconds()), feedback)?;
+        match check(client, calibration, length, feedback) {
+            Err(ProcedureError::Link(LinkError::Device(error @ DeviceError::Moved { .. }))) => {
+                feedback.say(&format!("{}; hold it still at a fresh orientation again", explain(&error)));
+            }
+            other => {
+                used.push(direction);
+                return other;
+            }
+        }
+    }
+    Err(ProcedureError::KeptMoving { attempts: CAPTURE_ATTEMPTS })
+}
+
+/// The error of a verification stopped part way, saying what it had measured.
+fn stopped(source: ProcedureError, checks: &[Check], positions: usize) -> ProcedureError {
+    let verified = match checks.len() {
+        0 => format!("none of the {positions} orientations was verified"),
+        n => {
+            let v = summary(checks);
+            format!(
+                "{n} of {positions} orientations verified: | |a| - 1 g | rms {:.2} mg raw, {:.3} mg calibrated (worst {:.3} mg)",
+                v.before_rms_mg, v.after_rms_mg, v.after_max_mg
+            )
+        }
+    };
+    ProcedureError::VerificationStopped { source: Box::new(source), verified }
+}
+
+/// One capture at the board's orientation (not retried: [`check_fresh`] waits again), and the
+/// chip's corrected samples there.
 fn check<P: Port>(
     client: &mut Client<P>,
     calibration: &Calibration,
     length: CaptureLength,
     feedback: &mut dyn Feedback,
 ) -> Result<Check, ProcedureError> {
-    let (stats, _) = capture(client, length, feedback)?;
+    let result = length.capture(client, feedback);
+    feedback.progress_done();
+    let (stats, _) = result?;
     // NOTE: at the capture's temperature, as the chip corrects it (a session's drift model moves o).
     let corrected = calibration.apply_at(stats.mean_g, stats.temp_c);
     let chip_mean = chip_corrected_mean(client, sample_rate_hz(&stats))?;

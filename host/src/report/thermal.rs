@@ -98,6 +98,10 @@ impl ThermalFitJson {
 /// The whole report.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct ThermalReport {
+    /// The serial number of the board it was learned on (24 hexadecimal digits, as sessions record
+    /// it); `None` in files written before accelcal recorded it.
+    #[serde(default)]
+    pub serial: Option<String>,
     /// The calibration with its temperature model.
     pub calibration: CalibrationJson,
     /// How the temperature model was fitted.

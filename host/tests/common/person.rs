@@ -45,8 +45,12 @@ pub struct Run {
 impl Run {
     /// Starts `accelcal calibrate --port PORT ARGS`.
     pub fn start(port: &str, args: &[&str], moves: Moves) -> Self {
+        Run::command(&[&["calibrate", "--port", port][..], args].concat(), moves)
+    }
+
+    /// Starts any `accelcal` command.
+    pub fn command(args: &[&str], moves: Moves) -> Self {
         let mut child = Command::new(env!("CARGO_BIN_EXE_accelcal"))
-            .args(["calibrate", "--port", port])
             .args(args)
             .stdin(Stdio::null())
             .stdout(Stdio::piped())
@@ -81,6 +85,20 @@ impl Run {
             }
         }
         None
+    }
+
+    /// Every stderr line for `duration`, without moving the board.
+    pub fn lines_for(&mut self, duration: Duration) -> Vec<String> {
+        let end = std::time::Instant::now() + duration;
+        let mut lines = Vec::new();
+        while let Some(left) = end.checked_duration_since(std::time::Instant::now()) {
+            match self.lines.recv_timeout(left) {
+                Ok(line) => lines.push(line),
+                Err(_) => break,
+            }
+        }
+        self.seen.extend(lines.iter().cloned());
+        lines
     }
 
     /// Sends Ctrl-C.

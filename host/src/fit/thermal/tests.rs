@@ -82,22 +82,56 @@ fn fewer_than_six_temperature_bins_are_refused() {
     assert_eq!(fit_temperature(&reference(&calibration), &points), Err(ThermalFitError::TooFewBins { bins: 5 }));
 }
 
-#[test]
-fn the_held_out_error_of_noisy_readings_is_their_noise_per_axis() {
+/// Readings at the six faces at each of `temps`, with (accelerometer g, gyro deg/s) of white noise.
+fn noisy_faces(
+    calibration: &Calibration,
+    model: &TemperatureModel,
+    temps: &[f64],
+    (accel_g, gyro_dps): (f64, f64),
+    seed: u64,
+) -> Vec<ThermalPoint> {
     use rand_distr::{Distribution, Normal};
     use rand_xoshiro::rand_core::SeedableRng;
+    let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(seed);
+    let mut normal = |sigma: f64| Normal::new(0.0, sigma).unwrap().sample(&mut rng);
+    let mut points = Vec::new();
+    for &temp_c in temps {
+        for face in FACES {
+            let mut p = reading(calibration, model, temp_c, face);
+            p.accel_g = p.accel_g.map(|a| a + normal(accel_g));
+            p.gyro_dps = p.gyro_dps.map(|w| w + normal(gyro_dps));
+            points.push(p);
+        }
+    }
+    points
+}
+
+#[test]
+fn the_held_out_error_of_noisy_readings_is_their_noise_per_axis() {
     // Readings with 0.5 mg of independent noise on each axis: a model fitted to one half predicts the
     // other to the noise itself, times sqrt(1 + p / n) = 1.04 for up to 8 coefficients from 93 points.
     let (calibration, model) = truth();
-    let mut rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(5);
-    let noise = Normal::new(0.0, 0.5e-3).unwrap();
-    let points: Vec<ThermalPoint> = (0..31)
-        .flat_map(|t| FACES.map(|f| reading(&calibration, &model, 15.0 + f64::from(t) + 0.3, f)))
-        .map(|mut p| {
-            p.accel_g = p.accel_g.map(|a| a + noise.sample(&mut rng));
-            p
-        })
-        .collect();
+    let temps: Vec<f64> = (0..31).map(|t| 15.0 + f64::from(t) + 0.3).collect();
+    let points = noisy_faces(&calibration, &model, &temps, (0.5e-3, 0.0), 5);
     let fit = fit_temperature(&reference(&calibration), &points).unwrap();
     assert!((0.47..0.58).contains(&fit.held_out_mg), "held out {} mg for 0.5 mg of noise", fit.held_out_mg);
+}
+
+#[test]
+fn a_short_warming_gets_no_higher_order_than_its_span_supports() {
+    // A quick 16 degC warming (20 to 36 degC) with 0.1 mg of noise: its held-out error alone would
+    // choose a higher order, which extrapolates to the ends of the operating range the chip applies
+    // it over. One order per 10 degC: linear only.
+    let (calibration, model) = truth();
+    let temps: Vec<f64> = (0..17).map(|t| 20.0 + f64::from(t) * 0.97).collect();
+    let points = noisy_faces(&calibration, &model, &temps, (0.1e-3, 1e-3), 23);
+    let fit = fit_temperature(&reference(&calibration), &points).unwrap();
+    assert_eq!((fit.accel_order, fit.gyro_order), ([1; 3], [1; 3]));
+    let mut plausible = calibration;
+    plausible.temperature = Some(fit.model);
+    assert_eq!(plausible.validate(), Ok(()), "a first order from 16 degC holds over -40..85 degC");
+    // Thirty degrees support a cubic: the quadratic truth over 15..45 degC still gets its second order.
+    let wide: Vec<ThermalPoint> =
+        (0..31).flat_map(|t| FACES.map(|f| reading(&calibration, &model, 15.0 + f64::from(t) + 0.3, f))).collect();
+    assert!(fit_temperature(&reference(&calibration), &wide).unwrap().accel_order.iter().all(|&o| o >= 2));
 }
