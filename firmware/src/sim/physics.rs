@@ -9,6 +9,7 @@ use shared::linalg::{self, Mat3, Vec3};
 use super::thermal::{Environment, ThermalDrift};
 
 mod filter;
+mod population;
 mod power;
 mod rotation;
 

@@ -31,7 +31,8 @@ pub struct Device {
     /// With --sim: seed of the simulated sensor's noise and of the hand's placement.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
-    /// With --sim: the simulated sensor, realistic (warming and drifting) or settled (one temperature).
+    /// With --sim: the simulated sensor, realistic (warming and drifting), settled (one temperature) or
+    /// drawn (realistic, a part drawn by the seed from the datasheet's spreads).
     #[arg(long, value_enum, default_value_t = SimSensor::Realistic)]
     pub sim_sensor: SimSensor,
     /// With --sim: the simulated part (its register map, temperature formula and self-test).

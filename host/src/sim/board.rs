@@ -10,7 +10,7 @@ use firmware::device::Device;
 use firmware::server::Server;
 use firmware::sim::part::SimPart;
 use firmware::sim::physics::{Motion, Physics, TrueErrors};
-use firmware::sim::thermal::TRUTH_REF_TEMP_C;
+use firmware::sim::thermal::{ThermalDrift, TRUTH_REF_TEMP_C};
 use firmware::sim::{sim_serial_number, SimFlash, SimMpu6050, SIM_FLASH_RANGE};
 use shared::Calibration;
 
@@ -60,6 +60,9 @@ pub enum SimSensor {
     Realistic,
     /// The published static model held at 25 degC with white noise only (an idealised part).
     Settled,
+    /// As realistic, but a part drawn by the seed from the datasheet's spreads (offset, sensitivity,
+    /// non-orthogonality and their drift), so that boards of different seeds differ as real ones do.
+    Drawn,
 }
 
 /// A simulated sensor: the seed of its noise, its kind and its part.
@@ -78,6 +81,8 @@ pub struct SimBoard {
     commands: Sender<SimCommand>,
     thread: Option<JoinHandle<SimFlash>>,
     truth: TrueErrors,
+    /// How the truth moves with temperature (none for the settled sensor).
+    drift: ThermalDrift,
     kind: SimSensor,
     now_us: Arc<AtomicU64>,
 }
@@ -111,12 +116,15 @@ impl SimBoard {
     ) -> Self {
         let (seed, kind, part) = sensor;
         let mut sensor = match kind {
-            SimSensor::Realistic => SimMpu6050::new(seed),
+            SimSensor::Realistic | SimSensor::Drawn => SimMpu6050::new(seed),
             SimSensor::Settled => SimMpu6050::settled(seed),
         }
         .with_part(part);
+        if kind == SimSensor::Drawn {
+            sensor.physics.drawn_part(seed);
+        }
         sensor.physics.power_on(power.cycle, power.turn_on_bias_g);
-        let truth = sensor.physics.truth;
+        let (truth, drift) = (sensor.physics.truth, sensor.physics.drift);
         let (commands, inbox) = channel();
         let now_us = Arc::new(AtomicU64::new(0));
         let clock = now_us.clone();
@@ -128,7 +136,7 @@ impl SimBoard {
                 Err(_) => SimFlash::default(),
             }
         });
-        SimBoard { commands, thread: Some(thread), truth, kind, now_us }
+        SimBoard { commands, thread: Some(thread), truth, drift, kind, now_us }
     }
 
     /// A fresh simulated board in this process, behind an in-memory pipe, and a session with it; its
@@ -168,9 +176,11 @@ impl SimBoard {
     /// The simulated sensor's true errors when its TEMP_OUT reads `reading_c` degC (the settled
     /// sensor's are the same at every temperature).
     pub fn truth_at(&self, reading_c: f32) -> TrueErrors {
-        let physics = Physics::new(0);
+        let environment = Physics::new(0).environment;
         match self.kind {
-            SimSensor::Realistic => physics.drift.at(&self.truth, reading_c - physics.environment.reading_offset_c),
+            SimSensor::Realistic | SimSensor::Drawn => {
+                self.drift.at(&self.truth, reading_c - environment.reading_offset_c)
+            }
             SimSensor::Settled => self.truth,
         }
     }
@@ -196,14 +206,11 @@ impl SimBoard {
 
     /// The truth at TEMP_OUT `reading_c` degC for a report, with the realistic sensor's drift.
     pub fn truth_json(&self, reading_c: f32) -> TruthJson {
-        let physics = Physics::new(0);
+        let reading_offset_c = Physics::new(0).environment.reading_offset_c;
         let drift = match self.kind {
-            SimSensor::Realistic => Some(DriftJson::new(
-                &self.truth,
-                &physics.drift,
-                TRUTH_REF_TEMP_C,
-                physics.environment.reading_offset_c,
-            )),
+            SimSensor::Realistic | SimSensor::Drawn => {
+                Some(DriftJson::new(&self.truth, &self.drift, TRUTH_REF_TEMP_C, reading_offset_c))
+            }
             SimSensor::Settled => None,
         };
         TruthJson::new(reading_c, &self.truth_at(reading_c), drift)
@@ -213,7 +220,9 @@ impl SimBoard {
     pub fn ambient_for(&self, reading_c: f32) -> f32 {
         let environment = Physics::new(0).environment;
         match self.kind {
-            SimSensor::Realistic => reading_c - environment.reading_offset_c - environment.self_heating_c,
+            SimSensor::Realistic | SimSensor::Drawn => {
+                reading_c - environment.reading_offset_c - environment.self_heating_c
+            }
             SimSensor::Settled => reading_c,
         }
     }

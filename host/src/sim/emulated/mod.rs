@@ -74,10 +74,13 @@ pub fn serve_emulated(uf2: &Path, seed: u64, kind: SimSensor) -> Result<(), Emul
     if !uf2.is_file() {
         return Err(EmulatorError::NoFirmware(uf2.to_path_buf()));
     }
-    let sensor = match kind {
-        SimSensor::Realistic => SimMpu6050::new(seed),
+    let mut sensor = match kind {
+        SimSensor::Realistic | SimSensor::Drawn => SimMpu6050::new(seed),
         SimSensor::Settled => SimMpu6050::settled(seed),
     };
+    if kind == SimSensor::Drawn {
+        sensor.physics.drawn_part(seed);
+    }
     let mut harness = Harness::start(dir, uf2)?;
     let (bus, hand, port, started) = (BytewiseTarget::default(), Hand::default(), HostPort::plugged()?, Instant::now());
     let mut bridge = Bridge { sensor, hand, bus, port, started, orders: read_orders(), fits: FitTimer::default() };
