@@ -169,7 +169,9 @@ fn the_verification_never_takes_an_orientation_the_calibration_was_captured_at()
     let mut feedback = LiveLines::default();
     let wait = Some(Duration::from_millis(500));
     let result = calibrate::verify_clear_of(&mut client, &mut PersonHand, 1, wait, &mut feedback, &[[0.0, 0.01, 0.98]]);
-    assert!(matches!(result, Err(calibrate::ProcedureError::NeverFresh)), "{result:?}");
+    // The stop carries what was verified before it (none here), around the cause.
+    let Err(calibrate::ProcedureError::VerificationStopped { source, .. }) = &result else { panic!("{result:?}") };
+    assert!(matches!(**source, calibrate::ProcedureError::NeverFresh), "{result:?}");
     assert!(!feedback.0.is_empty());
     assert!(feedback.0.iter().all(|line| line.starts_with("this orientation was used already")), "{:?}", feedback.0);
 }
