@@ -1,4 +1,4 @@
-//! The certificate's uncertainties hold (issue 28): over 1000 simulated boards (each a part drawn by
+//! The certificate's uncertainties hold (issue 28): over 2000 simulated boards (each a part drawn by
 //! its seed from the datasheet's spreads, warming after power-on, biases wandering), each calibrated by the default adaptive
 //! session, the k = 2 interval of every parameter covers the sensor's true value at the session's
 //! mean temperature 93-97 % of the time, and the | |a| - g | error at fresh orientations is within
@@ -13,7 +13,12 @@ use firmware::sim::part::SimPart;
 use firmware::sim::physics::TrueErrors;
 use nalgebra::{Matrix3, Vector3};
 
-const BOARDS: u64 = 1000;
+/// NOTE: a k = 2 interval that is exactly right covers 95.45 % of the time; over N boards the
+/// fraction covered scatters by sqrt(0.0455 x 0.9545 / N): 0.66 % at 1000 boards, where 97 % is only
+/// 2.3 of those above, so a right interval would land above 93-97 % about once in two hundred
+/// quantities (binomial; seeds 1-1000 put o_x at 97.0 %, seeds 1001-2000 at 94.9 %, with the same
+/// code). At 2000 boards (0.47 %) that is about once in six thousand.
+const BOARDS: u64 = 2000;
 const PLACEMENT_DEG: f64 = 3.0;
 /// Fresh orientations per board for the | |a| - g | check (a Fibonacci sphere).
 const FRESH: usize = 50;
@@ -90,7 +95,6 @@ fn board(seed: u64) -> Board {
 }
 
 #[test]
-#[ignore = "fails as measured: over 1000 drawn parts o_x 97.1 % (above 97 %; the rest 94.6-96.5 %, | |a| - g | 95.7 %), see docs/production.md; run with --ignored (380 s on 2 cores)"]
 fn the_k2_intervals_cover_the_truth_93_to_97_percent_of_the_time() {
     let started = std::time::Instant::now();
     let threads = std::thread::available_parallelism().map_or(2, |n| n.get()) as u64;

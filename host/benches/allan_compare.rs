@@ -16,7 +16,7 @@ const REPEATS: usize = 3;
 fn main() {
     let truth = TrueNoise { white_noise_density: 400e-6, bias_instability: 0.0, random_walk: 1e-6 };
     let axes: [Vec<f64>; 6] = std::array::from_fn(|k| noisy_series(&truth, k as f64 * 0.1, RATE_HZ, SAMPLES, k as u64));
-    let series = RateSeries { rate_hz: RATE_HZ, axes };
+    let series = RateSeries { rate_hz: RATE_HZ, axes, board: None };
     let factors = allan::averaging_factors(SAMPLES, TAUS_PER_DECADE);
     let deviation = median_cpu_seconds(|| {
         series.axes.iter().for_each(|axis| drop(std::hint::black_box(allan::overlapping_adev(axis, RATE_HZ, &factors))))

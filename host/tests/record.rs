@@ -33,17 +33,22 @@ fn a_60_s_sim_recording_at_1_khz_holds_60000_consecutive_samples_1_ms_apart() {
     // The realistic sensor lies flat: z near 1 g, die temperature near room temperature.
     let last = samples.last().unwrap();
     assert!((last.accel_g[2] - 1.0).abs() < 0.1 && (15.0..40.0).contains(&last.temp_c), "{last:?}");
-    assert_eq!(std::fs::metadata(&path).unwrap().len(), 320 + 60_000 * 32, "32 bytes per sample");
+    let header = accelcal::recording::header::HEADER_BYTES as u64;
+    assert_eq!(std::fs::metadata(&path).unwrap().len(), header + 60_000 * 32, "32 bytes per sample");
+    assert_eq!(recording.serial.as_deref(), Some("53494D000000000000000001"), "the simulated board of seed 1");
     std::fs::remove_file(path).unwrap();
 }
 
 /// The same samples as `path` holds, as CSV with the stream's columns, every digit kept.
 fn as_csv(path: &Path) -> PathBuf {
-    let mut text = String::from("index,time_s,ax_g,ay_g,az_g,gx_dps,gy_dps,gz_dps,temp_c\n");
-    for s in read_path(path).unwrap().samples {
+    let mut text = String::from("index,time_s,ax_g,ay_g,az_g,gx_dps,gy_dps,gz_dps,temp_c,board\n");
+    let recording = read_path(path).unwrap();
+    let board = recording.serial.unwrap();
+    for s in recording.samples {
         // NOTE: as f64, whose shortest decimal reads back to the very value the recording's f32 gives.
         let ([ax, ay, az], [gx, gy, gz]) = (s.accel_g.map(f64::from), s.gyro_dps.map(f64::from));
-        text += &format!("{},{},{ax},{ay},{az},{gx},{gy},{gz},{}\n", s.index, s.time_us as f64 * 1e-6, s.temp_c);
+        text +=
+            &format!("{},{},{ax},{ay},{az},{gx},{gy},{gz},{},{board}\n", s.index, s.time_us as f64 * 1e-6, s.temp_c);
     }
     let csv = path.with_extension("csv");
     std::fs::write(&csv, text).unwrap();
@@ -124,7 +129,8 @@ fn the_readme_python_one_liner_loads_a_recording_with_its_columns() {
                   r.dtype.fields['seq'][2])";
     let output = Command::new("python3").args(["-c", script, path.to_str().unwrap()]).output().unwrap();
     assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
-    let expected = "3000 1 1 sample number; samples per second: 1000; time_s = seq / 1000";
+    let expected =
+        "3000 1 1 sample number; samples per second: 1000; board 53494D000000000000000001; time_s = seq / 1000";
     assert_eq!(String::from_utf8_lossy(&output.stdout).trim(), expected);
     std::fs::remove_file(path).unwrap();
 }

@@ -35,7 +35,7 @@ fn simulated_session(dir: &Path) -> PathBuf {
 }
 
 /// What `report --thermal` and `--noise` take, made in `dir`: the simulated board's `thermal --json`
-/// (the session's board: seed 7) and a 60 s recording at 1 kHz with its `noise --json`.
+/// (the session's board: seed 7) and a 60 s recording at 1 kHz of the same board with its `noise --json`.
 struct Extras {
     thermal: PathBuf,
     recording: PathBuf,
@@ -45,7 +45,7 @@ struct Extras {
 fn extras(dir: &Path) -> Extras {
     let (thermal, recording, noise) = (dir.join("thermal.json"), dir.join("rec.npy"), dir.join("noise.json"));
     thermal_json(&thermal, "7");
-    let output = accelcal(&["record", "--sim", "--seconds", "60", "-o", recording.to_str().unwrap()]);
+    let output = accelcal(&["record", "--sim", "--seed", "7", "--seconds", "60", "-o", recording.to_str().unwrap()]);
     assert!(output.status.success(), "{}", text(&output.stderr));
     let output = accelcal(&["noise", recording.to_str().unwrap(), "--json"]);
     assert!(output.status.success(), "{}", text(&output.stderr));
@@ -82,6 +82,38 @@ fn a_thermal_json_of_another_board_is_refused_and_one_naming_no_board_is_read_wi
     assert!(stderr.contains("names no board") && stderr.contains("is not checked"), "{stderr}");
     let report: Value = serde_json::from_slice(&output.stdout).unwrap();
     assert!(report["temperature"].is_object(), "{report}");
+}
+
+#[test]
+fn a_recording_of_another_board_is_refused_and_a_noise_json_naming_no_board_is_read_with_a_caveat() {
+    let dir = scratch("other-recording");
+    let session = simulated_session(&dir);
+    let recording = dir.join("other.npy");
+    let output = accelcal(&["record", "--sim", "--seed", "3", "--seconds", "5", "-o", recording.to_str().unwrap()]);
+    assert!(output.status.success(), "{}", text(&output.stderr));
+    let output = accelcal(&["report", session.to_str().unwrap(), "--json", "--noise", recording.to_str().unwrap()]);
+    let stderr = text(&output.stderr);
+    assert!(!output.status.success(), "another board's recording was added: {stderr}");
+    assert!(stderr.contains("it was recorded on board 53494D000000000000000003"), "{stderr}");
+    assert!(stderr.contains("the session was taken on board 53494D000000000000000007"), "{stderr}");
+    // Its noise JSON names the board too; named as the session's board it is taken, naming none it is
+    // taken with the caveat.
+    let output = accelcal(&["noise", recording.to_str().unwrap(), "--json"]);
+    let mut json: Value = serde_json::from_slice(&output.stdout).unwrap();
+    assert_eq!(json["serial"], "53494D000000000000000003");
+    let noise_json = dir.join("noise.json");
+    let mut with_noise = |serial: Value| {
+        json["serial"] = serial;
+        std::fs::write(&noise_json, json.to_string()).unwrap();
+        accelcal(&["report", session.to_str().unwrap(), "--json", "--noise", noise_json.to_str().unwrap()])
+    };
+    let output = with_noise(Value::from("53494D000000000000000007"));
+    assert!(output.status.success() && !text(&output.stderr).contains("names no board"), "{}", text(&output.stderr));
+    let output = with_noise(Value::Null);
+    let stderr = text(&output.stderr);
+    assert!(output.status.success() && stderr.contains("names no board"), "{stderr}");
+    let report: Value = serde_json::from_slice(&output.stdout).unwrap();
+    assert!(report["allan_deviation"].is_object(), "{report}");
 }
 
 fn report_json(session: &Path) -> Value {

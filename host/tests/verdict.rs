@@ -1,10 +1,13 @@
-//! `calibrate` ends with a verdict against `--target-mg`: reached, or missed with why (a
-//! calibration that misses by more than its noise ends the command with status 2: the simulated
-//! sessions reach their target, so that is tested in `procedure::verdict`).
+//! `calibrate` ends with a verdict against `--target-mg`: reached, or missed with why; a
+//! calibration that misses by more than its noise ends the command with status 2 (shown end to end
+//! on a simulated board whose surroundings heat up once the calibration is uploaded).
 
 mod common;
 
 use std::time::Duration;
+
+use common::person::{Moves, Run};
+use common::SimPty;
 
 fn calibrate(extra: &[&str]) -> (Option<i32>, serde_json::Value, String) {
     let args = [&["calibrate", "--sim", "--yes", "--json"], extra].concat();
@@ -29,4 +32,31 @@ fn a_fixed_length_calibration_is_judged_trusted_or_not_without_a_target() {
     assert_eq!(code, Some(0), "{stderr}");
     let line = json["target"]["line"].as_str().unwrap();
     assert!(json["target"]["target_mg"].is_null() && line.contains("aim at no --target-mg"), "{line}");
+}
+
+#[test]
+fn a_board_that_warms_between_the_captures_and_the_check_misses_its_target_with_status_2_and_says_why() {
+    let mut sim = SimPty::with_seed("23", &["--fast"]);
+    let session = std::env::temp_dir().join(format!("accelcal-verdict-{}-warmed", std::process::id()));
+    let args = ["--yes", "--target-mg", "0.2", "--session", session.to_str().unwrap()];
+    let mut run = Run::start(&sim.path.clone(), &args, Moves::Place);
+    assert!(run.follow(&mut sim, "uploaded and saved; now checking").is_some(), "{:?}", run.seen);
+    // NOTE: the surroundings jump from 20 to 85 degC while the person waits before the check: the die
+    // warms by about 5 degC in 20 s (a four-minute time constant), and the offsets drift about a mg
+    // per degC with it.
+    sim.tell("ambient 85");
+    std::thread::sleep(Duration::from_secs(20));
+    let (status, stdout, stderr) = run.finish(&mut sim);
+    let said = format!("{stdout}\n{stderr}");
+    assert_eq!(status.code(), Some(2), "{said}");
+    let verdict = said.lines().find(|line| line.starts_with("target 0.2 mg:")).expect("a verdict line");
+    println!("{}\n{verdict}", said.lines().filter(|line| line.starts_with("verifi")).collect::<Vec<_>>().join("\n"));
+    assert!(
+        verdict.contains("not trusted")
+            && verdict.contains("missed; the calibration leaves an error the verification resolves"),
+        "{verdict}"
+    );
+    for kept in ["json", "csv", "html", "certificate.json", "certificate.html"] {
+        let _ = std::fs::remove_file(session.with_extension(kept));
+    }
 }

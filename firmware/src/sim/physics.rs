@@ -12,8 +12,10 @@ mod filter;
 mod population;
 mod power;
 mod rotation;
+mod wander;
 
 use rotation::{rotate, turning_at};
+use wander::Wander;
 
 /// Accelerometer white-noise density of the MPU-6050, in g/sqrt(Hz) (Product Specification 6.2).
 pub const ACCEL_NOISE_DENSITY_G: f32 = 400e-6;
@@ -134,15 +136,6 @@ pub struct Physics {
     rng: Xoshiro256PlusPlus,
 }
 
-/// The slow random part of the biases: a random walk plus a first-order Markov wander, per axis.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-struct Wander {
-    accel_walk_g: Vec3<f32>,
-    accel_markov_g: Vec3<f32>,
-    gyro_walk_dps: Vec3<f32>,
-    gyro_markov_dps: Vec3<f32>,
-}
-
 /// One sample in physical units, before quantisation.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PhysicalSample {
@@ -175,7 +168,7 @@ impl Physics {
             wandering: true,
             accel_bandwidth_hz: None,
             accel_filter_state: None,
-            wander: Wander::default(),
+            wander: Wander::stationary(seed),
             rng: Xoshiro256PlusPlus::seed_from_u64(seed),
         }
     }
@@ -189,6 +182,7 @@ impl Physics {
             truth: TrueErrors::published_mpu6050(),
             gyro_g_sensitivity: 0.0,
             wandering: false,
+            wander: Wander::default(),
             ..Physics::new(seed)
         }
     }
@@ -238,29 +232,6 @@ impl Physics {
             Motion::Rotating { .. } | Motion::Turning { .. } => self.kinematics(seconds).0,
             Motion::Still | Motion::Vibrating { .. } => self.up,
         }
-    }
-
-    fn accel_wander(&self) -> Vec3<f32> {
-        linalg::add(self.wander.accel_walk_g, self.wander.accel_markov_g)
-    }
-
-    fn gyro_wander(&self) -> Vec3<f32> {
-        linalg::add(self.wander.gyro_walk_dps, self.wander.gyro_markov_dps)
-    }
-
-    /// Moves the random walks and the Markov wanders on by `seconds` (exact for any step).
-    fn wander_step(&mut self, seconds: f32) {
-        let root = libm::sqrtf(seconds);
-        let keep = libm::expf(-seconds / BIAS_CORRELATION_S);
-        let fresh = libm::sqrtf(1.0 - keep * keep);
-        let w = self.wander;
-        let walk_a = linalg::add(w.accel_walk_g, self.noise(ACCEL_RANDOM_WALK_G * root));
-        let walk_g = linalg::add(w.gyro_walk_dps, self.noise(GYRO_RANDOM_WALK_DPS * root));
-        let markov_a = linalg::add(linalg::scale(w.accel_markov_g, keep), self.noise(ACCEL_BIAS_INSTABILITY_G * fresh));
-        let markov_g =
-            linalg::add(linalg::scale(w.gyro_markov_dps, keep), self.noise(GYRO_BIAS_INSTABILITY_DPS * fresh));
-        self.wander =
-            Wander { accel_walk_g: walk_a, accel_markov_g: markov_a, gyro_walk_dps: walk_g, gyro_markov_dps: markov_g };
     }
 
     /// True specific force (g) and angular rate (deg/s) at a time.

@@ -159,9 +159,10 @@ pub(super) fn stream(args: &StreamArgs) -> Result<(), Error> {
     let request = StreamRequest { kind, rate_hz: args.rate, count: args.count };
     let stdout = std::io::stdout();
     let mut out = stdout.lock();
-    let mut reading = writeln!(out, "index,time_s,ax_g,ay_g,az_g,gx_dps,gy_dps,gz_dps,temp_c").is_ok();
+    let serial = BoardRecord::of(&opened.connection.info).serial;
+    let mut reading = writeln!(out, "index,time_s,ax_g,ay_g,az_g,gx_dps,gy_dps,gz_dps,temp_c,board").is_ok();
     let tally = opened.connection.client.stream_while(request, |sample| {
-        reading = reading && write_sample(&mut out, sample).is_ok();
+        reading = reading && write_sample(&mut out, sample, &serial).is_ok();
         reading
     })?;
     if reading && out.flush().is_ok() {
@@ -170,9 +171,10 @@ pub(super) fn stream(args: &StreamArgs) -> Result<(), Error> {
     Ok(())
 }
 
-fn write_sample(out: &mut impl Write, s: &Sample) -> std::io::Result<()> {
+/// One sample's row; every row names the board, so that a file cut or joined still says whose it is.
+fn write_sample(out: &mut impl Write, s: &Sample, serial: &str) -> std::io::Result<()> {
     let [ax, ay, az] = s.accel_g;
     let [gx, gy, gz] = s.gyro_dps;
     let time_s = s.time_us as f64 * 1e-6;
-    writeln!(out, "{},{time_s:.6},{ax:.6},{ay:.6},{az:.6},{gx:.4},{gy:.4},{gz:.4},{:.2}", s.index, s.temp_c)
+    writeln!(out, "{},{time_s:.6},{ax:.6},{ay:.6},{az:.6},{gx:.4},{gy:.4},{gz:.4},{:.2},{serial}", s.index, s.temp_c)
 }

@@ -12,6 +12,7 @@ use super::calibrate::interrupt_on_ctrl_c;
 use crate::error::Error;
 use crate::link::{Client, LinkError, Port, StreamRequest, Tally};
 use crate::recording::{Recorder, RecordingError};
+use crate::session::BoardRecord;
 
 /// `accelcal record`.
 #[derive(Args)]
@@ -45,7 +46,8 @@ pub(super) fn record(args: &RecordArgs) -> Result<(), Error> {
     client.interrupt_on(interrupt_on_ctrl_c());
     let request =
         StreamRequest { kind: StreamKind::Raw, rate_hz: args.rate, count: args.seconds * u32::from(args.rate) };
-    let mut recorder = Recorder::create(&args.output, args.rate)?;
+    let serial = BoardRecord::of(&opened.connection.info).serial;
+    let mut recorder = Recorder::create(&args.output, args.rate, &serial)?;
     let streamed = stream_into(client, request, &mut recorder);
     let written = recorder.finish()?;
     leave_as_found(client, opened.connection.info.config);

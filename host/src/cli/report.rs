@@ -53,12 +53,12 @@ pub(super) fn report(args: &ReportArgs) -> Result<(), Error> {
 fn with_given(args: &ReportArgs) -> Result<SessionReport, Error> {
     let session = Session::load(&args.session)?;
     let mut report = build(&session, &args.session)?;
+    let serial = session.board.as_ref().map(|b| b.serial.as_str());
     if let Some(path) = &args.thermal {
-        let serial = session.board.as_ref().map(|b| b.serial.as_str());
         report = report.with_temperature(thermal_section(path, serial)?);
     }
     if let Some(path) = &args.noise {
-        report = report.with_allan_deviation(noise_section(path)?);
+        report = report.with_allan_deviation(noise_section(path, serial)?);
     }
     Ok(report)
 }
@@ -70,26 +70,14 @@ fn thermal_section(path: &Path, serial: Option<&str>) -> Result<(TemperatureSect
     let text = std::fs::read_to_string(path).map_err(|source| Error::ReadFile { path: path.into(), source })?;
     let thermal: ThermalReport =
         serde_json::from_str(&text).map_err(|e| refused(format!("{e}; give the output of accelcal thermal --json")))?;
-    match (thermal.serial.as_deref(), serial) {
-        (Some(learned), Some(session)) if learned != session => {
-            return Err(refused(format!(
-                "it was learned on board {learned}, the session was taken on board {session}: give the thermal \
-                 JSON of the session's board"
-            )));
-        }
-        (None, _) => eprintln!(
-            "note: {} names no board (written before accelcal recorded the serial): that it is this session's board \
-             is not checked",
-            path.display()
-        ),
-        _ => {}
-    }
+    same_board(path, ("learned", "thermal JSON"), thermal.serial.as_deref(), serial).map_err(refused)?;
     TemperatureSection::new(&thermal).map_err(refused)
 }
 
 /// The Allan deviation section from the output of `accelcal noise --json` at `path`, or from the
-/// recording there (analysed as `accelcal noise` would).
-fn noise_section(path: &Path) -> Result<(AllanSection, report::Figure), Error> {
+/// recording there (analysed as `accelcal noise` would), refused when it was recorded on another
+/// board than the session's (`serial`).
+fn noise_section(path: &Path, serial: Option<&str>) -> Result<(AllanSection, report::Figure), Error> {
     let refused = |reason: String| Error::ReportInput { path: path.into(), reason };
     let bytes = std::fs::read(path).map_err(|source| Error::ReadFile { path: path.into(), source })?;
     let json = if bytes.trim_ascii_start().starts_with(b"{") {
@@ -97,7 +85,33 @@ fn noise_section(path: &Path) -> Result<(AllanSection, report::Figure), Error> {
     } else {
         noise::json::NoiseJson::of(&noise::analyse(&noise::input::read_path(path, None)?))
     };
+    same_board(path, ("recorded", "recording"), json.serial.as_deref(), serial).map_err(refused)?;
     AllanSection::new(&json).map_err(refused)
+}
+
+/// Whether the file at `path`, `(done, what)` on the board `file_board`, is of the session's board
+/// `session_board`: another board's is refused; a file naming no board is read with a note saying so.
+fn same_board(
+    path: &Path,
+    (done, what): (&str, &str),
+    file_board: Option<&str>,
+    session_board: Option<&str>,
+) -> Result<(), String> {
+    match (file_board, session_board) {
+        (Some(file), Some(session)) if file != session => Err(format!(
+            "it was {done} on board {file}, the session was taken on board {session}: give the {what} of the \
+             session's board"
+        )),
+        (None, _) => {
+            eprintln!(
+                "note: {} names no board (written before accelcal recorded the serial): that it is this session's \
+                 board is not checked",
+                path.display()
+            );
+            Ok(())
+        }
+        _ => Ok(()),
+    }
 }
 
 /// The report of the session at `path`.

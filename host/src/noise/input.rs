@@ -62,7 +62,8 @@ pub fn read_path(path: &Path, rate_hz: Option<f64>) -> Result<RateSeries, NoiseI
     if is_npy(&magic[..opened]) {
         let recording = recording::read_path(path)?;
         let recorded_hz = agreed_rate(rate_hz, f64::from(recording.rate_hz), "as its header names it")?;
-        return from_samples(&recording.samples, recorded_hz);
+        let series = from_samples(&recording.samples, recorded_hz)?;
+        return Ok(RateSeries { board: recording.serial, ..series });
     }
     read_csv(std::fs::File::open(path).map_err(io)?, rate_hz)
 }
@@ -95,7 +96,7 @@ pub fn from_samples(samples: &[Sample], rate_hz: f64) -> Result<RateSeries, Nois
         let values = sample.accel_g.iter().chain(&sample.gyro_dps);
         axes.iter_mut().zip(values).for_each(|(axis, &value)| axis.push(f64::from(value)));
     }
-    check_length(RateSeries { rate_hz, axes })
+    check_length(RateSeries { rate_hz, axes, board: None })
 }
 
 fn check_rate(rate_hz: f64) -> Result<(), NoiseInputError> {
@@ -112,21 +113,19 @@ fn check_length(series: RateSeries) -> Result<RateSeries, NoiseInputError> {
     }
 }
 
-/// Reads CSV text at the rate of its `time_s` column, else at `rate_hz` or [`CSV_DEFAULT_RATE_HZ`].
+/// Reads CSV text at the rate of its `time_s` column, else at `rate_hz` or [`CSV_DEFAULT_RATE_HZ`];
+/// the board is the one its `board` column names.
 pub fn read_csv(reader: impl Read, rate_hz: Option<f64>) -> Result<RateSeries, NoiseInputError> {
     rate_hz.map_or(Ok(()), check_rate)?;
     let mut csv = csv::ReaderBuilder::new().trim(csv::Trim::All).from_reader(reader);
     let header = csv.headers().map_err(|e| bad_line(1, e))?.clone();
-    let mut columns = [0usize; 7];
-    for (slot, column) in columns.iter_mut().zip(COLUMNS) {
-        *slot = header.iter().position(|h| h == column).ok_or(NoiseInputError::MissingColumn { column })?;
-    }
-    let time_column = header.iter().position(|h| h == "time_s");
-    columns[6] = time_column.unwrap_or(usize::MAX);
-    let mut axes: [Vec<f64>; 7] = Default::default();
+    let columns = number_columns(&header)?;
+    let board_column = header.iter().position(|h| h == "board");
+    let (mut axes, mut board): ([Vec<f64>; 7], Option<String>) = Default::default();
     for (row, record) in csv.records().enumerate() {
         let record = record.map_err(|e| bad_line(row + 2, e))?;
-        for (axis, &column) in axes.iter_mut().zip(&columns).take(6 + usize::from(time_column.is_some())) {
+        board = board.or_else(|| board_column.and_then(|column| record.get(column)).map(str::to_owned));
+        for (axis, &column) in axes.iter_mut().zip(&columns) {
             let cell = record.get(column).unwrap_or_default();
             axis.push(cell.parse().map_err(|_| bad_line(row + 2, format!("{cell:?} is not a number")))?);
         }
@@ -136,7 +135,18 @@ pub fn read_csv(reader: impl Read, rate_hz: Option<f64>) -> Result<RateSeries, N
         Some(recorded_hz) => agreed_rate(rate_hz, recorded_hz, "as its time_s column shows")?,
         None => rate_hz.unwrap_or(CSV_DEFAULT_RATE_HZ),
     };
-    check_length(RateSeries { rate_hz, axes: [ax, ay, az, gx, gy, gz] })
+    check_length(RateSeries { rate_hz, axes: [ax, ay, az, gx, gy, gz], board })
+}
+
+/// Where the six [`COLUMNS`] are in a CSV header, and `time_s` after them when it has one.
+fn number_columns(header: &csv::StringRecord) -> Result<Vec<usize>, NoiseInputError> {
+    let at = |name: &str| header.iter().position(|h| h == name);
+    let mut columns = Vec::with_capacity(7);
+    for column in COLUMNS {
+        columns.push(at(column).ok_or(NoiseInputError::MissingColumn { column })?);
+    }
+    columns.extend(at("time_s"));
+    Ok(columns)
 }
 
 fn bad_line(line: usize, reason: impl ToString) -> NoiseInputError {
@@ -154,11 +164,13 @@ mod tests {
         assert!(matches!(error, NoiseInputError::MissingColumn { column: "gz_dps" }), "{error}");
     }
 
+    const SERIAL: &str = "53494D000000000000000017";
+
     /// A stream CSV at 50 Hz with one lost sample, as `accelcal stream` writes it.
     fn stream_csv() -> String {
-        let mut text = "index,time_s,ax_g,ay_g,az_g,gx_dps,gy_dps,gz_dps,temp_c\n".to_owned();
+        let mut text = "index,time_s,ax_g,ay_g,az_g,gx_dps,gy_dps,gz_dps,temp_c,board\n".to_owned();
         for i in (0..200u32).filter(|i| *i != 77) {
-            text += &format!("{i},{:.6},0.001,0,1,0.1,0,0,25.00\n", f64::from(i) * 0.02 + 3.0);
+            text += &format!("{i},{:.6},0.001,0,1,0.1,0,0,25.00,{SERIAL}\n", f64::from(i) * 0.02 + 3.0);
         }
         text
     }
@@ -168,6 +180,7 @@ mod tests {
         let series = read_csv(stream_csv().as_bytes(), None).unwrap();
         assert!((series.rate_hz - 50.0).abs() < 1e-6, "{} Hz", series.rate_hz);
         assert_eq!(series.axes[2].len(), 199);
+        assert_eq!(series.board.as_deref(), Some(SERIAL));
         assert!((read_csv(stream_csv().as_bytes(), Some(50.2)).unwrap().rate_hz - 50.0).abs() < 1e-6);
         let error = read_csv(stream_csv().as_bytes(), Some(1000.0)).unwrap_err().to_string();
         assert!(error.contains("differs from the 50"), "{error}");

@@ -120,6 +120,10 @@ pub struct CaptureAdviceJson {
 #[derive(Debug, Clone, Default, Serialize, Deserialize)]
 #[serde(default)]
 pub struct NoiseJson {
+    /// The serial of the board recorded; null when the recording does not name it (a recording
+    /// written before the board was kept, or a file of other origin).
+    #[serde(default)]
+    pub serial: Option<String>,
     /// Samples per second of the recording.
     pub sample_rate_hz: Option<f64>,
     /// Samples per axis.
@@ -143,6 +147,7 @@ impl NoiseJson {
     /// The report in the usual units.
     pub fn of(report: &NoiseReport) -> Self {
         NoiseJson {
+            serial: report.board.clone(),
             sample_rate_hz: Some(report.rate_hz),
             samples: Some(report.samples),
             axes: AxesJson::of(report),

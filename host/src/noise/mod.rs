@@ -27,6 +27,8 @@ pub struct RateSeries {
     pub rate_hz: f64,
     /// One series per axis of [`AXES`]: three in g, three in deg/s.
     pub axes: [Vec<f64>; 6],
+    /// The serial of the board recorded, when the file names it.
+    pub board: Option<String>,
 }
 
 /// The Allan deviation and the fitted noise terms of one axis, in the axis's unit (g or deg/s).
@@ -64,6 +66,8 @@ pub struct NoiseReport {
     pub samples: usize,
     /// The six axes in [`AXES`] order.
     pub axes: Vec<AxisNoise>,
+    /// The serial of the board recorded, when the file names it.
+    pub board: Option<String>,
 }
 
 /// Analyses one rate series at `rate_hz` under the name `name`.
@@ -84,5 +88,5 @@ pub fn analyse(series: &RateSeries) -> NoiseReport {
             .collect();
         handles.into_iter().map(|h| h.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic))).collect()
     });
-    NoiseReport { rate_hz: series.rate_hz, samples: series.axes[0].len(), axes }
+    NoiseReport { rate_hz: series.rate_hz, samples: series.axes[0].len(), axes, board: series.board.clone() }
 }

@@ -22,5 +22,5 @@ pub fn longest_still(log: &StreamLog) -> Result<(Segment, RateSeries), NoiseInpu
         let values = accel[i].iter().chain(&gyro[i]);
         axes.iter_mut().zip(values).for_each(|(axis, &value)| axis.push(value));
     }
-    Ok((longest, RateSeries { rate_hz: rate.hz, axes }))
+    Ok((longest, RateSeries { rate_hz: rate.hz, axes, board: None }))
 }

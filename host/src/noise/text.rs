@@ -35,6 +35,9 @@ pub fn render(report: &NoiseReport) -> String {
     let mut out = String::new();
     let minutes = report.samples as f64 / report.rate_hz / 60.0;
     let _ = writeln!(out, "{} samples at {} Hz ({minutes:.1} min) per axis", report.samples, report.rate_hz);
+    if let Some(serial) = &report.board {
+        let _ = writeln!(out, "recorded on board {serial}");
+    }
     let _ = writeln!(
         out,
         "{:<8} {:>16} {:>16} {:>10} {:>18}",

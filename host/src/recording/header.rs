@@ -1,16 +1,19 @@
 //! The `.npy` (version 1.0) header of a recording: magic, version, header length, and a Python
-//! dict literal naming the record layout, the sample rate and the sample count.
+//! dict literal naming the record layout, the sample rate, the board's serial and the sample count.
 //!
 //! NOTE: the header is written with a fixed length, so that the count can be rewritten in place
 //! after each block without moving the samples (format: numpy.lib.format, NEP 1). numpy refuses
-//! any key beside `descr`, `fortran_order` and `shape`, so the sample rate rides in the title of
-//! the `seq` field, numpy's own place for a field's description (`dtype.fields['seq'][2]`).
+//! any key beside `descr`, `fortran_order` and `shape`, so the sample rate and the board ride in
+//! the title of the `seq` field, numpy's own place for a field's description
+//! (`dtype.fields['seq'][2]`).
 
 /// The magic string that opens every `.npy` file.
 pub const MAGIC: &[u8] = b"\x93NUMPY";
 
 /// Bytes of the whole header, samples start here (a multiple of 64, as numpy aligns it).
-pub const HEADER_BYTES: usize = 320;
+pub const HEADER_BYTES: usize = 384;
+/// Bytes of the header of recordings written before the board was named in it (still read).
+const UNNAMED_HEADER_BYTES: usize = 320;
 
 /// The columns after `seq`, little-endian, packed: the sample time is `seq` over the rate.
 const COLUMNS: &str = "('ax_g', '<f4'), ('ay_g', '<f4'), ('az_g', '<f4'), \
@@ -18,15 +21,31 @@ const COLUMNS: &str = "('ax_g', '<f4'), ('ay_g', '<f4'), ('az_g', '<f4'), \
 
 /// The title of the `seq` field up to the rate.
 const SEQ_TITLE: &str = "sample number; samples per second: ";
+/// Before the board's serial in the title.
+const BOARD_TITLE: &str = "; board ";
 
-/// The record layout as numpy's `descr` for a recording at `rate_hz`.
-pub fn descr(rate_hz: u16) -> String {
-    format!("[(('{SEQ_TITLE}{rate_hz}; time_s = seq / {rate_hz}', 'seq'), '<u4'), {COLUMNS}]")
+/// What a recording's header says of it.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Header {
+    /// Samples per second.
+    pub rate_hz: u16,
+    /// The serial of the board recorded (24 hexadecimal digits); `None` in recordings written
+    /// before it was kept.
+    pub serial: Option<String>,
+    /// Bytes of the header: the samples start here.
+    pub bytes: usize,
 }
 
-/// The header of a file holding `samples` records taken at `rate_hz`.
-pub fn render(samples: u64, rate_hz: u16) -> Vec<u8> {
-    let dict = format!("{{'descr': {}, 'fortran_order': False, 'shape': ({samples},), }}", descr(rate_hz));
+/// The record layout as numpy's `descr` for a recording at `rate_hz` of the board `serial`.
+pub fn descr(rate_hz: u16, serial: Option<&str>) -> String {
+    let board = serial.map(|serial| format!("{BOARD_TITLE}{serial}")).unwrap_or_default();
+    format!("[(('{SEQ_TITLE}{rate_hz}{board}; time_s = seq / {rate_hz}', 'seq'), '<u4'), {COLUMNS}]")
+}
+
+/// The header of a file holding `samples` records taken at `rate_hz` on the board `serial`.
+pub fn render(samples: u64, rate_hz: u16, serial: &str) -> Vec<u8> {
+    let dict =
+        format!("{{'descr': {}, 'fortran_order': False, 'shape': ({samples},), }}", descr(rate_hz, Some(serial)));
     let text_len = HEADER_BYTES - MAGIC.len() - 4;
     let mut bytes = Vec::with_capacity(HEADER_BYTES);
     bytes.extend_from_slice(MAGIC);
@@ -36,21 +55,23 @@ pub fn render(samples: u64, rate_hz: u16) -> Vec<u8> {
     bytes
 }
 
-/// The sample rate in Hz of a recording of our layout that `bytes` open; `Err` says what differs.
-pub fn check(bytes: &[u8]) -> Result<u16, String> {
-    if bytes.len() < HEADER_BYTES || !bytes.starts_with(MAGIC) {
+/// What the header of a recording of our layout that `bytes` open says; `Err` says what differs.
+pub fn check(bytes: &[u8]) -> Result<Header, String> {
+    if bytes.len() < UNNAMED_HEADER_BYTES || !bytes.starts_with(MAGIC) {
         return Err("it does not start with a .npy header".to_owned());
     }
-    let text_len = u16::from_le_bytes([bytes[8], bytes[9]]) as usize;
-    if bytes[6] != 1 || text_len + 10 != HEADER_BYTES {
+    let header_bytes = usize::from(u16::from_le_bytes([bytes[8], bytes[9]])) + MAGIC.len() + 4;
+    if bytes[6] != 1 || ![HEADER_BYTES, UNNAMED_HEADER_BYTES].contains(&header_bytes) || bytes.len() < header_bytes {
         return Err("its .npy header is not the one `accelcal record` writes".to_owned());
     }
-    let text = String::from_utf8_lossy(&bytes[10..HEADER_BYTES]);
-    let rate_hz = rate_in(&text).ok_or_else(|| format!("its columns differ from {}", descr(1000)))?;
-    if !text.contains(&descr(rate_hz)) || !text.contains("'fortran_order': False") {
-        return Err(format!("its columns differ from {}", descr(rate_hz)));
+    let text = String::from_utf8_lossy(&bytes[10..header_bytes]);
+    let differs = |rate_hz, serial| format!("its columns differ from {}", descr(rate_hz, serial));
+    let rate_hz = rate_in(&text).ok_or_else(|| differs(1000, None))?;
+    let serial = serial_in(&text);
+    if !text.contains(&descr(rate_hz, serial.as_deref())) || !text.contains("'fortran_order': False") {
+        return Err(differs(rate_hz, serial.as_deref()));
     }
-    Ok(rate_hz)
+    Ok(Header { rate_hz, serial, bytes: header_bytes })
 }
 
 /// The sample rate the `seq` title in a header's text names.
@@ -59,17 +80,35 @@ fn rate_in(text: &str) -> Option<u16> {
     after[..after.find(';')?].parse().ok().filter(|&rate| rate > 0)
 }
 
+/// The board's serial the `seq` title in a header's text names, if it names one.
+fn serial_in(text: &str) -> Option<String> {
+    let after = &text[text.find(BOARD_TITLE)? + BOARD_TITLE.len()..];
+    Some(after[..after.find(';')?].to_owned())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
-    fn the_header_keeps_its_length_and_names_the_count_and_the_rate() {
+    fn the_header_keeps_its_length_and_names_the_count_the_rate_and_the_board() {
         for (samples, rate_hz) in [(0, 1), (1, 1000), (3_600_000, 250), (u64::MAX, 1000)] {
-            let header = render(samples, rate_hz);
+            let header = render(samples, rate_hz, SERIAL);
             assert_eq!(header.len(), HEADER_BYTES);
             assert!(String::from_utf8_lossy(&header).contains(&format!("'shape': ({samples},)")));
-            assert_eq!(check(&header), Ok(rate_hz));
+            let read = Header { rate_hz, serial: Some(SERIAL.to_owned()), bytes: HEADER_BYTES };
+            assert_eq!(check(&header), Ok(read));
         }
     }
+
+    #[test]
+    fn a_recording_written_before_the_board_was_named_is_read_without_one() {
+        let dict = format!("{{'descr': {}, 'fortran_order': False, 'shape': (5,), }}", descr(100, None));
+        let text_len = UNNAMED_HEADER_BYTES - 10;
+        let mut bytes = [MAGIC, &[1, 0], &(text_len as u16).to_le_bytes()].concat();
+        bytes.extend_from_slice(format!("{dict:<width$}\n", width = text_len - 1).as_bytes());
+        assert_eq!(check(&bytes), Ok(Header { rate_hz: 100, serial: None, bytes: UNNAMED_HEADER_BYTES }));
+    }
+
+    const SERIAL: &str = "53494D000000000000000017";
 }

@@ -12,6 +12,8 @@ use super::{header, RecordingError, RECORD_BYTES};
 pub struct Recording {
     /// Samples per second.
     pub rate_hz: u16,
+    /// The serial of the board recorded; `None` in recordings written before it was kept.
+    pub serial: Option<String>,
     /// Every complete record, in file order.
     pub samples: Vec<Sample>,
 }
@@ -25,10 +27,11 @@ pub fn read_path(path: &Path) -> Result<Recording, RecordingError> {
 
 /// The recording in `bytes`, up to the last complete record.
 pub fn read_samples(bytes: &[u8]) -> Result<Recording, String> {
-    let rate_hz = header::check(bytes)?;
-    let period_us = 1_000_000 / u64::from(rate_hz);
-    let records = bytes[header::HEADER_BYTES..].chunks_exact(RECORD_BYTES);
-    Ok(Recording { rate_hz, samples: records.map(|record| decode(record, period_us)).collect() })
+    let header = header::check(bytes)?;
+    let period_us = 1_000_000 / u64::from(header.rate_hz);
+    let records = bytes[header.bytes..].chunks_exact(RECORD_BYTES);
+    let samples = records.map(|record| decode(record, period_us)).collect();
+    Ok(Recording { rate_hz: header.rate_hz, serial: header.serial, samples })
 }
 
 /// Whether `bytes` (the file's first few) open a `.npy` file.
@@ -62,7 +65,7 @@ mod tests {
     #[test]
     fn a_file_cut_mid_block_reads_up_to_the_last_complete_block_intact() {
         let path = std::env::temp_dir().join(format!("accelcal-cut-{}.npy", std::process::id()));
-        let mut recorder = Recorder::create(&path, 1000).unwrap();
+        let mut recorder = Recorder::create(&path, 1000, "53494D000000000000000017").unwrap();
         let total = 2 * BLOCK_SAMPLES as u32 + 500;
         (0..total).for_each(|i| recorder.push(&sample(i)).unwrap());
         recorder.finish().unwrap();
@@ -70,6 +73,7 @@ mod tests {
         std::fs::remove_file(&path).unwrap();
         assert_eq!(read_samples(&bytes).unwrap().samples, (0..total).map(sample).collect::<Vec<_>>());
         assert_eq!(read_samples(&bytes).unwrap().rate_hz, 1000);
+        assert_eq!(read_samples(&bytes).unwrap().serial.as_deref(), Some("53494D000000000000000017"));
         // cut in the middle of the third block, mid-record; the header still says `total`.
         let cut = header::HEADER_BYTES + (2 * BLOCK_SAMPLES + 123) * RECORD_BYTES + 17;
         let read = read_samples(&bytes[..cut]).unwrap().samples;

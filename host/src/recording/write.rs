@@ -18,11 +18,14 @@ pub struct Recorder {
     written: u64,
     /// Samples per second, named in the header.
     rate_hz: u16,
+    /// The serial of the board recorded, named in the header.
+    serial: String,
 }
 
 impl Recorder {
-    /// Creates (or replaces) the file at `path` with an empty recording at `rate_hz`.
-    pub fn create(path: &Path, rate_hz: u16) -> Result<Self, RecordingError> {
+    /// Creates (or replaces) the file at `path` with an empty recording at `rate_hz` of the board
+    /// with the serial `serial`.
+    pub fn create(path: &Path, rate_hz: u16, serial: &str) -> Result<Self, RecordingError> {
         let file = File::create(path).map_err(|source| io(path, source))?;
         let mut recorder = Recorder {
             file,
@@ -30,6 +33,7 @@ impl Recorder {
             block: Vec::with_capacity(BLOCK_SAMPLES * RECORD_BYTES),
             written: 0,
             rate_hz,
+            serial: serial.to_owned(),
         };
         recorder.write_header()?;
         Ok(recorder)
@@ -63,7 +67,7 @@ impl Recorder {
     fn write_header(&mut self) -> Result<(), RecordingError> {
         let at_end = (|| {
             self.file.seek(SeekFrom::Start(0))?;
-            self.file.write_all(&header::render(self.written, self.rate_hz))?;
+            self.file.write_all(&header::render(self.written, self.rate_hz, &self.serial))?;
             self.file.seek(SeekFrom::End(0))
         })();
         at_end.map(|_| ()).map_err(|source| io(&self.path, source))

@@ -3,9 +3,9 @@
 //! same code on the host.
 //!
 //! Needs the on-target binary (`cargo build -p qemu-tests --release --target thumbv7em-none-eabihf`)
-//! and `qemu-system-arm` (Debian package); `.ci/run` provides both. Without them the test says on
-//! stderr that it was skipped and why (visible without `--nocapture`), except under CI (`CI` set),
-//! where their absence is a failure.
+//! and `qemu-system-arm` (Debian package); `.ci/run` provides both. Without them each test is
+//! reported as ignored with its reason (tests/qemu/build.rs finds them when the crate is built),
+//! except under CI=true, where their absence is a failure.
 
 mod common;
 
@@ -14,8 +14,8 @@ use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 /// Runs the binary under QEMU; its `name hex...` lines as f32 values, by name.
-fn on_target() -> Option<BTreeMap<String, Vec<u32>>> {
-    let elf = common::runnable("qemu-tests")?;
+fn on_target() -> BTreeMap<String, Vec<u32>> {
+    let elf = common::runnable("qemu-tests");
     let mut qemu = Command::new("qemu-system-arm")
         .args(["-machine", "netduinoplus2", "-nographic", "-semihosting-config", "enable=on,target=native", "-kernel"])
         .arg(&elf)
@@ -39,21 +39,20 @@ fn on_target() -> Option<BTreeMap<String, Vec<u32>>> {
         "on target:\n{text}\n{}",
         String::from_utf8_lossy(&output.stderr)
     );
-    Some(
-        text.lines()
-            .filter(|l| *l != "done")
-            .map(|line| {
-                let mut words = line.split_whitespace();
-                let name = words.next().unwrap_or_default().to_owned();
-                (name, words.map(|w| u32::from_str_radix(w, 16).expect("hex")).collect())
-            })
-            .collect(),
-    )
+    text.lines()
+        .filter(|l| *l != "done")
+        .map(|line| {
+            let mut words = line.split_whitespace();
+            let name = words.next().unwrap_or_default().to_owned();
+            (name, words.map(|w| u32::from_str_radix(w, 16).expect("hex")).collect())
+        })
+        .collect()
 }
 
 #[test]
+#[cfg_attr(not(on_target_runnable), ignore = "needs qemu-system-arm and the on-target binaries (tests/qemu/build.rs)")]
 fn shared_math_and_the_firmware_library_give_the_host_s_results_on_a_cortex_m4f() {
-    let Some(target) = on_target() else { return };
+    let target = on_target();
     let mut host = BTreeMap::new();
     assert!(qemu_tests::run(&mut |r| {
         host.insert(r.name.to_owned(), r.values.iter().map(|v| v.to_bits()).collect::<Vec<_>>());
@@ -110,8 +109,9 @@ fn host_thermal_correction(raw: &firmware::sensor::RawSample) -> [f64; 7] {
 }
 
 #[test]
+#[cfg_attr(not(on_target_runnable), ignore = "needs qemu-system-arm and the on-target binaries (tests/qemu/build.rs)")]
 fn the_chip_s_temperature_correction_equals_the_host_s_computation_at_15_to_45_degc() {
-    let Some(target) = on_target() else { return };
+    let target = on_target();
     let on_chip = &target["thermal-corrected-samples"];
     for (i, raw) in qemu_tests::THERMAL_RAW.iter().enumerate() {
         let expected = host_thermal_correction(raw);
@@ -131,8 +131,9 @@ fn the_chip_s_temperature_correction_equals_the_host_s_computation_at_15_to_45_d
 }
 
 #[test]
+#[cfg_attr(not(on_target_runnable), ignore = "needs qemu-system-arm and the on-target binaries (tests/qemu/build.rs)")]
 fn the_chip_s_ortho9_fit_of_a_simulated_session_equals_the_host_s_f64_fit_within_f32_tolerance() {
-    let Some(target) = on_target() else { return };
+    let target = on_target();
     let on_chip: Vec<f64> = target["ortho9-session-params"].iter().map(|&b| f64::from(f32::from_bits(b))).collect();
     let readings: Vec<[f64; 3]> = qemu_tests::ortho9_session_readings().iter().map(|m| m.map(f64::from)).collect();
     let host = shared::ortho9::fit(&readings).expect("the host fits the session");
@@ -148,8 +149,9 @@ fn the_chip_s_ortho9_fit_of_a_simulated_session_equals_the_host_s_f64_fit_within
 }
 
 #[test]
+#[cfg_attr(not(on_target_runnable), ignore = "needs qemu-system-arm and the on-target binaries (tests/qemu/build.rs)")]
 fn the_chip_s_fit_on_request_equals_the_host_s_f64_fit_of_the_same_captures() {
-    let Some(target) = on_target() else { return };
+    let target = on_target();
     let values = |name: &str| -> Vec<f64> { target[name].iter().map(|&b| f64::from(f32::from_bits(b))).collect() };
     let means = values("device-ortho9-means");
     let readings: Vec<[f64; 3]> = means.chunks_exact(3).map(|m| [m[0], m[1], m[2]]).collect();
@@ -190,8 +192,9 @@ fn the_chip_s_fit_on_request_equals_the_host_s_f64_fit_of_the_same_captures() {
 /// integrated by the host's gyro fit from the chip's corrected rates against the same from the raw
 /// rates with the host applying G and b.
 #[test]
+#[cfg_attr(not(on_target_runnable), ignore = "needs qemu-system-arm and the on-target binaries (tests/qemu/build.rs)")]
 fn the_chip_s_gyro_correction_of_a_fast_turn_equals_the_host_s() {
-    let Some(target) = on_target() else { return };
+    let target = on_target();
     let on_chip: Vec<f64> = target["gyro-turn-corrected"].iter().map(|&b| f64::from(f32::from_bits(b))).collect();
     let calibration = qemu_tests::gyro_calibration();
     // G as the chip computed it (the sim's f32 inverse) equals the host's build of the same truth.

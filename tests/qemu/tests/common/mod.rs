@@ -1,4 +1,6 @@
-//! Finding the on-target binaries and QEMU, for the tests that run them.
+//! Finding the on-target binaries and QEMU, for the tests that run them. Each such test is
+//! `#[cfg_attr(not(on_target_runnable), ignore = ...)]`: where tests/qemu/build.rs found QEMU or the
+//! binaries missing (and CI is not true) it is reported as ignored with its reason, never "ok".
 
 use std::path::PathBuf;
 use std::process::Command;
@@ -11,22 +13,14 @@ pub fn elf(name: &str) -> PathBuf {
     target.join("thumbv7em-none-eabihf/release").join(name)
 }
 
-/// The binary `name` when it and QEMU are there; otherwise says on the terminal that the test was
-/// skipped and why, and fails under CI (`CI` set), where their absence is a fault.
-///
-/// NOTE: the test harness captures `println!` and `eprintln!` of passing tests; a write to the
-/// stderr handle itself is not captured, so a skip is never silent.
-pub fn runnable(name: &str) -> Option<PathBuf> {
-    use std::io::Write;
+/// The binary `name`; under CI=true, where the build could not find it or QEMU, the test fails
+/// naming what is missing.
+pub fn runnable(name: &str) -> PathBuf {
     let elf = elf(name);
-    let missing = if !elf.exists() {
-        format!("{} is not built", elf.display())
-    } else if Command::new("qemu-system-arm").arg("--version").output().is_err() {
-        "qemu-system-arm is not installed (apt-get install qemu-system-arm)".to_owned()
-    } else {
-        return Some(elf);
-    };
-    assert!(std::env::var_os("CI").is_none(), "on-target test cannot run under CI: {missing}");
-    let _ = writeln!(std::io::stderr(), "on-target test SKIPPED: {missing}");
-    None
+    let build = "cargo build -p qemu-tests --release --target thumbv7em-none-eabihf";
+    assert!(elf.exists(), "on-target test cannot run: {} is not built ({build})", elf.display());
+    let qemu = Command::new("qemu-system-arm").arg("--version").output();
+    let runs = qemu.is_ok_and(|o| o.status.success());
+    assert!(runs, "on-target test cannot run: qemu-system-arm does not run (apt-get install qemu-system-arm)");
+    elf
 }
