@@ -1,5 +1,6 @@
 //! `accelcal thermal --port` keeps its learned bins on disk as it learns: Ctrl-C fits what it
-//! learned when that spans enough, else names the file, and a second run goes on from it.
+//! learned when that spans enough, else names the file, and a second run goes on from it; a pulled
+//! cable leaves the bins on disk, named with the way to go on.
 
 mod common;
 
@@ -97,4 +98,23 @@ fn ctrl_c_after_ten_degc_fits_and_activates_what_was_learned() {
     assert!(stdout.contains("interrupted") && stdout.contains("fitted what was learned"), "{stdout}");
     let active = String::from_utf8(accelcal(&["download", "--port", &sim.path]).stdout).unwrap();
     assert!(active.contains("\"temperature\""), "the fitted model is not active: {active}");
+}
+
+#[test]
+fn a_pulled_cable_keeps_the_bins_on_disk_and_names_them_with_the_way_to_go_on() {
+    let sim = calibrated_board("33");
+    let bins = temp_path("pulled.json");
+    let mut run = thermal(&sim.path, &bins);
+    assert!(kept_span_reaches(&bins, 0.0, Duration::from_secs(30)) >= 0.0, "no bins were kept");
+    let port = sim.path.clone();
+    drop(sim);
+    common::wait_or_kill(&mut run, Duration::from_secs(30));
+    let output = run.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!output.status.success(), "{stderr}");
+    let way_on = format!("are kept in {}: go on from them with `accelcal thermal --port {port} --bins", bins.display());
+    assert!(stderr.contains("the bins learned so far (a span of") && stderr.contains(&way_on), "{stderr}");
+    let kept: serde_json::Value = serde_json::from_slice(&std::fs::read(&bins).unwrap()).unwrap();
+    assert!(!kept["bins"].as_array().unwrap().is_empty(), "{kept}");
+    std::fs::remove_file(bins).unwrap();
 }
