@@ -55,10 +55,12 @@ fn with_given(args: &ReportArgs) -> Result<SessionReport, Error> {
     let mut report = build(&session, &args.session)?;
     let serial = session.board.as_ref().map(|b| b.serial.as_str());
     if let Some(path) = &args.thermal {
-        report = report.with_temperature(thermal_section(path, serial)?);
+        let (section, plot) = thermal_section(path, serial)?;
+        report = report.with_temperature(section, plot);
     }
     if let Some(path) = &args.noise {
-        report = report.with_allan_deviation(noise_section(path, serial)?);
+        let (section, plot) = noise_section(path, serial)?;
+        report = report.with_allan_deviation(section, plot);
     }
     Ok(report)
 }
