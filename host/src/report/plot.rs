@@ -39,7 +39,7 @@ pub fn colour(role: Role) -> String {
 }
 
 /// Drawing size in SVG user units; the page scales it to the column width.
-const SIZE: (u32, u32) = (480, 340);
+pub(super) const SIZE: (u32, u32) = (480, 340);
 /// Square drawing for figures with equal axes.
 const SQUARE: (u32, u32) = (400, 400);
 
@@ -49,6 +49,13 @@ const SQUARE: (u32, u32) = (400, 400);
 pub struct PlotError {
     figure: &'static str,
     reason: String,
+}
+
+impl PlotError {
+    /// Why the figure `figure` could not be drawn.
+    pub(super) fn new(figure: &'static str, reason: String) -> Self {
+        PlotError { figure, reason }
+    }
 }
 
 /// The figure as an `<svg>` element.
@@ -103,6 +110,9 @@ fn draw_series(chart: &mut Chart, series: &Series, colour: RGBColor) -> Result<(
     match series.style {
         SeriesStyle::Line => chart.draw_series(LineSeries::new(points, colour.stroke_width(2))),
         SeriesStyle::Points => chart.draw_series(points.map(|p| Circle::new(p, 4, colour.filled()))),
+        SeriesStyle::Band => {
+            chart.draw_series(std::iter::once(Polygon::new(points.collect::<Vec<_>>(), colour.mix(0.2))))
+        }
     }
     .map(|_| ())
     .map_err(|e| e.to_string())
@@ -125,7 +135,7 @@ fn ranges(figure: &Figure) -> (std::ops::Range<f64>, std::ops::Range<f64>) {
         let reach = [x.0, x.1, y.0, y.1].iter().fold(0.0f64, |m, v| m.max(v.abs())) * 1.15;
         return (-reach..reach, -reach..reach);
     }
-    (padded(x), padded(y))
+    (padded(x.0, x.1), padded(y.0, y.1))
 }
 
 /// The tick labels of an axis spanning `span`: on a log axis the whole decades; else [`short`],
@@ -174,7 +184,7 @@ fn in_log10(figure: &Figure) -> Figure {
 }
 
 /// A range with a tenth of its width added on each side (half a unit around a single value).
-fn padded((low, high): (f64, f64)) -> std::ops::Range<f64> {
+fn padded(low: f64, high: f64) -> std::ops::Range<f64> {
     let pad = if high > low { (high - low) * 0.1 } else { 0.5 };
     (low - pad)..(high + pad)
 }
