@@ -46,7 +46,8 @@ pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
     // board still needs the instructions, which go to stderr, leaving stdout to the JSON.
     let simulated = opened.sim.is_some();
     let mut feedback = feedback(args.json && simulated, args.yes || (args.json && simulated));
-    let mut kept = start_session(args, &opened.connection.info, feedback.as_mut())?;
+    let learned = adaptive::learned_model(args, &mut opened.connection.client, feedback.as_mut())?;
+    let mut kept = start_session(args, &opened.connection.info, learned, feedback.as_mut())?;
     let interrupt = interrupt_on_ctrl_c();
     opened.connection.client.interrupt_on(interrupt.clone());
     let (moves, first_capture_s) = collect(args, &mut opened, &mut kept, feedback.as_mut())?;
@@ -206,7 +207,12 @@ pub(super) fn interrupt_on_ctrl_c() -> Arc<AtomicBool> {
 
 /// The session to continue (`--resume`, checked against the board) or a new one, written at once
 /// so that an unwritable path fails before the first capture.
-fn start_session(args: &CalibrateArgs, info: &DeviceInfo, feedback: &mut dyn Feedback) -> Result<Kept, Error> {
+fn start_session(
+    args: &CalibrateArgs,
+    info: &DeviceInfo,
+    learned: Option<Calibration>,
+    feedback: &mut dyn Feedback,
+) -> Result<Kept, Error> {
     let board = BoardRecord::of(info);
     let kept = match &args.resume {
         Some(path) => {
@@ -215,7 +221,7 @@ fn start_session(args: &CalibrateArgs, info: &DeviceInfo, feedback: &mut dyn Fee
             kept
         }
         None => Kept {
-            session: Session { board: Some(board), kind: adaptive::begun_as(args), ..Session::default() },
+            session: Session { board: Some(board), kind: adaptive::begun_as(args), learned, ..Session::default() },
             path: new_session_path(args)?,
             resumed: false,
         },
