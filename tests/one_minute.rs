@@ -14,7 +14,7 @@ use accelcal::fit::thermal::fit_temperature;
 use accelcal::link::{pipe, Client, PipeEnd, StreamRequest};
 use accelcal::procedure::stop_rule::{CaptureLength, Noise, StopRule};
 use accelcal::procedure::thermal::{capture_now, learn, LearnOptions, ThermalBins, ThermalBoard};
-use accelcal::procedure::{self, AdaptiveOptions, Moves, ProcedureError, Silent, SimulatedHand};
+use accelcal::procedure::{self, AdaptiveOptions, Moves, ProcedureError, Silent, SimulatedHand, Turning};
 use accelcal::session::Session;
 use accelcal::sim::{Pace, SimBoard, SimCommand, SimSensor};
 use firmware::sim::SimFlash;
@@ -73,7 +73,7 @@ fn session_on(seed: u64, kind: SimSensor, target_mg: f64, learned: Option<Calibr
     let targets = procedure::targets(false);
     let collected = procedure::collect_adaptive(
         &mut client,
-        (&mut hand, &mut Moves::at(rule.rate_hz)),
+        Turning { hand: &mut hand, moves: &mut Moves::at(rule.rate_hz) },
         &targets,
         &options,
         &mut feedback,

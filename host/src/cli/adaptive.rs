@@ -13,7 +13,7 @@ use crate::error::Error;
 use crate::fit::drift;
 use crate::link::{Client, Port};
 use crate::procedure::stop_rule::CaptureLength;
-use crate::procedure::{self, AdaptiveOptions, Feedback, Hand, Moves, VERIFY_SECONDS};
+use crate::procedure::{self, AdaptiveOptions, Feedback, Turning, VERIFY_SECONDS};
 use crate::session::{Outcome, Session, SessionError, SessionKind};
 
 /// What a new session is: quick (`--quick`), of fixed-length captures (`--seconds`), or adaptive.
@@ -52,7 +52,7 @@ pub(super) fn resumed_as_begun(args: &CalibrateArgs, session: &Session) -> Vec<S
 pub(super) fn collect(
     args: &CalibrateArgs,
     opened: &mut Opened,
-    hands: (&mut dyn Hand, &mut Moves),
+    turning: Turning<'_>,
     wait_limit: Option<std::time::Duration>,
     session: &mut Session,
     keep: &mut dyn FnMut(&Session) -> Result<(), SessionError>,
@@ -62,7 +62,7 @@ pub(super) fn collect(
     let options = AdaptiveOptions { rule, wait_limit, clock: Some(opened.clock()) };
     let client = &mut opened.connection.client;
     let targets = procedure::targets(false);
-    let collected = procedure::collect_adaptive(client, hands, &targets, &options, feedback, session, keep)?;
+    let collected = procedure::collect_adaptive(client, turning, &targets, &options, feedback, session, keep)?;
     Ok(collected.first_capture_s)
 }
 
