@@ -9,6 +9,7 @@ use std::path::Path;
 use shared::protocol::Sample;
 
 use super::RateSeries;
+use crate::limits::RATE_AGREEMENT;
 use crate::recording::{self, read::is_npy, RecordingError, SAMPLE_COLUMNS, STREAM_COLUMNS};
 
 /// The six columns the analysis needs, in [`super::AXES`] order: a recording's sample columns
@@ -51,9 +52,6 @@ pub enum NoiseInputError {
 /// Sample rate of a CSV file without time stamps when the caller names none, in Hz: the sensor's
 /// full rate.
 pub const CSV_DEFAULT_RATE_HZ: f64 = 1000.0;
-/// How far a given rate may be from the one a file's time stamps show, as a fraction.
-// NOTE: time stamps are printed to the microsecond; at 100 Hz that is 1e-4 of a sample interval.
-const RATE_AGREEMENT: f64 = 0.01;
 
 /// Reads a recording file: a `.npy` recording at the rate it names, a CSV file at the rate of its
 /// `time_s` column (`rate_hz`, when given, must agree with either), else at `rate_hz` or
