@@ -1,17 +1,17 @@
 //! `accelcal calibrate`: captures (kept in a session after each one, resumable), fit, upload, save,
 //! verification.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
-use shared::protocol::DeviceInfo;
 use shared::Calibration;
 
 use super::adaptive;
 use super::args::CalibrateArgs;
 use super::choice::{fit_with_gyro, show_choice, Fitted};
 use super::device::Opened;
+use super::kept::{start_session, Kept};
 use super::terminal::feedback;
 use crate::calibration;
 use crate::certificate::Certificate;
@@ -20,50 +20,69 @@ use crate::link::{Client, LinkError, Port};
 use crate::procedure::{self, CollectOptions, Feedback, Hand, Moves, ProcedureError, TurnCheck, Verification};
 use crate::report::gyro::GyroOutcome;
 use crate::report::{self, CalibrateReport};
-use crate::session::{stem_file, stem_of, unix_time_s, BoardRecord, Session, SessionError, SessionKind};
+use crate::session::{stem_file, Session, SessionError, SessionKind};
 
-/// The session of this run and where it is kept.
-pub(super) struct Kept {
-    pub(super) session: Session,
-    pub(super) path: Option<PathBuf>,
-    /// Whether it continues a session begun in an earlier run.
-    pub(super) resumed: bool,
-}
-
-/// `accelcal calibrate`: captures, fit, upload, save, verification.
+/// `accelcal calibrate`: captures, fit, upload, save, verification; several boards on one fixture
+/// together.
 pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
     // NOTE: refused before anything happens: a run that could only end without the upload it was
     // asked for must not start (the simulated board, turned by the tool itself, needs no answer).
     if args.json && !args.yes && !args.device.sim {
         return Err(Error::JsonCannotAsk);
     }
-    let mut opened = match args.device.open_or_talking()? {
+    if super::fixture::holds_several(args) {
+        return super::fixture::calibrate_together(args);
+    }
+    let opened = match args.device.open_or_talking()? {
         Ok(opened) => opened,
         Err(talking) => return super::foreign::calibrate_from_stream(args, *talking),
     };
-    opened.connection.info.sensor.map_err(LinkError::from)?;
     // NOTE: with --json only the simulated board (turned by the tool) is silent: a person at a real
     // board still needs the instructions, which go to stderr, leaving stdout to the JSON.
     let simulated = opened.sim.is_some();
     let mut feedback = feedback(args.json && simulated, args.yes || (args.json && simulated));
-    let mut kept = start_session(args, &opened.connection.info, feedback.as_mut())?;
-    let interrupt = interrupt_on_ctrl_c();
+    match calibrate_board(args, opened, interrupt_on_ctrl_c(), feedback.as_mut())? {
+        Some(report) => show(&report, args.json),
+        None => Ok(()),
+    }
+}
+
+/// One board's session, from its first capture to its verified report (`None`: the upload was
+/// declined); the same for a board alone and for each board on a fixture.
+pub(super) fn calibrate_board(
+    args: &CalibrateArgs,
+    mut opened: Opened,
+    interrupt: Arc<AtomicBool>,
+    feedback: &mut dyn Feedback,
+) -> Result<Option<CalibrateReport>, Error> {
+    opened.connection.info.sensor.map_err(LinkError::from)?;
+    opened.hand_seed = args.sim_hand_seed.unwrap_or(args.device.seed);
+    let mut kept = start_session(args, &opened.connection.info, feedback)?;
     opened.connection.client.interrupt_on(interrupt.clone());
-    let (moves, first_capture_s) = collect(args, &mut opened, &mut kept, feedback.as_mut())?;
+    let (moves, first_capture_s) = collect(args, &mut opened, &mut kept, feedback)?;
     let kind = kept.session.kind;
-    let (fitted, gyro) = fit_with_gyro(&mut opened, &kept, &moves, feedback.as_mut())?;
-    show_choice(feedback.as_mut(), &fitted);
+    let (fitted, gyro) = fit_with_gyro(&mut opened, &kept, &moves, feedback)?;
+    show_choice(feedback, &fitted);
     let client = &mut opened.connection.client;
     if interrupt.load(Ordering::SeqCst) {
         return Err(LinkError::Interrupted.into());
     }
-    if !upload_if_confirmed(client, &fitted.chosen, feedback.as_mut())? {
-        return Ok(());
+    if !upload_if_confirmed(client, &fitted.chosen, feedback)? {
+        return Ok(None);
     }
     // NOTE: a resumed session's first capture was taken in another run: its board time is unknown.
     let first_capture_s = first_capture_s.filter(|_| !kept.resumed);
     let fitted = (&fitted, &gyro);
-    finish(args, &mut opened, fitted, kept.path.as_deref(), (kind, first_capture_s), feedback.as_mut())
+    finish(args, &mut opened, fitted, kept.path.as_deref(), (kind, first_capture_s), feedback).map(Some)
+}
+
+/// Prints a board's report; an error when it missed its target (exit status 2).
+pub(super) fn show(report: &CalibrateReport, json: bool) -> Result<(), Error> {
+    print_report(report, json);
+    match &report.target {
+        Some(target) if target.missed => Err(Error::TargetMissed { line: target.line.clone() }),
+        _ => Ok(()),
+    }
 }
 
 /// The captures the session lacks, written after each one, and the moves between them; an error
@@ -75,7 +94,7 @@ fn collect(
     kept: &mut Kept,
     feedback: &mut dyn Feedback,
 ) -> Result<(Moves, Option<f64>), Error> {
-    let (mut hand, wait_limit) = opened.hand(args.sim_placement_deg, args.device.seed);
+    let (mut hand, wait_limit) = opened.hand(args.sim_placement_deg);
     let path = kept.path.clone();
     let mut keep = |session: &Session| path.as_deref().map_or(Ok(()), |p| session.save(p));
     let mut moves = Moves::at(opened.connection.info.config.sample_rate_hz);
@@ -123,8 +142,8 @@ fn finish(
     kept_at: Option<&Path>,
     (kind, first_capture_s): (SessionKind, Option<f64>),
     feedback: &mut dyn Feedback,
-) -> Result<(), Error> {
-    let (mut hand, wait_limit) = opened.hand(args.sim_placement_deg, args.device.seed);
+) -> Result<CalibrateReport, Error> {
+    let (mut hand, wait_limit) = opened.hand(args.sim_placement_deg);
     let (positions, length) = adaptive::verification(args, kind, opened.connection.info.config.sample_rate_hz)?;
     let (rate_hz, clock) = (opened.connection.info.config.sample_rate_hz, opened.clock());
     let client = &mut opened.connection.client;
@@ -148,12 +167,8 @@ fn finish(
     report.board_seconds = board_seconds;
     report.certificate = Some(certificate);
     let target = report.verification.against((kind == SessionKind::Adaptive).then_some(args.length.target_mg));
-    report.target = Some(target.clone());
-    print_report(&report, args.json);
-    match target.missed {
-        true => Err(Error::TargetMissed { line: target.line }),
-        false => Ok(()),
-    }
+    report.target = Some(target);
+    Ok(report)
 }
 
 /// The run's report: the calibration chosen, the fits beside it, the verification and the gyro's
@@ -168,8 +183,10 @@ fn report_of(
     let truth = opened.sim.as_ref().map(|board| board.truth_json(session_temp_c));
     let captures = fitted.session.captures.len();
     let chip = fitted.chip.as_ref().map(|c| &c.calibration);
-    CalibrateReport::new(&fitted.chosen, chip, fitted.host.as_ref(), truth, verification, captures)
-        .with_gyro(gyro, check)
+    let mut report = CalibrateReport::new(&fitted.chosen, chip, fitted.host.as_ref(), truth, verification, captures)
+        .with_gyro(gyro, check);
+    report.true_error_mg = opened.sim.as_ref().map(|board| board.true_error_mg(&fitted.chosen, session_temp_c));
+    report
 }
 
 /// Saves the verified session again, writes its report and certificate beside it, and says where.
@@ -202,63 +219,6 @@ pub(super) fn interrupt_on_ctrl_c() -> Arc<AtomicBool> {
     // session still holds every capture written so far.
     let _ = ctrlc::set_handler(move || set.store(true, Ordering::SeqCst));
     flag
-}
-
-/// The session to continue (`--resume`, checked against the board) or a new one, written at once
-/// so that an unwritable path fails before the first capture.
-fn start_session(args: &CalibrateArgs, info: &DeviceInfo, feedback: &mut dyn Feedback) -> Result<Kept, Error> {
-    let board = BoardRecord::of(info);
-    let kept = match &args.resume {
-        Some(path) => {
-            let kept = resumed(path, &board, feedback)?;
-            adaptive::resumed_as_begun(args, &kept.session).iter().for_each(|line| feedback.say(line));
-            kept
-        }
-        None => Kept {
-            session: Session { board: Some(board), kind: adaptive::begun_as(args), ..Session::default() },
-            path: new_session_path(args)?,
-            resumed: false,
-        },
-    };
-    if let Some(path) = &kept.path {
-        kept.session.save(path)?;
-        feedback.say(&format!("the captures are kept in {} as they are taken", stem_file(path, "json").display()));
-    }
-    Ok(kept)
-}
-
-/// A session from an earlier run, on this board at this setting.
-fn resumed(path: &Path, board: &BoardRecord, feedback: &mut dyn Feedback) -> Result<Kept, Error> {
-    let stem = stem_of(path);
-    let json = stem_file(&stem, "json");
-    let session = Session::load(&json)?;
-    let recorded = session.board.as_ref().ok_or(crate::session::SessionError::NoBoard { path: json.clone() })?;
-    recorded.check_same(board, &json)?;
-    let targets = procedure::targets(session.kind == SessionKind::Quick);
-    // NOTE: by name: an adaptive session's closing capture repeats its first position.
-    let captured = targets.iter().filter(|t| session.has_capture(&t.name)).count();
-    feedback.say(&format!("resuming {}: {captured} of {} positions captured", json.display(), targets.len()));
-    Ok(Kept { session, path: Some(stem), resumed: true })
-}
-
-/// Where a new session is kept: `--session` (a folder gets a session named by the time inside it),
-/// or with a real board the current directory; refused when a session is already kept there.
-pub(super) fn new_session_path(args: &CalibrateArgs) -> Result<Option<PathBuf>, SessionError> {
-    let named_by_time = || PathBuf::from(format!("accelcal-session-{}", unix_time_s() as u64));
-    let path = match &args.session {
-        // NOTE: `DIR/` names a folder even before it exists; the session goes inside it.
-        Some(given) if given.is_dir() || given.as_os_str().to_string_lossy().ends_with(std::path::MAIN_SEPARATOR) => {
-            std::fs::create_dir_all(given).map_err(|source| SessionError::Write { path: given.clone(), source })?;
-            Some(given.join(named_by_time()))
-        }
-        Some(given) => Some(stem_of(given)),
-        // NOTE: a simulated board in this process is gone after the run: nothing to keep.
-        None => args.device.port.as_ref().map(|_| named_by_time()),
-    };
-    match path {
-        Some(stem) if stem_file(&stem, "json").exists() => Err(SessionError::Exists { path: stem_file(&stem, "json") }),
-        path => Ok(path),
-    }
 }
 
 /// The device flags that reach the same board again, for the resume hint.

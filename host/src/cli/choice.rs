@@ -5,8 +5,8 @@ use shared::protocol::SensorConfig;
 use shared::Calibration;
 
 use super::adaptive;
-use super::calibrate::Kept;
 use super::device::Opened;
+use super::kept::Kept;
 use crate::calibration::describe;
 use crate::error::Error;
 use crate::fit::Fit;
