@@ -11,14 +11,13 @@ use super::adaptive;
 use super::args::CalibrateArgs;
 use super::choice::{fit_with_gyro, show_choice, Fitted};
 use super::device::Opened;
-use super::kept::{start_session, Kept};
+use super::kept::{self, Kept};
 use super::terminal::feedback;
 use crate::calibration;
 use crate::certificate::Certificate;
 use crate::error::Error;
 use crate::link::{Client, LinkError, Port};
-use crate::procedure::{self, CollectOptions, Feedback, Hand, Moves, ProcedureError, TurnCheck, Verification};
-use crate::report::gyro::GyroOutcome;
+use crate::procedure::{self, CollectOptions, Feedback, Moves, ProcedureError, TurnCheck, Turning, Verification};
 use crate::report::{self, CalibrateReport};
 use crate::session::{stem_file, Session, SessionError, SessionKind};
 
@@ -57,11 +56,10 @@ pub(super) fn calibrate_board(
 ) -> Result<Option<CalibrateReport>, Error> {
     opened.connection.info.sensor.map_err(LinkError::from)?;
     opened.hand_seed = args.sim_hand_seed.unwrap_or(args.device.seed);
-    let mut kept = start_session(args, &opened.connection.info, feedback)?;
+    let mut kept = kept::start(args, &opened.connection.info, feedback)?;
     opened.connection.client.interrupt_on(interrupt.clone());
     let (moves, first_capture_s) = collect(args, &mut opened, &mut kept, feedback)?;
-    let kind = kept.session.kind;
-    let (fitted, gyro) = fit_with_gyro(&mut opened, &kept, &moves, feedback)?;
+    let fitted = fit_with_gyro(&mut opened, &kept, &moves, feedback)?;
     show_choice(feedback, &fitted);
     let client = &mut opened.connection.client;
     if interrupt.load(Ordering::SeqCst) {
@@ -72,8 +70,7 @@ pub(super) fn calibrate_board(
     }
     // NOTE: a resumed session's first capture was taken in another run: its board time is unknown.
     let first_capture_s = first_capture_s.filter(|_| !kept.resumed);
-    let fitted = (&fitted, &gyro);
-    finish(args, &mut opened, fitted, kept.path.as_deref(), (kind, first_capture_s), feedback).map(Some)
+    finish(args, &mut opened, &fitted, kept.path.as_deref(), first_capture_s, feedback).map(Some)
 }
 
 /// Prints a board's report; an error when it missed its target (exit status 2).
@@ -98,11 +95,11 @@ fn collect(
     let path = kept.path.clone();
     let mut keep = |session: &Session| path.as_deref().map_or(Ok(()), |p| session.save(p));
     let mut moves = Moves::at(opened.connection.info.config.sample_rate_hz);
-    let (hand, session) = (hand.as_mut(), &mut kept.session);
+    let (turning, session) = (Turning { hand: hand.as_mut(), moves: &mut moves }, &mut kept.session);
     let result = if session.kind == SessionKind::Adaptive {
-        adaptive::collect(args, opened, (hand, &mut moves), wait_limit, session, &mut keep, feedback)
+        adaptive::collect(args, opened, turning, wait_limit, session, &mut keep, feedback)
     } else {
-        collect_fixed(args, opened, (hand, &mut moves), wait_limit, session, &mut keep, feedback)
+        collect_fixed(args, opened, turning, wait_limit, session, &mut keep, feedback)
     };
     match (result, &kept.path) {
         (Ok(first), _) => Ok((moves, first)),
@@ -121,7 +118,7 @@ fn collect(
 fn collect_fixed(
     args: &CalibrateArgs,
     opened: &mut Opened,
-    (hand, moves): (&mut dyn Hand, &mut Moves),
+    turning: Turning<'_>,
     wait_limit: Option<std::time::Duration>,
     session: &mut Session,
     keep: &mut dyn FnMut(&Session) -> Result<(), SessionError>,
@@ -131,18 +128,19 @@ fn collect_fixed(
     let options = CollectOptions { seconds, wait_limit };
     let (targets, started) = (procedure::targets(session.kind == SessionKind::Quick), opened.clock()());
     let client = &mut opened.connection.client;
-    procedure::collect_into(client, hand, &targets, &options, feedback, session, moves, keep).map(|()| Some(started))
+    procedure::collect_into(client, turning, &targets, &options, feedback, session, keep).map(|()| Some(started))
 }
 
 /// The verification, the session kept with it and its report beside it, then the result.
 fn finish(
     args: &CalibrateArgs,
     opened: &mut Opened,
-    (fitted, gyro): (&Fitted, &GyroOutcome),
+    fitted: &Fitted,
     kept_at: Option<&Path>,
-    (kind, first_capture_s): (SessionKind, Option<f64>),
+    first_capture_s: Option<f64>,
     feedback: &mut dyn Feedback,
 ) -> Result<CalibrateReport, Error> {
+    let kind = fitted.session.kind;
     let (mut hand, wait_limit) = opened.hand(args.sim_placement_deg);
     let (positions, length) = adaptive::verification(args, kind, opened.connection.info.config.sample_rate_hz)?;
     let (rate_hz, clock) = (opened.connection.info.config.sample_rate_hz, opened.clock());
@@ -153,17 +151,11 @@ fn finish(
         procedure::verify_with(client, hand.as_mut(), positions, wait_limit, feedback, &calibrated, length)
             .map_err(on_board)?;
     let board_seconds = first_capture_s.map(|first| clock() - first);
-    let check = super::gyro::check(client, hand.as_mut(), rate_hz, gyro, feedback).map_err(on_board)?;
+    let check = super::gyro::check(client, hand.as_mut(), rate_hz, &fitted.gyro, feedback).map_err(on_board)?;
     let uploaded = Some(fitted.chosen);
     let verified = Session { verification: Some(verification.clone()), uploaded, ..fitted.session.clone() };
-    let certificate = super::certificate::issue(&verified, kept_at.unwrap_or(Path::new("the session")))?;
-    if let Some(stem) = kept_at {
-        keep_with_report(&verified, &certificate, stem, feedback)?;
-    }
-    if let Some(lot) = &args.lot {
-        feedback.say(&super::lot::add_issued(lot, &certificate)?);
-    }
-    let mut report = report_of(opened, (fitted, gyro), verification, check);
+    let certificate = certify(&verified, kept_at, args.lot.as_deref(), feedback)?;
+    let mut report = report_of(opened, fitted, verification, check);
     report.board_seconds = board_seconds;
     report.certificate = Some(certificate);
     let target = report.verification.against((kind == SessionKind::Adaptive).then_some(args.length.target_mg));
@@ -175,7 +167,7 @@ fn finish(
 /// check, and with `--sim` the simulated sensor's truth at the calibration's temperature.
 fn report_of(
     opened: &Opened,
-    (fitted, gyro): (&Fitted, &GyroOutcome),
+    fitted: &Fitted,
     verification: Verification,
     check: Option<TurnCheck>,
 ) -> CalibrateReport {
@@ -184,9 +176,27 @@ fn report_of(
     let captures = fitted.session.captures.len();
     let chip = fitted.chip.as_ref().map(|c| &c.calibration);
     let mut report = CalibrateReport::new(&fitted.chosen, chip, fitted.host.as_ref(), truth, verification, captures)
-        .with_gyro(gyro, check);
+        .with_gyro(&fitted.gyro, check);
     report.true_error_mg = opened.sim.as_ref().map(|board| board.true_error_mg(&fitted.chosen, session_temp_c));
     report
+}
+
+/// The verified session's certificate, kept with the session (`kept_at`) and its report, and added
+/// to the `lot` database when one is given.
+fn certify(
+    verified: &Session,
+    kept_at: Option<&Path>,
+    lot: Option<&Path>,
+    feedback: &mut dyn Feedback,
+) -> Result<Certificate, Error> {
+    let certificate = super::certificate::issue(verified, kept_at.unwrap_or(Path::new("the session")))?;
+    if let Some(stem) = kept_at {
+        keep_with_report(verified, &certificate, stem, feedback)?;
+    }
+    if let Some(lot) = lot {
+        feedback.say(&super::lot::add_issued(lot, &certificate)?);
+    }
+    Ok(certificate)
 }
 
 /// Saves the verified session again, writes its report and certificate beside it, and says where.

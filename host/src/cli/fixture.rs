@@ -106,6 +106,10 @@ fn open_all(args: &CalibrateArgs) -> Result<Vec<Board>, Error> {
 
 /// Opens one board and names it by its serial number, its session kept under that name.
 fn open_board(name: String, mut args: CalibrateArgs, started_s: u64) -> Board {
+    if !args.device.sim {
+        // NOTE: each port is listened to (1.2 s) before anything is written to it: say so, it takes seconds.
+        eprintln!("{name}: listening, then greeting it if it stays silent");
+    }
     let opened = args.device.open();
     let name = match &opened {
         Ok(opened) => BoardRecord::of(&opened.connection.info).serial,

@@ -1,5 +1,5 @@
-//! The session a `calibrate` run keeps: a new one (written at once, so that a path that cannot be
-//! written fails before the first capture) or one resumed from an earlier run on the same board.
+//! The session a calibration run keeps: a new one, written before the first capture, or one begun in
+//! an earlier run on the same board at the same setting (`--resume`).
 
 use std::path::{Path, PathBuf};
 
@@ -21,11 +21,7 @@ pub(super) struct Kept {
 
 /// The session to continue (`--resume`, checked against the board) or a new one, written at once
 /// so that an unwritable path fails before the first capture.
-pub(super) fn start_session(
-    args: &CalibrateArgs,
-    info: &DeviceInfo,
-    feedback: &mut dyn Feedback,
-) -> Result<Kept, Error> {
+pub(super) fn start(args: &CalibrateArgs, info: &DeviceInfo, feedback: &mut dyn Feedback) -> Result<Kept, Error> {
     let board = BoardRecord::of(info);
     let kept = match &args.resume {
         Some(path) => {
