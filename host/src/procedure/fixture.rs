@@ -146,8 +146,9 @@ impl Seat {
     /// The board's hand as the fixture's: `own` turns this board (or speaks to the person holding
     /// the fixture, `speaks_for_all`, said once for all boards).
     pub fn hand(&self, own: Box<dyn Hand>, speaks_for_all: bool) -> FixtureHand {
-        let seat = Seat { fixture: self.fixture.clone(), index: self.index };
-        FixtureHand { seat, own, speaks_for_all, turns: 0 }
+        // NOTE: the hand does not hold the seat: a board stays on the fixture between its hands (the
+        // collection's, the verification's) and leaves only when its session ends.
+        FixtureHand { fixture: self.fixture.clone(), index: self.index, own, speaks_for_all, turns: 0 }
     }
 
     /// Which board of the fixture this is (0-based).
@@ -164,7 +165,8 @@ impl Drop for Seat {
 
 /// One board's hand on a fixture: every turn waits for the other boards, then turns this board.
 pub struct FixtureHand {
-    seat: Seat,
+    fixture: Arc<Fixture>,
+    index: usize,
     own: Box<dyn Hand>,
     speaks_for_all: bool,
     turns: usize,
@@ -178,7 +180,7 @@ impl FixtureHand {
         feedback: &mut dyn Feedback,
         act: impl FnOnce(&mut dyn Hand, &mut dyn Feedback) -> Result<(), ProcedureError>,
     ) -> Result<(), ProcedureError> {
-        let (fixture, index) = (&self.seat.fixture, self.seat.index);
+        let (fixture, index) = (&self.fixture, self.index);
         fixture.meet(index, true);
         self.turns += 1;
         if !self.speaks_for_all || fixture.leads(index) {
@@ -211,7 +213,7 @@ impl Hand for FixtureHand {
     }
 
     fn all_have_enough(&mut self, this_board: bool) -> bool {
-        self.seat.fixture.meet(self.seat.index, this_board)
+        self.fixture.meet(self.index, this_board)
     }
 }
 
