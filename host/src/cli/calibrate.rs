@@ -56,7 +56,8 @@ pub(super) fn calibrate_board(
 ) -> Result<Option<CalibrateReport>, Error> {
     opened.connection.info.sensor.map_err(LinkError::from)?;
     opened.hand_seed = args.sim_hand_seed.unwrap_or(args.device.seed);
-    let mut kept = kept::start(args, &opened.connection.info, feedback)?;
+    let learned = adaptive::learned_model(args, &mut opened.connection.client, feedback)?;
+    let mut kept = kept::start(args, &opened.connection.info, learned, feedback)?;
     opened.connection.client.interrupt_on(interrupt.clone());
     let (moves, first_capture_s) = collect(args, &mut opened, &mut kept, feedback)?;
     let fitted = fit_with_gyro(&mut opened, &kept, &moves, feedback)?;
