@@ -151,6 +151,11 @@ pub const TURN_CHECK_REST_SECONDS: f64 = 1.0;
 /// more often than that anyway.
 pub const MAX_VERIFY_POSITIONS: i64 = 16;
 
+/// Most boards calibrated together on one fixture.
+/// NOTE: a fixture a hand turns holds a few dozen boards at most; each board is a thread and a
+/// port (a simulated one: a thread more), and 64 keeps that within any machine's limits.
+pub const MAX_BOARDS: i64 = 64;
+
 /// Largest placement error of the simulated hand, in degrees.
 ///
 /// NOTE: beyond this a face is no longer reliably within the face tolerance's reach after the
