@@ -15,10 +15,6 @@ pub const HEADER_BYTES: usize = 384;
 /// Bytes of the header of recordings written before the board was named in it (still read).
 const UNNAMED_HEADER_BYTES: usize = 320;
 
-/// The columns after `seq`, little-endian, packed: the sample time is `seq` over the rate.
-const COLUMNS: &str = "('ax_g', '<f4'), ('ay_g', '<f4'), ('az_g', '<f4'), \
-('gx_dps', '<f4'), ('gy_dps', '<f4'), ('gz_dps', '<f4'), ('temp_c', '<f4')";
-
 /// The title of the `seq` field up to the rate.
 const SEQ_TITLE: &str = "sample number; samples per second: ";
 /// Before the board's serial in the title.
@@ -39,7 +35,9 @@ pub struct Header {
 /// The record layout as numpy's `descr` for a recording at `rate_hz` of the board `serial`.
 pub fn descr(rate_hz: u16, serial: Option<&str>) -> String {
     let board = serial.map(|serial| format!("{BOARD_TITLE}{serial}")).unwrap_or_default();
-    format!("[(('{SEQ_TITLE}{rate_hz}{board}; time_s = seq / {rate_hz}', 'seq'), '<u4'), {COLUMNS}]")
+    // NOTE: the columns after `seq` are f32, little-endian, packed: the sample time is `seq` over the rate.
+    let columns: Vec<String> = super::SAMPLE_COLUMNS.iter().map(|c| format!("('{c}', '<f4')")).collect();
+    format!("[(('{SEQ_TITLE}{rate_hz}{board}; time_s = seq / {rate_hz}', 'seq'), '<u4'), {}]", columns.join(", "))
 }
 
 /// The header of a file holding `samples` records taken at `rate_hz` on the board `serial`.
@@ -111,4 +109,12 @@ mod tests {
     }
 
     const SERIAL: &str = "53494D000000000000000017";
+
+    #[test]
+    fn the_columns_are_those_every_recording_names_so_older_files_still_read() {
+        let written_since_the_start = "[(('sample number; samples per second: 100; time_s = seq / 100', 'seq'), '<u4'), \
+            ('ax_g', '<f4'), ('ay_g', '<f4'), ('az_g', '<f4'), ('gx_dps', '<f4'), ('gy_dps', '<f4'), ('gz_dps', '<f4'), \
+            ('temp_c', '<f4')]";
+        assert_eq!(descr(100, None), written_since_the_start);
+    }
 }
