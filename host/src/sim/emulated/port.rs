@@ -7,7 +7,7 @@ use std::collections::VecDeque;
 use std::io::{ErrorKind, Read, Write};
 use std::time::Duration;
 
-use serialport::{ClearBuffer, SerialPort, TTYPort};
+use serialport::{SerialPort, TTYPort};
 
 use super::EmulatorError;
 
@@ -68,10 +68,11 @@ impl HostPort {
         let was_open = std::mem::replace(&mut self.open, open);
         if was_open != open {
             // NOTE: a closed port keeps no unread input (as the kernel's serial ports): what the
-            // device sent to the last program is not read by the next. On a pseudo-terminal that
-            // input waits in the slave end until flushed from the master.
+            // device sent to the last program and the bridge has not written yet is dropped. What
+            // it wrote waits in the slave end's line discipline, out of the master's reach
+            // (TCIOFLUSH on the master does not empty it); the host empties it as it opens the port
+            // (`link::port::open_serial`).
             self.to_host.clear();
-            let _ = master.clear(ClearBuffer::All);
         }
         (bytes, open)
     }
