@@ -8,7 +8,7 @@ use accelcal::fit::gyro::GyroFitError;
 use accelcal::procedure::stop_rule::{Noise, StopRule};
 use accelcal::procedure::{
     self, AdaptiveOptions, CollectOptions, Feedback, Hand, Moves, Orientation, ProcedureError, Silent, SimulatedHand,
-    TurnCheck,
+    TurnCheck, Turning,
 };
 use accelcal::session::Session;
 use accelcal::sim::{SimBoard, SimCommand, SimSensor};
@@ -52,7 +52,7 @@ fn default_session(seed: u64) -> Recovered {
     let options = AdaptiveOptions { rule, wait_limit: Some(Duration::from_secs(60)), clock: None };
     procedure::collect_adaptive(
         client,
-        (&mut hand, &mut moves),
+        Turning { hand: &mut hand, moves: &mut moves },
         &targets,
         &options,
         feedback,
@@ -137,12 +137,11 @@ fn a_session_turned_only_about_one_axis_is_told_which_turns_to_add() {
     let feedback = &mut Silent { yes: true };
     procedure::collect_into(
         client,
-        &mut hand,
+        Turning { hand: &mut hand, moves: &mut moves },
         &about_x_only(),
         &options(),
         feedback,
         &mut session,
-        &mut moves,
         &mut |_| Ok(()),
     )
     .unwrap();
@@ -198,10 +197,8 @@ fn a_move_with_lost_samples_is_named_and_dropped_and_the_session_goes_on() {
     let client = &mut connection.client;
     let targets = procedure::targets(false);
     let feedback = &mut Silent { yes: true };
-    procedure::collect_into(client, &mut cable, &targets, &options(), feedback, &mut session, &mut moves, &mut |_| {
-        Ok(())
-    })
-    .unwrap();
+    let turning = Turning { hand: &mut cable, moves: &mut moves };
+    procedure::collect_into(client, turning, &targets, &options(), feedback, &mut session, &mut |_| Ok(())).unwrap();
     assert_eq!(session.captures.len(), 14, "the session is complete");
     assert_eq!(moves.recorded.len(), 12, "every other move is recorded");
     let to = &session.captures[3].name;

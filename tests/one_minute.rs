@@ -12,7 +12,7 @@ use std::time::Duration;
 use accelcal::calibration::from_fit;
 use accelcal::link::{pipe, Client, PipeEnd, StreamRequest};
 use accelcal::procedure::stop_rule::{CaptureLength, Noise, StopRule};
-use accelcal::procedure::{self, AdaptiveOptions, Moves, Silent, SimulatedHand};
+use accelcal::procedure::{self, AdaptiveOptions, Moves, Silent, SimulatedHand, Turning};
 use accelcal::session::Session;
 use accelcal::sim::{Pace, SimBoard, SimSensor};
 use firmware::sim::SimFlash;
@@ -59,7 +59,7 @@ fn session(seed: u64, kind: SimSensor, target_mg: f64) -> Outcome {
     let targets = procedure::targets(false);
     let collected = procedure::collect_adaptive(
         &mut client,
-        (&mut hand, &mut Moves::at(rule.rate_hz)),
+        Turning { hand: &mut hand, moves: &mut Moves::at(rule.rate_hz) },
         &targets,
         &options,
         &mut feedback,

@@ -11,7 +11,7 @@ use super::length::{ADAPTIVE_VERIFY_POSITIONS, FIXED_VERIFY_POSITIONS};
 use crate::error::Error;
 use crate::fit::drift;
 use crate::procedure::stop_rule::CaptureLength;
-use crate::procedure::{self, AdaptiveOptions, Feedback, Hand, Moves, VERIFY_SECONDS};
+use crate::procedure::{self, AdaptiveOptions, Feedback, Turning, VERIFY_SECONDS};
 use crate::session::{Outcome, Session, SessionError, SessionKind};
 
 /// What a new session is: quick (`--quick`), of fixed-length captures (`--seconds`), or adaptive.
@@ -50,7 +50,7 @@ pub(super) fn resumed_as_begun(args: &CalibrateArgs, session: &Session) -> Vec<S
 pub(super) fn collect(
     args: &CalibrateArgs,
     opened: &mut Opened,
-    hands: (&mut dyn Hand, &mut Moves),
+    turning: Turning<'_>,
     wait_limit: Option<std::time::Duration>,
     session: &mut Session,
     keep: &mut dyn FnMut(&Session) -> Result<(), SessionError>,
@@ -60,7 +60,7 @@ pub(super) fn collect(
     let options = AdaptiveOptions { rule, wait_limit, clock: Some(opened.clock()) };
     let client = &mut opened.connection.client;
     let targets = procedure::targets(false);
-    let collected = procedure::collect_adaptive(client, hands, &targets, &options, feedback, session, keep)?;
+    let collected = procedure::collect_adaptive(client, turning, &targets, &options, feedback, session, keep)?;
     Ok(collected.first_capture_s)
 }
 

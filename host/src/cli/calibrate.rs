@@ -1,34 +1,25 @@
 //! `accelcal calibrate`: captures (kept in a session after each one, resumable), fit, upload, save,
 //! verification.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
-use shared::protocol::DeviceInfo;
 use shared::Calibration;
 
 use super::adaptive;
 use super::args::CalibrateArgs;
 use super::choice::{fit_with_gyro, show_choice, Fitted};
 use super::device::Opened;
+use super::kept::{self, Kept};
 use super::terminal::feedback;
 use crate::calibration;
 use crate::certificate::Certificate;
 use crate::error::Error;
 use crate::link::{Client, LinkError, Port};
-use crate::procedure::{self, CollectOptions, Feedback, Hand, Moves, ProcedureError, TurnCheck, Verification};
-use crate::report::gyro::GyroOutcome;
+use crate::procedure::{self, CollectOptions, Feedback, Moves, ProcedureError, TurnCheck, Turning, Verification};
 use crate::report::{self, CalibrateReport};
-use crate::session::{stem_file, stem_of, unix_time_s, BoardRecord, Session, SessionError, SessionKind};
-
-/// The session of this run and where it is kept.
-pub(super) struct Kept {
-    pub(super) session: Session,
-    pub(super) path: Option<PathBuf>,
-    /// Whether it continues a session begun in an earlier run.
-    pub(super) resumed: bool,
-}
+use crate::session::{stem_file, Session, SessionError, SessionKind};
 
 /// `accelcal calibrate`: captures, fit, upload, save, verification.
 pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
@@ -46,12 +37,11 @@ pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
     // board still needs the instructions, which go to stderr, leaving stdout to the JSON.
     let simulated = opened.sim.is_some();
     let mut feedback = feedback(args.json && simulated, args.yes || (args.json && simulated));
-    let mut kept = start_session(args, &opened.connection.info, feedback.as_mut())?;
+    let mut kept = kept::start(args, &opened.connection.info, feedback.as_mut())?;
     let interrupt = interrupt_on_ctrl_c();
     opened.connection.client.interrupt_on(interrupt.clone());
     let (moves, first_capture_s) = collect(args, &mut opened, &mut kept, feedback.as_mut())?;
-    let kind = kept.session.kind;
-    let (fitted, gyro) = fit_with_gyro(&mut opened, &kept, &moves, feedback.as_mut())?;
+    let fitted = fit_with_gyro(&mut opened, &kept, &moves, feedback.as_mut())?;
     show_choice(feedback.as_mut(), &fitted);
     let client = &mut opened.connection.client;
     if interrupt.load(Ordering::SeqCst) {
@@ -62,8 +52,7 @@ pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
     }
     // NOTE: a resumed session's first capture was taken in another run: its board time is unknown.
     let first_capture_s = first_capture_s.filter(|_| !kept.resumed);
-    let fitted = (&fitted, &gyro);
-    finish(args, &mut opened, fitted, kept.path.as_deref(), (kind, first_capture_s), feedback.as_mut())
+    finish(args, &mut opened, &fitted, kept.path.as_deref(), first_capture_s, feedback.as_mut())
 }
 
 /// The captures the session lacks, written after each one, and the moves between them; an error
@@ -79,11 +68,11 @@ fn collect(
     let path = kept.path.clone();
     let mut keep = |session: &Session| path.as_deref().map_or(Ok(()), |p| session.save(p));
     let mut moves = Moves::at(opened.connection.info.config.sample_rate_hz);
-    let (hand, session) = (hand.as_mut(), &mut kept.session);
+    let (turning, session) = (Turning { hand: hand.as_mut(), moves: &mut moves }, &mut kept.session);
     let result = if session.kind == SessionKind::Adaptive {
-        adaptive::collect(args, opened, (hand, &mut moves), wait_limit, session, &mut keep, feedback)
+        adaptive::collect(args, opened, turning, wait_limit, session, &mut keep, feedback)
     } else {
-        collect_fixed(args, opened, (hand, &mut moves), wait_limit, session, &mut keep, feedback)
+        collect_fixed(args, opened, turning, wait_limit, session, &mut keep, feedback)
     };
     match (result, &kept.path) {
         (Ok(first), _) => Ok((moves, first)),
@@ -102,7 +91,7 @@ fn collect(
 fn collect_fixed(
     args: &CalibrateArgs,
     opened: &mut Opened,
-    (hand, moves): (&mut dyn Hand, &mut Moves),
+    turning: Turning<'_>,
     wait_limit: Option<std::time::Duration>,
     session: &mut Session,
     keep: &mut dyn FnMut(&Session) -> Result<(), SessionError>,
@@ -112,18 +101,19 @@ fn collect_fixed(
     let options = CollectOptions { seconds, wait_limit };
     let (targets, started) = (procedure::targets(session.kind == SessionKind::Quick), opened.clock()());
     let client = &mut opened.connection.client;
-    procedure::collect_into(client, hand, &targets, &options, feedback, session, moves, keep).map(|()| Some(started))
+    procedure::collect_into(client, turning, &targets, &options, feedback, session, keep).map(|()| Some(started))
 }
 
 /// The verification, the session kept with it and its report beside it, then the result.
 fn finish(
     args: &CalibrateArgs,
     opened: &mut Opened,
-    (fitted, gyro): (&Fitted, &GyroOutcome),
+    fitted: &Fitted,
     kept_at: Option<&Path>,
-    (kind, first_capture_s): (SessionKind, Option<f64>),
+    first_capture_s: Option<f64>,
     feedback: &mut dyn Feedback,
 ) -> Result<(), Error> {
+    let kind = fitted.session.kind;
     let (mut hand, wait_limit) = opened.hand(args.sim_placement_deg, args.device.seed);
     let (positions, length) = adaptive::verification(args, kind, opened.connection.info.config.sample_rate_hz)?;
     let (rate_hz, clock) = (opened.connection.info.config.sample_rate_hz, opened.clock());
@@ -134,17 +124,11 @@ fn finish(
         procedure::verify_with(client, hand.as_mut(), positions, wait_limit, feedback, &calibrated, length)
             .map_err(on_board)?;
     let board_seconds = first_capture_s.map(|first| clock() - first);
-    let check = super::gyro::check(client, hand.as_mut(), rate_hz, gyro, feedback).map_err(on_board)?;
+    let check = super::gyro::check(client, hand.as_mut(), rate_hz, &fitted.gyro, feedback).map_err(on_board)?;
     let uploaded = Some(fitted.chosen);
     let verified = Session { verification: Some(verification.clone()), uploaded, ..fitted.session.clone() };
-    let certificate = super::certificate::issue(&verified, kept_at.unwrap_or(Path::new("the session")))?;
-    if let Some(stem) = kept_at {
-        keep_with_report(&verified, &certificate, stem, feedback)?;
-    }
-    if let Some(lot) = &args.lot {
-        feedback.say(&super::lot::add_issued(lot, &certificate)?);
-    }
-    let mut report = report_of(opened, (fitted, gyro), verification, check);
+    let certificate = certify(&verified, kept_at, args.lot.as_deref(), feedback)?;
+    let mut report = report_of(opened, fitted, verification, check);
     report.board_seconds = board_seconds;
     report.certificate = Some(certificate);
     let target = report.verification.against((kind == SessionKind::Adaptive).then_some(args.length.target_mg));
@@ -160,7 +144,7 @@ fn finish(
 /// check, and with `--sim` the simulated sensor's truth at the calibration's temperature.
 fn report_of(
     opened: &Opened,
-    (fitted, gyro): (&Fitted, &GyroOutcome),
+    fitted: &Fitted,
     verification: Verification,
     check: Option<TurnCheck>,
 ) -> CalibrateReport {
@@ -169,7 +153,25 @@ fn report_of(
     let captures = fitted.session.captures.len();
     let chip = fitted.chip.as_ref().map(|c| &c.calibration);
     CalibrateReport::new(&fitted.chosen, chip, fitted.host.as_ref(), truth, verification, captures)
-        .with_gyro(gyro, check)
+        .with_gyro(&fitted.gyro, check)
+}
+
+/// The verified session's certificate, kept with the session (`kept_at`) and its report, and added
+/// to the `lot` database when one is given.
+fn certify(
+    verified: &Session,
+    kept_at: Option<&Path>,
+    lot: Option<&Path>,
+    feedback: &mut dyn Feedback,
+) -> Result<Certificate, Error> {
+    let certificate = super::certificate::issue(verified, kept_at.unwrap_or(Path::new("the session")))?;
+    if let Some(stem) = kept_at {
+        keep_with_report(verified, &certificate, stem, feedback)?;
+    }
+    if let Some(lot) = lot {
+        feedback.say(&super::lot::add_issued(lot, &certificate)?);
+    }
+    Ok(certificate)
 }
 
 /// Saves the verified session again, writes its report and certificate beside it, and says where.
@@ -202,63 +204,6 @@ pub(super) fn interrupt_on_ctrl_c() -> Arc<AtomicBool> {
     // session still holds every capture written so far.
     let _ = ctrlc::set_handler(move || set.store(true, Ordering::SeqCst));
     flag
-}
-
-/// The session to continue (`--resume`, checked against the board) or a new one, written at once
-/// so that an unwritable path fails before the first capture.
-fn start_session(args: &CalibrateArgs, info: &DeviceInfo, feedback: &mut dyn Feedback) -> Result<Kept, Error> {
-    let board = BoardRecord::of(info);
-    let kept = match &args.resume {
-        Some(path) => {
-            let kept = resumed(path, &board, feedback)?;
-            adaptive::resumed_as_begun(args, &kept.session).iter().for_each(|line| feedback.say(line));
-            kept
-        }
-        None => Kept {
-            session: Session { board: Some(board), kind: adaptive::begun_as(args), ..Session::default() },
-            path: new_session_path(args)?,
-            resumed: false,
-        },
-    };
-    if let Some(path) = &kept.path {
-        kept.session.save(path)?;
-        feedback.say(&format!("the captures are kept in {} as they are taken", stem_file(path, "json").display()));
-    }
-    Ok(kept)
-}
-
-/// A session from an earlier run, on this board at this setting.
-fn resumed(path: &Path, board: &BoardRecord, feedback: &mut dyn Feedback) -> Result<Kept, Error> {
-    let stem = stem_of(path);
-    let json = stem_file(&stem, "json");
-    let session = Session::load(&json)?;
-    let recorded = session.board.as_ref().ok_or(crate::session::SessionError::NoBoard { path: json.clone() })?;
-    recorded.check_same(board, &json)?;
-    let targets = procedure::targets(session.kind == SessionKind::Quick);
-    // NOTE: by name: an adaptive session's closing capture repeats its first position.
-    let captured = targets.iter().filter(|t| session.has_capture(&t.name)).count();
-    feedback.say(&format!("resuming {}: {captured} of {} positions captured", json.display(), targets.len()));
-    Ok(Kept { session, path: Some(stem), resumed: true })
-}
-
-/// Where a new session is kept: `--session` (a folder gets a session named by the time inside it),
-/// or with a real board the current directory; refused when a session is already kept there.
-pub(super) fn new_session_path(args: &CalibrateArgs) -> Result<Option<PathBuf>, SessionError> {
-    let named_by_time = || PathBuf::from(format!("accelcal-session-{}", unix_time_s() as u64));
-    let path = match &args.session {
-        // NOTE: `DIR/` names a folder even before it exists; the session goes inside it.
-        Some(given) if given.is_dir() || given.as_os_str().to_string_lossy().ends_with(std::path::MAIN_SEPARATOR) => {
-            std::fs::create_dir_all(given).map_err(|source| SessionError::Write { path: given.clone(), source })?;
-            Some(given.join(named_by_time()))
-        }
-        Some(given) => Some(stem_of(given)),
-        // NOTE: a simulated board in this process is gone after the run: nothing to keep.
-        None => args.device.port.as_ref().map(|_| named_by_time()),
-    };
-    match path {
-        Some(stem) if stem_file(&stem, "json").exists() => Err(SessionError::Exists { path: stem_file(&stem, "json") }),
-        path => Ok(path),
-    }
 }
 
 /// The device flags that reach the same board again, for the resume hint.

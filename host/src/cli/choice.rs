@@ -5,8 +5,8 @@ use shared::protocol::SensorConfig;
 use shared::Calibration;
 
 use super::adaptive;
-use super::calibrate::Kept;
 use super::device::Opened;
+use super::kept::Kept;
 use crate::calibration::describe;
 use crate::error::Error;
 use crate::fit::Fit;
@@ -21,6 +21,8 @@ pub(super) struct Fitted {
     pub chip: Option<ChipOrtho9>,
     pub host: Option<Fit>,
     pub chosen: Calibration,
+    /// The gyro's G fitted to the moves (put into `chosen`), or why not.
+    pub gyro: GyroOutcome,
 }
 
 /// The accelerometer's calibration chosen, and the gyro's G fitted to the moves and put into it;
@@ -30,13 +32,14 @@ pub(super) fn fit_with_gyro(
     kept: &Kept,
     moves: &Moves,
     feedback: &mut dyn Feedback,
-) -> Result<(Fitted, GyroOutcome), Error> {
+) -> Result<Fitted, Error> {
     let config = opened.connection.info.config;
     let mut fitted = choose(&mut opened.connection.client, kept, config, feedback)?;
-    let (chosen, gyro) = super::gyro::fit((moves, kept.resumed), &fitted.session, &fitted.chosen, feedback);
+    let (chosen, gyro) = super::gyro::fit(moves, kept.resumed, &fitted.session, &fitted.chosen, feedback);
     fitted.chosen = chosen;
     fitted.session.gyro_turns = super::gyro::summaries(moves, &fitted.session, &chosen, &gyro);
-    Ok((fitted, gyro))
+    fitted.gyro = gyro;
+    Ok(fitted)
 }
 
 /// The on-chip fit (of captures all taken in this run), and but for a quick session the host's fit,
@@ -55,11 +58,11 @@ fn choose<P: Port>(
         (false, SessionKind::Adaptive) => client.fit_ortho9().ok(),
         (false, _) => Some(client.fit_ortho9()?),
     };
-    if let (SessionKind::Quick, Some(chip)) = (session.kind, chip) {
-        return Ok(Fitted { session, chip: Some(chip), host: None, chosen: chip.calibration });
-    }
-    let outcome = adaptive::outcome(&session, config, feedback)?;
-    Ok(Fitted { session, chip, host: Some(outcome.fit), chosen: outcome.calibration })
+    let (host, chosen) = match (session.kind, chip) {
+        (SessionKind::Quick, Some(chip)) => (None, chip.calibration),
+        _ => adaptive::outcome(&session, config, feedback).map(|o| (Some(o.fit), o.calibration))?,
+    };
+    Ok(Fitted { session, chip, host, chosen, gyro: GyroOutcome::default() })
 }
 
 /// The chosen calibration, the host fit's parameters, and the chip's fit beside them.

@@ -9,7 +9,7 @@ use shared::protocol::CaptureStats;
 use shared::AccelRange;
 
 use super::args::CalibrateArgs;
-use super::calibrate::new_session_path;
+use super::kept::new_session_path;
 use crate::data::Row;
 use crate::error::Error;
 use crate::session::{stem_file, stem_of, unix_time_s, CaptureRecord, Session, SessionError, SessionKind};

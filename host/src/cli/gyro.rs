@@ -13,7 +13,8 @@ use crate::session::Session;
 /// `chosen` with G fitted to the recorded moves when they allow it, and what the fit gave; every
 /// dropped move and the reason for no fit (with the turns to add) are said.
 pub(super) fn fit(
-    (moves, resumed): (&Moves, bool),
+    moves: &Moves,
+    resumed: bool,
     session: &Session,
     chosen: &Calibration,
     feedback: &mut dyn Feedback,

@@ -15,6 +15,7 @@ mod foreign;
 mod foreign_session;
 mod foreign_status;
 mod gyro;
+mod kept;
 mod length;
 mod lot;
 mod noise;

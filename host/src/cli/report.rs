@@ -55,10 +55,12 @@ fn with_given(args: &ReportArgs) -> Result<SessionReport, Error> {
     let mut report = build(&session, &args.session)?;
     if let Some(path) = &args.thermal {
         let serial = session.board.as_ref().map(|b| b.serial.as_str());
-        report = report.with_temperature(thermal_section(path, serial)?);
+        let (section, plot) = thermal_section(path, serial)?;
+        report = report.with_temperature(section, plot);
     }
     if let Some(path) = &args.noise {
-        report = report.with_allan_deviation(noise_section(path)?);
+        let (section, plot) = noise_section(path)?;
+        report = report.with_allan_deviation(section, plot);
     }
     Ok(report)
 }

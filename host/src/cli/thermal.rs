@@ -183,7 +183,7 @@ pub(super) fn fit_and_activate(
     let calibration = record::with_temperature(static_calibration, fit.model)?;
     connection.client.set_calibration(calibration)?;
     let temps = points.iter().map(|p| p.temp_c);
-    let learned = (temps.clone().fold(f64::MAX, f64::min), temps.fold(f64::MIN, f64::max));
+    let learned = [temps.clone().fold(f64::MAX, f64::min), temps.fold(f64::MIN, f64::max)];
     let bins = first.bins.len() + second.map_or(0, |s| s.bins.len());
     let stopped =
         second.map_or(first.stopped.clone(), |s| format!("warming: {}; cooling: {}", first.stopped, s.stopped));

@@ -59,7 +59,7 @@ pub fn evaluate(
         .map(|row| {
             let corrected = linalg::mul_vec(matrix, linalg::sub(row.reading, *offset));
             let before = nominal.map_or(row.reading, |(c, s)| linalg::scale(linalg::sub(row.reading, c), s));
-            evaluate_row(row, (before, corrected), g, training.contains(&row.line))
+            evaluate_row(row, before, corrected, g, training.contains(&row.line))
         })
         .collect();
     Evaluation { rows, before_nominal: nominal.is_some() }
@@ -82,7 +82,7 @@ fn nominal_scale(dataset: &Dataset, g: f64) -> Option<(Vec3<f64>, f64)> {
 }
 
 /// The errors of one row with its reading `before` and after correction.
-fn evaluate_row(row: &Row, (before, corrected): (Vec3<f64>, Vec3<f64>), g: f64, training: bool) -> RowEvaluation {
+fn evaluate_row(row: &Row, before: Vec3<f64>, corrected: Vec3<f64>, g: f64, training: bool) -> RowEvaluation {
     let distance = |a: Vec3<f64>| row.reference.map(|r| linalg::norm(linalg::sub(a, r)));
     let inclination_error_deg = row.reference.map(|r| inclination_deg(corrected) - inclination_deg(r));
     let toolface_error_deg = row

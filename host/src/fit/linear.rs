@@ -37,7 +37,7 @@ pub(super) fn linear12(dataset: &Dataset, options: &FitOptions) -> Result<Fit, F
     let solution = LinearSolution::solve(&pairs, Model::Linear12, per_sample)?;
     let matrix = linalg::inverse(&solution.sensor_matrix).ok_or(FitError::Degenerate)?;
     let offset = solution.offset;
-    Ok(solution.into_fit(Model::Linear12, (matrix, offset), &pairs, dataset, options.g))
+    Ok(solution.into_fit(Model::Linear12, matrix, offset, &pairs, dataset, options.g))
 }
 
 /// Every row with a known orientation, in row order.
@@ -79,7 +79,7 @@ pub(super) fn six_position(dataset: &Dataset, options: &FitOptions) -> Result<Fi
     })?;
     pairs.sort_by_key(|p| p.row);
     let solution = LinearSolution::solve(&pairs, Model::SixPosition, uncertainty::pooled_sample_variance(dataset))?;
-    Ok(solution.into_fit(Model::SixPosition, (closed_form.matrix, closed_form.offset), &pairs, dataset, options.g))
+    Ok(solution.into_fit(Model::SixPosition, closed_form.matrix, closed_form.offset, &pairs, dataset, options.g))
 }
 
 /// Least-squares solution of m = X a + y with the statistics for standard errors.
@@ -152,16 +152,17 @@ impl LinearSolution {
         self.noise.map(|c| c.map(|m| m * self.inflation.powi(2))).or(self.scatter)
     }
 
-    /// The fit of `calibration` (M, o) made from this solution on `pairs` of `dataset`.
+    /// The fit of the calibration a = `matrix` (m - `offset`) made from this solution on `pairs` of
+    /// `dataset`.
     fn into_fit(
         self,
         model: Model,
-        calibration: (Mat3<f64>, Vec3<f64>),
+        matrix: Mat3<f64>,
+        offset: Vec3<f64>,
         pairs: &[Pair],
         dataset: &Dataset,
         g: f64,
     ) -> Fit {
-        let (matrix, offset) = calibration;
         let cost = pairs
             .iter()
             .map(|p| {

@@ -26,13 +26,13 @@ pub(super) fn shape_of(model: Model) -> Shape {
 pub(super) fn least_squares(training: &Dataset, model: Model, options: &FitOptions) -> Result<Fit, FitError> {
     let Solved { shape, normalization, observations, solution, mut warnings } = solved(training, model, options)?;
     let (scatter, noise, inflation, reported) = errors(training, shape, &solution, &observations, &normalization);
-    let errors = ([scatter.as_ref(), noise.as_ref()], inflation);
-    let parameters = file_parameters(shape, &solution, errors, &normalization, options.g);
+    let errors = [scatter.as_ref(), noise.as_ref()];
+    let parameters = file_parameters(shape, &solution, errors, inflation, &normalization, options.g);
     let prediction = reported.map(|c| predicted(shape, &parameters, &normalization, &c, options.g));
     let noise_test = statistics::noise_test(training, shape, &solution, &observations, &normalization);
     let (matrix, offset) = calibration_of(shape, &parameters);
-    let calibration = (Matrix3::from(matrix).transpose(), Vector3::from(offset));
-    warnings.extend(fit_warnings(training, &observations, &solution, calibration, (noise_test.as_ref(), options.g)));
+    let (m, o) = (Matrix3::from(matrix).transpose(), Vector3::from(offset));
+    warnings.extend(fit_warnings(training, &observations, &solution, &m, &o, noise_test.as_ref(), options.g));
     Ok(Fit {
         model,
         matrix,
@@ -97,8 +97,10 @@ fn fit_warnings(
     training: &Dataset,
     observations: &[Observation],
     solution: &Solution,
-    (matrix, offset): (Matrix3<f64>, Vector3<f64>),
-    (noise_test, g): (Option<&NoiseTest>, f64),
+    matrix: &Matrix3<f64>,
+    offset: &Vector3<f64>,
+    noise_test: Option<&NoiseTest>,
+    g: f64,
 ) -> Vec<String> {
     // NOTE: with only the references the model used: the others say nothing of this fit's placement.
     let rows = observations.iter().zip(&training.rows);
@@ -106,7 +108,7 @@ fn fit_warnings(
         Dataset { rows: rows.map(|(o, r)| Row { reference: o.reference.and(r.reference), ..r.clone() }).collect() };
     let failed = noise_test.filter(|t| !t.passed);
     let mut warnings: Vec<String> =
-        failed.map(|t| verdict::noise_warning(&used, (&matrix, &offset), g, t)).into_iter().collect();
+        failed.map(|t| verdict::noise_warning(&used, matrix, offset, g, t)).into_iter().collect();
     let degrees_of_freedom = solution.residuals.len().saturating_sub(solution.params.len());
     warnings.extend(uncertainty::redundancy_warnings(training, degrees_of_freedom));
     warnings
@@ -177,7 +179,8 @@ fn scatter_covariance(solution: &Solution) -> Option<DMatrix<f64>> {
 fn file_parameters(
     shape: Shape,
     solution: &Solution,
-    (errors, inflation): ([Option<&DVector<f64>>; 2], f64),
+    errors: [Option<&DVector<f64>>; 2],
+    inflation: f64,
     normalization: &Normalization,
     g: f64,
 ) -> Vec<Parameter> {

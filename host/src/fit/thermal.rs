@@ -114,12 +114,19 @@ fn highest_order(points: &[ThermalPoint]) -> usize {
     ((high - low) / SPAN_PER_ORDER_C).floor().clamp(1.0, MAX_TEMP_ORDER as f64) as usize
 }
 
-/// The order (1..=`highest`) with the smallest held-out error, with that error; both folds count.
-fn choose_order(
-    build: impl Fn(usize) -> Vec<Vec<f64>>,
-    values: &[f64],
-    (fold, highest): (&[bool], usize),
-) -> (usize, f64) {
+/// How a temperature polynomial's order is chosen: by its error on the rows it was not fitted to,
+/// the rows split in two folds, orders from 1 up to `highest`.
+#[derive(Debug, Clone, Copy)]
+struct Folds<'a> {
+    /// Whether each row is in the first fold (the others make the second).
+    first: &'a [bool],
+    /// The highest order tried.
+    highest: usize,
+}
+
+/// The order (1..=`folds.highest`) with the smallest held-out error, with that error; both folds count.
+fn choose_order(build: impl Fn(usize) -> Vec<Vec<f64>>, values: &[f64], folds: Folds) -> (usize, f64) {
+    let (fold, highest) = (folds.first, folds.highest);
     let other: Vec<bool> = fold.iter().map(|f| !f).collect();
     let error = |order: usize| {
         let rows = build(order);
@@ -155,7 +162,7 @@ pub fn fit_temperature(reference: &ThermalReference, points: &[ThermalPoint]) ->
         return Err(ThermalFitError::TooFewBins { bins: distinct });
     }
     let fold: Vec<bool> = bins.iter().map(|b| b.rem_euclid(2) == 0).collect();
-    let folds = (fold.as_slice(), highest_order(points));
+    let folds = Folds { first: &fold, highest: highest_order(points) };
     let sensor = linalg::inverse(&reference.matrix).unwrap_or(linalg::identity());
     let mut fit = ThermalFit {
         model: TemperatureModel::flat(reference.ref_temp_c),
@@ -195,7 +202,7 @@ fn fit_gyro_axis(
     points: &[ThermalPoint],
     ref_c: f64,
     axis: usize,
-    folds: (&[bool], usize),
+    folds: Folds,
 ) -> Result<(), ThermalFitError> {
     let values: Vec<f64> = points.iter().map(|p| p.gyro_dps[axis]).collect();
     let build = |order| points.iter().map(|p| gyro_row(p.temp_c - ref_c, p.force_g, order)).collect();

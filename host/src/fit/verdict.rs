@@ -24,7 +24,8 @@ struct Figures {
 /// The warning for a failed noise test: the statistic, then what the evidence points to.
 pub(super) fn noise_warning(
     training: &Dataset,
-    calibration: (&Matrix3<f64>, &Vector3<f64>),
+    matrix: &Matrix3<f64>,
+    offset: &Vector3<f64>,
     g: f64,
     test: &NoiseTest,
 ) -> String {
@@ -32,7 +33,7 @@ pub(super) fn noise_warning(
         "the residuals exceed what the capture noise explains (chi-square {:.1} on {} degrees of freedom, p = {:.1e})",
         test.chi_square, test.degrees_of_freedom, test.p_value
     );
-    format!("{head}: {}", explanation(&figures(training, calibration, g)))
+    format!("{head}: {}", explanation(&figures(training, matrix, offset, g)))
 }
 
 fn explanation(f: &Figures) -> String {
@@ -63,7 +64,7 @@ fn moved_text(lines: &[usize]) -> String {
     format!("the board moved: line(s) {lines} scatter over {MOVED_STD_RATIO} times the others; capture them again")
 }
 
-fn figures(training: &Dataset, (matrix, offset): (&Matrix3<f64>, &Vector3<f64>), g: f64) -> Figures {
+fn figures(training: &Dataset, matrix: &Matrix3<f64>, offset: &Vector3<f64>, g: f64) -> Figures {
     let variance = pooled_sample_variance(training).unwrap_or_default();
     let mg = 1000.0 / g;
     let (mut residual, mut noise, mut angles) = (0.0, 0.0, Vec::new());

@@ -8,8 +8,8 @@ use std::time::Duration;
 use super::collect::capture_at;
 use super::drift;
 use super::stop_rule::{CaptureLength, StopRule, MAX_SECONDS};
-use super::wait::wait_for_target_settled;
-use super::{Feedback, Hand, Moves, Orientation, ProcedureError};
+use super::wait::{wait_for_target, Rest};
+use super::{Feedback, Orientation, ProcedureError, Turning};
 use crate::link::{Client, Port};
 use crate::session::{CaptureRecord, Session, SessionError, SessionKind};
 
@@ -45,7 +45,7 @@ pub struct Collected {
 /// every capture.
 pub fn collect_adaptive<P: Port>(
     client: &mut Client<P>,
-    (hand, moves): (&mut dyn Hand, &mut Moves),
+    mut turning: Turning<'_>,
     targets: &[Orientation],
     options: &AdaptiveOptions,
     feedback: &mut dyn Feedback,
@@ -64,7 +64,7 @@ pub fn collect_adaptive<P: Port>(
         if reached {
             break;
         }
-        take(client, (hand, moves), target, options, feedback, session, &mut collected)?;
+        take(client, &mut turning, target, options, feedback, session, &mut collected)?;
         keep(session)?;
     }
     if !reached {
@@ -72,7 +72,7 @@ pub fn collect_adaptive<P: Port>(
     }
     let closing = drift::closing(&order[0]);
     if !session.captures.iter().any(|c| c.closing) {
-        take(client, (hand, moves), &closing, options, feedback, session, &mut collected)?;
+        take(client, &mut turning, &closing, options, feedback, session, &mut collected)?;
         session.captures.last_mut().into_iter().for_each(|c| c.closing = true);
         keep(session)?;
     }
@@ -131,7 +131,7 @@ fn prediction_line(session: &Session, predicted_mg: f64, target_mg: f64) -> Stri
 /// moves), recorded with why it stopped.
 fn take<P: Port>(
     client: &mut Client<P>,
-    (hand, moves): (&mut dyn Hand, &mut Moves),
+    turning: &mut Turning<'_>,
     target: &Orientation,
     options: &AdaptiveOptions,
     feedback: &mut dyn Feedback,
@@ -140,18 +140,19 @@ fn take<P: Port>(
 ) -> Result<(), ProcedureError> {
     let length = CaptureLength::Goal(options.rule.goal());
     for _ in 0..CAPTURE_ATTEMPTS {
-        moves.present(client, hand, target, feedback)?;
-        if !moves.rests_at(target, length.settle_seconds()) {
-            let only = std::slice::from_ref(target);
-            let settle = (length.settle_seconds(), moves.rested_s());
-            wait_for_target_settled(client, (only, &[]), options.wait_limit, settle, feedback)?;
+        turning.moves.present(client, turning.hand, target, feedback)?;
+        if !turning.moves.rests_at(target, length.settle_seconds()) {
+            let (limit, settle_seconds, rested_s) =
+                (options.wait_limit, length.settle_seconds(), turning.moves.rested_s());
+            let rest = Rest { limit, settle_seconds, rested_s };
+            wait_for_target(client, std::slice::from_ref(target), &[], rest, feedback)?;
         }
         let started = options.clock.as_ref().map(|clock| clock());
         collected.first_capture_s = collected.first_capture_s.or(started);
         if let Some((stats, face)) = capture_at(client, target, length, feedback)? {
             feedback.say(&format!("{}: {}", target.name, options.rule.why_stopped(&stats)));
             session.captures.push(CaptureRecord::now(&target.name, Some(target.clone()), face, stats));
-            moves.captured(session);
+            turning.moves.captured(session);
             return Ok(());
         }
     }

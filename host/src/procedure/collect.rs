@@ -5,8 +5,8 @@ use shared::protocol::{CaptureStats, DeviceError};
 use shared::Position;
 
 use super::stop_rule::CaptureLength;
-use super::wait::wait_for_target;
-use super::{CollectOptions, Feedback, Hand, Moves, Orientation, ProcedureError};
+use super::wait::{wait_for_target, Rest, SETTLE_SECONDS};
+use super::{CollectOptions, Feedback, Hand, Moves, Orientation, ProcedureError, Turning};
 use crate::link::{explain, Client, LinkError, Port};
 use crate::session::{CaptureRecord, Session, SessionError};
 
@@ -22,22 +22,20 @@ pub fn collect<P: Port>(
     feedback: &mut dyn Feedback,
 ) -> Result<Session, ProcedureError> {
     let mut session = Session::default();
-    let mut moves = Moves::off();
-    collect_into(client, hand, targets, options, feedback, &mut session, &mut moves, &mut |_| Ok(()))?;
+    let turning = Turning { hand, moves: &mut Moves::off() };
+    collect_into(client, turning, targets, options, feedback, &mut session, &mut |_| Ok(()))?;
     Ok(session)
 }
 
 /// Captures the targets `session` lacks into it, handing it to `keep` after every capture, so that
-/// an interruption loses nothing captured; the moves between captures go to `moves`.
-#[allow(clippy::too_many_arguments)]
+/// an interruption loses nothing captured; the moves between captures go to `turning`'s record.
 pub fn collect_into<P: Port>(
     client: &mut Client<P>,
-    hand: &mut dyn Hand,
+    turning: Turning<'_>,
     targets: &[Orientation],
     options: &CollectOptions,
     feedback: &mut dyn Feedback,
     session: &mut Session,
-    moves: &mut Moves,
     keep: &mut dyn FnMut(&Session) -> Result<(), SessionError>,
 ) -> Result<(), ProcedureError> {
     client.clear_positions()?;
@@ -45,8 +43,10 @@ pub fn collect_into<P: Port>(
     let (mut done, mut remaining): (Vec<Orientation>, Vec<Orientation>) = targets.iter().cloned().partition(captured);
     let mut moved_in_a_row = 0;
     while !remaining.is_empty() {
-        moves.present(client, hand, &remaining[0], feedback)?;
-        let index = wait_for_target(client, (&remaining, &done), options.wait_limit, feedback, moves.rested_s())?;
+        turning.moves.present(client, turning.hand, &remaining[0], feedback)?;
+        let rest =
+            Rest { limit: options.wait_limit, settle_seconds: SETTLE_SECONDS, rested_s: turning.moves.rested_s() };
+        let index = wait_for_target(client, &remaining, &done, rest, feedback)?;
         feedback.say(&format!("{} found; averaging for {} s", remaining[index].name, options.seconds));
         let length = CaptureLength::Seconds(options.seconds);
         let Some((stats, face)) = capture_at(client, &remaining[index], length, feedback)? else {
@@ -59,7 +59,7 @@ pub fn collect_into<P: Port>(
         moved_in_a_row = 0;
         let target = remaining.remove(index);
         session.captures.push(CaptureRecord::now(&target.name, Some(target.clone()), face, stats));
-        moves.captured(session);
+        turning.moves.captured(session);
         keep(session)?;
         done.push(target);
         feedback.say(&format!("captured {} of {}", done.len(), targets.len()));

@@ -25,7 +25,7 @@ pub use adaptive::{collect_adaptive, AdaptiveOptions, BoardClock, Collected};
 pub use collect::{collect, collect_into};
 pub use feedback::{Feedback, Silent};
 pub use gyro_check::check_turn;
-pub use hand::{Hand, PersonHand};
+pub use hand::{Hand, PersonHand, Turning};
 pub use moves::{Moves, RecordedMove};
 pub use simulated_hand::SimulatedHand;
 pub use simulated_session::SimulatedSession;

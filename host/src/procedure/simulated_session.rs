@@ -5,7 +5,7 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use super::stop_rule::{Noise, StopRule};
-use super::{collect_adaptive, targets, AdaptiveOptions, Moves, ProcedureError, Silent, SimulatedHand};
+use super::{collect_adaptive, targets, AdaptiveOptions, Moves, ProcedureError, Silent, SimulatedHand, Turning};
 use crate::link::Connection;
 use crate::session::{BoardRecord, Session, SessionKind};
 use crate::sim::SimBoard;
@@ -33,7 +33,7 @@ impl SimulatedSession {
         let mut session = Session { board: Some(record), kind: SessionKind::Adaptive, ..Session::default() };
         collect_adaptive(
             &mut connection.client,
-            (&mut hand, &mut Moves::at(rate_hz)),
+            Turning { hand: &mut hand, moves: &mut Moves::at(rate_hz) },
             &targets(false),
             &options,
             &mut Silent { yes: true },

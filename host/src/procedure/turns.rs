@@ -52,6 +52,6 @@ pub fn turn_summaries(
 ) -> Vec<TurnSummary> {
     let name = |i: usize| session.captures.get(i).map_or("?", |c| c.name.as_str());
     let summary =
-        |m: &RecordedMove| turn_of(m, session, calibration).map(|t| summarise_turn(&t, g, (name(m.from), name(m.to))));
+        |m: &RecordedMove| turn_of(m, session, calibration).map(|t| summarise_turn(&t, g, name(m.from), name(m.to)));
     moves.iter().filter_map(summary).collect()
 }

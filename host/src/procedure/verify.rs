@@ -9,7 +9,7 @@ use shared::Calibration;
 
 use super::collect::CAPTURE_ATTEMPTS;
 use super::stop_rule::CaptureLength;
-use super::wait::{wait_for_fresh, LIVE_WINDOW};
+use super::wait::{wait_for_fresh, Rest, LIVE_WINDOW};
 use super::{Feedback, Hand, ProcedureError};
 use crate::link::{explain, Client, LinkError, Port, StreamRequest};
 use crate::session::Check;
@@ -79,7 +79,7 @@ pub fn verify_with<P: Port>(
     let mut used = calibrated.to_vec();
     for index in 0..positions {
         let fresh = hand.fresh(index, feedback);
-        let check = fresh.and_then(|()| check_fresh(client, &calibration, &mut used, (wait_limit, length), feedback));
+        let check = fresh.and_then(|()| check_fresh(client, &calibration, &mut used, wait_limit, length, feedback));
         let check = check.map_err(|source| stopped(source, &checks, positions))?;
         feedback.say(&format!(
             "verification {}: | |a| - 1 g | {:.2} mg raw, {:.3} mg calibrated",
@@ -99,11 +99,13 @@ fn check_fresh<P: Port>(
     client: &mut Client<P>,
     calibration: &Calibration,
     used: &mut Vec<[f64; 3]>,
-    (wait_limit, length): (Option<Duration>, CaptureLength),
+    wait_limit: Option<Duration>,
+    length: CaptureLength,
     feedback: &mut dyn Feedback,
 ) -> Result<Check, ProcedureError> {
     for _ in 0..CAPTURE_ATTEMPTS {
-        let direction = wait_for_fresh(client, used, (wait_limit, length.settle_seconds()), feedback)?;
+        let rest = Rest { limit: wait_limit, settle_seconds: length.settle_seconds(), rested_s: 0.0 };
+        let direction = wait_for_fresh(client, used, rest, feedback)?;
         match check(client, calibration, length, feedback) {
             Err(ProcedureError::Link(LinkError::Device(error @ DeviceError::Moved { .. }))) => {
                 feedback.say(&format!("{}; hold it still at a fresh orientation again", explain(&error)));

@@ -20,35 +20,32 @@ struct Window {
     still: bool,
 }
 
-/// Waits until the board rests within tolerance of one of the remaining targets; says how far it
-/// is and refuses a position already captured. Returns the index in `remaining`. `rested_s`: how
-/// long the board was seen still just before (the end of a recorded move), counted towards
-/// [`SETTLE_SECONDS`] when the first window finds it where it should be.
-pub(super) fn wait_for_target<P: Port>(
-    client: &mut Client<P>,
-    (remaining, done): (&[Orientation], &[Orientation]),
-    limit: Option<Duration>,
-    feedback: &mut dyn Feedback,
-    rested_s: f64,
-) -> Result<usize, ProcedureError> {
-    wait_for_target_settled(client, (remaining, done), limit, (SETTLE_SECONDS, rested_s), feedback)
+/// How long to wait for the board, and how long it must rest where it is wanted.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Rest {
+    /// Give up after this long (`None`: wait for the person).
+    pub limit: Option<Duration>,
+    /// How long the board must be still, in seconds (rounded up to whole windows).
+    pub settle_seconds: f64,
+    /// How long it was seen still just before (the end of a recorded move), in seconds: counted
+    /// towards `settle_seconds` when the first window finds it where it should be.
+    pub rested_s: f64,
 }
 
-/// [`wait_for_target`] with the board at rest for `settle_seconds` (rounded up to whole windows),
-/// `rested_s` of it already seen.
-pub(super) fn wait_for_target_settled<P: Port>(
+/// Waits until the board rests within tolerance of one of the `remaining` targets; says how far it
+/// is and refuses a position already captured (`done`). Returns the index in `remaining`.
+pub(super) fn wait_for_target<P: Port>(
     client: &mut Client<P>,
-    (remaining, done): (&[Orientation], &[Orientation]),
-    limit: Option<Duration>,
-    (settle_seconds, rested_s): (f64, f64),
+    remaining: &[Orientation],
+    done: &[Orientation],
+    rest: Rest,
     feedback: &mut dyn Feedback,
 ) -> Result<usize, ProcedureError> {
     let gave_up = || {
         let wanted: Vec<&str> = remaining.iter().map(|t| t.name.as_str()).collect();
         ProcedureError::NeverAtTarget { wanted: wanted.join(", ") }
     };
-    let streak = Streak::over(settle_seconds).after_rest(rested_s);
-    wait_for_rest(client, limit, feedback, gave_up, streak, |window| judge_target(window, remaining, done))
+    wait_for_rest(client, rest, feedback, gave_up, |window| judge_target(window, remaining, done))
 }
 
 /// What a window says about the remaining targets: a line for the user, and the index of the
@@ -81,20 +78,19 @@ fn judge_target(window: Window, remaining: &[Orientation], done: &[Orientation])
     (line, (window.still && tilt(target) <= target.tolerance_deg).then_some(index))
 }
 
-/// Waits until the board rests for `settle_seconds` at an orientation at least [`FRESH_DEG`] from
+/// Waits until the board rests for `rest`'s settling time at an orientation at least [`FRESH_DEG`] from
 /// every one in `used`; returns it.
 pub(super) fn wait_for_fresh<P: Port>(
     client: &mut Client<P>,
     used: &[[f64; 3]],
-    (limit, settle_seconds): (Option<Duration>, f64),
+    rest: Rest,
     feedback: &mut dyn Feedback,
 ) -> Result<[f64; 3], ProcedureError> {
     wait_for_rest(
         client,
-        limit,
+        rest,
         feedback,
         || ProcedureError::NeverFresh,
-        Streak::over(settle_seconds),
         |window| {
             let fresh = used.iter().all(|u| angle_between_deg(window.mean, *u) >= FRESH_DEG);
             let line = match (window.still, fresh) {
@@ -108,19 +104,18 @@ pub(super) fn wait_for_fresh<P: Port>(
 }
 
 /// Streams live windows, showing what `judge` says of each, until two windows in a row are accepted
-/// (`judge` returns a value only for a window that is still and where it should be); gives up after
-/// `limit` with the error `gave_up` makes.
+/// (`judge` returns a value only for a window that is still and where it should be) over `rest`'s
+/// settling time; gives up after its limit with the error `gave_up` makes.
 fn wait_for_rest<P: Port, R>(
     client: &mut Client<P>,
-    limit: Option<Duration>,
+    rest: Rest,
     feedback: &mut dyn Feedback,
     gave_up: impl Fn() -> ProcedureError,
-    mut streak: Streak,
     mut judge: impl FnMut(Window) -> (String, Option<R>),
 ) -> Result<R, ProcedureError> {
-    let started = Instant::now();
+    let (started, mut streak) = (Instant::now(), Streak::over(rest.settle_seconds).after_rest(rest.rested_s));
     loop {
-        if limit.is_some_and(|l| started.elapsed() > l) {
+        if rest.limit.is_some_and(|l| started.elapsed() > l) {
             return Err(gave_up());
         }
         let window = live_window(client)?;

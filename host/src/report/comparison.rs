@@ -32,21 +32,22 @@ pub struct Comparison {
 }
 
 impl Comparison {
-    /// Fits every model but the one already fitted (`chosen`, with its evaluation) to the rows
+    /// Fits every model but the one already fitted (`chosen`, with its `evaluation`) to the rows
     /// `options` selects.
-    pub fn new(dataset: &Dataset, options: &FitOptions, chosen: (&Fit, &Evaluation)) -> Self {
+    pub fn new(dataset: &Dataset, options: &FitOptions, chosen: &Fit, evaluation: &Evaluation) -> Self {
         let fits: Vec<(Model, Result<Fit, FitError>)> = RICHEST_FIRST
             .into_iter()
             .map(|model| {
-                let result = if model == chosen.0.model {
-                    Ok(chosen.0.clone())
+                let result = if model == chosen.model {
+                    Ok(chosen.clone())
                 } else {
                     fit::fit(dataset, ModelChoice::Only(model), options)
                 };
                 (model, result)
             })
             .collect();
-        let models = fits.iter().map(|(model, result)| compare(dataset, options, chosen, *model, result)).collect();
+        let models =
+            fits.iter().map(|(model, result)| compare(dataset, options, chosen, evaluation, *model, result)).collect();
         Comparison { models, misalignment_deg: misalignment(&fits) }
     }
 }
@@ -55,7 +56,8 @@ impl Comparison {
 fn compare(
     dataset: &Dataset,
     options: &FitOptions,
-    chosen: (&Fit, &Evaluation),
+    chosen: &Fit,
+    chosen_evaluation: &Evaluation,
     model: Model,
     result: &Result<Fit, FitError>,
 ) -> ComparedModel {
@@ -67,8 +69,8 @@ fn compare(
             return ComparedModel { model, cost: None, training_rms_mg: None, test_rms_mg: None, refused };
         }
     };
-    let evaluation = if model == chosen.0.model {
-        chosen.1.clone()
+    let evaluation = if model == chosen.model {
+        chosen_evaluation.clone()
     } else {
         fit::evaluate(dataset, &fit.matrix, &fit.offset, options.g, &fit.lines_used)
     };

@@ -7,6 +7,7 @@ use shared::linalg::{self, Mat3, Vec3};
 #[cfg(test)]
 use super::session::residual_mg;
 use super::session::PositionResult;
+use crate::fit::Fit;
 use crate::session::Verification;
 
 /// Points on each sphere outline.
@@ -89,8 +90,8 @@ impl Series {
 /// The positions seen along the axis missing from `axes` (orthographic), raw and calibrated, with
 /// the unit sphere and the ellipsoid raw readings trace (its cross-section in the plane of
 /// `axes`); radial deviations from 1 g are exaggerated so millig become visible.
-pub fn sphere_view(positions: &[PositionResult], fit: (&Mat3<f64>, &Vec3<f64>), axes: [usize; 2]) -> Figure {
-    let ellipse = ellipsoid_section(fit, axes);
+pub fn sphere_view(positions: &[PositionResult], fit: &Fit, axes: [usize; 2]) -> Figure {
+    let ellipse = ellipsoid_section(&fit.matrix, &fit.offset, axes);
     let largest = positions.iter().map(|p| p.residual_before_mg.abs() / 1000.0);
     let gain = exaggeration(largest.chain(ellipse.iter().map(|r| (linalg::norm(*r) - 1.0).abs())));
     let project = |v: &Vec3<f64>| {
@@ -189,7 +190,7 @@ fn in_plane(axes: [usize; 2]) -> impl Iterator<Item = Vec3<f64>> {
 }
 
 /// Points of the raw-reading ellipsoid |M (m - o)| = 1 g along directions in the plane of `axes`.
-fn ellipsoid_section((matrix, offset): (&Mat3<f64>, &Vec3<f64>), axes: [usize; 2]) -> Vec<Vec3<f64>> {
+fn ellipsoid_section(matrix: &Mat3<f64>, offset: &Vec3<f64>, axes: [usize; 2]) -> Vec<Vec3<f64>> {
     in_plane(axes).map(|d| linalg::scale(d, ray_to_ellipsoid(matrix, offset, d))).collect()
 }
 
@@ -230,7 +231,7 @@ mod tests {
     fn the_ellipsoid_section_is_where_the_calibration_reads_1_g() {
         let matrix = [[1.02, 0.01, 0.0], [0.0, 0.97, 0.02], [0.0, 0.0, 1.01]];
         let offset = [0.03, -0.02, 0.05];
-        for point in ellipsoid_section((&matrix, &offset), [0, 2]) {
+        for point in ellipsoid_section(&matrix, &offset, [0, 2]) {
             let calibrated = linalg::mul_vec(&matrix, linalg::sub(point, offset));
             assert!(residual_mg(calibrated).abs() < 1e-9, "{point:?} reads {calibrated:?}");
             assert_eq!(point[1], 0.0);

@@ -51,7 +51,7 @@ impl FitReport {
     pub fn new(dataset: &Dataset, choice: ModelChoice, options: &FitOptions) -> Result<Self, FitError> {
         let fit = fit::fit(dataset, choice, options)?;
         let evaluation = fit::evaluate(dataset, &fit.matrix, &fit.offset, options.g, &fit.lines_used);
-        let comparison = (choice == ModelChoice::Auto).then(|| Comparison::new(dataset, options, (&fit, &evaluation)));
+        let comparison = (choice == ModelChoice::Auto).then(|| Comparison::new(dataset, options, &fit, &evaluation));
         Ok(FitReport { fit, evaluation, g: options.g, rows: dataset.rows.len(), comparison })
     }
 }

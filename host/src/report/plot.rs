@@ -125,7 +125,7 @@ fn ranges(figure: &Figure) -> (std::ops::Range<f64>, std::ops::Range<f64>) {
         let reach = [x.0, x.1, y.0, y.1].iter().fold(0.0f64, |m, v| m.max(v.abs())) * 1.15;
         return (-reach..reach, -reach..reach);
     }
-    (padded(x), padded(y))
+    (padded(x.0, x.1), padded(y.0, y.1))
 }
 
 /// The tick labels of an axis spanning `span`: on a log axis the whole decades; else [`short`],
@@ -174,7 +174,7 @@ fn in_log10(figure: &Figure) -> Figure {
 }
 
 /// A range with a tenth of its width added on each side (half a unit around a single value).
-fn padded((low, high): (f64, f64)) -> std::ops::Range<f64> {
+fn padded(low: f64, high: f64) -> std::ops::Range<f64> {
     let pad = if high > low { (high - low) * 0.1 } else { 0.5 };
     (low - pad)..(high + pad)
 }

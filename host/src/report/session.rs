@@ -130,14 +130,14 @@ impl SessionReport {
     }
 
     /// Adds the temperature section and its plot.
-    pub fn with_temperature(mut self, (section, plot): (TemperatureSection, Figure)) -> Self {
+    pub fn with_temperature(mut self, section: TemperatureSection, plot: Figure) -> Self {
         self.temperature = Some(section);
         self.figures.temperature = Some(plot);
         self
     }
 
     /// Adds the Allan deviation section and its plot.
-    pub fn with_allan_deviation(mut self, (section, plot): (AllanSection, Figure)) -> Self {
+    pub fn with_allan_deviation(mut self, section: AllanSection, plot: Figure) -> Self {
         self.allan_deviation = Some(section);
         self.figures.allan_deviation = Some(plot);
         self
@@ -209,8 +209,8 @@ impl Figures {
     fn new(positions: &[PositionResult], report: &FitReport, verification: Option<&Verification>) -> Self {
         let fit = &report.fit;
         Figures {
-            sphere_xy: figure::sphere_view(positions, (&fit.matrix, &fit.offset), [0, 1]),
-            sphere_xz: figure::sphere_view(positions, (&fit.matrix, &fit.offset), [0, 2]),
+            sphere_xy: figure::sphere_view(positions, fit, [0, 1]),
+            sphere_xz: figure::sphere_view(positions, fit, [0, 2]),
             residuals: figure::residuals(positions),
             verification: verification.and_then(figure::verification),
             temperature: None,

@@ -54,10 +54,9 @@ impl StreamReport {
         let options = FitOptions { g: 1.0, ..options.clone() };
         let fit = FitReport::new(&still.dataset, choice, &options)?;
         let verification = verify::verification(&fit.fit, &still.held_out.rows, log.accel_unit.per_g());
-        let calibration = (&fit.fit.matrix, &fit.fit.offset);
         let gyro_turns = log
             .gyro_unit
-            .map(|(unit, assumed)| turns::fit(turns::turns(log, &still.segments, calibration), unit, assumed));
+            .map(|(unit, assumed)| turns::fit(turns::turns(log, &still.segments, &fit.fit), unit, assumed));
         Ok(StreamReport {
             gyro_turns,
             verification,

@@ -80,14 +80,14 @@ pub struct ThermalFitJson {
 
 impl ThermalFitJson {
     /// The report's view of a fit to `points`, binned into `bins` bins spanning `learned_c`.
-    pub fn new(fit: &ThermalFit, points: &[ThermalPoint], bins: usize, learned_c: (f64, f64), stopped: String) -> Self {
+    pub fn new(fit: &ThermalFit, points: &[ThermalPoint], bins: usize, learned_c: [f64; 2], stopped: String) -> Self {
         ThermalFitJson {
             accel_order: fit.accel_order,
             gyro_order: fit.gyro_order,
             held_out_mg: fit.held_out_mg,
             scale_fitted: fit.scale_fitted,
             bins,
-            learned_c: [learned_c.0, learned_c.1],
+            learned_c,
             stopped,
             points: points.iter().map(ThermalBinJson::from).collect(),
             hysteresis: None,

@@ -126,7 +126,7 @@ fn measure<P: Port>(
     // NOTE: the board wrote the range; the phases add the self-test bits to what it wrote.
     let accel_config = client.read_registers(ACCEL_CONFIG, 1)?[0];
     for attempt in 1..=MAX_ATTEMPTS {
-        match attempt_once(client, (family, accel_config), attempt, watcher)? {
+        match attempt_once(client, family, accel_config, attempt, watcher)? {
             Ok(means) => return Ok((means, attempt)),
             Err(why) => watcher.moved(attempt, &why),
         }
@@ -137,7 +137,8 @@ fn measure<P: Port>(
 /// Off, on, off: the means, or why the board counts as moved.
 fn attempt_once<P: Port>(
     client: &mut Client<P>,
-    (family, accel_config): (Family, u8),
+    family: Family,
+    accel_config: u8,
     attempt: u8,
     watcher: &mut dyn Watcher,
 ) -> Result<Result<PhaseMeans, String>, SelfTestError> {

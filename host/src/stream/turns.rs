@@ -4,12 +4,13 @@
 //! which a resting gyro cannot tell, checked against the turns (G's scale is the ratio of the true
 //! counts per deg/s to the assumed ones).
 
-use shared::linalg::{mul_vec, norm, scale, sub, Mat3};
+use shared::linalg::{mul_vec, norm, scale, sub};
 
 use super::log::StreamLog;
 use super::segment::Segment;
 use super::units::GyroUnit;
 use crate::fit::gyro::{fit_gyro, GyroFit, GyroFitError, Turn};
+use crate::fit::Fit;
 
 /// Slowest stream whose turns are integrated: a hand's turn of 0.6-2 s at up to 300 deg/s is
 /// followed by 25 or more samples at 40 Hz, each turning the board by at most 8 degrees.
@@ -21,8 +22,8 @@ const COUNT_RANGES: [GyroUnit; 4] =
     [GyroUnit::Counts250, GyroUnit::Counts500, GyroUnit::Counts1000, GyroUnit::Counts2000];
 
 /// The turns between successive still periods of `log`, gravity's direction at each through the
-/// calibration `(matrix, offset)` (in the stream's unit); why there are none.
-pub fn turns(log: &StreamLog, segments: &[Segment], calibration: (&Mat3<f64>, &[f64; 3])) -> Result<Vec<Turn>, String> {
+/// accelerometer's calibration `fit` (in the stream's unit); why there are none.
+pub fn turns(log: &StreamLog, segments: &[Segment], fit: &Fit) -> Result<Vec<Turn>, String> {
     let gyro = log.gyro_dps().ok_or("the stream has no gyro")?;
     let hz = log.rate.map(|r| r.hz).ok_or("the stream's rate is unknown: the turns cannot be integrated")?;
     if hz < MIN_TURN_RATE_HZ {
@@ -32,7 +33,7 @@ pub fn turns(log: &StreamLog, segments: &[Segment], calibration: (&Mat3<f64>, &[
     }
     let per_g = log.accel_unit.per_g();
     let up = |s: &Segment| {
-        let a = mul_vec(calibration.0, sub(scale(s.mean_g, per_g), *calibration.1));
+        let a = mul_vec(&fit.matrix, sub(scale(s.mean_g, per_g), fit.offset));
         scale(a, 1.0 / norm(a))
     };
     let turn = |(a, b): (&Segment, &Segment)| Turn {

@@ -178,7 +178,7 @@ fn a_turn_s_residual_with_the_true_g_is_nil_and_without_it_shows_the_scale_error
     let truth = true_correction();
     let g = [0, 1, 2].map(|i| [0, 1, 2].map(|k| truth[(i, k)]));
     for turn in &turns {
-        let summary = summarise_turn(turn, &g, ("a", "b"));
+        let summary = summarise_turn(turn, &g, "a", "b");
         assert!(summary.residual_calibrated_deg < 1e-4, "{summary:?}");
         assert!((summary.calibrated_deg - 90.0).abs() < 1e-4, "{summary:?}");
         assert!(summary.residual_raw_deg > 0.5, "{summary:?}");
