@@ -8,7 +8,7 @@ use std::sync::mpsc::{channel, Receiver, RecvTimeoutError, Sender};
 use std::sync::Arc;
 use std::time::Duration;
 
-use serialport::{ClearBuffer, SerialPort};
+use serialport::SerialPort;
 
 /// A duplex byte stream whose reads give up after a settable time with `ErrorKind::TimedOut`.
 pub trait Port: Read + Write + Send {
@@ -52,15 +52,9 @@ pub const DEFAULT_BAUD: u32 = 115_200;
 /// the fastest USB UART bridges (CP2102 and FT232R 3 MBd, CH343 6 MBd).
 pub const BAUD_RANGE: std::ops::RangeInclusive<u32> = 300..=6_000_000;
 
-/// Opens a serial port (the board, or a pseudo-terminal of `accelcal sim --pty`) at `baud`, with
-/// nothing unread in it.
+/// Opens a serial port (the board, or a pseudo-terminal of `accelcal sim --pty`) at `baud`.
 pub fn open_serial(path: &str, baud: u32) -> Result<Box<dyn SerialPort>, serialport::Error> {
-    let port = serialport::new(path, baud).timeout(Duration::from_millis(100)).open()?;
-    // NOTE: a board's serial port starts empty (the kernel drops unread input when the last
-    // program closes it), but a pseudo-terminal keeps what the last program left unread (say the
-    // answer to its last Cancel) for the next one, who would take it for a port that talks unasked.
-    port.clear(ClearBuffer::Input)?;
-    Ok(port)
+    serialport::new(path, baud).timeout(Duration::from_millis(100)).open()
 }
 
 /// One end of an in-memory duplex pipe.
