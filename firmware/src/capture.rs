@@ -10,8 +10,14 @@ use shared::protocol::{
     MAX_STILL_GYRO_STD_DPS, MIN_CAPTURE_SECONDS, MIN_GOAL_SAMPLES,
 };
 
-use crate::sensor::registers::{temp_c, GYRO_LSB_PER_DPS};
+use crate::sensor::registers::{temp_c, GYRO_LSB_PER_DPS, GYRO_OUTPUT_RATE_HZ};
 use crate::sensor::RawSample;
+
+/// The most samples a capture can sum: its longest at the sensor's fastest rate.
+const MOST_CAPTURE_SAMPLES: i64 = MAX_CAPTURE_SECONDS as i64 * GYRO_OUTPUT_RATE_HZ as i64;
+
+// NOTE: n * sum(x^2) <= n^2 * 2^30 for 16-bit samples; it must stay below i64::MAX for `Sums::std`.
+const _: () = assert!(MOST_CAPTURE_SAMPLES * MOST_CAPTURE_SAMPLES < i64::MAX >> 30);
 
 /// Integer sums over the samples of a capture.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -48,12 +54,14 @@ impl Sums {
     }
 
     /// Sample standard deviation in LSB, from an exact integer numerator n*sum(x^2) - sum(x)^2.
+    ///
+    /// NOTE: exact in 64 bits: see [`MOST_CAPTURE_SAMPLES`] (128-bit arithmetic cost the Pico 500 B).
     fn std(&self, sum: i64, squares: i64) -> f32 {
-        let n = i128::from(self.count);
+        let n = i64::from(self.count);
         if n < 2 {
             return 0.0;
         }
-        let numerator = n * i128::from(squares) - i128::from(sum) * i128::from(sum);
+        let numerator = n * squares - sum * sum;
         libm::sqrtf(numerator as f32 / (n * (n - 1)) as f32)
     }
 
@@ -207,6 +215,19 @@ mod tests {
         // 32.8 LSB per deg/s at +-1000 deg/s (Product Specification 6.1).
         assert_eq!(stats.gyro_mean_dps, [5.0, 0.0, -10.0]);
         assert!((stats.temp_c - 26.13).abs() < 0.01);
+    }
+
+    #[test]
+    fn the_longest_capture_at_the_fastest_rate_of_full_scale_samples_has_its_exact_scatter() {
+        let mut sums = Sums::default();
+        for i in 0..MOST_CAPTURE_SAMPLES {
+            sums.add(&sample([0, 0, 16384], [if i % 2 == 0 { i16::MIN } else { i16::MAX }; 3]));
+        }
+        // Alternating -32768 and 32767: 32767.5 LSB about -0.5, times sqrt(n / (n - 1)).
+        let n = MOST_CAPTURE_SAMPLES as f64;
+        let expected_lsb = 32767.5 * (n / (n - 1.0)).sqrt();
+        let scatter_lsb = f64::from(sums.std(sums.gyro[0], sums.gyro_squares[0]));
+        assert!((scatter_lsb - expected_lsb).abs() < 1e-6 * expected_lsb, "{scatter_lsb} LSB, want {expected_lsb}");
     }
 
     #[test]

@@ -107,6 +107,11 @@ pub struct Session {
     /// once `calibrate` uploaded it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub uploaded: Option<Calibration>,
+    /// The board's calibration when the session began, kept for its learned temperature model
+    /// (`accelcal thermal`): an adaptive session's captures are corrected by it and the model goes
+    /// on with the new calibration (absent when the board had none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub learned: Option<Calibration>,
     /// The gyro's turns between the positions, when `calibrate` recorded them.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub gyro_turns: Option<Vec<TurnSummary>>,

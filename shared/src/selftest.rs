@@ -37,6 +37,40 @@ pub struct SelfTestRaw {
     pub attempts: u8,
 }
 
+/// A self-test as the board keeps it in flash beside its calibration (one, the latest): what a
+/// later run, on any host, compares with, and what a certificate quotes.
+#[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq)]
+pub struct StoredSelfTest {
+    /// When it ran, in seconds since 1970 UTC (the host's clock: the board has none).
+    pub unix_time_s: u32,
+    /// What was measured; the verdicts follow from it ([`evaluate`]).
+    pub raw: SelfTestRaw,
+}
+
+/// Largest [`SelfTestRecord`], in bytes (a [`StoredSelfTest`] takes at most 61).
+pub const SELF_TEST_RECORD_LEN: usize = 64;
+
+/// A [`StoredSelfTest`] as the host encodes it (postcard) and the board keeps it, unread.
+///
+/// NOTE: the board never decodes it: reading the record's fields on the chip cost the Pico's image
+/// about 900 bytes of serde code, which it does not have; bytes cost a loop.
+pub type SelfTestRecord = heapless::Vec<u8, SELF_TEST_RECORD_LEN>;
+
+impl StoredSelfTest {
+    /// The record the board keeps.
+    pub fn record(&self) -> SelfTestRecord {
+        let mut bytes = [0u8; SELF_TEST_RECORD_LEN];
+        // NOTE: cannot fail: the largest encoding (a 5-byte time, 56 bytes of raw) fits.
+        let used = postcard::to_slice(self, &mut bytes).map_or(0, |used| used.len());
+        SelfTestRecord::from_slice(&bytes[..used]).unwrap_or_default()
+    }
+
+    /// The self-test a record holds; `None` when it is not one.
+    pub fn from_record(record: &[u8]) -> Option<Self> {
+        postcard::from_bytes(record).ok()
+    }
+}
+
 /// One axis's verdict. Accelerometer values in g, gyro values in deg/s.
 #[derive(Serialize, Debug, Clone, Copy, PartialEq)]
 pub struct AxisVerdict {

@@ -23,6 +23,7 @@ pub fn device_info() -> DeviceInfo {
         active: ActiveCalibration::None,
         stored: false,
         positions: shared::PositionMap::new(),
+        self_test: None,
     }
 }
 

@@ -51,8 +51,9 @@ where
             }
             Request::FitSixPosition => self.fit_six_position(),
             Request::SetCalibration(calibration) => self.set_calibration(calibration),
-            Request::SaveCalibration => self.save().await,
-            Request::EraseCalibration => self.erase().await,
+            request @ (Request::SaveCalibration | Request::EraseCalibration | Request::StoreSelfTest(_)) => {
+                self.storage_request(request).await
+            }
             Request::FitOrtho9 => self.fit_ortho9(),
             // NOTE: `handle` starts these itself; listed so that a new request cannot be forgotten.
             Request::Capture { .. } | Request::Stream { .. } | Request::CaptureUntil(_) => Err(DeviceError::Busy),
@@ -78,6 +79,7 @@ where
             active: self.source,
             stored: self.stored,
             positions: self.positions.marks(),
+            self_test: self.self_test.clone(),
         })
     }
 

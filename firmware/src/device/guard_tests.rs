@@ -1,7 +1,9 @@
 //! The guards of the device, each against the case it exists for: a calibrated stream at another
-//! range, stream decimation, an implausible on-chip fit, and register access during a stream.
+//! range, stream decimation, an implausible on-chip fit, register access during a stream, and the
+//! stored self-test.
 
-use shared::protocol::{DeviceError, Request, Response, SensorConfig, StreamKind};
+use shared::protocol::{DeviceError, Request, Response, SensorConfig, StreamKind, PROTOCOL_VERSION};
+use shared::selftest::SelfTestRecord;
 use shared::{AccelRange, Calibration, CalibrationError, Position};
 
 use embassy_futures::block_on;
@@ -113,4 +115,26 @@ fn register_access_is_refused_while_a_stream_runs_and_every_hello_writes_the_con
     assert!(matches!(hello, Response::Hello(_)), "{hello:?}");
     assert_eq!(ask(&mut device, 9, read(0x1B)), Response::Register(0x10));
     assert_eq!(ask(&mut device, 9, read(0x1C)), Response::Register(0x00));
+}
+
+#[test]
+fn a_stored_self_test_is_in_every_hello_after_a_reboot_and_a_calibration_erase_leaves_it() {
+    let hello = |device: &mut SimDevice| match ask(device, 1, Request::Hello { protocol_version: PROTOCOL_VERSION }) {
+        Response::Hello(info) => info.self_test,
+        other => panic!("{other:?}"),
+    };
+    let mut device = boot(SimMpu6050::new(25), Flash::new());
+    assert_eq!(hello(&mut device), None, "a fresh board has none");
+    let record = SelfTestRecord::from_slice(&[0x9A, 0x01, 0x02, 0x03]).unwrap();
+    block_on(device.handle(2, Request::Stream { kind: StreamKind::Raw, rate_hz: 100, count: 0 }));
+    assert_eq!(ask(&mut device, 3, Request::StoreSelfTest(record.clone())), Response::Error(DeviceError::Busy));
+    block_on(device.handle(4, Request::Cancel));
+    drain(&mut device);
+    assert_eq!(hello(&mut device), None, "nothing was stored while busy");
+    assert_eq!(ask(&mut device, 5, Request::StoreSelfTest(record.clone())), Response::Done);
+    assert_eq!(hello(&mut device), Some(record.clone()));
+    assert_eq!(ask(&mut device, 6, Request::EraseCalibration), Response::Done);
+    let (sim, flash) = device.into_parts();
+    let mut device = boot(sim, flash);
+    assert_eq!(hello(&mut device), Some(record), "kept across the erase and the reboot, byte for byte");
 }

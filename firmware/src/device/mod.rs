@@ -22,6 +22,7 @@ use heapless::Deque;
 use shared::protocol::{
     ActiveCalibration, CaptureStats, DeviceError, FirmwareVersion, FrameError, Response, SensorConfig, SerialNumber,
 };
+use shared::selftest::SelfTestRecord;
 use shared::{Calibration, PositionMap};
 
 use crate::sensor::{self, Sensor};
@@ -48,6 +49,8 @@ pub struct Device<I, F: NorFlash> {
     config: SensorConfig,
     storage: Storage<F>,
     stored: bool,
+    /// The latest self-test in flash, as every hello reports it.
+    self_test: Option<SelfTestRecord>,
     active: Calibration,
     source: ActiveCalibration,
     /// The latest capture at each face, kept for the six-position fit.
@@ -70,6 +73,8 @@ where
     pub async fn boot(bus: I, flash: F, range: Range<u32>, serial: SerialNumber) -> Result<Self, StorageError> {
         let mut storage = Storage::new(flash, range)?;
         let loaded = storage.load().await;
+        // NOTE: a damaged self-test record costs only the trend; the next self-test writes a new one.
+        let self_test = storage.load_self_test().await.ok().flatten();
         let config = SensorConfig::default();
         let mut device = Device {
             bus,
@@ -78,6 +83,7 @@ where
             config,
             storage,
             stored: matches!(loaded, Ok(Some(_))),
+            self_test,
             active: Calibration::identity(config.range),
             source: ActiveCalibration::None,
             positions: PositionMap::new(),

@@ -1,14 +1,17 @@
 //! The calibration slots: the active one in RAM (fitted on the chip or uploaded) and the stored one in
-//! flash, each change validated first.
+//! flash, each change validated first; and the latest self-test beside it in flash.
 
 use embedded_hal_async::i2c::I2c;
 use embedded_storage_async::nor_flash::NorFlash;
 use shared::calibration::{GyroCalibration, Origin};
 use shared::linalg::{self, Vec3};
-use shared::protocol::{ActiveCalibration, CalibrationSlot, CaptureStats, DeviceError, Response, SensorConfig};
+use shared::protocol::{
+    ActiveCalibration, CalibrationSlot, CaptureStats, DeviceError, Request, Response, SensorConfig,
+};
 use shared::{Calibration, Position, PositionMap, SixPositionError};
 
 use super::Device;
+use crate::storage::Record;
 
 impl<I, F> Device<I, F>
 where
@@ -45,19 +48,30 @@ where
         }
     }
 
-    pub(super) async fn save(&mut self) -> Result<Response, DeviceError> {
-        let calibration = self.active_calibration().ok_or(DeviceError::NoCalibration)?;
-        self.storage.save(&calibration).await.map_err(|_| DeviceError::Storage)?;
-        self.stored = true;
-        self.source = ActiveCalibration::Stored;
-        Ok(Response::Done)
-    }
-
-    pub(super) async fn erase(&mut self) -> Result<Response, DeviceError> {
-        self.storage.erase().await.map_err(|_| DeviceError::Storage)?;
-        self.stored = false;
-        self.active = Calibration::identity(self.config.range);
-        self.source = ActiveCalibration::None;
+    /// The requests that write flash: a calibration's save or erase, and a self-test's.
+    ///
+    /// NOTE: one await for the three: every await in the request path costs flash.
+    pub(super) async fn storage_request(&mut self, request: Request) -> Result<Response, DeviceError> {
+        let active = self.active_calibration();
+        let record = match &request {
+            Request::SaveCalibration => Record::Calibration(Some(active.as_ref().ok_or(DeviceError::NoCalibration)?)),
+            Request::StoreSelfTest(self_test) => Record::SelfTest(self_test),
+            // NOTE: `answer` routes only the three here: the last is the erase.
+            _ => Record::Calibration(None),
+        };
+        self.storage.write(record).await.map_err(|_| DeviceError::Storage)?;
+        match request {
+            Request::SaveCalibration => {
+                self.stored = true;
+                self.source = ActiveCalibration::Stored;
+            }
+            Request::StoreSelfTest(self_test) => self.self_test = Some(self_test),
+            _ => {
+                self.stored = false;
+                self.active = Calibration::identity(self.config.range);
+                self.source = ActiveCalibration::None;
+            }
+        }
         Ok(Response::Done)
     }
 }

@@ -7,6 +7,9 @@
 //! reason. On top of the item CRC, each record carries a format version and is validated before use;
 //! a record of an older format is read by its frozen layout ([`v1`]) and migrated, one of an unknown
 //! format is refused.
+//!
+//! The latest self-test is a second item of the same map ([`SELF_TEST_KEY`]), so a calibration's save
+//! or erase leaves it as it was and the other way round.
 
 mod v1;
 
@@ -15,10 +18,13 @@ use core::ops::Range;
 use embedded_storage_async::nor_flash::NorFlash;
 use sequential_storage::cache::{Cache, Uncached};
 use sequential_storage::map::{MapConfig, MapStorage};
+use shared::selftest::SelfTestRecord;
 use shared::Calibration;
 
 /// The map key of the calibration record.
 const CALIBRATION_KEY: u8 = 1;
+/// The map key of the latest self-test: its format version and its postcard body.
+const SELF_TEST_KEY: u8 = 2;
 /// Version of the record layout: bump it when `Calibration` changes shape, and keep the old layout
 /// readable (as [`v1`] is) so that stored calibrations survive the update.
 pub const RECORD_FORMAT_VERSION: u8 = 2;
@@ -28,6 +34,15 @@ const V1_FORMAT_VERSION: u8 = 1;
 const RECORD_LEN: usize = 256;
 /// sequential-storage's scratch buffer: key plus record, rounded up to the flash word.
 const RECORD_BUFFER_LEN: usize = 288;
+
+/// One of the records the storage keeps.
+#[derive(Debug, Clone, Copy)]
+pub enum Record<'a> {
+    /// The calibration, or "none" (an erase).
+    Calibration(Option<&'a Calibration>),
+    /// The latest self-test, as the host encoded it (the board keeps it unread).
+    SelfTest(&'a SelfTestRecord),
+}
 
 /// Why the stored calibration could not be read or written.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -67,8 +82,7 @@ impl<F: NorFlash> Storage<F> {
 
     /// The stored calibration, `None` when there is none; a damaged or invalid record is refused.
     pub async fn load(&mut self) -> Result<Option<Calibration>, StorageError> {
-        let record: Option<&[u8]> = self.map.fetch_item(&mut self.buffer, &CALIBRATION_KEY).await?;
-        let Some(record) = record else {
+        let Some(record) = self.fetch(CALIBRATION_KEY).await? else {
             return Ok(None);
         };
         match decode(record)? {
@@ -79,25 +93,51 @@ impl<F: NorFlash> Storage<F> {
 
     /// Stores a calibration; the previous one stays readable until this one is complete.
     pub async fn save(&mut self, calibration: &Calibration) -> Result<(), StorageError> {
-        self.write(Some(calibration)).await
+        self.write(Record::Calibration(Some(calibration))).await
     }
 
     /// Stores "no calibration".
     pub async fn erase(&mut self) -> Result<(), StorageError> {
-        self.write(None).await
+        self.write(Record::Calibration(None)).await
     }
 
-    async fn write(&mut self, calibration: Option<&Calibration>) -> Result<(), StorageError> {
-        let mut record = [0u8; RECORD_LEN];
-        record[0] = RECORD_FORMAT_VERSION;
-        let body_len = postcard::to_slice(&calibration, &mut record[1..]).map_err(|_| StorageError::Corrupt)?.len();
-        self.store(&record[..1 + body_len]).await
+    /// The latest self-test stored, `None` when there is none; a record of another format is refused.
+    pub async fn load_self_test(&mut self) -> Result<Option<SelfTestRecord>, StorageError> {
+        match self.fetch(SELF_TEST_KEY).await? {
+            Some([RECORD_FORMAT_VERSION, body @ ..]) => {
+                SelfTestRecord::from_slice(body).map(Some).map_err(|_| StorageError::Corrupt)
+            }
+            Some(_) => Err(StorageError::Corrupt),
+            None => Ok(None),
+        }
+    }
+
+    /// Writes one record in place of the one before under its key; the other key's stays as it is.
+    pub async fn write(&mut self, record: Record<'_>) -> Result<(), StorageError> {
+        let mut bytes = [0u8; RECORD_LEN];
+        bytes[0] = RECORD_FORMAT_VERSION;
+        let body = &mut bytes[1..];
+        let (key, body_len) = match record {
+            Record::Calibration(calibration) => {
+                (CALIBRATION_KEY, postcard::to_slice(&calibration, body).map_err(|_| StorageError::Corrupt)?.len())
+            }
+            Record::SelfTest(self_test) => {
+                body[..self_test.len()].copy_from_slice(self_test);
+                (SELF_TEST_KEY, self_test.len())
+            }
+        };
+        self.store(key, &bytes[..1 + body_len]).await
     }
 
     /// Stores one record as it is.
-    async fn store(&mut self, record: &[u8]) -> Result<(), StorageError> {
-        self.map.store_item(&mut self.buffer, &CALIBRATION_KEY, &record).await?;
+    async fn store(&mut self, key: u8, record: &[u8]) -> Result<(), StorageError> {
+        self.map.store_item(&mut self.buffer, &key, &record).await?;
         Ok(())
+    }
+
+    /// The record under `key`, as stored.
+    async fn fetch(&mut self, key: u8) -> Result<Option<&[u8]>, StorageError> {
+        Ok(self.map.fetch_item(&mut self.buffer, &key).await?)
     }
 
     /// Gives the flash back (to simulate a reboot on the same flash in tests).

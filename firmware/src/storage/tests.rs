@@ -165,7 +165,7 @@ fn a_record_of_an_unknown_format_version_is_refused_as_corrupt_not_misread() {
     ] {
         let (mut storage, _) = boot(Flash::new());
         record[0] = version;
-        block_on(storage.store(&record[..1 + body_len])).unwrap();
+        block_on(storage.store(1, &record[..1 + body_len])).unwrap();
         assert_eq!(boot(storage.into_flash()).1, expected, "format version {version}");
     }
 }
@@ -173,9 +173,28 @@ fn a_record_of_an_unknown_format_version_is_refused_as_corrupt_not_misread() {
 #[test]
 fn an_erase_written_by_record_format_1_reads_as_no_calibration_and_a_cut_one_as_corrupt() {
     let (mut storage, _) = boot(Flash::new());
-    block_on(storage.store(&[1, 0])).unwrap(); // format 1, postcard `None`
+    block_on(storage.store(1, &[1, 0])).unwrap(); // format 1, postcard `None`
     let (mut storage, loaded) = boot(storage.into_flash());
     assert_eq!(loaded, Ok(None));
-    block_on(storage.store(&[1, 1, 0x0c, 0x93])).unwrap(); // format 1, `Some`, cut after two bytes
+    block_on(storage.store(1, &[1, 1, 0x0c, 0x93])).unwrap(); // format 1, `Some`, cut after two bytes
     assert_eq!(boot(storage.into_flash()).1, Err(StorageError::Corrupt));
+}
+
+#[test]
+fn the_self_test_and_the_calibration_are_kept_apart_through_saves_erases_and_compactions() {
+    let (mut storage, _) = boot(Flash::new());
+    assert_eq!(block_on(storage.load_self_test()), Ok(None));
+    let record = |n: u8| shared::selftest::SelfTestRecord::from_slice(&[n; 60]).unwrap();
+    block_on(storage.write(super::Record::SelfTest(&record(1)))).unwrap();
+    // NOTE: 40 saves of 240-byte records fill the four 2 KiB pages several times over.
+    for n in 0..40 {
+        block_on(storage.save(&calibration(n))).unwrap();
+    }
+    block_on(storage.erase()).unwrap();
+    let (mut storage, loaded) = boot(storage.into_flash());
+    assert_eq!((loaded, block_on(storage.load_self_test())), (Ok(None), Ok(Some(record(1)))));
+    block_on(storage.save(&calibration(3))).unwrap();
+    block_on(storage.write(super::Record::SelfTest(&record(2)))).unwrap();
+    let (mut storage, loaded) = boot(storage.into_flash());
+    assert_eq!((loaded, block_on(storage.load_self_test())), (Ok(Some(calibration(3))), Ok(Some(record(2)))));
 }

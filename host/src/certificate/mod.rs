@@ -137,7 +137,7 @@ impl Certificate {
                 tilt_error_deg: Interval::of(budget.prediction.tilt_error_deg),
             },
             verification: session.verification.clone(),
-            self_test: None,
+            self_test: board_self_test(session),
             sha256: String::new(),
         };
         certificate.sha256 = seal::digest(&certificate);
@@ -156,6 +156,13 @@ impl Certificate {
         // NOTE: serialising numbers, strings, maps and options cannot fail.
         serde_json::to_string_pretty(self).unwrap_or_default()
     }
+}
+
+/// The self-test the board kept in flash when the session began (`date_utc` and `selftest --json`'s
+/// `result`), where it had one.
+fn board_self_test(session: &Session) -> Option<serde_json::Value> {
+    let entry = session.board.as_ref()?.self_test.as_ref()?;
+    serde_json::to_value(entry).ok()
 }
 
 /// Every parameter with its budget.

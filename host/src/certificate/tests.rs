@@ -76,3 +76,29 @@ fn a_drift_the_session_fits_leaves_its_slope_no_temperature_uncertainty_when_the
         assert!(temperature < 3e-4, "{name}: {temperature:e} g/degC");
     }
 }
+
+#[test]
+fn the_certificate_quotes_the_self_test_the_board_kept_and_has_none_without_one() {
+    use crate::selftest::history::HistoryEntry;
+    use crate::session::BoardRecord;
+    use shared::protocol::{FirmwareVersion, SensorConfig};
+    let mut session = session(3, 0.0, 2.8e-3);
+    assert_eq!(Certificate::issue(&session).unwrap().self_test, None, "a session without a board record");
+    let result = serde_json::json!({ "part": "MPU-6050", "passed": true, "axes": [{ "deviation_percent": 2.5 }] });
+    let entry = HistoryEntry { date_utc: "2026-11-24 18:00".into(), result };
+    session.board = Some(BoardRecord {
+        serial: "0123456789ABCDEF01234567".into(),
+        firmware: FirmwareVersion { major: 0, minor: 1, patch: 0 },
+        config: SensorConfig::default(),
+        sensor: Some("MPU-6050 at 0x68".into()),
+        self_test: Some(entry),
+    });
+    let certificate = Certificate::issue(&session).unwrap();
+    let quoted = certificate.self_test.as_ref().expect("quoted");
+    assert_eq!(quoted["date_utc"], "2026-11-24 18:00");
+    assert_eq!(quoted["result"]["axes"][0]["deviation_percent"], 2.5);
+    let path = std::env::temp_dir().join(format!("accelcal-certificate-self-test-{}.json", std::process::id()));
+    std::fs::write(&path, certificate.to_json()).unwrap();
+    assert_eq!(check(&path).unwrap(), certificate, "sealed with it");
+    std::fs::remove_file(&path).unwrap();
+}

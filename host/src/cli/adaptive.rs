@@ -3,13 +3,15 @@
 //! the fit predicts the target, the drift the temperature caused fitted and said, verification as
 //! long as the target needs.
 
-use shared::protocol::SensorConfig;
+use shared::protocol::{CalibrationSlot, SensorConfig};
+use shared::Calibration;
 
 use super::args::CalibrateArgs;
 use super::device::Opened;
 use super::length::{ADAPTIVE_VERIFY_POSITIONS, FIXED_VERIFY_POSITIONS};
 use crate::error::Error;
 use crate::fit::drift;
+use crate::link::{Client, Port};
 use crate::procedure::stop_rule::CaptureLength;
 use crate::procedure::{self, AdaptiveOptions, Feedback, Turning, VERIFY_SECONDS};
 use crate::session::{Outcome, Session, SessionError, SessionKind};
@@ -71,6 +73,15 @@ pub(super) fn outcome(session: &Session, config: SensorConfig, feedback: &mut dy
         return Ok(outcome);
     }
     let (low, high) = drift::span_c(&outcome.fitted.captures);
+    if let Some(model) = outcome.fitted.learned {
+        feedback.say(&format!(
+            "the temperature moved {:.2} degC during the session ({low:.2} to {high:.2} degC); the captures were \
+             corrected by the board's learned temperature model (around {:.1} degC), which stays with the calibration",
+            high - low,
+            model.ref_temp_c
+        ));
+        return Ok(outcome);
+    }
     match outcome.fitted.drift {
         Some(d) => feedback.say(&format!(
             "the temperature moved {:.2} degC during the session ({low:.2} to {high:.2} degC); the offset drift it \
@@ -103,4 +114,25 @@ pub(super) fn verification(
     }
     let goal = args.length.rule(rate_hz)?.verification_goal();
     Ok((usize::from(args.verify.unwrap_or(ADAPTIVE_VERIFY_POSITIONS)), CaptureLength::Goal(goal)))
+}
+
+/// The board's active calibration when a new adaptive session keeps its learned temperature model
+/// (said), else none.
+pub(super) fn learned_model<P: Port>(
+    args: &CalibrateArgs,
+    client: &mut Client<P>,
+    feedback: &mut dyn Feedback,
+) -> Result<Option<Calibration>, Error> {
+    if args.resume.is_some() || begun_as(args) != SessionKind::Adaptive {
+        return Ok(None);
+    }
+    let learned = drift::learned::kept(client.calibration(CalibrationSlot::Active)?);
+    if let Some(model) = learned.and_then(|c| c.temperature) {
+        feedback.say(&format!(
+            "the board has a learned temperature model (around {:.1} degC): the captures are corrected by it and it \
+             stays with the new calibration",
+            model.ref_temp_c
+        ));
+    }
+    Ok(learned)
 }

@@ -37,7 +37,8 @@ pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
     // board still needs the instructions, which go to stderr, leaving stdout to the JSON.
     let simulated = opened.sim.is_some();
     let mut feedback = feedback(args.json && simulated, args.yes || (args.json && simulated));
-    let mut kept = kept::start(args, &opened.connection.info, feedback.as_mut())?;
+    let learned = adaptive::learned_model(args, &mut opened.connection.client, feedback.as_mut())?;
+    let mut kept = kept::start(args, &opened.connection.info, learned, feedback.as_mut())?;
     let interrupt = interrupt_on_ctrl_c();
     opened.connection.client.interrupt_on(interrupt.clone());
     let (moves, first_capture_s) = collect(args, &mut opened, &mut kept, feedback.as_mut())?;

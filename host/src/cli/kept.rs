@@ -4,6 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use shared::protocol::DeviceInfo;
+use shared::Calibration;
 
 use super::adaptive;
 use super::args::CalibrateArgs;
@@ -21,7 +22,12 @@ pub(super) struct Kept {
 
 /// The session to continue (`--resume`, checked against the board) or a new one, written at once
 /// so that an unwritable path fails before the first capture.
-pub(super) fn start(args: &CalibrateArgs, info: &DeviceInfo, feedback: &mut dyn Feedback) -> Result<Kept, Error> {
+pub(super) fn start(
+    args: &CalibrateArgs,
+    info: &DeviceInfo,
+    learned: Option<Calibration>,
+    feedback: &mut dyn Feedback,
+) -> Result<Kept, Error> {
     let board = BoardRecord::of(info);
     let kept = match &args.resume {
         Some(path) => {
@@ -30,7 +36,7 @@ pub(super) fn start(args: &CalibrateArgs, info: &DeviceInfo, feedback: &mut dyn 
             kept
         }
         None => Kept {
-            session: Session { board: Some(board), kind: adaptive::begun_as(args), ..Session::default() },
+            session: Session { board: Some(board), kind: adaptive::begun_as(args), learned, ..Session::default() },
             path: new_session_path(args)?,
             resumed: false,
         },

@@ -4,7 +4,7 @@
 use super::args::NoiseArgs;
 use crate::error::Error;
 use crate::noise::input::NoiseInputError;
-use crate::noise::{self, input, json, plot, text, RateSeries};
+use crate::noise::{self, input, json, text, RateSeries};
 use crate::stream::{cost, StillPeriods, StreamLog, StreamOptions};
 
 /// `accelcal noise FILE [--json] [--plot FILE.svg]`.
@@ -15,8 +15,8 @@ pub(super) fn noise(args: &NoiseArgs) -> Result<(), Error> {
     };
     let report = noise::analyse(&series);
     if let Some(path) = &args.plot {
-        std::fs::write(path, plot::render(&report))
-            .map_err(|source| Error::WriteFile { path: path.clone(), source })?;
+        let document = crate::report::allan::svg_document(&json::NoiseJson::of(&report))?;
+        std::fs::write(path, document).map_err(|source| Error::WriteFile { path: path.clone(), source })?;
     }
     if args.json {
         println!("{}", json::render(&report));

@@ -5,8 +5,10 @@ use std::path::PathBuf;
 
 use clap::Args;
 use serde::Serialize;
+use shared::selftest::StoredSelfTest;
 
 use super::args::Device;
+
 use crate::error::Error;
 use crate::selftest::history::{self, History, HistoryEntry};
 use crate::selftest::report::{text, SelfTestJson};
@@ -34,7 +36,8 @@ pub struct SelftestArgs {
 struct SelftestOutput<'a> {
     #[serde(flatten)]
     result: &'a SelfTestJson,
-    /// The board's previous self-test (`date_utc`, `result`); null for the first.
+    /// The board's previous self-test (`date_utc`, `result`): the newer of the one in its flash and the
+    /// history file's last; null for the first.
     previous: Option<&'a HistoryEntry>,
     /// The history file; null when none is kept.
     history: Option<PathBuf>,
@@ -62,11 +65,14 @@ impl Watcher for Lines {
 /// `accelcal selftest (--port P | --sim) [--json] [--history DIR]`: exits 2 when an axis failed.
 pub(super) fn selftest(args: &SelftestArgs) -> Result<(), Error> {
     let mut opened = args.device.open()?;
-    let history = history_of(args, &BoardRecord::of(&opened.connection.info).serial);
-    let previous = match &history {
+    let board = BoardRecord::of(&opened.connection.info);
+    let history = history_of(args, &board.serial);
+    let kept = match &history {
         Some(history) => history.entries()?.pop(),
         None => None,
     };
+    // NOTE: the board's own is the latest wherever it ran; the file's is newer after a reflash.
+    let previous = [board.self_test, kept].into_iter().flatten().max_by(|a, b| a.date_utc.cmp(&b.date_utc));
     if !args.json {
         eprintln!("rest the board on a table and keep your hands off it (about 3 s)");
     }
@@ -85,6 +91,8 @@ pub(super) fn selftest(args: &SelftestArgs) -> Result<(), Error> {
     if let Some(history) = &history {
         history.append(HistoryEntry::now(&result))?;
     }
+    let stored = StoredSelfTest { unix_time_s: crate::session::unix_time_s() as u32, raw: test.raw };
+    connection.client.store_self_test(&stored)?;
     if test.passed() {
         Ok(())
     } else {

@@ -8,6 +8,8 @@ use shared::linalg::Vec3;
 use super::{fit, Fit, FitError, FitOptions, Model, ModelChoice};
 use crate::data::{Dataset, Row};
 
+pub mod learned;
+
 /// Smallest temperature span of the captures, in degC, that a drift per degree is fitted over;
 /// below it the sensor did not warm and no correction is made.
 // NOTE: the reading's resolution is 1/340 degC (register map 4.18); over a tenth of a degree a

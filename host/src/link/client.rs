@@ -192,6 +192,7 @@ pub(super) fn request_name(request: &Request) -> &'static str {
         Request::FitOrtho9 => "FitOrtho9",
         Request::CaptureUntil(_) => "CaptureUntil",
         Request::Register { .. } => "Register",
+        Request::StoreSelfTest(_) => "StoreSelfTest",
     }
 }
 

@@ -4,6 +4,7 @@ use shared::protocol::{
     CalibrationSlot, CaptureGoal, CaptureProgress, CaptureStats, DeviceInfo, Request, Response, Sample, SensorConfig,
     StreamKind, TempBin, PROTOCOL_VERSION, TEMP_BINS_PER_MESSAGE,
 };
+use shared::selftest::StoredSelfTest;
 use shared::{Calibration, Position};
 
 use super::client::{request_name, Client};
@@ -34,8 +35,8 @@ pub struct ChipOrtho9 {
 }
 
 impl<P: Port> Client<P> {
-    /// Says hello; refuses a device of another protocol version.
-    pub(super) fn hello(&mut self) -> Result<DeviceInfo, LinkError> {
+    /// Says hello (again: the device's state now); refuses a device of another protocol version.
+    pub fn hello(&mut self) -> Result<DeviceInfo, LinkError> {
         let request = Request::Hello { protocol_version: PROTOCOL_VERSION };
         match self.call(request.clone())? {
             Response::Hello(info) if info.protocol_version == PROTOCOL_VERSION => Ok(info),
@@ -203,6 +204,11 @@ impl<P: Port> Client<P> {
     /// Writes one sensor register; the value it holds afterwards.
     pub fn write_register(&mut self, register: u8, value: u8) -> Result<u8, LinkError> {
         self.register(register, Some(value))
+    }
+
+    /// Keeps a self-test in the board's flash in place of the one before (every hello carries it).
+    pub fn store_self_test(&mut self, self_test: &StoredSelfTest) -> Result<(), LinkError> {
+        self.expect_done(Request::StoreSelfTest(self_test.record()))
     }
 
     fn expect_done(&mut self, request: Request) -> Result<(), LinkError> {

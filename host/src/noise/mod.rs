@@ -7,7 +7,6 @@ pub mod allan;
 pub mod fit;
 pub mod input;
 pub mod json;
-pub mod plot;
 pub mod stream;
 pub mod text;
 

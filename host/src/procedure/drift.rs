@@ -37,10 +37,10 @@ pub fn closing(first: &Orientation) -> Orientation {
 }
 
 /// Whether the temperature moved enough for a drift, yet the captures would still be too few to fit
-/// it after `more` further captures.
+/// it after `more` further captures (never with a learned temperature model, which is kept).
 pub fn unfitted_after(session: &Session, more: usize) -> bool {
     let span_c = span_c(&session.dataset());
-    span_c.1 - span_c.0 >= MIN_CHANGE_C && session.captures.len() + more < MIN_CAPTURES
+    session.learned.is_none() && span_c.1 - span_c.0 >= MIN_CHANGE_C && session.captures.len() + more < MIN_CAPTURES
 }
 
 #[cfg(test)]

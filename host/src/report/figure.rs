@@ -55,6 +55,9 @@ pub enum SeriesStyle {
     Points,
     /// A line through the points.
     Line,
+    /// A filled area (an interval): the points trace its outline, the upper edge forward and the
+    /// lower edge back.
+    Band,
 }
 
 /// What a series shows: every plot draws raw data in one colour, calibrated in another.

@@ -235,11 +235,12 @@ pub(super) fn figure(out: &mut String, figure: &Figure) -> Result<(), PlotError>
     Ok(())
 }
 
-/// The legend swatch's shape: a dot for markers, a bar for a line.
+/// The legend swatch's shape: a dot for markers, a bar for a line, a pale square for a band.
 fn style_class(style: SeriesStyle) -> &'static str {
     match style {
         SeriesStyle::Points => "dot",
         SeriesStyle::Line => "bar",
+        SeriesStyle::Band => "band",
     }
 }
 

@@ -39,7 +39,7 @@ pub fn colour(role: Role) -> String {
 }
 
 /// Drawing size in SVG user units; the page scales it to the column width.
-const SIZE: (u32, u32) = (480, 340);
+pub(super) const SIZE: (u32, u32) = (480, 340);
 /// Square drawing for figures with equal axes.
 const SQUARE: (u32, u32) = (400, 400);
 
@@ -49,6 +49,13 @@ const SQUARE: (u32, u32) = (400, 400);
 pub struct PlotError {
     figure: &'static str,
     reason: String,
+}
+
+impl PlotError {
+    /// Why the figure `figure` could not be drawn.
+    pub(super) fn new(figure: &'static str, reason: String) -> Self {
+        PlotError { figure, reason }
+    }
 }
 
 /// The figure as an `<svg>` element.
@@ -103,6 +110,9 @@ fn draw_series(chart: &mut Chart, series: &Series, colour: RGBColor) -> Result<(
     match series.style {
         SeriesStyle::Line => chart.draw_series(LineSeries::new(points, colour.stroke_width(2))),
         SeriesStyle::Points => chart.draw_series(points.map(|p| Circle::new(p, 4, colour.filled()))),
+        SeriesStyle::Band => {
+            chart.draw_series(std::iter::once(Polygon::new(points.collect::<Vec<_>>(), colour.mix(0.2))))
+        }
     }
     .map(|_| ())
     .map_err(|e| e.to_string())

@@ -1,16 +1,19 @@
 //! Earlier self-tests of each board, kept on the host in one JSON file per board serial number, so
 //! that a run shows the previous result beside the new one (a part that drifts after a drop).
 //!
-//! NOTE: kept on the host, not in the board's flash beside the calibration: the Pico's image has
-//! about 100 bytes of flash to spare and the F401's about 600, less than a second record type, its
-//! request and its migration cost; the serial number (the chip's unique ID) ties the file to the
-//! board as surely as its flash would, and a file survives a reflash that erases the board's.
+//! The board keeps its latest self-test in flash too ([`shared::selftest::StoredSelfTest`]), so a run
+//! on another host still shows the one before; the file keeps every one, and survives a reflash that
+//! erases the board's flash.
 
 use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
+use shared::protocol::SensorIdentity;
+use shared::selftest::{self, StoredSelfTest};
+
 use super::report::SelfTestJson;
+use super::SelfTest;
 use crate::session::write_atomically;
 
 /// One earlier self-test.
@@ -27,6 +30,15 @@ impl HistoryEntry {
     pub fn now(result: &SelfTestJson) -> Self {
         let date_utc = crate::report::utc_minutes(crate::session::unix_time_s());
         HistoryEntry { date_utc, result: serde_json::to_value(result).unwrap_or_default() }
+    }
+
+    /// The entry of the self-test a board keeps in flash (`record`), run on the sensor `identity`;
+    /// `None` when the record is not one.
+    pub fn of_board(identity: SensorIdentity, record: &[u8]) -> Option<Self> {
+        let stored = StoredSelfTest::from_record(record)?;
+        let test = SelfTest { identity, raw: stored.raw, verdicts: selftest::evaluate(&stored.raw) };
+        let date_utc = crate::report::utc_minutes(f64::from(stored.unix_time_s));
+        Some(HistoryEntry { date_utc, result: serde_json::to_value(SelfTestJson::of(&test)).unwrap_or_default() })
     }
 
     /// The deviation of axis `axis` (0-5) in percent; `None` when it had no factory trim.

@@ -175,3 +175,24 @@ fn the_text_shows_the_previous_deviation_beside_each_axis_and_the_family_verdict
     let verdict = text.lines().last().unwrap_or_default();
     assert!(verdict.starts_with("FAILED: accel_x, gyro_x outside +-14 %") && verdict.ends_with("it passes"), "{text}");
 }
+
+#[test]
+fn the_board_keeps_the_latest_self_test_and_its_next_hello_carries_it_with_the_same_verdicts() {
+    use shared::selftest::StoredSelfTest;
+    let faulty = (7, SimSensor::Realistic, part("mpu6500").with_faulty_axis(1));
+    let (mut connection, _board) = SimBoard::in_process_part(faulty).unwrap();
+    assert_eq!(crate::session::BoardRecord::of(&connection.info).self_test, None, "a fresh board has none");
+    let test = run(&mut connection.client, &connection.info, &mut Still::default()).unwrap();
+    // 2026-11-25 05:00 UTC.
+    let stored = StoredSelfTest { unix_time_s: 1_795_582_800, raw: test.raw };
+    connection.client.store_self_test(&stored).unwrap();
+    let info = connection.client.hello().unwrap();
+    let kept = crate::session::BoardRecord::of(&info).self_test.expect("the board keeps it");
+    assert_eq!(kept.date_utc, "2026-11-25 05:00");
+    assert_eq!(kept.result["part"], "MPU-6500");
+    assert_eq!(kept.result["passed"], false, "the faulty y axis failed");
+    for (axis, verdict) in test.verdicts.iter().enumerate() {
+        let (board, run) = (kept.deviation_percent(axis).unwrap(), verdict.deviation_percent.unwrap());
+        assert!((board - run).abs() < 1e-4, "{}: {board} on the board, {run} measured", verdict.axis);
+    }
+}

@@ -7,6 +7,7 @@ use serde::{Deserialize, Serialize};
 use shared::protocol::{DeviceInfo, FirmwareVersion, SensorConfig};
 
 use super::{Session, SessionError};
+use crate::selftest::history::HistoryEntry;
 use crate::shown::utc_minutes;
 
 /// How far, as a fraction, a board's sample rate may be from a session's for it to be resumed.
@@ -25,6 +26,10 @@ pub struct BoardRecord {
     /// The sensor part as [`crate::part::describe`] names it (absent in sessions before issue 27).
     #[serde(default)]
     pub sensor: Option<String>,
+    /// The latest self-test the board kept in flash when the session began (`date_utc`, `result`
+    /// as `selftest --json` prints it); absent when it had none, and in sessions before it kept one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub self_test: Option<HistoryEntry>,
 }
 
 impl BoardRecord {
@@ -32,7 +37,11 @@ impl BoardRecord {
     pub fn of(info: &DeviceInfo) -> Self {
         let serial = String::from_utf8_lossy(&info.serial.hex()).into_owned();
         let sensor = info.sensor.as_ref().ok().map(crate::part::describe);
-        BoardRecord { serial, firmware: info.firmware, config: info.config, sensor }
+        let self_test = match (info.sensor, &info.self_test) {
+            (Ok(identity), Some(record)) => HistoryEntry::of_board(identity, record),
+            _ => None,
+        };
+        BoardRecord { serial, firmware: info.firmware, config: info.config, sensor, self_test }
     }
 
     /// Whether a session captured on `self` may continue on `board`; the reason when not.
@@ -115,6 +124,7 @@ mod tests {
             firmware,
             config: SensorConfig { range, sample_rate_hz: 100, filter },
             sensor: None,
+            self_test: None,
         };
         let recorded = board(&serial, AccelRange::G2, LowPassFilter::Hz44);
         let path = Path::new("session.json");

@@ -1,6 +1,7 @@
 //! What a session yields: the one place that turns a session's captures into its fit, its drift and
 //! its calibration, as `calibrate` uploads it and as the report shows it.
 
+use shared::calibration::TemperatureModel;
 use shared::protocol::SensorConfig;
 use shared::Calibration;
 
@@ -24,9 +25,13 @@ pub enum OutcomeError {
 pub struct Fitted {
     /// The model the calibration is fitted with.
     pub model: ModelChoice,
-    /// The offset drift with the temperature fitted with an adaptive session, when the board warmed.
+    /// The offset drift with the temperature fitted with an adaptive session, when the board warmed
+    /// and had no learned temperature model.
     pub drift: Option<Drift>,
-    /// The captures in g, an adaptive session's corrected for `drift` to their mean temperature.
+    /// The learned temperature model an adaptive session kept (`Session::learned`'s).
+    pub learned: Option<TemperatureModel>,
+    /// The captures in g, an adaptive session's corrected for `drift` to their mean temperature, or
+    /// by the learned model to its reference temperature.
     pub captures: Dataset,
 }
 
@@ -55,13 +60,21 @@ impl Session {
         }
     }
 
-    /// The captures as the calibration is fitted to them: an adaptive session's corrected for the
-    /// offset drift fitted with them (to their mean temperature), any other's as taken.
+    /// The captures as the calibration is fitted to them: an adaptive session's corrected by the
+    /// board's learned temperature model when it has one (to the model's reference temperature), else
+    /// for the offset drift fitted with them (to their mean temperature); any other's as taken.
     pub fn fitted(&self) -> Fitted {
-        let captures = self.dataset();
-        let drift = (self.kind == SessionKind::Adaptive).then(|| drift::fitted(&captures)).flatten();
+        let (captures, model) = (self.dataset(), self.model());
+        if self.kind != SessionKind::Adaptive {
+            return Fitted { model, drift: None, learned: None, captures };
+        }
+        if let Some(learned) = &self.learned {
+            let captures = drift::learned::at_reference(&captures, learned);
+            return Fitted { model, drift: None, learned: learned.temperature, captures };
+        }
+        let drift = drift::fitted(&captures);
         let captures = drift::at_mean_temperature(&captures, drift.as_ref());
-        Fitted { model: self.model(), drift, captures }
+        Fitted { model, drift, learned: None, captures }
     }
 
     /// The host's fit of the session, with the captures it was fitted to.
@@ -74,11 +87,12 @@ impl Session {
     pub fn outcome(&self, config: SensorConfig) -> Result<Outcome, OutcomeError> {
         let (fit, fitted) = self.fit()?;
         let calibration = calibration::from_fit(&fit, &fitted.captures, config)?;
-        let calibration = match &fitted.drift {
-            Some(d) => {
+        let calibration = match (&fitted.drift, fitted.learned) {
+            (Some(d), _) => {
                 calibration::with_offset_drift(&calibration, drift::mean_temp_c(&fitted.captures), d.slope_g_per_c)
             }
-            None => calibration,
+            (None, Some(model)) => Calibration { temperature: Some(model), ..calibration },
+            (None, None) => calibration,
         };
         Ok(Outcome { fit, fitted, calibration })
     }

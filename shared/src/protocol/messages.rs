@@ -6,6 +6,7 @@ use crate::calibration::{AccelRange, Calibration, CalibrationError};
 use crate::orientation::{Position, PositionMap};
 use crate::ortho9::Ortho9Error;
 use crate::part::{Family, Identification, Part};
+use crate::selftest::SelfTestRecord;
 use crate::six_position::SixPositionError;
 
 use super::FrameError;
@@ -57,6 +58,11 @@ pub enum Request {
     // NOTE: one register a request, read and write in one: a buffer of registers and a second
     // request cost the board more flash than the Pico has left; a dump of the map is 127 requests.
     Register { register: u8, write: Option<u8> },
+    /// Keeps a self-test's result ([`crate::selftest::StoredSelfTest::record`]) in flash beside the calibration, in place of the one before (a
+    /// calibration's save or erase leaves it as it is); answered with [`Response::Done`]. Refused
+    /// while a capture or stream runs. Every [`Response::Hello`] carries it
+    /// ([`DeviceInfo::self_test`]).
+    StoreSelfTest(SelfTestRecord),
 }
 
 /// When a [`Request::CaptureUntil`] stops: once at least `min_samples` are averaged and the standard
@@ -236,6 +242,8 @@ pub struct DeviceInfo {
     pub stored: bool,
     /// The positions whose captures are kept for the six-position fit.
     pub positions: PositionMap<()>,
+    /// The latest self-test kept in flash ([`Request::StoreSelfTest`]), if any, as the host stored it.
+    pub self_test: Option<SelfTestRecord>,
 }
 
 /// Length of the STM32's unique device ID (RM0383 section 24.2), in bytes.

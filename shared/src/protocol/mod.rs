@@ -22,8 +22,9 @@ pub use temperature::{TempBin, TEMP_BINS_PER_MESSAGE};
 /// names the mismatch instead. 5 from issue 27: the sensor identity carries the register family
 /// the chip behaves as (the part is named by its WHO_AM_I, [`crate::part`]). 6 from issue 27: register
 /// access ([`Request::Register`], [`Response::Register`]), through which the host runs the datasheet
-/// self-test and dumps an unknown part's registers.
-pub const PROTOCOL_VERSION: u8 = 6;
+/// self-test and dumps an unknown part's registers. 7 from issue 27: the board keeps the latest
+/// self-test in flash ([`Request::StoreSelfTest`], [`DeviceInfo::self_test`]).
+pub const PROTOCOL_VERSION: u8 = 7;
 
 /// Largest postcard payload of one message, in bytes.
 ///

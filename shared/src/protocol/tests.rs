@@ -10,6 +10,7 @@ use crate::calibration::{
 use crate::orientation::{Position, PositionMap};
 use crate::ortho9::Ortho9Error;
 use crate::part::Family;
+use crate::selftest::{SelfTestRaw, StoredSelfTest};
 use crate::six_position::SixPositionError;
 
 /// Large values take the most postcard bytes (varints), so sizes here are the worst case: every
@@ -72,6 +73,7 @@ fn every_request() -> Vec<Request> {
         Request::CaptureUntil(CaptureGoal { mean_std_g: f32::MAX, min_samples: u32::MAX, max_samples: u32::MAX }),
         Request::Register { register: u8::MAX, write: Some(u8::MAX) },
         Request::Register { register: 0, write: None },
+        Request::StoreSelfTest(stored_self_test().record()),
     ];
     // NOTE: the match fails to compile when a variant is added without being listed above.
     for request in &all {
@@ -90,7 +92,8 @@ fn every_request() -> Vec<Request> {
             | Request::TakeTemperatureBins
             | Request::FitOrtho9
             | Request::CaptureUntil(_)
-            | Request::Register { .. } => {}
+            | Request::Register { .. }
+            | Request::StoreSelfTest(_) => {}
         }
     }
     all
@@ -122,6 +125,18 @@ fn every_error() -> Vec<DeviceError> {
     ]
 }
 
+/// A self-test record at its largest.
+fn stored_self_test() -> StoredSelfTest {
+    let raw = SelfTestRaw {
+        family: Family::Mpu6500,
+        codes: [u8::MAX; 6],
+        off_lsb: [f32::MAX; 6],
+        on_lsb: [f32::MIN; 6],
+        attempts: u8::MAX,
+    };
+    StoredSelfTest { unix_time_s: u32::MAX, raw }
+}
+
 fn every_position() -> PositionMap<()> {
     let mut all = PositionMap::new();
     Position::ALL.into_iter().for_each(|p| all.replace(p, ()));
@@ -138,6 +153,7 @@ fn every_response() -> Vec<Response> {
         stored: true,
         serial: SerialNumber([0xFF; SERIAL_NUMBER_LEN]),
         positions: every_position(),
+        self_test: Some(stored_self_test().record()),
     };
     let mut all = vec![
         Response::Hello(info.clone()),

@@ -98,3 +98,19 @@ fn a_baseline_shift_of_more_than_10_mg_or_1_dps_is_a_move() {
     assert!(baseline_moved(Family::Mpu6050, &before, &[0.0, 0.011 * lsb_per_g, 0.0, 0.0, 0.0, 0.0]));
     assert!(baseline_moved(Family::Mpu6050, &before, &[0.0, 0.0, 0.0, 0.0, 0.0, -1.1 * 131.0]));
 }
+
+#[test]
+fn the_largest_stored_self_test_fits_its_record_and_reads_back_as_it_was() {
+    let raw = SelfTestRaw {
+        family: Family::Mpu6500,
+        codes: [u8::MAX; 6],
+        off_lsb: [f32::MIN; 6],
+        on_lsb: [-0.0, f32::MAX, 1.5, f32::EPSILON, 2620.0, -3275.5],
+        attempts: u8::MAX,
+    };
+    let stored = StoredSelfTest { unix_time_s: u32::MAX, raw };
+    let record = stored.record();
+    assert_eq!(record.len(), 61, "a 5-byte time and 56 bytes of raw");
+    assert_eq!(StoredSelfTest::from_record(&record), Some(stored));
+    assert_eq!(StoredSelfTest::from_record(&record[..60]), None, "a cut record is refused");
+}
