@@ -60,6 +60,18 @@ pub enum Error {
         "the calibration uploaded and saved misses --target-mg by more than its noise ({line}); it stays on the board"
     )]
     TargetMissed { line: String },
+    #[error("several boards on one fixture are uploaded without asking (one answer would hold up them all): add --yes, or calibrate one board at a time to see each fit before its upload")]
+    FixtureNeedsYes,
+    #[error("a session of several boards cannot be resumed as one: resume each board's session on its own with `accelcal calibrate --port PORT --resume SESSION`")]
+    FixtureCannotResume,
+    #[error(
+        "{failed}; {calibrated} of {boards} boards calibrated: fix the named cause and calibrate the others again"
+    )]
+    BoardsFailed { failed: String, calibrated: usize, boards: usize },
+    #[error("--sim-pull names board {board}, but the fixture holds {boards}: give a board from 1 to {boards}")]
+    NoSuchBoard { board: usize, boards: usize },
+    #[error("a board's session stopped on an internal fault; its captures so far are in its session file: calibrate it again")]
+    BoardThreadFailed,
     #[error("--json cannot ask whether to upload the calibration: add --yes to upload and save it, or leave out --json to be asked")]
     JsonCannotAsk,
     #[error(transparent)]

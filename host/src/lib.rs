@@ -22,6 +22,7 @@ pub mod cli;
 pub mod data;
 pub mod error;
 pub mod export;
+pub mod files;
 pub mod fit;
 pub mod limits;
 pub mod link;

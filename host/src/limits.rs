@@ -151,6 +151,11 @@ pub const TURN_CHECK_REST_SECONDS: f64 = 1.0;
 /// more often than that anyway.
 pub const MAX_VERIFY_POSITIONS: i64 = 16;
 
+/// Most boards calibrated together on one fixture.
+/// NOTE: a fixture a hand turns holds a few dozen boards at most; each board is a thread and a
+/// port (a simulated one: a thread more), and 64 keeps that within any machine's limits.
+pub const MAX_BOARDS: i64 = 64;
+
 /// Largest placement error of the simulated hand, in degrees.
 ///
 /// NOTE: beyond this a face is no longer reliably within the face tolerance's reach after the
@@ -163,6 +168,64 @@ pub const MAX_PLACEMENT_DEG: f64 = 8.0;
 /// NOTE: the MPU-6050 works from -40 to +85 degC (Product Specification 6.1); no board warms from
 /// one end to the other while it is being learned, and a larger target could never be reached.
 pub const MAX_THERMAL_SPAN_C: f64 = 100.0;
+
+/// Below this ratio of smallest to largest singular value the parameters are not observable.
+/// NOTE: the ratio comes from eigenvalues of J^T J, whose rounding floor is 1e-16 relative: 1e-7 in
+/// singular values stays clear of it.
+pub const UNOBSERVABLE_RATIO: f64 = 1e-7;
+
+/// Below this ratio the condition number is worth a warning.
+pub const POORLY_CONDITIONED_RATIO: f64 = 1e-3;
+
+/// Below this probability the residuals are judged larger than the noise explains.
+pub const NOISE_TEST_LEVEL: f64 = 1e-3;
+
+/// Below this probability of a chi-square at least as large under noise alone, the residuals are
+/// taken to hold more than noise and the noise-based errors are scaled up by sqrt(chi-square / dof).
+///
+/// NOTE: 5 %: 95 % of honest fits keep the noise's error unscaled (scaling every fit whose chi-square
+/// exceeds its dof would inflate honest errors on average), while a misfit the residuals show is
+/// carried into the errors.
+pub const SCATTER_SIGNIFICANCE: f64 = 0.05;
+
+/// Above this leverage (the largest eigenvalue of the row's hat-matrix block) a row carries most of
+/// some parameter: the one-step change is least trustworthy there, so the row is refitted instead.
+/// NOTE: the leverages add up to the parameter count, so at most twice that many rows exceed 0.5.
+pub const HIGH_LEVERAGE: f64 = 0.5;
+
+/// Inclination beyond which toolface is undefined (the x-y projection vanishes), in degrees.
+/// NOTE: at 89 degrees the x-y projection is sin(1 degree) = 1.7 % of g: 1 mg of error there
+/// already turns the toolface by 3.3 degrees.
+pub const TOOLFACE_UNDEFINED_ABOVE_DEG: f64 = 89.0;
+
+/// Share of the Allan variance at its minimum the flicker floor must hold for B to count as resolved.
+/// NOTE: below half, the minimum is mostly where the white noise and the random walk meet, and a
+/// B read there is their sum rather than a flicker floor.
+pub const RESOLVED_FLICKER_SHARE: f64 = 0.5;
+
+/// How far a given rate may be from the one a file's time stamps show, as a fraction.
+// NOTE: time stamps are printed to the microsecond; at 100 Hz that is 1e-4 of a sample interval.
+pub const RATE_AGREEMENT: f64 = 0.01;
+
+/// How far, as a fraction, a board's sample rate may be from a session's for it to be resumed.
+/// NOTE: a rate the board achieves a little differently (99 Hz for 100) measures the same; a board
+/// left at 1000 Hz by `record` filters and averages otherwise.
+pub const RESUME_RATE_TOLERANCE: f64 = 0.05;
+
+/// How many times its own noise the chip may differ from the host before it is said to apply
+/// something else (a 3-sigma bound on each axis of the difference).
+pub const CHIP_AGREEMENT_SIGMAS: f64 = 3.0;
+
+/// Largest angle, in degrees, between the check turn's axis and the horizontal: the accelerometer
+/// sees a turn about a tilted line as a smaller tilt, and a scale error of the gyro less and less.
+// NOTE: a turn over an edge of a board resting on a table is about a horizontal line; 20 degrees
+// leaves a hand's turn in the air room while the tilt still shows 94 % of the turn's angle.
+pub const MAX_CHECK_AXIS_ELEVATION_DEG: f64 = 20.0;
+
+/// A board whose last few samples scatter more than this, in g, is moving.
+/// NOTE: about eight times the MPU-6050's noise at full bandwidth (400 ug/sqrt(Hz) over 260 Hz:
+/// 6.5 mg rms, Product Specification 6.2): only motion reaches it.
+pub const MOVING_SCATTER_G: f64 = 0.05;
 
 #[cfg(test)]
 mod tests {

@@ -201,21 +201,11 @@ pub fn stem_of(path: &Path) -> PathBuf {
     }
 }
 
-/// Now, in seconds since the Unix epoch, for capture records.
-pub fn unix_time_s() -> f64 {
-    std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0.0, |d| d.as_secs_f64())
-}
+pub use crate::files::unix_time_s;
 
-/// Writes a file so that a crash leaves either the old file or the new one, never half of one:
-/// a temporary file beside it, flushed to disk, then renamed over it.
+/// [`crate::files::write_atomically`], its failure a session's error naming the file.
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), SessionError> {
-    use std::io::Write;
-    let extension = path.extension().and_then(|e| e.to_str()).unwrap_or("");
-    let temporary = path.with_extension(format!("{extension}.tmp{}", std::process::id()));
-    let failed = |source| SessionError::Write { path: path.into(), source };
-    let mut file = std::fs::File::create(&temporary).map_err(failed)?;
-    file.write_all(bytes).and_then(|()| file.sync_all()).map_err(failed)?;
-    std::fs::rename(&temporary, path).map_err(failed)
+    crate::files::write_atomically(path, bytes).map_err(|source| SessionError::Write { path: path.into(), source })
 }
 
 #[cfg(test)]

@@ -82,6 +82,15 @@ impl SimMpu6050 {
         self.advance_us(1);
     }
 
+    /// Lets `seconds` pass while the board waits, idle, for the other boards on its fixture: the
+    /// surroundings and the die's temperature move on, but no sample is made and the noise stream is
+    /// not drawn from (the bias wander stands still), so that what the board reads after the wait is
+    /// what the same board alone would have read, at the temperature the wait brought.
+    pub fn wait_seconds(&mut self, seconds: f32) {
+        self.physics.environment.advance(seconds);
+        self.now_us += (seconds * 1e6) as u64;
+    }
+
     /// Answers at another address (AD0 high: 0x69).
     pub fn with_address(mut self, address: u8) -> Self {
         self.address = address;

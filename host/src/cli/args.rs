@@ -71,7 +71,7 @@ impl SketchStreamArgs {
 }
 
 /// `accelcal calibrate`.
-#[derive(Args)]
+#[derive(Args, Clone)]
 pub struct CalibrateArgs {
     #[command(flatten)]
     pub device: Device,
@@ -112,6 +112,12 @@ pub struct CalibrateArgs {
     /// With --sim: how many degrees off the tool places the board, as a hand would (0-8).
     #[arg(long, default_value_t = 3.0, value_parser = placement_deg)]
     pub sim_placement_deg: f64,
+    /// With --sim: the seed of the tool's hand (its placement errors and fresh orientations); default
+    /// --seed. On a fixture one hand turns every board.
+    #[arg(long)]
+    pub sim_hand_seed: Option<u64>,
+    #[command(flatten)]
+    pub fixture: super::fixture::FixtureArgs,
 }
 
 /// `accelcal thermal`.

@@ -13,6 +13,7 @@ use crate::link::{
     ask, explain, is_worth_asking, serial_ports, Answer, LinkError, SerialPortEntry, StreamRequest, LISTEN_FIRST,
 };
 use crate::part::{describe as describe_part, format_dump, part_name, register_dump};
+use crate::recording::{SAMPLE_COLUMNS, STREAM_COLUMNS};
 use crate::session::BoardRecord;
 
 /// `accelcal ports`: serial ports, ours marked; a USB port of another identity is asked (listened to
@@ -159,7 +160,8 @@ pub(super) fn stream(args: &StreamArgs) -> Result<(), Error> {
     let request = StreamRequest { kind, rate_hz: args.rate, count: args.count };
     let stdout = std::io::stdout();
     let mut out = stdout.lock();
-    let mut reading = writeln!(out, "index,time_s,ax_g,ay_g,az_g,gx_dps,gy_dps,gz_dps,temp_c").is_ok();
+    let header = [STREAM_COLUMNS.as_slice(), &SAMPLE_COLUMNS].concat().join(",");
+    let mut reading = writeln!(out, "{header}").is_ok();
     let tally = opened.connection.client.stream_while(request, |sample| {
         reading = reading && write_sample(&mut out, sample).is_ok();
         reading

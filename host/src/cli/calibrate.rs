@@ -21,39 +21,66 @@ use crate::procedure::{self, CollectOptions, Feedback, Moves, ProcedureError, Tu
 use crate::report::{self, CalibrateReport};
 use crate::session::{stem_file, Session, SessionError, SessionKind};
 
-/// `accelcal calibrate`: captures, fit, upload, save, verification.
+/// `accelcal calibrate`: captures, fit, upload, save, verification; several boards on one fixture
+/// together.
 pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
     // NOTE: refused before anything happens: a run that could only end without the upload it was
     // asked for must not start (the simulated board, turned by the tool itself, needs no answer).
     if args.json && !args.yes && !args.device.sim {
         return Err(Error::JsonCannotAsk);
     }
-    let mut opened = match args.device.open_or_talking()? {
+    if super::fixture::holds_several(args) {
+        return super::fixture::calibrate_together(args);
+    }
+    let opened = match args.device.open_or_talking()? {
         Ok(opened) => opened,
         Err(talking) => return super::foreign::calibrate_from_stream(args, *talking),
     };
-    opened.connection.info.sensor.map_err(LinkError::from)?;
     // NOTE: with --json only the simulated board (turned by the tool) is silent: a person at a real
     // board still needs the instructions, which go to stderr, leaving stdout to the JSON.
     let simulated = opened.sim.is_some();
     let mut feedback = feedback(args.json && simulated, args.yes || (args.json && simulated));
-    let learned = adaptive::learned_model(args, &mut opened.connection.client, feedback.as_mut())?;
-    let mut kept = kept::start(args, &opened.connection.info, learned, feedback.as_mut())?;
-    let interrupt = interrupt_on_ctrl_c();
+    match calibrate_board(args, opened, interrupt_on_ctrl_c(), feedback.as_mut())? {
+        Some(report) => show(&report, args.json),
+        None => Ok(()),
+    }
+}
+
+/// One board's session, from its first capture to its verified report (`None`: the upload was
+/// declined); the same for a board alone and for each board on a fixture.
+pub(super) fn calibrate_board(
+    args: &CalibrateArgs,
+    mut opened: Opened,
+    interrupt: Arc<AtomicBool>,
+    feedback: &mut dyn Feedback,
+) -> Result<Option<CalibrateReport>, Error> {
+    opened.connection.info.sensor.map_err(LinkError::from)?;
+    opened.hand_seed = args.sim_hand_seed.unwrap_or(args.device.seed);
+    let learned = adaptive::learned_model(args, &mut opened.connection.client, feedback)?;
+    let mut kept = kept::start(args, &opened.connection.info, learned, feedback)?;
     opened.connection.client.interrupt_on(interrupt.clone());
-    let (moves, first_capture_s) = collect(args, &mut opened, &mut kept, feedback.as_mut())?;
-    let fitted = fit_with_gyro(&mut opened, &kept, &moves, feedback.as_mut())?;
-    show_choice(feedback.as_mut(), &fitted);
+    let (moves, first_capture_s) = collect(args, &mut opened, &mut kept, feedback)?;
+    let fitted = fit_with_gyro(&mut opened, &kept, &moves, feedback)?;
+    show_choice(feedback, &fitted);
     let client = &mut opened.connection.client;
     if interrupt.load(Ordering::SeqCst) {
         return Err(LinkError::Interrupted.into());
     }
-    if !upload_if_confirmed(client, &fitted.chosen, feedback.as_mut())? {
-        return Ok(());
+    if !upload_if_confirmed(client, &fitted.chosen, feedback)? {
+        return Ok(None);
     }
     // NOTE: a resumed session's first capture was taken in another run: its board time is unknown.
     let first_capture_s = first_capture_s.filter(|_| !kept.resumed);
-    finish(args, &mut opened, &fitted, kept.path.as_deref(), first_capture_s, feedback.as_mut())
+    finish(args, &mut opened, &fitted, kept.path.as_deref(), first_capture_s, feedback).map(Some)
+}
+
+/// Prints a board's report; an error when it missed its target (exit status 2).
+pub(super) fn show(report: &CalibrateReport, json: bool) -> Result<(), Error> {
+    print_report(report, json);
+    match &report.target {
+        Some(target) if target.missed => Err(Error::TargetMissed { line: target.line.clone() }),
+        _ => Ok(()),
+    }
 }
 
 /// The captures the session lacks, written after each one, and the moves between them; an error
@@ -65,7 +92,7 @@ fn collect(
     kept: &mut Kept,
     feedback: &mut dyn Feedback,
 ) -> Result<(Moves, Option<f64>), Error> {
-    let (mut hand, wait_limit) = opened.hand(args.sim_placement_deg, args.device.seed);
+    let (mut hand, wait_limit) = opened.hand(args.sim_placement_deg);
     let path = kept.path.clone();
     let mut keep = |session: &Session| path.as_deref().map_or(Ok(()), |p| session.save(p));
     let mut moves = Moves::at(opened.connection.info.config.sample_rate_hz);
@@ -113,9 +140,9 @@ fn finish(
     kept_at: Option<&Path>,
     first_capture_s: Option<f64>,
     feedback: &mut dyn Feedback,
-) -> Result<(), Error> {
+) -> Result<CalibrateReport, Error> {
     let kind = fitted.session.kind;
-    let (mut hand, wait_limit) = opened.hand(args.sim_placement_deg, args.device.seed);
+    let (mut hand, wait_limit) = opened.hand(args.sim_placement_deg);
     let (positions, length) = adaptive::verification(args, kind, opened.connection.info.config.sample_rate_hz)?;
     let (rate_hz, clock) = (opened.connection.info.config.sample_rate_hz, opened.clock());
     let client = &mut opened.connection.client;
@@ -133,12 +160,8 @@ fn finish(
     report.board_seconds = board_seconds;
     report.certificate = Some(certificate);
     let target = report.verification.against((kind == SessionKind::Adaptive).then_some(args.length.target_mg));
-    report.target = Some(target.clone());
-    print_report(&report, args.json);
-    match target.missed {
-        true => Err(Error::TargetMissed { line: target.line }),
-        false => Ok(()),
-    }
+    report.target = Some(target);
+    Ok(report)
 }
 
 /// The run's report: the calibration chosen, the fits beside it, the verification and the gyro's
@@ -153,8 +176,10 @@ fn report_of(
     let truth = opened.sim.as_ref().map(|board| board.truth_json(session_temp_c));
     let captures = fitted.session.captures.len();
     let chip = fitted.chip.as_ref().map(|c| &c.calibration);
-    CalibrateReport::new(&fitted.chosen, chip, fitted.host.as_ref(), truth, verification, captures)
-        .with_gyro(&fitted.gyro, check)
+    let mut report = CalibrateReport::new(&fitted.chosen, chip, fitted.host.as_ref(), truth, verification, captures)
+        .with_gyro(&fitted.gyro, check);
+    report.true_error_mg = opened.sim.as_ref().map(|board| board.true_error_mg(&fitted.chosen, session_temp_c));
+    report
 }
 
 /// The verified session's certificate, kept with the session (`kept_at`) and its report, and added

@@ -11,7 +11,7 @@ use crate::link::port::{BAUD_RANGE, DEFAULT_BAUD};
 use crate::link::{
     find_board, open_listening, open_port, resolve_port, serial_ports, Connection, PortOpened, TalkingPort,
 };
-use crate::procedure::{BoardClock, Hand, PersonHand, SimulatedHand};
+use crate::procedure::{BoardClock, Fixture, Hand, PersonHand, Seat, SimulatedHand, SimulatedMember};
 use crate::sim::{FaultyAxis, SimBoard, SimPartChoice, SimSensor};
 
 /// Which device to talk to.
@@ -31,10 +31,11 @@ pub struct Device {
     /// With --sim: seed of the simulated sensor's noise and of the hand's placement.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
-    /// With --sim: the simulated sensor, realistic (warming and drifting), settled (one temperature) or
-    /// drawn (realistic, a part drawn by the seed from the datasheet's spreads).
-    #[arg(long, value_enum, default_value_t = SimSensor::Realistic)]
-    pub sim_sensor: SimSensor,
+    /// With --sim: the simulated sensor, realistic (warming and drifting; the default for one board),
+    /// settled (one temperature) or drawn (realistic, a part drawn by the seed from the datasheet's
+    /// spreads; the default for `calibrate --boards N`).
+    #[arg(long, value_enum)]
+    pub sim_sensor: Option<SimSensor>,
     /// With --sim: the simulated part (its register map, temperature formula and self-test).
     #[arg(long, value_enum, default_value_t = SimPartChoice::Mpu6050)]
     pub sim_part: SimPartChoice,
@@ -70,6 +71,10 @@ pub(super) struct Opened {
     pub sim: Option<SimBoard>,
     /// When the device was opened: a real board's clock starts here, once per run.
     opened_at: Instant,
+    /// The seed of the tool's hand on the simulated board (its placement errors and fresh orientations).
+    pub hand_seed: u64,
+    /// Its place on the fixture that holds it (alone, unless several boards are calibrated together).
+    pub seat: Seat,
 }
 
 impl Device {
@@ -77,9 +82,7 @@ impl Device {
     pub(super) fn open_or_talking(&self) -> Result<Result<Opened, Box<TalkingPort>>, Error> {
         match &self.port {
             Some(name) => match open_listening(&resolve_port(name, serial_ports)?, self.baud)? {
-                PortOpened::Board(connection) => {
-                    Ok(Ok(Opened { connection: *connection, sim: None, opened_at: Instant::now() }))
-                }
+                PortOpened::Board(connection) => Ok(Ok(Opened::new(*connection, None, self.seed))),
                 PortOpened::Talking(talking) => Ok(Err(Box::new(talking))),
             },
             None => self.open().map(Ok),
@@ -91,22 +94,33 @@ impl Device {
         match (&self.port, self.sim) {
             (Some(name), _) => {
                 let connection = open_port(&resolve_port(name, serial_ports)?, self.baud)?;
-                Ok(Opened { connection, sim: None, opened_at: Instant::now() })
+                Ok(Opened::new(connection, None, self.seed))
             }
             (None, true) => {
                 let part = self.sim_part.part(self.sim_faulty_axis);
-                let (connection, board) = SimBoard::in_process_part((self.seed, self.sim_sensor, part))?;
-                Ok(Opened { connection, sim: Some(board), opened_at: Instant::now() })
+                let (connection, board) =
+                    SimBoard::in_process_part((self.seed, self.sim_sensor.unwrap_or_default(), part))?;
+                Ok(Opened::new(connection, Some(board), self.seed))
             }
             (None, false) => {
                 let connection = find_board(&serial_ports()?, &mut super::board::asking)?;
-                Ok(Opened { connection, sim: None, opened_at: Instant::now() })
+                Ok(Opened::new(connection, None, self.seed))
             }
         }
     }
 }
 
 impl Opened {
+    /// A device just opened, alone on its fixture.
+    pub(super) fn new(connection: Connection, sim: Option<SimBoard>, seed: u64) -> Self {
+        Opened { connection, sim, opened_at: Instant::now(), hand_seed: seed, seat: Fixture::alone().seat(0) }
+    }
+
+    /// This board's time and controls as its fixture keeps them (none for a real board).
+    pub(super) fn as_member(&self) -> Option<SimulatedMember> {
+        self.sim.as_ref().map(|board| SimulatedMember { clock: self.clock(), controls: board.controls() })
+    }
+
     /// The board's clock: the simulated board's own time, or for a real one the wall clock since
     /// the device was opened (the same clock however often it is asked for).
     pub(super) fn clock(&self) -> BoardClock {
@@ -120,15 +134,15 @@ impl Opened {
     }
 
     /// Who turns the board, and how long to wait for it: a person (as long as they take), or the
-    /// tool's own hand on the simulated board, off by `placement_deg`, seeded by `seed`, turning it
-    /// as a person does.
-    pub(super) fn hand(&self, placement_deg: f64, seed: u64) -> (Box<dyn Hand>, Option<Duration>) {
+    /// tool's own hand on the simulated board, off by `placement_deg`, seeded by `hand_seed`,
+    /// turning it as a person does; on a fixture of several boards, one hand for all.
+    pub(super) fn hand(&self, placement_deg: f64) -> (Box<dyn Hand>, Option<Duration>) {
         match &self.sim {
             Some(board) => {
-                let hand = SimulatedHand::new(board.controls(), placement_deg, seed);
-                (Box::new(hand), Some(SIM_WAIT_LIMIT))
+                let hand = SimulatedHand::new(board.controls(), placement_deg, self.hand_seed);
+                (Box::new(self.seat.hand(Box::new(hand), false)), Some(SIM_WAIT_LIMIT))
             }
-            None => (Box::new(PersonHand), None),
+            None => (Box::new(self.seat.hand(Box::new(PersonHand), true)), None),
         }
     }
 }
@@ -143,7 +157,7 @@ mod tests {
         let (connection, _board) = SimBoard::in_process(1, SimSensor::Settled).unwrap();
         let opened_at = Instant::now() - Duration::from_secs(5);
         // NOTE: a board behind a port: no simulated clock, the wall clock since it was opened.
-        let opened = Opened { connection, sim: None, opened_at };
+        let opened = Opened { opened_at, ..Opened::new(connection, None, 1) };
         let (first, second) = (opened.clock(), opened.clock());
         assert!(first() >= 5.0 && second() >= 5.0, "{} s and {} s since it was opened 5 s ago", first(), second());
         assert!((second() - first()).abs() < 0.5);

@@ -8,15 +8,13 @@ use super::args::CalibrateArgs;
 use super::foreign_session::Kept;
 use super::length::ADAPTIVE_VERIFY_POSITIONS;
 use crate::error::Error;
+use crate::limits::MOVING_SCATTER_G;
 use crate::procedure::stop_rule::{Noise, StopRule, MAX_SECONDS};
 use crate::stream::guide::{all_rested, nearest_name, next_turn};
 use crate::stream::live::{arrival_hz, LiveStream};
 use crate::stream::segment::{mean_std, Segment, Stillness};
 use crate::stream::timing::{Rate, RateSource};
 use crate::stream::{Dropped, LineReader, StillPeriods, StreamLog, StreamOptions};
-
-/// A board whose last few samples scatter more than this, in g, is moving.
-const MOVING_SCATTER_G: f64 = 0.05;
 
 /// Where the session stands between status lines.
 pub(super) struct Progress {

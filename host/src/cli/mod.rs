@@ -11,6 +11,7 @@ mod choice;
 mod device;
 mod export;
 mod fit;
+mod fixture;
 mod foreign;
 mod foreign_session;
 mod foreign_status;

@@ -25,7 +25,7 @@ pub(super) fn capture(args: &CaptureArgs) -> Result<(), Error> {
     // NOTE: the simulated board rests +Z up until turned: a capture named as an orientation is
     // taken there, so that what is stored is what its name says.
     if let (Some(target), Some(_)) = (&target, &opened.sim) {
-        opened.hand(0.0, args.device.seed).0.present(target, &mut feedback)?;
+        opened.hand(0.0).0.present(target, &mut feedback)?;
     }
     let result = opened.connection.client.capture(args.seconds, |p| feedback.progress(p.samples, p.total_samples));
     feedback.progress_done();
@@ -48,7 +48,7 @@ pub(super) fn verify(device: &Device, positions: usize) -> Result<(), Error> {
     let mut opened: Opened = device.open()?;
     let mut feedback = Terminal::new(true);
     opened.connection.client.interrupt_on(interrupt_on_ctrl_c());
-    let (mut hand, wait_limit) = opened.hand(VERIFY_PLACEMENT_DEG, device.seed);
+    let (mut hand, wait_limit) = opened.hand(VERIFY_PLACEMENT_DEG);
     let client = &mut opened.connection.client;
     let v = procedure::verify(client, hand.as_mut(), positions, wait_limit, &mut feedback)
         .map_err(|source| Error::VerifyStopped { source: Box::new(source) })?;

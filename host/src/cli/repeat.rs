@@ -35,7 +35,7 @@ pub(super) fn repeat(args: &RepeatArgs) -> Result<(), Error> {
     let options = RepeatOptions {
         sessions: usize::from(args.sessions),
         seed: args.device.seed,
-        sensor: args.device.sim_sensor,
+        sensor: args.device.sim_sensor.unwrap_or_default(),
         turn_on_bias_g: args.sim_turn_on_bias_mg * 1e-3,
         session: SimulatedSession { placement_deg: 3.0, hand_seed: args.device.seed, target_mg: DEFAULT_TARGET_MG },
     };

@@ -3,6 +3,7 @@
 use shared::protocol::{SensorConfig, MAX_CAPTURE_SECONDS, MIN_CAPTURE_SECONDS};
 
 use crate::limits::{MAX_PLACEMENT_DEG, MAX_THERMAL_SPAN_C, MIN_THERMAL_SPAN_C};
+use crate::procedure::Pull;
 
 /// The capture lengths the device accepts, refused when parsed.
 pub(super) fn seconds() -> clap::builder::RangedI64ValueParser<u8> {
@@ -16,6 +17,16 @@ pub(super) fn placement_deg(text: &str) -> Result<f64, String> {
         Ok(deg)
     } else {
         Err(format!("{deg} is not in 0-{MAX_PLACEMENT_DEG} degrees"))
+    }
+}
+
+/// `K:N`: board K's cable pulled after the fixture's N-th turn (both from 1).
+pub(super) fn pull(text: &str) -> Result<Pull, String> {
+    let numbers =
+        text.split_once(':').and_then(|(k, n)| Some((k.trim().parse::<usize>().ok()?, n.trim().parse().ok()?)));
+    match numbers {
+        Some((board @ 1.., turn @ 1..)) => Ok(Pull { board: board - 1, turn }),
+        _ => Err(format!("{text:?} is not K:N (board K's cable pulled after turn N, both from 1), such as 3:5")),
     }
 }
 

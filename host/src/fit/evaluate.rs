@@ -6,9 +6,7 @@ use shared::linalg::{self, Mat3, Vec3};
 use shared::orientation::{inclination_deg, toolface_deg};
 
 use crate::data::{Dataset, Row};
-
-/// Inclination beyond which toolface is undefined (the x-y projection vanishes), in degrees.
-const TOOLFACE_UNDEFINED_ABOVE_DEG: f64 = 89.0;
+use crate::limits::TOOLFACE_UNDEFINED_ABOVE_DEG;
 
 /// The errors of one row, in output units and degrees.
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -11,11 +11,6 @@
 
 use nalgebra::DMatrix;
 
-/// Above this leverage (the largest eigenvalue of the row's hat-matrix block) a row carries most of
-/// some parameter: the one-step change is least trustworthy there, so the row is refitted instead.
-/// NOTE: the leverages add up to the parameter count, so at most twice that many rows exceed 0.5.
-pub(super) const HIGH_LEVERAGE: f64 = 0.5;
-
 /// The inverse normal matrix of a solution's Jacobian, shared by every row's removal.
 pub(super) struct Influence {
     inverse_normal: DMatrix<f64>,

@@ -6,7 +6,7 @@
 use nalgebra::{DMatrix, Vector3};
 use shared::linalg;
 
-use super::influence::{Influence, HIGH_LEVERAGE};
+use super::influence::Influence;
 use super::linear::{self, Pair, MIN_REFERENCES};
 use super::models::{self, Solved};
 use super::nonlinear::Observation;
@@ -15,6 +15,7 @@ use super::observability::{independent_pair, reading_points_along};
 use super::shape::Shape;
 use super::{fit_model, uncertainty, Fit, FitError, FitOptions, Model};
 use crate::data::Dataset;
+use crate::limits::HIGH_LEVERAGE;
 
 /// One row's leave-one-out figure, or the need to refit without it.
 enum LeftOut {

@@ -10,18 +10,14 @@ use super::normalization::Normalization;
 use super::shape::Shape;
 use super::{FitError, Model};
 use crate::data::Dataset;
+use crate::limits::POORLY_CONDITIONED_RATIO;
+use crate::limits::UNOBSERVABLE_RATIO;
 use crate::limits::{AXIS_SPREAD, INDEPENDENT_REFERENCES_DEG};
 use levenberg_marquardt::LeastSquaresProblem;
 
 /// Known orientations `reference-norm12` needs at least [`INDEPENDENT_REFERENCES_DEG`] apart: two fix
 /// the rotation that the |a| = g rows cannot see.
 const INDEPENDENT_REFERENCES: usize = 2;
-/// Below this ratio of smallest to largest singular value the parameters are not observable.
-/// NOTE: the ratio comes from eigenvalues of J^T J, whose rounding floor is 1e-16 relative: 1e-7 in
-/// singular values stays clear of it.
-const UNOBSERVABLE_RATIO: f64 = 1e-7;
-/// Below this ratio the condition number is worth a warning.
-const POORLY_CONDITIONED_RATIO: f64 = 1e-3;
 
 /// Refuses, before fitting, positions that cannot determine the model, naming what to add; judged on
 /// the normalised readings, so that the file's zero and unit do not matter.

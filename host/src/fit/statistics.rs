@@ -10,9 +10,7 @@ use super::nonlinear::{Observation, Solution};
 use super::normalization::Normalization;
 use super::shape::Shape;
 use crate::data::{Dataset, Row};
-
-/// Below this probability the residuals are judged larger than the noise explains.
-const NOISE_TEST_LEVEL: f64 = 1e-3;
+use crate::limits::NOISE_TEST_LEVEL;
 
 /// The residuals of a fit tested against the noise of the averaged readings.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -35,7 +33,7 @@ impl NoiseTest {
         let test = format!("chi-square {chi:.1} on {dof} degrees of freedom, p = {p:.3}");
         if !self.passed {
             format!("residuals larger than the capture noise: {test}, below the 0.1 % level")
-        } else if p < super::uncertainty::SCATTER_SIGNIFICANCE {
+        } else if p < crate::limits::SCATTER_SIGNIFICANCE {
             format!(
                 "residuals larger than the capture noise at the 5 % level (the standard errors are scaled up for \
                  it), not at 0.1 %: {test}"

@@ -15,6 +15,7 @@ use super::nonlinear::{Observation, Solution};
 use super::normalization::Normalization;
 use super::shape::Shape;
 use crate::data::Dataset;
+use crate::limits::SCATTER_SIGNIFICANCE;
 use crate::limits::TRUSTED_SAMPLE_COUNT;
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 
@@ -81,14 +82,6 @@ fn residual_covariance(
         }
     }
 }
-
-/// Below this probability of a chi-square at least as large under noise alone, the residuals are
-/// taken to hold more than noise and the noise-based errors are scaled up by sqrt(chi-square / dof).
-///
-/// NOTE: 5 %: 95 % of honest fits keep the noise's error unscaled (scaling every fit whose chi-square
-/// exceeds its dof would inflate honest errors on average), while a misfit the residuals show is
-/// carried into the errors.
-pub(super) const SCATTER_SIGNIFICANCE: f64 = 0.05;
 
 /// The factor by which the noise-based errors are scaled: sqrt(chi-square / dof) when the
 /// residuals exceed the noise significantly, else 1.

@@ -19,6 +19,6 @@ pub use discovery::{resolve_port, serial_ports, SerialPortEntry};
 pub use error::LinkError;
 pub use explain::explain;
 pub use port::{open_serial, pipe, PipeEnd, Port};
-pub use probe::{ask, find_board, is_worth_asking, Answer};
+pub use probe::{ask, find_board, find_boards, is_worth_asking, Answer};
 pub use requests::{ChipOrtho9, StreamRequest};
 pub use tally::Tally;

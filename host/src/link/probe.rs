@@ -62,3 +62,23 @@ pub fn find_board(
         _ => Err(LinkError::SeveralBoards { paths: found.iter().map(|(p, _)| *p).collect::<Vec<_>>().join(", ") }),
     }
 }
+
+/// The paths of every accelcal board among `ports`: those with accelcal's USB ids, and the USB serial
+/// ports of another identity that answer the handshake (each closed again after it). `asking` hears
+/// of each port before it is asked.
+pub fn find_boards(
+    ports: &[SerialPortEntry],
+    asking: &mut dyn FnMut(&SerialPortEntry),
+) -> Result<Vec<String>, LinkError> {
+    let mut found: Vec<String> = ports.iter().filter(|p| p.is_accelcal).map(|p| p.path.clone()).collect();
+    for entry in ports.iter().filter(|p| is_worth_asking(p)) {
+        asking(entry);
+        if let Answer::Board(_) = ask(&entry.path) {
+            found.push(entry.path.clone());
+        }
+    }
+    match found.is_empty() {
+        true => Err(LinkError::NoBoardFound { asked: ports.iter().filter(|p| is_worth_asking(p)).count() }),
+        false => Ok(found),
+    }
+}

@@ -12,6 +12,7 @@
 use nalgebra::{Matrix3, Vector3};
 
 use super::allan::AllanPoint;
+use crate::limits::RESOLVED_FLICKER_SHARE;
 
 /// The flicker floor of the Allan deviation is this times the bias instability: sqrt(2 ln 2 / pi).
 // NOTE: python3 -c "import math; print(math.sqrt(2 * math.log(2) / math.pi))" (was 0.664_282_433_7, wrong
@@ -56,9 +57,6 @@ impl NoiseTerms {
         Vector3::new(self.white_noise_n, self.bias_instability, self.random_walk).map(|v| v * v)
     }
 }
-
-/// Share of the Allan variance at its minimum the flicker floor must hold for B to count as resolved.
-const RESOLVED_FLICKER_SHARE: f64 = 0.5;
 
 /// What each squared term contributes to the Allan variance at `tau_s`.
 fn model_terms(tau_s: f64) -> Vector3<f64> {

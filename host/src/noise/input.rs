@@ -9,10 +9,15 @@ use std::path::Path;
 use shared::protocol::Sample;
 
 use super::RateSeries;
-use crate::recording::{self, read::is_npy, RecordingError};
+use crate::limits::RATE_AGREEMENT;
+use crate::recording::{self, read::is_npy, RecordingError, SAMPLE_COLUMNS, STREAM_COLUMNS};
 
-/// The six columns the analysis needs, in [`super::AXES`] order.
-pub const COLUMNS: [&str; 6] = ["ax_g", "ay_g", "az_g", "gx_dps", "gy_dps", "gz_dps"];
+/// The six columns the analysis needs, in [`super::AXES`] order: a recording's sample columns
+/// without the temperature.
+pub const COLUMNS: [&str; 6] = {
+    let c = SAMPLE_COLUMNS;
+    [c[0], c[1], c[2], c[3], c[4], c[5]]
+};
 
 /// Fewest samples for an Allan deviation curve worth fitting (ten averaging times from 1 to N / 10).
 pub const MIN_SAMPLES: usize = 100;
@@ -47,9 +52,6 @@ pub enum NoiseInputError {
 /// Sample rate of a CSV file without time stamps when the caller names none, in Hz: the sensor's
 /// full rate.
 pub const CSV_DEFAULT_RATE_HZ: f64 = 1000.0;
-/// How far a given rate may be from the one a file's time stamps show, as a fraction.
-// NOTE: time stamps are printed to the microsecond; at 100 Hz that is 1e-4 of a sample interval.
-const RATE_AGREEMENT: f64 = 0.01;
 
 /// Reads a recording file: a `.npy` recording at the rate it names, a CSV file at the rate of its
 /// `time_s` column (`rate_hz`, when given, must agree with either), else at `rate_hz` or
@@ -121,7 +123,7 @@ pub fn read_csv(reader: impl Read, rate_hz: Option<f64>) -> Result<RateSeries, N
     for (slot, column) in columns.iter_mut().zip(COLUMNS) {
         *slot = header.iter().position(|h| h == column).ok_or(NoiseInputError::MissingColumn { column })?;
     }
-    let time_column = header.iter().position(|h| h == "time_s");
+    let time_column = header.iter().position(|h| h == STREAM_COLUMNS[1]);
     columns[6] = time_column.unwrap_or(usize::MAX);
     let mut axes: [Vec<f64>; 7] = Default::default();
     for (row, record) in csv.records().enumerate() {

@@ -60,7 +60,7 @@ pub fn collect_adaptive<P: Port>(
         if session.has_capture(&target.name) {
             continue;
         }
-        reached = enough(session, options.rule.target_mg, feedback);
+        reached = turning.hand.all_have_enough(enough(session, options.rule.target_mg, feedback));
         if reached {
             break;
         }

@@ -12,15 +12,10 @@ use shared::protocol::{Sample, StreamKind};
 use super::moves::{Problem, Recording, Watch};
 use super::{Feedback, Hand, ProcedureError};
 use crate::fit::gyro::{rotate_up, GyroFit, Turn};
+use crate::limits::MAX_CHECK_AXIS_ELEVATION_DEG;
 use crate::limits::{MAX_MOVE_SECONDS, TURN_CHECK_REST_SECONDS};
 use crate::link::{Client, Port, StreamRequest};
 use crate::session::TurnCheck;
-
-/// Largest angle, in degrees, between the check turn's axis and the horizontal: the accelerometer
-/// sees a turn about a tilted line as a smaller tilt, and a scale error of the gyro less and less.
-// NOTE: a turn over an edge of a board resting on a table is about a horizontal line; 20 degrees
-// leaves a hand's turn in the air room while the tilt still shows 94 % of the turn's angle.
-const MAX_CHECK_AXIS_ELEVATION_DEG: f64 = 20.0;
 
 /// Streams the board at rest, asks `hand` for a quarter turn, and streams until it rests again;
 /// `Ok(Err(why))` when the turn could not be measured.

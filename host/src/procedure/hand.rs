@@ -23,6 +23,11 @@ pub trait Hand {
     /// Orientations (directions of up, any length) the fresh ones must keep away from; a person
     /// is told by the live line instead.
     fn avoid(&mut self, _orientations: &[[f64; 3]]) {}
+    /// Whether the hand stops asking for positions, given whether `this_board` has enough: a hand
+    /// on one board stops when it has; one turning a fixture of boards, once every board has.
+    fn all_have_enough(&mut self, this_board: bool) -> bool {
+        this_board
+    }
 }
 
 /// A person holding the board: instructions only.

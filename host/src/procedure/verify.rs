@@ -11,6 +11,7 @@ use super::collect::CAPTURE_ATTEMPTS;
 use super::stop_rule::CaptureLength;
 use super::wait::{wait_for_fresh, Rest, LIVE_WINDOW};
 use super::{Feedback, Hand, ProcedureError};
+use crate::limits::CHIP_AGREEMENT_SIGMAS;
 use crate::link::{explain, Client, LinkError, Port, StreamRequest};
 use crate::session::Check;
 pub use crate::session::Verification;
@@ -19,10 +20,6 @@ pub use crate::session::Verification;
 pub const VERIFY_SECONDS: u8 = 5;
 /// Corrected samples averaged to compare the chip with the host.
 const CHIP_SAMPLES: u32 = 20;
-
-/// How many times its own noise the chip may differ from the host before it is said to apply
-/// something else (a 3-sigma bound on each axis of the difference).
-const CHIP_AGREEMENT_SIGMAS: f64 = 3.0;
 
 impl Verification {
     /// Whether the chip's corrected samples agree with the host's correction, judged against the

@@ -12,16 +12,14 @@ pub const MAGIC: &[u8] = b"\x93NUMPY";
 /// Bytes of the whole header, samples start here (a multiple of 64, as numpy aligns it).
 pub const HEADER_BYTES: usize = 320;
 
-/// The columns after `seq`, little-endian, packed: the sample time is `seq` over the rate.
-const COLUMNS: &str = "('ax_g', '<f4'), ('ay_g', '<f4'), ('az_g', '<f4'), \
-('gx_dps', '<f4'), ('gy_dps', '<f4'), ('gz_dps', '<f4'), ('temp_c', '<f4')";
-
 /// The title of the `seq` field up to the rate.
 const SEQ_TITLE: &str = "sample number; samples per second: ";
 
 /// The record layout as numpy's `descr` for a recording at `rate_hz`.
+// NOTE: the columns after `seq` are f32, little-endian, packed: the sample time is `seq` over the rate.
 pub fn descr(rate_hz: u16) -> String {
-    format!("[(('{SEQ_TITLE}{rate_hz}; time_s = seq / {rate_hz}', 'seq'), '<u4'), {COLUMNS}]")
+    let columns: Vec<String> = super::SAMPLE_COLUMNS.iter().map(|c| format!("('{c}', '<f4')")).collect();
+    format!("[(('{SEQ_TITLE}{rate_hz}; time_s = seq / {rate_hz}', 'seq'), '<u4'), {}]", columns.join(", "))
 }
 
 /// The header of a file holding `samples` records taken at `rate_hz`.
@@ -71,5 +69,13 @@ mod tests {
             assert!(String::from_utf8_lossy(&header).contains(&format!("'shape': ({samples},)")));
             assert_eq!(check(&header), Ok(rate_hz));
         }
+    }
+
+    #[test]
+    fn the_columns_are_those_every_recording_names_so_older_files_still_read() {
+        let written_since_the_start = "[(('sample number; samples per second: 100; time_s = seq / 100', 'seq'), '<u4'), \
+            ('ax_g', '<f4'), ('ay_g', '<f4'), ('az_g', '<f4'), ('gx_dps', '<f4'), ('gy_dps', '<f4'), ('gz_dps', '<f4'), \
+            ('temp_c', '<f4')]";
+        assert_eq!(descr(100), written_since_the_start);
     }
 }

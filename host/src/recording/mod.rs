@@ -16,6 +16,15 @@ pub use write::Recorder;
 /// took 8 of 40 bytes. 32 bytes is 115.2 MB an hour at 1 kHz.
 pub const RECORD_BYTES: usize = 4 + 7 * 4;
 
+/// The columns of a sample, in a recording after `seq` and in `accelcal stream`'s CSV after
+/// [`STREAM_COLUMNS`]: the accelerometer in g, the gyro in deg/s, the die temperature. The one list
+/// the `.npy` header, `accelcal stream` and the noise analysis's reader take.
+pub const SAMPLE_COLUMNS: [&str; 7] = ["ax_g", "ay_g", "az_g", "gx_dps", "gy_dps", "gz_dps", "temp_c"];
+
+/// The columns `accelcal stream`'s CSV has before [`SAMPLE_COLUMNS`]: the sample number and its time
+/// on the board in seconds.
+pub const STREAM_COLUMNS: [&str; 2] = ["index", "time_s"];
+
 /// Samples written per block; the header's count is brought up to date after each block, so a
 /// crash loses at most this many (one second at 1 kHz).
 pub const BLOCK_SAMPLES: usize = 1000;

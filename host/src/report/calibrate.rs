@@ -21,6 +21,9 @@ pub struct CalibrateReport {
     pub calibration: ChosenJson,
     /// The simulated sensor's truth at the calibration's temperature, and its drift (only with `--sim`).
     pub truth: Option<TruthJson>,
+    /// With `--sim`: the calibration's true error, the rms of | |a| - 1 g | in mg over 200
+    /// orientations of the simulated sensor at the calibration's temperature (noise-free readings).
+    pub true_error_mg: Option<f64>,
     /// The errors at fresh orientations before and after.
     pub verification: Verification,
     /// Positions captured.
@@ -141,6 +144,7 @@ impl CalibrateReport {
         CalibrateReport {
             calibration: ChosenJson::new(chosen, &GyroOutcome::default()),
             truth,
+            true_error_mg: None,
             verification,
             captures,
             chip_fit: chip.map(CalibrationJson::from_device),

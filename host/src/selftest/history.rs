@@ -14,7 +14,8 @@ use shared::selftest::{self, StoredSelfTest};
 
 use super::report::SelfTestJson;
 use super::SelfTest;
-use crate::session::write_atomically;
+use crate::files::{unix_time_s, write_atomically};
+use crate::shown::utc_minutes;
 
 /// One earlier self-test.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
@@ -28,7 +29,7 @@ pub struct HistoryEntry {
 impl HistoryEntry {
     /// The entry of a self-test run now.
     pub fn now(result: &SelfTestJson) -> Self {
-        let date_utc = crate::report::utc_minutes(crate::session::unix_time_s());
+        let date_utc = utc_minutes(unix_time_s());
         HistoryEntry { date_utc, result: serde_json::to_value(result).unwrap_or_default() }
     }
 
@@ -37,7 +38,7 @@ impl HistoryEntry {
     pub fn of_board(identity: SensorIdentity, record: &[u8]) -> Option<Self> {
         let stored = StoredSelfTest::from_record(record)?;
         let test = SelfTest { identity, raw: stored.raw, verdicts: selftest::evaluate(&stored.raw) };
-        let date_utc = crate::report::utc_minutes(f64::from(stored.unix_time_s));
+        let date_utc = utc_minutes(f64::from(stored.unix_time_s));
         Some(HistoryEntry { date_utc, result: serde_json::to_value(SelfTestJson::of(&test)).unwrap_or_default() })
     }
 

@@ -7,11 +7,9 @@ use serde::{Deserialize, Serialize};
 use shared::protocol::{DeviceInfo, FirmwareVersion, SensorConfig};
 
 use super::{Session, SessionError};
+use crate::limits::RESUME_RATE_TOLERANCE;
 use crate::selftest::history::HistoryEntry;
 use crate::shown::utc_minutes;
-
-/// How far, as a fraction, a board's sample rate may be from a session's for it to be resumed.
-const RESUME_RATE_TOLERANCE: f64 = 0.05;
 
 /// The board a session was captured on: a resumed session must continue on the same board, at the
 /// same range and filter.

@@ -42,6 +42,9 @@ pub enum SimCommand {
     Ambient { target_c: f32, c_per_s: f32 },
     /// Let this many seconds pass at once while idle (a soak), without producing every sample.
     Elapse(f32),
+    /// Let this many seconds pass while the board waits idle for others on its fixture: the
+    /// temperature moves on, the noise stream does not (`SimMpu6050::wait_seconds`).
+    Wait(f32),
     /// Disconnect or reconnect the sensor.
     Connect(bool),
     /// The link loses the next this many streamed samples (a flaky cable).

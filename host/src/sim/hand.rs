@@ -33,6 +33,7 @@ impl Hand {
             SimCommand::Connect(connected) => sensor.set_connected(connected),
             SimCommand::Ambient { target_c, c_per_s } => sensor.physics.environment.ramp_to(target_c, c_per_s),
             SimCommand::Elapse(seconds) => soak(sensor, seconds),
+            SimCommand::Wait(seconds) => sensor.wait_seconds(seconds),
             _ => return false,
         }
         true
