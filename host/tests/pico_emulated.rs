@@ -13,7 +13,7 @@ use accelcal::calibration::CalibrationJson;
 use accelcal::sim::{SimBoard, SimSensor};
 use common::person::{Moves, Run};
 use common::{accelcal_within, EmulatedPico};
-use shared::calibration::AccelRange;
+use shared::calibration::{AccelRange, Calibration};
 
 fn json(args: &[&str]) -> serde_json::Value {
     let (output, _) = accelcal_within(args, Duration::from_secs(120));
@@ -54,9 +54,24 @@ fn temp_stem(name: &str) -> std::path::PathBuf {
 /// sensor of `seed`, at the temperature the calibration was made at (`SimBoard::true_error_mg`).
 fn true_error_mg(seed: u64, output: &serde_json::Value) -> f64 {
     let record = CalibrationJson::from_text(&output.to_string()).unwrap();
-    let calibration = record.to_device(AccelRange::G2).unwrap();
+    true_error_of(seed, &record.to_device(AccelRange::G2).unwrap())
+}
+
+fn true_error_of(seed: u64, calibration: &Calibration) -> f64 {
     let (_, board) = SimBoard::in_process(seed, SimSensor::Realistic).unwrap();
-    board.true_error_mg(&calibration, calibration.mean_temp_c)
+    board.true_error_mg(calibration, calibration.mean_temp_c)
+}
+
+/// The default calibration of the simulated sensor of `seed` in this process (`calibrate --sim`),
+/// as `calibrate --json` prints it.
+fn in_process_calibration(seed: u64) -> serde_json::Value {
+    let session = temp_stem(&format!("in-process-{seed}"));
+    let seed = seed.to_string();
+    let args = ["calibrate", "--sim", "--seed", &seed, "--yes", "--json", "--session", session.to_str().unwrap()];
+    let (output, _) = accelcal_within(&args, Duration::from_secs(300));
+    // NOTE: exit status 2 is a calibration uploaded and saved that missed --target-mg: it is compared all the same.
+    assert!(matches!(output.status.code(), Some(0 | 2)), "{}", String::from_utf8_lossy(&output.stderr));
+    serde_json::from_slice(&output.stdout).unwrap()
 }
 
 /// The board's active calibration as `download --json` prints it (matrix and offset).
@@ -66,7 +81,10 @@ fn active_calibration(path: &str) -> serde_json::Value {
 }
 
 #[test]
-#[ignore = "intermittent: in .ci/run on 2026-11-25 `download` after the emulated power cycle found the new pty printing 10 bytes that are not frames (true error 0.147 mg vs 0.316 mg had passed); the harness's port hand-over after a restart is to be fixed (issue 26)"]
+#[cfg_attr(
+    not(has_pico_emulator),
+    ignore = "needs node, `npm ci` in boards/pico/emulator and `cargo xtask dist` (CI=true runs it)"
+)]
 fn the_default_calibration_on_the_real_pico_binary_is_as_good_as_in_process_and_survives_a_power_cycle() {
     const SEED: u64 = 21;
     let mut pico = EmulatedPico::boot(&SEED.to_string());
@@ -77,21 +95,7 @@ fn the_default_calibration_on_the_real_pico_binary_is_as_good_as_in_process_and_
     assert!(matches!(status.code(), Some(0 | 2)), "{stderr}");
     let on_the_pico: serde_json::Value = serde_json::from_str(&stdout).unwrap();
 
-    let sim_session = temp_stem("in-process");
-    let args = [
-        "calibrate",
-        "--sim",
-        "--seed",
-        &SEED.to_string(),
-        "--yes",
-        "--json",
-        "--session",
-        sim_session.to_str().unwrap(),
-    ];
-    let (output, _) = accelcal_within(&args, Duration::from_secs(300));
-    // NOTE: exit status 2 is a calibration uploaded and saved that missed --target-mg: it is compared all the same.
-    assert!(matches!(output.status.code(), Some(0 | 2)), "{}", String::from_utf8_lossy(&output.stderr));
-    let in_process: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    let in_process = in_process_calibration(SEED);
     let (pico_mg, sim_mg) = (true_error_mg(SEED, &on_the_pico), true_error_mg(SEED, &in_process));
     println!("true error: {pico_mg:.3} mg on the emulated Pico, {sim_mg:.3} mg in process (seed {SEED})");
     assert!(pico_mg <= 1.5 * sim_mg, "{pico_mg:.3} mg on the Pico, {sim_mg:.3} mg in process");
@@ -105,10 +109,21 @@ fn the_default_calibration_on_the_real_pico_binary_is_as_good_as_in_process_and_
     assert_eq!(active_calibration(&pico.path), uploaded, "the calibration did not survive the power cycle");
 }
 
+/// Seed 22's default calibration in process has a true error of 0.153 mg; six resumed sessions on
+/// the emulated Pico had 0.144-0.245 mg. Their three-orientation verification said 0.11-0.39 mg
+/// (noise subtracted), uncorrelated with the truth, above the 0.2 mg target in four of the six (exit
+/// 2; the in-process session's says 0.49 mg), so the test judges the resumed calibration by its true
+/// error, not by that exit status. A resume that lost or mixed up captures is off by far more.
+const RESUMED_WITHIN: f64 = 2.0;
+
 #[test]
-#[ignore = "intermittent: in .ci/run on 2026-11-25 the resumed session completed but its verification missed 0.2 mg (0.439 mg, one orientation 0.616 mg), exit 2 where the test wants 0; cause not found yet (issue 26)"]
+#[cfg_attr(
+    not(has_pico_emulator),
+    ignore = "needs node, `npm ci` in boards/pico/emulator and `cargo xtask dist` (CI=true runs it)"
+)]
 fn a_pulled_usb_cable_mid_session_keeps_the_captures_and_resume_on_the_replugged_pico_completes_them() {
-    let mut pico = EmulatedPico::boot("22");
+    const SEED: u64 = 22;
+    let mut pico = EmulatedPico::boot(&SEED.to_string());
     pico.tell("place 0.3 0.4 0.866");
     let session = temp_stem("pulled");
     let args = ["--yes", "--session", session.to_str().unwrap()];
@@ -121,22 +136,29 @@ fn a_pulled_usb_cable_mid_session_keeps_the_captures_and_resume_on_the_replugged
     assert!(!status.success(), "{stderr}");
     let last = stderr.lines().last().unwrap();
     assert!(last.contains("captures so far are kept in"), "{stderr}");
-    let kept = session_captures(&session);
-    assert!(kept >= 2, "{kept} captures kept: {stderr}");
+    let kept = session_file(&session)["captures"].as_array().unwrap().clone();
+    assert!(kept.len() >= 2, "{} captures kept: {stderr}", kept.len());
 
     pico.tell("cable in");
     pico.path = pico.next_path();
     let json_path = session.with_extension("json");
     let resume = ["--resume", json_path.to_str().unwrap(), "--yes"];
     let (status, stdout, stderr) = Run::start(&pico.path.clone(), &resume, Moves::Turn).finish(&mut pico);
-    assert!(status.success(), "{stderr}");
-    assert!(stderr.contains(&format!("{kept} of ")), "{stderr}");
+    // NOTE: exit status 2 is a calibration uploaded and saved whose verification missed --target-mg.
+    assert!(matches!(status.code(), Some(0 | 2)), "{stderr}");
+    assert!(stderr.contains(&format!("{} of ", kept.len())), "{stderr}");
     assert!(stdout.starts_with("verified at 3 fresh orientations"), "{stdout}");
-    assert!(session_captures(&session) > kept);
+    let resumed = session_file(&session);
+    let captures = resumed["captures"].as_array().unwrap();
+    assert!(captures.len() > kept.len() && captures[..kept.len()] == kept[..], "the kept captures were not kept");
+
+    let uploaded: Calibration = serde_json::from_value(resumed["uploaded"].clone()).unwrap();
+    let (pico_mg, sim_mg) = (true_error_of(SEED, &uploaded), true_error_mg(SEED, &in_process_calibration(SEED)));
+    println!("true error: {pico_mg:.3} mg resumed on the emulated Pico, {sim_mg:.3} mg in process (seed {SEED})");
+    assert!(pico_mg <= RESUMED_WITHIN * sim_mg, "{pico_mg:.3} mg resumed, {sim_mg:.3} mg in process");
 }
 
-fn session_captures(stem: &std::path::Path) -> usize {
+fn session_file(stem: &std::path::Path) -> serde_json::Value {
     let text = std::fs::read_to_string(stem.with_extension("json")).unwrap();
-    let json: serde_json::Value = serde_json::from_str(&text).unwrap();
-    json["captures"].as_array().unwrap().len()
+    serde_json::from_str(&text).unwrap()
 }

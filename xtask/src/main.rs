@@ -92,20 +92,30 @@ const BOARDS: [Board; 5] = [
 ];
 
 fn main() -> Result<()> {
-    let task = std::env::args().nth(1);
-    match task.as_deref() {
-        Some("dist") => dist(),
-        _ => bail!("usage: cargo xtask dist   (builds every board into dist/)"),
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    match args.split_first() {
+        Some((task, names)) if task == "dist" => dist(&chosen(names)?),
+        _ => bail!("usage: cargo xtask dist [BOARD...]   (builds every board, or the ones named, into dist/)"),
     }
 }
 
-/// Builds every board and writes its files into `dist/`; all budgets are checked before failing.
-fn dist() -> Result<()> {
+/// The boards `names` picks (every board when it names none); an unknown name lists the known ones.
+fn chosen(names: &[String]) -> Result<Vec<&'static Board>> {
+    if names.is_empty() {
+        return Ok(BOARDS.iter().collect());
+    }
+    let known = || BOARDS.iter().map(|b| b.name).collect::<Vec<_>>().join(", ");
+    let find = |name: &String| BOARDS.iter().find(|b| b.name == name.as_str());
+    names.iter().map(|name| find(name).with_context(|| format!("no board {name:?}; the boards: {}", known()))).collect()
+}
+
+/// Builds the boards and writes their files into `dist/`; all budgets are checked before failing.
+fn dist(boards: &[&Board]) -> Result<()> {
     let root = workspace_root();
     let dist = root.join("dist");
     std::fs::create_dir_all(&dist).with_context(|| format!("creating {}", dist.display()))?;
     let mut over_budget = Vec::new();
-    for board in &BOARDS {
+    for board in boards {
         let features = board.feature.map(|f| format!(" --features {f}")).unwrap_or_default();
         eprintln!("== {}: cargo build -p {} --target {}{features}", board.name, board.package, board.target);
         build(&root, board)?;

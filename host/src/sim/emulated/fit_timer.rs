@@ -49,16 +49,16 @@ impl FitTimer {
         }
     }
 
-    /// At a poll: says how long an answered fit took (to the nearest poll, 1 ms).
-    pub(super) fn poll(&mut self, at_ns: u64, cycles: u64) {
-        let (Some(outcome), Some(asked)) = (self.answered.take(), self.asked.take()) else { return };
+    /// At a poll: what to say of how long an answered fit took (to the nearest poll, 1 ms).
+    pub(super) fn poll(&mut self, at_ns: u64, cycles: u64) -> Option<String> {
+        let (outcome, asked) = (self.answered.take()?, self.asked.take()?);
         let executed = cycles - asked.cycles;
-        eprintln!(
+        Some(format!(
             "emulated Pico: {} ({outcome}) answered within {:.0} ms of the chip's time; the Cortex-M0+ executed {executed} cycles ({:.0} ms at 125 MHz)",
             asked.name,
             (at_ns - asked.at_ns) as f64 * 1e-6,
             executed as f64 / 125e3,
-        );
+        ))
     }
 }
 
@@ -67,5 +67,34 @@ fn outcome(response: &Response) -> String {
         Response::Ortho9Fitted { captures, iterations, .. } => format!("{captures} captures, {iterations} iterations"),
         Response::Error(error) => format!("refused: {error:?}"),
         _ => "fitted".into(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use shared::calibration::{AccelRange, Calibration};
+    use shared::protocol::{encode, MAX_FRAME_LEN};
+
+    use super::*;
+
+    fn frame<T: serde::Serialize>(id: u16, message: &T) -> Vec<u8> {
+        let mut out = [0u8; MAX_FRAME_LEN];
+        let len = encode(id, message, &mut out).unwrap();
+        out[..len].to_vec()
+    }
+
+    #[test]
+    fn a_fit_the_host_asked_for_is_timed_from_its_request_to_its_answer() {
+        let mut timer = FitTimer::default();
+        timer.host_wrote(&frame(7, &Request::FitOrtho9), 1_000_000, 100);
+        assert_eq!(timer.poll(2_000_000, 125_100), None, "not answered yet");
+        let answer =
+            Response::Ortho9Fitted { calibration: Calibration::identity(AccelRange::G2), captures: 10, iterations: 4 };
+        timer.device_sent(&frame(6, &Response::Done));
+        timer.device_sent(&frame(7, &answer));
+        let said = timer.poll(3_000_000, 250_100).unwrap();
+        assert!(said.contains("FitOrtho9 (10 captures, 4 iterations) answered within 2 ms"), "{said}");
+        assert!(said.contains("executed 250000 cycles (2 ms at 125 MHz)"), "{said}");
+        assert_eq!(timer.poll(4_000_000, 250_200), None, "said once");
     }
 }

@@ -106,7 +106,9 @@ impl Bridge {
             Event::Poll { at_ns, cycles } => {
                 self.advance_to(at_ns);
                 self.keep_to_the_wall_clock(at_ns);
-                self.fits.poll(at_ns, cycles);
+                if let Some(line) = self.fits.poll(at_ns, cycles) {
+                    eprintln!("{line}");
+                }
                 let controls = self.controls(at_ns, cycles)?;
                 harness.answer_poll(&controls)?;
             }

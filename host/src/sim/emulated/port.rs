@@ -7,7 +7,7 @@ use std::collections::VecDeque;
 use std::io::{ErrorKind, Read, Write};
 use std::time::Duration;
 
-use serialport::{ClearBuffer, SerialPort, TTYPort};
+use serialport::{SerialPort, TTYPort};
 
 use super::EmulatorError;
 
@@ -55,7 +55,7 @@ impl HostPort {
     /// kernel drops a closed serial port's unread input.
     pub(super) fn take_written(&mut self) -> (Vec<u8>, bool) {
         let mut bytes = Vec::new();
-        let Some((master, _)) = self.pty.as_mut() else { return (bytes, false) };
+        let Some((master, path)) = self.pty.as_mut() else { return (bytes, false) };
         let mut buffer = [0u8; 4096];
         let open = loop {
             match master.read(&mut buffer) {
@@ -67,11 +67,12 @@ impl HostPort {
         };
         let was_open = std::mem::replace(&mut self.open, open);
         if was_open != open {
-            // NOTE: a closed port keeps no unread input (as the kernel's serial ports): what the
-            // device sent to the last program is not read by the next. On a pseudo-terminal that
-            // input waits in the slave end until flushed from the master.
+            // NOTE: a closed port keeps no unread input (the kernel empties a serial port's at its
+            // last close): what the device sent to the last program is not read by the next.
             self.to_host.clear();
-            let _ = master.clear(ClearBuffer::All);
+            if !open {
+                discard_unread(path);
+            }
         }
         (bytes, open)
     }
@@ -95,5 +96,21 @@ impl HostPort {
                 _ => break,
             }
         }
+    }
+}
+
+/// Empties what the bridge wrote that the last program on the port left unread: it waits in the
+/// slave end's line discipline, out of the master's reach (a flush of the master does not empty
+/// it), so the slave end is opened for a moment to flush it (not as a controlling terminal).
+fn discard_unread(path: &str) {
+    use std::os::fd::AsRawFd;
+    use std::os::unix::fs::OpenOptionsExt;
+
+    use nix::fcntl::OFlag;
+    use nix::sys::termios::{tcflush, FlushArg};
+
+    let flags = (OFlag::O_NOCTTY | OFlag::O_NONBLOCK).bits();
+    if let Ok(slave) = std::fs::OpenOptions::new().read(true).write(true).custom_flags(flags).open(path) {
+        let _ = tcflush(slave.as_raw_fd(), FlushArg::TCIFLUSH);
     }
 }
