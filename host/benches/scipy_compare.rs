@@ -14,6 +14,7 @@ use std::io::Write;
 use std::path::PathBuf;
 use std::process::{Command, Stdio};
 
+use accelcal::data::Dataset;
 use accelcal::fit::Model;
 use accelcal::fit::{self, FitOptions, ModelChoice};
 use accelcal::sim::synthetic::random_positions;
@@ -22,6 +23,10 @@ use cpu_time::ProcessTime;
 const PROBLEMS: u64 = 200;
 const POSITIONS: usize = 24;
 const REPEATS: usize = 7;
+/// Noise of each averaged reading, in g.
+const NOISE_G: f64 = 1e-4;
+/// Samples each reading averaged (the same in every row, so the fit weighs them alike).
+const SAMPLES: u32 = 1000;
 
 /// One solver's median CPU time for all problems, its mean iterations and its cost per problem.
 struct Run {
@@ -32,7 +37,8 @@ struct Run {
 }
 
 fn main() {
-    let problems: Vec<_> = (0..PROBLEMS).map(|seed| random_positions(1000 + seed, POSITIONS, 1e-4, false)).collect();
+    let problems: Vec<_> =
+        (0..PROBLEMS).map(|seed| with_noise(random_positions(1000 + seed, POSITIONS, NOISE_G, false))).collect();
     let readings: Vec<Vec<[f64; 3]>> = problems.iter().map(|p| p.rows.iter().map(|r| r.reading).collect()).collect();
     let (choice, options) = (ModelChoice::Only(Model::Ortho9), FitOptions::default());
     let solve = median_of("accelcal shared::ortho9 (the solve)", || {
@@ -41,12 +47,15 @@ fn main() {
             .map(|r| shared::ortho9::fit(r).map_or((f64::NAN, 0), |f| (f.cost, f.iterations as usize)))
             .collect()
     });
-    let whole = median_of("accelcal whole fit (statistics, prediction)", || {
+    let whole = median_of("accelcal whole fit (statistics, noise test, prediction)", || {
         problems
             .iter()
             .map(|p| fit::fit(p, choice, &options).map_or((f64::NAN, 0), |f| (f.cost, f.iterations)))
             .collect()
     });
+    let complete = problems.iter().filter_map(|p| fit::fit(p, choice, &options).ok());
+    let complete = complete.filter(|f| f.noise_test.is_some() && f.prediction.is_some()).count();
+    println!("whole fits with their noise test and prediction: {complete} of {PROBLEMS}");
     let mut peers = Vec::new();
     match scipy(&readings) {
         Ok(run) => peers.push(run),
@@ -59,11 +68,21 @@ fn main() {
     report(&solve, &whole, &peers);
 }
 
+/// The rows as captures state them, `count` and `std_*` (the noise of their mean is [`NOISE_G`]): the
+/// whole fit then computes everything a session's fit does, the noise test and the noise's errors too.
+fn with_noise(mut problem: Dataset) -> Dataset {
+    for row in &mut problem.rows {
+        row.count = Some(SAMPLES);
+        row.std = Some([NOISE_G * f64::from(SAMPLES).sqrt(); 3]);
+    }
+    problem
+}
+
 /// Prints every solver's time per problem and iterations, then the ratios and cost agreement.
 fn report(solve: &Run, whole: &Run, peers: &[Run]) {
     println!("{PROBLEMS} problems of {POSITIONS} positions, median of {REPEATS} runs, CPU time per problem:");
     for run in [solve, whole].into_iter().chain(peers) {
-        println!("  {:46} {:8.2} us  {:5.2} iterations", run.name, per_problem_us(run), run.iterations);
+        println!("  {:56} {:8.2} us  {:5.2} iterations", run.name, per_problem_us(run), run.iterations);
     }
     for peer in peers {
         println!("ortho9 fit speedup vs {} (CPU time): {:.2}x", peer.name, peer.seconds / solve.seconds);

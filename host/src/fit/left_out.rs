@@ -9,13 +9,14 @@ use shared::linalg;
 use super::influence::Influence;
 use super::linear::{self, Pair, MIN_REFERENCES};
 use super::models::{self, Solved};
-use super::nonlinear::Observation;
+use super::nonlinear::{Observation, Problem};
 use super::normalization::Normalization;
 use super::observability::{independent_pair, reading_points_along};
 use super::shape::Shape;
 use super::{fit_model, uncertainty, Fit, FitError, FitOptions, Model};
 use crate::data::Dataset;
 use crate::limits::HIGH_LEVERAGE;
+use levenberg_marquardt::LeastSquaresProblem;
 
 /// One row's leave-one-out figure, or the need to refit without it.
 enum LeftOut {
@@ -114,17 +115,19 @@ fn linear12_error(coefficients: &DMatrix<f64>, reading: [f64; 3], g: f64) -> Opt
 /// The nonlinear models: each row's Gauss-Newton step from the solution of all rows.
 fn least_squares(training: &Dataset, model: Model, options: &FitOptions) -> Result<Vec<LeftOut>, FitError> {
     let solved = models::solved(training, model, options)?;
-    let influence = Influence::new(&solved.solution.jacobian).ok_or(FitError::Degenerate)?;
+    let problem = Problem::new(solved.shape, &solved.observations, solved.solution.params.clone());
+    let (jacobian, residuals) = problem.jacobian().zip(problem.residuals()).ok_or(FitError::Degenerate)?;
+    let influence = Influence::new(&jacobian).ok_or(FitError::Degenerate)?;
     let hangs = rows_the_checks_hang_on(training, model, solved.shape, &solved.normalization);
     let mut first = 0;
     let mut rows = Vec::with_capacity(training.rows.len());
     for (observation, hangs) in solved.observations.iter().zip(hangs) {
         let count = if observation.reference.is_some() { 3 } else { 1 };
-        let jacobian = solved.solution.jacobian.rows(first, count).into_owned();
-        let residuals =
-            DMatrix::from_column_slice(count, 1, &solved.solution.residuals.as_slice()[first..first + count]);
+        let row_jacobian = jacobian.rows(first, count).into_owned();
+        let row_residuals = DMatrix::from_column_slice(count, 1, &residuals.as_slice()[first..first + count]);
         first += count;
-        let removal = influence.removal(&jacobian, &residuals).filter(|r| !hangs && r.leverage <= HIGH_LEVERAGE);
+        let removal =
+            influence.removal(&row_jacobian, &row_residuals).filter(|r| !hangs && r.leverage <= HIGH_LEVERAGE);
         rows.push(
             removal.map_or(LeftOut::Refit, |r| LeftOut::Error(solver_error(&solved, &r.step, observation) * options.g)),
         );

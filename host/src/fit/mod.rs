@@ -1,5 +1,6 @@
 //! Fitting a calibration `a = M (m - o)` to a data file, by the models of DESIGN.md.
 
+mod covariance;
 pub mod drift;
 mod evaluate;
 mod faces;
@@ -8,6 +9,7 @@ pub mod hysteresis;
 mod influence;
 mod left_out;
 mod linear;
+mod linearised;
 mod model;
 mod models;
 mod nonlinear;

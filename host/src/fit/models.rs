@@ -1,8 +1,9 @@
 //! The least-squares models `reference-norm12`, `ortho9` and `diag6`: observability checks, the
 //! normalised solve, and the map back to the file's units with standard errors.
 
-use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
+use nalgebra::{DVector, Matrix3, SVector, Vector3};
 
+use super::covariance::{self, Accumulated, Square};
 use super::nonlinear::{solve, Observation, Solution};
 use super::normalization::Normalization;
 use super::observability::{check_conditioning, check_positions};
@@ -24,16 +25,29 @@ pub(super) fn shape_of(model: Model) -> Shape {
 
 /// Fits one of the least-squares models to the training rows.
 pub(super) fn least_squares(training: &Dataset, model: Model, options: &FitOptions) -> Result<Fit, FitError> {
-    let Solved { shape, normalization, observations, solution, mut warnings } = solved(training, model, options)?;
-    let (scatter, noise, inflation, reported) = errors(training, shape, &solution, &observations, &normalization);
-    let errors = [scatter.as_ref(), noise.as_ref()];
+    let solved = solved(training, model, options)?;
+    Ok(match solved.shape {
+        Shape::Diagonal => with_statistics::<6>(training, model, options, solved),
+        Shape::TriangularTimesDiagonal => with_statistics::<9>(training, model, options, solved),
+        Shape::Full => with_statistics::<12>(training, model, options, solved),
+    })
+}
+
+/// The fit in the file's units with its standard errors, noise test and prediction; `P` the model's
+/// parameters, so that its statistics are on fixed-size matrices.
+fn with_statistics<const P: usize>(training: &Dataset, model: Model, options: &FitOptions, solved: Solved) -> Fit {
+    let Solved { shape, normalization, observations, solution, mut warnings } = solved;
+    let sums = covariance::accumulate::<P>(training, shape, &solution, &observations, &normalization);
+    let (scatter, noise, inflation, reported) = errors(&sums, solution.cost);
+    let errors = [scatter.as_ref().map(|e| e.as_slice()), noise.as_ref().map(|e| e.as_slice())];
     let parameters = file_parameters(shape, &solution, errors, inflation, &normalization, options.g);
     let prediction = reported.map(|c| predicted(shape, &parameters, &normalization, &c, options.g));
-    let noise_test = statistics::noise_test(training, shape, &solution, &observations, &normalization);
+    let noise_test = statistics::noise_test(sums.own, sums.residuals, P);
     let (matrix, offset) = calibration_of(shape, &parameters);
     let (m, o) = (Matrix3::from(matrix).transpose(), Vector3::from(offset));
-    warnings.extend(fit_warnings(training, &observations, &solution, &m, &o, noise_test.as_ref(), options.g));
-    Ok(Fit {
+    let degrees_of_freedom = sums.residuals.saturating_sub(P);
+    warnings.extend(fit_warnings(training, &observations, degrees_of_freedom, &m, &o, noise_test.as_ref(), options.g));
+    Fit {
         model,
         matrix,
         offset,
@@ -45,7 +59,7 @@ pub(super) fn least_squares(training: &Dataset, model: Model, options: &FitOptio
         warnings,
         selection: None,
         prediction,
-    })
+    }
 }
 
 /// A least-squares model solved in the solver's units, with what the solve needs to be read.
@@ -64,30 +78,25 @@ pub(super) fn solved(training: &Dataset, model: Model, options: &FitOptions) -> 
     let normalization = Normalization::of_dataset(training);
     check_positions(training, model, shape, &normalization)?;
     let observations = observations(training, model, &normalization, options.g);
-    let start = DVector::from_iterator(shape.len() + 3, shape.identity().into_iter().chain([0.0; 3]));
+    let start: Vec<f64> = shape.identity().into_iter().chain([0.0; 3]).collect();
     let mut warnings = Vec::new();
     check_conditioning(model, shape, &observations, &start, &mut warnings)?;
-    let solution = ortho9::solve_or(shape, &observations, || solve(shape, &observations, start))?;
+    let solution = ortho9::solve_or(shape, &observations, || solve(shape, &observations, DVector::from_vec(start)))?;
     Ok(Solved { shape, normalization, observations, solution, warnings })
 }
 
 /// The prediction at fresh orientations from the covariance in the solver's units.
-fn predicted(
+fn predicted<const P: usize>(
     shape: Shape,
     parameters: &[Parameter],
     normalization: &Normalization,
-    covariance: &DMatrix<f64>,
+    covariance: &Square<P>,
     g: f64,
 ) -> Prediction {
     let n = shape.len();
-    let factors = DVector::from_fn(n + 3, |k, _| {
-        if k < n {
-            shape.unit_factor(k, g, &normalization.radii)
-        } else {
-            normalization.radii[k - n]
-        }
-    });
-    let file = DMatrix::from_diagonal(&factors) * covariance * DMatrix::from_diagonal(&factors);
+    let factor =
+        |k: usize| if k < n { shape.unit_factor(k, g, &normalization.radii) } else { normalization.radii[k - n] };
+    let file = Square::<P>::from_fn(|i, j| factor(i) * covariance[(i, j)] * factor(j));
     let values: Vec<f64> = parameters.iter().map(|p| p.value).collect();
     prediction::least_squares(shape, &values, &file, g)
 }
@@ -96,42 +105,39 @@ fn predicted(
 fn fit_warnings(
     training: &Dataset,
     observations: &[Observation],
-    solution: &Solution,
+    degrees_of_freedom: usize,
     matrix: &Matrix3<f64>,
     offset: &Vector3<f64>,
     noise_test: Option<&NoiseTest>,
     g: f64,
 ) -> Vec<String> {
-    // NOTE: with only the references the model used: the others say nothing of this fit's placement.
-    let rows = observations.iter().zip(&training.rows);
-    let used =
-        Dataset { rows: rows.map(|(o, r)| Row { reference: o.reference.and(r.reference), ..r.clone() }).collect() };
     let failed = noise_test.filter(|t| !t.passed);
-    let mut warnings: Vec<String> =
-        failed.map(|t| verdict::noise_warning(&used, matrix, offset, g, t)).into_iter().collect();
-    let degrees_of_freedom = solution.residuals.len().saturating_sub(solution.params.len());
+    let warning =
+        failed.map(|t| verdict::noise_warning(&used_references(training, observations), matrix, offset, g, t));
+    let mut warnings: Vec<String> = warning.into_iter().collect();
     warnings.extend(uncertainty::redundancy_warnings(training, degrees_of_freedom));
     warnings
 }
 
+/// The training rows with only the references the model used: the others say nothing of this fit's
+/// placement.
+fn used_references(training: &Dataset, observations: &[Observation]) -> Dataset {
+    let rows = observations.iter().zip(&training.rows);
+    Dataset { rows: rows.map(|(o, r)| Row { reference: o.reference.and(r.reference), ..r.clone() }).collect() }
+}
+
 /// Scatter- and noise-based standard errors, the noise's inflation, the reported covariance.
-type Errors = (Option<DVector<f64>>, Option<DVector<f64>>, f64, Option<DMatrix<f64>>);
+type Errors<const P: usize> = (Option<SVector<f64, P>>, Option<SVector<f64, P>>, f64, Option<Square<P>>);
 
 /// The scatter- and noise-based standard errors in the solver's units, the noise's inflation, and the
 /// covariance behind the reported errors (the noise's, inflated, or the scatter's).
-fn errors(
-    training: &Dataset,
-    shape: Shape,
-    solution: &Solution,
-    observations: &[Observation],
-    normalization: &Normalization,
-) -> Errors {
-    let degrees_of_freedom = solution.residuals.len().saturating_sub(solution.params.len());
-    let noise = uncertainty::noise_errors(training, shape, solution, observations, normalization);
-    let inflation = noise.as_ref().map_or(1.0, |n| uncertainty::inflation(n.chi_square, degrees_of_freedom));
-    let (scatter, noise) = (scatter_covariance(solution), noise.map(|n| n.covariance));
-    let reported = noise.as_ref().map(|c| c * inflation.powi(2)).or(scatter.clone());
-    let diagonal = |c: Option<DMatrix<f64>>| c.map(|c| uncertainty::diagonal_errors(&c));
+fn errors<const P: usize>(sums: &Accumulated<P>, cost: f64) -> Errors<P> {
+    let degrees_of_freedom = sums.residuals.saturating_sub(P);
+    let (scatter, noise) = covariance::covariances(sums, cost);
+    let inflation = noise.map_or(1.0, |(_, chi_square)| uncertainty::inflation(chi_square, degrees_of_freedom));
+    let noise = noise.map(|(c, _)| c);
+    let reported = noise.map(|c| c * inflation.powi(2)).or(scatter);
+    let diagonal = |c: Option<Square<P>>| c.map(|c| c.diagonal().map(|v| v.max(0.0).sqrt()));
     (diagonal(scatter), diagonal(noise), inflation, reported)
 }
 
@@ -165,21 +171,12 @@ pub(super) fn parameter_name(shape: Shape, index: usize) -> String {
     shape.names().get(index).map_or_else(|| format!("o_{}", ['x', 'y', 'z'][index - shape.len()]), |n| (*n).to_owned())
 }
 
-/// Parameter covariance in the solver's units: s^2 (J^T J)^-1 with s^2 the residual variance.
-fn scatter_covariance(solution: &Solution) -> Option<DMatrix<f64>> {
-    let (residuals, parameters) = solution.jacobian.shape();
-    let dof = residuals.checked_sub(parameters).filter(|&d| d > 0)?;
-    let variance = solution.cost / dof as f64;
-    let normal = solution.jacobian.transpose() * &solution.jacobian;
-    Some(normal.cholesky()?.inverse() * variance)
-}
-
 /// The parameters in the file's units: M = g M' diag(1/r), o = c + r o'; `errors` the scatter- and
 /// noise-based standard errors in the solver's units, with the noise's inflation.
 fn file_parameters(
     shape: Shape,
     solution: &Solution,
-    errors: [Option<&DVector<f64>>; 2],
+    errors: [Option<&[f64]>; 2],
     inflation: f64,
     normalization: &Normalization,
     g: f64,

@@ -6,8 +6,9 @@
 //! every parameter is of order one. The result is mapped back: M = g M' diag(1/r), o = c + r o'.
 
 use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt};
-use nalgebra::{DMatrix, DVector, Dyn, Matrix3, Owned, Vector3};
+use nalgebra::{DMatrix, DVector, Dyn, Owned, Vector3};
 
+use super::linearised::Linearised;
 use super::shape::Shape;
 use super::FitError;
 
@@ -35,12 +36,6 @@ impl<'a> Problem<'a> {
         Problem { shape, observations, params }
     }
 
-    fn split(&self) -> (Matrix3<f64>, Vector3<f64>) {
-        let n = self.shape.len();
-        let matrix = self.shape.matrix(&self.params.as_slice()[..n]);
-        (matrix, Vector3::new(self.params[n], self.params[n + 1], self.params[n + 2]))
-    }
-
     /// Number of residuals: three per reference row, one per norm row.
     pub(super) fn residual_count(&self) -> usize {
         self.observations.iter().map(|o| if o.reference.is_some() { 3 } else { 1 }).sum()
@@ -66,74 +61,32 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
     }
 
     fn residuals(&self) -> Option<DVector<f64>> {
-        let (matrix, offset) = self.split();
+        let at = Linearised::new(self.shape, self.params.as_slice());
         let mut residuals = Vec::with_capacity(self.residual_count());
         for observation in self.observations {
-            let a = matrix * (observation.reading - offset);
-            match observation.reference {
-                Some(reference) => residuals.extend((a - reference).iter().map(|r| r * observation.weight)),
-                None => residuals.push((a.norm() - 1.0) * observation.weight),
-            }
+            let (values, count) = at.residuals(observation);
+            residuals.extend_from_slice(&values.as_slice()[..count]);
         }
         Some(DVector::from_vec(residuals))
     }
 
     fn jacobian(&self) -> Option<DMatrix<f64>> {
-        let (matrix, offset) = self.split();
-        let n = self.shape.len();
-        let p = &self.params.as_slice()[..n];
-        let derivatives: Vec<Matrix3<f64>> = (0..n).map(|k| self.shape.derivative(p, k)).collect();
-        let mut jacobian = DMatrix::zeros(self.residual_count(), n + 3);
+        let at = Linearised::new(self.shape, self.params.as_slice());
+        let columns = self.params.len();
+        let mut jacobian = DMatrix::zeros(self.residual_count(), columns);
         let mut row = 0;
         for observation in self.observations {
-            let centered = observation.reading - offset;
-            let used = match observation.reference {
-                Some(_) => reference_rows(&mut jacobian, row, &derivatives, &matrix, &centered),
-                None => norm_row(&mut jacobian, row, &derivatives, &matrix, &centered),
-            };
-            jacobian.rows_mut(row, used).scale_mut(observation.weight);
-            row += used;
+            let rows = at.rows(observation);
+            jacobian
+                .view_mut((row, 0), (rows.count, columns))
+                .copy_from(&rows.jacobian.view((0, 0), (rows.count, columns)));
+            row += rows.count;
         }
         Some(jacobian)
     }
 }
 
-/// The three Jacobian rows of a reference residual a - ref at `row`; returns 3.
-fn reference_rows(
-    jacobian: &mut DMatrix<f64>,
-    row: usize,
-    derivatives: &[Matrix3<f64>],
-    matrix: &Matrix3<f64>,
-    centered: &Vector3<f64>,
-) -> usize {
-    let n = derivatives.len();
-    for (k, d) in derivatives.iter().enumerate() {
-        jacobian.view_mut((row, k), (3, 1)).copy_from(&(d * centered));
-    }
-    jacobian.view_mut((row, n), (3, 3)).copy_from(&(-matrix));
-    3
-}
-
-/// The Jacobian row of a norm residual |a| - 1 at `row`; returns 1.
-fn norm_row(
-    jacobian: &mut DMatrix<f64>,
-    row: usize,
-    derivatives: &[Matrix3<f64>],
-    matrix: &Matrix3<f64>,
-    centered: &Vector3<f64>,
-) -> usize {
-    let n = derivatives.len();
-    let a = matrix * centered;
-    let direction = a / a.norm();
-    for (k, d) in derivatives.iter().enumerate() {
-        jacobian[(row, k)] = direction.dot(&(d * centered));
-    }
-    let offset_row = -(direction.transpose() * matrix);
-    jacobian.view_mut((row, n), (1, 3)).copy_from(&offset_row);
-    1
-}
-
-/// A converged solution with what its statistics need.
+/// A converged solution; its statistics are linearised at `params` (fit/linearised.rs).
 #[derive(Debug, Clone)]
 pub(super) struct Solution {
     /// Parameters in the solver's units.
@@ -142,10 +95,6 @@ pub(super) struct Solution {
     pub cost: f64,
     /// Residual evaluations the solver made.
     pub evaluations: usize,
-    /// Residuals at the solution.
-    pub residuals: DVector<f64>,
-    /// Jacobian at the solution.
-    pub jacobian: DMatrix<f64>,
 }
 
 /// Minimises the problem from `start`; refuses a run that did not converge.
@@ -167,8 +116,6 @@ pub(super) fn solve(shape: Shape, observations: &[Observation], start: DVector<f
         params: problem.values().clone(),
         cost: residuals.norm_squared(),
         evaluations: report.number_of_evaluations,
-        residuals,
-        jacobian,
     })
 }
 

@@ -2,10 +2,12 @@
 //! spread over the axes, the known orientations `reference-norm12` needs, and the Jacobian's
 //! conditioning at the start.
 
-use nalgebra::{DMatrix, DVector, Vector3};
+use nalgebra::allocator::Allocator;
+use nalgebra::{Const, DefaultAllocator, DimDiff, DimSub, SMatrix, Vector3, U1};
 
+use super::linearised::Linearised;
 use super::models::parameter_name;
-use super::nonlinear::{Observation, Problem};
+use super::nonlinear::Observation;
 use super::normalization::Normalization;
 use super::shape::Shape;
 use super::{FitError, Model};
@@ -13,7 +15,6 @@ use crate::data::Dataset;
 use crate::limits::POORLY_CONDITIONED_RATIO;
 use crate::limits::UNOBSERVABLE_RATIO;
 use crate::limits::{AXIS_SPREAD, INDEPENDENT_REFERENCES_DEG};
-use levenberg_marquardt::LeastSquaresProblem;
 
 /// Known orientations `reference-norm12` needs at least [`INDEPENDENT_REFERENCES_DEG`] apart: two fix
 /// the rotation that the |a| = g rows cannot see.
@@ -86,49 +87,112 @@ fn angle_between(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     shared::orientation::angle_between_deg(*a, *b)
 }
 
-/// Refuses parameters the positions cannot determine, from the column-scaled Jacobian at the start;
+/// Refuses parameters the positions cannot determine, from the column-scaled Jacobian at `start`;
 /// warns when the condition number is poor.
 pub(super) fn check_conditioning(
     model: Model,
     shape: Shape,
     observations: &[Observation],
-    start: &DVector<f64>,
+    start: &[f64],
     warnings: &mut Vec<String>,
 ) -> Result<(), FitError> {
-    let jacobian = Problem::new(shape, observations, start.clone()).jacobian().ok_or(FitError::Degenerate)?;
-    let (ratio, weakest) = conditioning(shape, &jacobian);
+    let poor = match shape {
+        Shape::Diagonal => poor_conditioning::<6>(shape, observations, start),
+        Shape::TriangularTimesDiagonal => poor_conditioning::<9>(shape, observations, start),
+        Shape::Full => poor_conditioning::<12>(shape, observations, start),
+    };
+    let Some((ratio, weakest)) = poor else {
+        return Ok(());
+    };
     if ratio < UNOBSERVABLE_RATIO {
         return Err(FitError::Unobservable { model: model.name(), parameter: weakest });
     }
-    if ratio < POORLY_CONDITIONED_RATIO {
-        warnings.push(format!(
-            "poor condition number {:.1e}: the positions barely determine {weakest}; add positions spread over the sphere",
-            1.0 / ratio
-        ));
-    }
+    warnings.push(format!(
+        "poor condition number {:.1e}: the positions barely determine {weakest}; add positions spread over the sphere",
+        1.0 / ratio
+    ));
     Ok(())
 }
 
-/// The ratio of smallest to largest singular value of the column-scaled Jacobian, and the parameter
-/// the smallest one weighs most.
-fn conditioning(shape: Shape, jacobian: &DMatrix<f64>) -> (f64, String) {
-    // NOTE: the singular values of the column-scaled Jacobian are the square roots of the
-    // eigenvalues of its small normal matrix, which is much cheaper to decompose than J itself.
-    let scaled = column_scaled(jacobian);
-    let eigen = (scaled.transpose() * &scaled).symmetric_eigen();
+/// Where the ratio of smallest to largest singular value of the column-scaled Jacobian is below
+/// [`POORLY_CONDITIONED_RATIO`]: the ratio, and the parameter the smallest one weighs most.
+///
+/// NOTE: the singular values of the column-scaled Jacobian are the square roots of the eigenvalues
+/// of its small normal matrix, which is much cheaper to decompose than J itself.
+fn poor_conditioning<const P: usize>(shape: Shape, observations: &[Observation], start: &[f64]) -> Option<(f64, String)>
+where
+    Const<P>: DimSub<U1>,
+    DefaultAllocator: Allocator<DimDiff<Const<P>, U1>>,
+{
+    let scaled = column_scaled_normal::<P>(shape, observations, start);
+    if surely_conditioned(&scaled) {
+        return None;
+    }
+    let eigen = scaled.symmetric_eigen();
     let (largest, smallest) = (eigen.eigenvalues.max().max(0.0).sqrt(), eigen.eigenvalues.min().max(0.0).sqrt());
     let ratio = if largest > 0.0 { smallest / largest } else { 0.0 };
     let (index, _) = eigen.eigenvalues.argmin();
-    (ratio, parameter_name(shape, eigen.eigenvectors.column(index).iamax()))
+    (ratio < POORLY_CONDITIONED_RATIO).then(|| (ratio, parameter_name(shape, eigen.eigenvectors.column(index).iamax())))
 }
 
-fn column_scaled(jacobian: &DMatrix<f64>) -> DMatrix<f64> {
-    let mut scaled = jacobian.clone();
-    for mut column in scaled.column_iter_mut() {
-        let norm = column.norm();
-        if norm > 0.0 {
-            column /= norm;
-        }
+/// Whether the symmetric matrix `a` is positive definite with its smallest eigenvalue surely at least
+/// [`POORLY_CONDITIONED_RATIO`]^2 times its largest, from one Cholesky factor (an eigen
+/// decomposition costs ten of them); `false` says only that the eigenvalues must decide.
+///
+/// NOTE: the largest eigenvalue is at most trace(A), and the smallest at least 1 / trace(A^-1) (the
+/// largest eigenvalue of A^-1 is at most the sum of them all); their ratio is at least
+/// 1 / (trace(A) trace(A^-1)). The 1 % margin keeps the bound's rounding from deciding.
+pub(super) fn surely_conditioned<const P: usize>(a: &SMatrix<f64, P, P>) -> bool {
+    let Some(cholesky) = a.cholesky() else {
+        return false;
+    };
+    let bound = 1.0 / (a.trace() * cholesky.inverse().trace());
+    bound.is_finite() && bound >= POORLY_CONDITIONED_RATIO.powi(2) * 1.01
+}
+
+/// J^T J at `start` with J's columns scaled to unit length (a zero column stays zero), in one pass.
+fn column_scaled_normal<const P: usize>(
+    shape: Shape,
+    observations: &[Observation],
+    start: &[f64],
+) -> SMatrix<f64, P, P> {
+    let at = Linearised::new(shape, start);
+    let mut normal = SMatrix::<f64, P, P>::zeros();
+    for observation in observations {
+        let rows = at.rows(observation);
+        let used = rows.jacobian.fixed_view::<3, P>(0, 0).rows(0, rows.count).into_owned();
+        normal += used.transpose() * used;
     }
-    scaled
+    let lengths = normal.diagonal().map(|v| if v > 0.0 { v.sqrt() } else { 1.0 });
+    SMatrix::from_fn(|i, j| normal[(i, j)] / (lengths[i] * lengths[j]))
+}
+
+#[cfg(test)]
+mod tests {
+    use nalgebra::{Rotation3, SMatrix, Vector3};
+
+    use super::*;
+
+    /// Q diag(eigenvalues) Q^T with Q rotating each consecutive pair of axes.
+    fn with_eigenvalues(eigenvalues: [f64; 6]) -> SMatrix<f64, 6, 6> {
+        let rotation = Rotation3::from_scaled_axis(Vector3::new(0.4, -0.7, 1.1)).into_inner();
+        let mut q = SMatrix::<f64, 6, 6>::zeros();
+        q.fixed_view_mut::<3, 3>(0, 0).copy_from(&rotation);
+        q.fixed_view_mut::<3, 3>(3, 3).copy_from(&rotation.transpose());
+        q * SMatrix::from_diagonal(&eigenvalues.into()) * q.transpose()
+    }
+
+    #[test]
+    fn the_screen_passes_only_matrices_whose_eigenvalues_would_pass() {
+        let threshold = POORLY_CONDITIONED_RATIO.powi(2);
+        // NOTE: largest eigenvalue 5, so a screen that took it for 1 would pass a ratio of 0.98e-6.
+        let cases = [(1.0, true), (1e-2, true), (1e-4, true), (1.02 * threshold, false), (0.98 * threshold, false)];
+        for (ratio, passes) in cases {
+            let a = with_eigenvalues([5.0, 5.0, 2.0, 5.0, 5.0 * ratio, 5.0]);
+            let eigenvalues = a.symmetric_eigenvalues();
+            assert_eq!((eigenvalues.min() / eigenvalues.max() >= threshold), ratio >= threshold, "ratio {ratio}");
+            assert_eq!(surely_conditioned(&a), passes, "ratio {ratio}");
+        }
+        assert!(!surely_conditioned(&with_eigenvalues([1.0, 1.0, 1.0, 1.0, 0.0, 1.0])), "a singular matrix");
+    }
 }

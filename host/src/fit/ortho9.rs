@@ -1,12 +1,11 @@
 //! `ortho9` through the shared fixed-size solver (the chip's own fit, run in f64): same minimum as the
-//! levenberg-marquardt crate, several times faster, with the Jacobian rebuilt here for the statistics.
+//! levenberg-marquardt crate, several times faster; the statistics linearise at its solution.
 
 use nalgebra::DVector;
 
-use super::nonlinear::{Observation, Problem, Solution};
+use super::nonlinear::{Observation, Solution};
 use super::shape::Shape;
 use super::FitError;
-use levenberg_marquardt::LeastSquaresProblem;
 use shared::ortho9::{self, Ortho9Error};
 
 /// Whether the shared solver applies: `ortho9` with no reference rows and every row weighed alike (it
@@ -34,14 +33,11 @@ pub(super) fn solve(observations: &[Observation]) -> Result<Solution, FitError> 
     let readings: Vec<[f64; 3]> = observations.iter().map(|o| o.reading.into()).collect();
     let fit = ortho9::fit(&readings).map_err(fit_error)?;
     let params = DVector::from_row_slice(&fit.params);
-    let problem = Problem::new(Shape::TriangularTimesDiagonal, observations, params.clone());
-    let residuals = problem.residuals().ok_or(FitError::Degenerate)?;
-    let jacobian = problem.jacobian().ok_or(FitError::Degenerate)?;
     // NOTE: the cost of the weighted residuals, as the crate-based solve reports it (equal weights w
     // scale the unweighted cost by w^2).
     let weight = observations.first().map_or(1.0, |o| o.weight);
     let cost = fit.cost * weight * weight;
-    Ok(Solution { params, cost, evaluations: fit.iterations as usize, residuals, jacobian })
+    Ok(Solution { params, cost, evaluations: fit.iterations as usize })
 }
 
 /// The host's error for the shared solver's refusal.

@@ -4,7 +4,7 @@
 
 use std::sync::OnceLock;
 
-use nalgebra::{DMatrix, Matrix3, Matrix4, Vector3};
+use nalgebra::{Matrix3, Matrix4, SMatrix, Vector3};
 use serde::Serialize;
 use shared::linalg::Mat3;
 
@@ -82,29 +82,29 @@ pub fn predict(g: f64, covariance: &Quadratic) -> Prediction {
 
 /// The prediction of a least-squares model from its parameters and their covariance in the file's
 /// units: da = sum_k dM/dp_k (m - o) dp_k - M do, with m - o = M^-1 g u, so da = sum_a w_a J_a dp.
-pub(super) fn least_squares(shape: Shape, parameters: &[f64], covariance: &DMatrix<f64>, g: f64) -> Prediction {
+pub(super) fn least_squares<const P: usize>(
+    shape: Shape,
+    parameters: &[f64],
+    covariance: &SMatrix<f64, P, P>,
+    g: f64,
+) -> Prediction {
     let n = shape.len();
     let matrix = shape.matrix(&parameters[..n]);
     let sensor = matrix.try_inverse().unwrap_or_else(Matrix3::zeros);
-    let jacobians: [DMatrix<f64>; 4] = std::array::from_fn(|a| {
-        let mut jacobian = DMatrix::zeros(3, n + 3);
+    let jacobians: [SMatrix<f64, 3, P>; 4] = std::array::from_fn(|a| {
+        let mut jacobian = SMatrix::<f64, 3, P>::zeros();
         if a < 3 {
             let centered = sensor.column(a) * g;
             for k in 0..n {
-                jacobian.column_mut(k).copy_from(&(shape.derivative(&parameters[..n], k) * centered));
+                jacobian.set_column(k, &(shape.derivative(&parameters[..n], k) * centered));
             }
         } else {
-            jacobian.view_mut((0, n), (3, 3)).copy_from(&(-matrix));
+            jacobian.fixed_view_mut::<3, 3>(0, n).copy_from(&(-matrix));
         }
         jacobian
     });
-    let weighted: [DMatrix<f64>; 4] = std::array::from_fn(|a| &jacobians[a] * covariance);
-    let terms = std::array::from_fn(|a| {
-        std::array::from_fn(|b| {
-            let term = &weighted[a] * jacobians[b].transpose();
-            Matrix3::from_fn(|i, j| term[(i, j)])
-        })
-    });
+    let weighted: [SMatrix<f64, 3, P>; 4] = std::array::from_fn(|a| jacobians[a] * covariance);
+    let terms = std::array::from_fn(|a| std::array::from_fn(|b| weighted[a] * jacobians[b].transpose()));
     predict(g, &terms)
 }
 

@@ -6,10 +6,8 @@ use serde::Serialize;
 use shared::linalg::Mat3;
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 
-use super::nonlinear::{Observation, Solution};
 use super::normalization::Normalization;
-use super::shape::Shape;
-use crate::data::{Dataset, Row};
+use crate::data::Row;
 use crate::limits::NOISE_TEST_LEVEL;
 
 /// The residuals of a fit tested against the noise of the averaged readings.
@@ -44,56 +42,33 @@ impl NoiseTest {
     }
 }
 
-/// The chi-square test of the residuals when every row carries `count` and `std_x,std_y,std_z`
-/// (standard deviation of the samples, in the file's unit); `None` otherwise.
-pub(super) fn noise_test(
-    training: &Dataset,
-    shape: Shape,
-    solution: &Solution,
-    observations: &[Observation],
-    normalization: &Normalization,
-) -> Option<NoiseTest> {
-    let n = shape.len();
-    let matrix = shape.matrix(&solution.params.as_slice()[..n]);
-    let offset = Vector3::new(solution.params[n], solution.params[n + 1], solution.params[n + 2]);
-    let mut chi_square = 0.0;
-    let mut index = 0;
-    for (row, observation) in training.rows.iter().zip(observations) {
-        let sigma = normalised_sigma_of_mean(row, normalization)?;
-        let covariance = matrix * Matrix3::from_diagonal(&sigma.component_mul(&sigma)) * matrix.transpose();
-        let residuals = &solution.residuals.as_slice()[index..];
-        let (term, used) = chi_square_term(observation, residuals, &matrix, &offset, &covariance);
-        chi_square += term;
-        index += used;
-    }
-    let degrees_of_freedom = solution.residuals.len().checked_sub(solution.params.len()).filter(|&d| d > 0)?;
+/// The chi-square test of the residuals, from their chi-square against the noise every row states
+/// (`count` and `std_x,std_y,std_z`, in the file's unit; `None` when a row does not), with
+/// `residuals` - `parameters` degrees of freedom; `None` without redundancy.
+pub(super) fn noise_test(chi_square: Option<f64>, residuals: usize, parameters: usize) -> Option<NoiseTest> {
+    let chi_square = chi_square?;
+    let degrees_of_freedom = residuals.checked_sub(parameters).filter(|&d| d > 0)?;
     let p_value = ChiSquared::new(degrees_of_freedom as f64).ok()?.sf(chi_square);
     Some(NoiseTest { chi_square, degrees_of_freedom, p_value, passed: p_value >= NOISE_TEST_LEVEL })
 }
 
 /// The standard deviation of a row's mean, per axis, in the solver's units: std / sqrt(count) / r.
-fn normalised_sigma_of_mean(row: &Row, normalization: &Normalization) -> Option<Vector3<f64>> {
+pub(super) fn normalised_sigma_of_mean(row: &Row, normalization: &Normalization) -> Option<Vector3<f64>> {
     let (count, std) = (f64::from(row.count?), row.std?);
     let sigma = Vector3::from_fn(|k, _| std[k] / count.sqrt() / normalization.radii[k]);
     (count >= 1.0 && sigma.iter().all(|s| s.is_finite() && *s > 0.0)).then_some(sigma)
 }
 
-/// One row's share of chi-square and the number of residuals it has: three for a reference row,
-/// one (along the corrected reading) for a norm row.
-fn chi_square_term(
-    observation: &Observation,
-    residuals: &[f64],
-    matrix: &Matrix3<f64>,
-    offset: &Vector3<f64>,
+/// One row's share of chi-square: its three residuals a - ref over their variances, or (a norm row,
+/// `direction` that of the corrected reading) its one residual over the variance along it.
+pub(super) fn chi_square_term(
+    residuals: &Vector3<f64>,
+    direction: Option<Vector3<f64>>,
     covariance: &Matrix3<f64>,
-) -> (f64, usize) {
-    match observation.reference {
-        Some(_) => ((0..3).map(|k| residuals[k].powi(2) / covariance[(k, k)]).sum(), 3),
-        None => {
-            let a = matrix * (observation.reading - offset);
-            let direction = a / a.norm();
-            (residuals[0].powi(2) / (direction.transpose() * covariance * direction)[0], 1)
-        }
+) -> f64 {
+    match direction {
+        None => (0..3).map(|k| residuals[k].powi(2) / covariance[(k, k)]).sum(),
+        Some(d) => residuals[0].powi(2) / (d.transpose() * covariance * d)[0],
     }
 }
 

@@ -1,7 +1,7 @@
 //! Standard errors that hold whether the residual scatter comes from the sensor's noise or from what
 //! the model misses: one from the residual scatter (s^2 (J^T J)^-1), one from the noise the captures
 //! measured (the sandwich (J^T J)^-1 J^T V J (J^T J)^-1 with V the covariance of the residuals that
-//! noise alone gives). The noise's is reported, scaled up by sqrt(chi-square / dof) when the
+//! noise alone gives; fit/covariance.rs for the least-squares models). The noise's is reported, scaled up by sqrt(chi-square / dof) when the
 //! residuals are significantly larger than that noise explains (something the model misses adds to
 //! them); the scatter's only where the file gives no noise.
 //!
@@ -9,11 +9,8 @@
 //! a thousandfold between rows, and s^2 (J^T J)^-1, which assumes one noise for all, overstated some
 //! errors 4-fold and understated others (tests/uncertainty_monte_carlo.rs prints both).
 
-use nalgebra::{DMatrix, DVector, Matrix3, Matrix4, Vector3};
+use nalgebra::{DMatrix, Matrix4, Vector3};
 
-use super::nonlinear::{Observation, Solution};
-use super::normalization::Normalization;
-use super::shape::Shape;
 use crate::data::Dataset;
 use crate::limits::SCATTER_SIGNIFICANCE;
 use crate::limits::TRUSTED_SAMPLE_COUNT;
@@ -35,54 +32,6 @@ pub(super) fn pooled_sample_variance(dataset: &Dataset) -> Option<Vector3<f64>> 
     (degrees > 0.0 && sum.iter().all(|v| v.is_finite() && *v > 0.0)).then(|| sum / degrees)
 }
 
-/// Parameter covariance, in the solver's units, that the measured noise alone gives, with the
-/// residuals' chi-square against that noise.
-pub(super) fn noise_errors(
-    training: &Dataset,
-    shape: Shape,
-    solution: &Solution,
-    observations: &[Observation],
-    normalization: &Normalization,
-) -> Option<NoiseErrors> {
-    let variance = pooled_sample_variance(training)?;
-    let per_sample = Vector3::from_fn(|k, _| variance[k] / normalization.radii[k].powi(2));
-    let n = shape.len();
-    let matrix = shape.matrix(&solution.params.as_slice()[..n]);
-    let offset = Vector3::new(solution.params[n], solution.params[n + 1], solution.params[n + 2]);
-    let mut middle = DMatrix::zeros(solution.params.len(), solution.params.len());
-    let (mut index, mut chi_square) = (0, 0.0);
-    for (row, observation) in training.rows.iter().zip(observations) {
-        let reading = Matrix3::from_diagonal(&(per_sample / f64::from(row.count?)));
-        let block = residual_covariance(observation, &matrix, &offset, &reading) * observation.weight.powi(2);
-        let rows = solution.jacobian.rows(index, block.nrows());
-        middle += rows.transpose() * &block * rows;
-        let residuals = solution.residuals.rows(index, block.nrows());
-        chi_square += (residuals.transpose() * block.clone().cholesky()?.inverse() * residuals)[0];
-        index += block.nrows();
-    }
-    let inverse = (solution.jacobian.transpose() * &solution.jacobian).cholesky()?.inverse();
-    Some(NoiseErrors { covariance: &inverse * middle * &inverse, chi_square })
-}
-
-/// The covariance of one row's residuals from its reading's noise: M S M^T for a - ref, d^T M S M^T d
-/// for |a| - 1 (d the direction of a).
-fn residual_covariance(
-    observation: &Observation,
-    matrix: &Matrix3<f64>,
-    offset: &Vector3<f64>,
-    reading: &Matrix3<f64>,
-) -> DMatrix<f64> {
-    let full = matrix * reading * matrix.transpose();
-    match observation.reference {
-        Some(_) => DMatrix::from_fn(3, 3, |i, j| full[(i, j)]),
-        None => {
-            let a = matrix * (observation.reading - offset);
-            let direction = a / a.norm();
-            DMatrix::from_element(1, 1, (direction.transpose() * full * direction)[0])
-        }
-    }
-}
-
 /// The factor by which the noise-based errors are scaled: sqrt(chi-square / dof) when the
 /// residuals exceed the noise significantly, else 1.
 pub(super) fn inflation(chi_square: f64, degrees_of_freedom: usize) -> f64 {
@@ -94,19 +43,6 @@ pub(super) fn inflation(chi_square: f64, degrees_of_freedom: usize) -> f64 {
     } else {
         1.0
     }
-}
-
-/// The parameter covariance the measured noise gives, and the residuals' chi-square against it.
-pub(super) struct NoiseErrors {
-    /// Parameter covariance, in the solver's units.
-    pub covariance: DMatrix<f64>,
-    /// Sum over rows of r^T V^-1 r.
-    pub chi_square: f64,
-}
-
-/// Standard errors from the diagonal of a covariance.
-pub(super) fn diagonal_errors(covariance: &DMatrix<f64>) -> DVector<f64> {
-    covariance.diagonal().map(|v| v.max(0.0).sqrt())
 }
 
 /// For each reading axis c, the covariance of the linear solution's column c, (A^T A)^-1 A^T W_c A

@@ -1,0 +1,198 @@
+//! A least-squares fit's statistics from one pass over its rows at the solution, on fixed-size
+//! matrices (P parameters): J^T J, the residuals' chi-square against the pooled noise (with the middle
+//! of the noise's sandwich) and against each row's own noise (the noise test); then both parameter
+//! covariances from the one Cholesky factor of J^T J.
+
+use nalgebra::{Matrix1, Matrix3, SMatrix, Vector3};
+
+use super::linearised::{Linearised, RowsAt};
+use super::nonlinear::{Observation, Solution};
+use super::normalization::Normalization;
+use super::shape::Shape;
+use super::{statistics, uncertainty};
+use crate::data::{Dataset, Row};
+
+/// A P x P matrix.
+pub(super) type Square<const P: usize> = SMatrix<f64, P, P>;
+
+/// What the statistics need from the rows at the solution, gathered in one pass.
+pub(super) struct Accumulated<const P: usize> {
+    /// J^T J.
+    pub normal: Square<P>,
+    /// Number of residuals.
+    pub residuals: usize,
+    /// sum J_i^T V_i J_i and sum r_i^T V_i^-1 r_i, V_i the covariance of row i's residuals from the
+    /// pooled sample noise; `None` without it (or where a V_i is not positive definite).
+    pub pooled: Option<(Square<P>, f64)>,
+    /// sum of r_i^2 / var(r_i) from each row's own noise; `None` unless every row states it.
+    pub own: Option<f64>,
+}
+
+/// One pass over the rows at the solution.
+pub(super) fn accumulate<const P: usize>(
+    training: &Dataset,
+    shape: Shape,
+    solution: &Solution,
+    observations: &[Observation],
+    normalization: &Normalization,
+) -> Accumulated<P> {
+    let at = Linearised::new(shape, solution.params.as_slice());
+    let pooled = uncertainty::pooled_sample_variance(training);
+    let per_sample = pooled.map(|v| Vector3::from_fn(|k, _| v[k] / normalization.radii[k].powi(2)));
+    let mut sums = Accumulated {
+        normal: Square::zeros(),
+        residuals: 0,
+        pooled: per_sample.map(|_| (Square::zeros(), 0.0)),
+        own: Some(0.0),
+    };
+    for (row, observation) in training.rows.iter().zip(observations) {
+        let rows = at.rows(observation);
+        let jacobian = rows.jacobian.fixed_view::<3, P>(0, 0).into_owned();
+        let used = jacobian.rows(0, rows.count);
+        sums.normal += used.transpose() * used;
+        sums.residuals += rows.count;
+        sums.pooled = sums.pooled.zip(per_sample).and_then(|(sum, noise)| {
+            let reading = Matrix3::from_diagonal(&(noise / f64::from(row.count?)));
+            add_pooled(sum, &rows, &jacobian, reading * observation.weight.powi(2), &at.matrix)
+        });
+        sums.own = sums.own.and_then(|sum| Some(sum + own_term(row, &rows, &at.matrix, normalization)?));
+    }
+    sums
+}
+
+/// Adds one row to the pooled noise's sums: `reading` the covariance of its normalised reading,
+/// already scaled by the row's weight squared.
+fn add_pooled<const P: usize>(
+    (mut middle, chi_square): (Square<P>, f64),
+    rows: &RowsAt,
+    jacobian: &SMatrix<f64, 3, P>,
+    reading: Matrix3<f64>,
+    matrix: &Matrix3<f64>,
+) -> Option<(Square<P>, f64)> {
+    let full = matrix * reading * matrix.transpose();
+    let term = match rows.direction {
+        None => {
+            middle += jacobian.transpose() * full * jacobian;
+            (rows.residuals.transpose() * full.cholesky()?.inverse() * rows.residuals)[0]
+        }
+        Some(d) => {
+            let variance = Matrix1::new((d.transpose() * full * d)[0]);
+            let row = jacobian.fixed_rows::<1>(0);
+            middle += row.transpose() * variance * row;
+            rows.residuals[0] * variance.cholesky()?.inverse()[0] * rows.residuals[0]
+        }
+    };
+    Some((middle, chi_square + term))
+}
+
+/// One row's share of the noise test's chi-square, from the noise it states itself.
+fn own_term(row: &Row, rows: &RowsAt, matrix: &Matrix3<f64>, normalization: &Normalization) -> Option<f64> {
+    let sigma = statistics::normalised_sigma_of_mean(row, normalization)?;
+    let covariance = matrix * Matrix3::from_diagonal(&sigma.component_mul(&sigma)) * matrix.transpose();
+    Some(statistics::chi_square_term(&rows.residuals, rows.direction, &covariance))
+}
+
+/// The covariances behind the standard errors, in the solver's units, from one Cholesky factor of
+/// J^T J: the scatter's s^2 (J^T J)^-1 (with redundancy), and the pooled noise's sandwich
+/// (J^T J)^-1 J^T V J (J^T J)^-1 with its chi-square.
+pub(super) fn covariances<const P: usize>(
+    sums: &Accumulated<P>,
+    cost: f64,
+) -> (Option<Square<P>>, Option<(Square<P>, f64)>) {
+    let Some(inverse) = sums.normal.cholesky().map(|c| c.inverse()) else {
+        return (None, None);
+    };
+    let degrees_of_freedom = sums.residuals.checked_sub(P).filter(|&d| d > 0);
+    let scatter = degrees_of_freedom.map(|d| inverse * (cost / d as f64));
+    let noise = sums.pooled.map(|(middle, chi_square)| (inverse * middle * inverse, chi_square));
+    (scatter, noise)
+}
+
+#[cfg(test)]
+mod tests {
+    use levenberg_marquardt::LeastSquaresProblem;
+    use nalgebra::DMatrix;
+
+    use super::*;
+    use crate::fit::models::solved;
+    use crate::fit::nonlinear::Problem;
+    use crate::fit::{FitOptions, Model};
+    use crate::sim::synthetic::random_positions;
+
+    /// 24 rows of 2 to 2231 samples (so the rows weigh differently), with their noise.
+    fn problem(seed: u64, references: bool) -> Dataset {
+        let mut data = random_positions(seed, 24, 1e-4, references);
+        for (i, row) in data.rows.iter_mut().enumerate() {
+            let count = 2 + 97 * i as u32;
+            row.count = Some(count);
+            row.std = Some([1e-4, 1.3e-4, 0.8e-4].map(|s| s * f64::from(count).sqrt()));
+        }
+        data
+    }
+
+    /// The same covariances written out on dynamic matrices: J from the solver's interface, V block
+    /// by block, every inverse by LU instead of the one Cholesky factor the fit reuses.
+    fn independent(data: &Dataset, model: Model) -> (DMatrix<f64>, DMatrix<f64>, f64) {
+        let solved = solved(data, model, &FitOptions::default()).unwrap();
+        let problem = Problem::new(solved.shape, &solved.observations, solved.solution.params.clone());
+        let (jacobian, residuals) = (problem.jacobian().unwrap(), problem.residuals().unwrap());
+        let at = Linearised::new(solved.shape, solved.solution.params.as_slice());
+        let pooled = uncertainty::pooled_sample_variance(data).unwrap();
+        let mut v = DMatrix::zeros(residuals.len(), residuals.len());
+        let mut first = 0;
+        for (row, observation) in data.rows.iter().zip(&solved.observations) {
+            let reading = Matrix3::from_fn(|i, j| {
+                if i == j {
+                    pooled[i] / solved.normalization.radii[i].powi(2) / f64::from(row.count.unwrap())
+                } else {
+                    0.0
+                }
+            });
+            let block = at.matrix * reading * at.matrix.transpose() * observation.weight.powi(2);
+            if observation.reference.is_some() {
+                v.view_mut((first, first), (3, 3)).copy_from(&block);
+                first += 3;
+            } else {
+                let a = at.matrix * (observation.reading - at.offset);
+                v[(first, first)] = (a.transpose() * block * a)[0] / a.norm_squared();
+                first += 1;
+            }
+        }
+        let inverse = (jacobian.transpose() * &jacobian).try_inverse().unwrap();
+        let dof = (residuals.len() - jacobian.ncols()) as f64;
+        let scatter = &inverse * (residuals.norm_squared() / dof);
+        let noise = &inverse * jacobian.transpose() * &v * &jacobian * &inverse;
+        let chi_square = (residuals.transpose() * v.try_inverse().unwrap() * &residuals)[0];
+        (scatter, noise, chi_square)
+    }
+
+    /// The largest difference between two covariances, each entry relative to sqrt(C_ii C_jj).
+    fn worst<const P: usize>(ours: &Square<P>, theirs: &DMatrix<f64>) -> f64 {
+        let scale = |i: usize, j: usize| (theirs[(i, i)] * theirs[(j, j)]).sqrt();
+        (0..P * P)
+            .map(|k| (k / P, k % P))
+            .map(|(i, j)| (ours[(i, j)] - theirs[(i, j)]).abs() / scale(i, j))
+            .fold(0.0, f64::max)
+    }
+
+    fn check<const P: usize>(model: Model, references: bool) {
+        for seed in 0..10 {
+            let data = problem(40 + seed, references);
+            let solved = solved(&data, model, &FitOptions::default()).unwrap();
+            let sums =
+                accumulate::<P>(&data, solved.shape, &solved.solution, &solved.observations, &solved.normalization);
+            let (scatter, noise) = covariances(&sums, solved.solution.cost);
+            let ((scatter, (noise, chi_square)), expected) = (scatter.zip(noise).unwrap(), independent(&data, model));
+            let errors =
+                [worst(&scatter, &expected.0), worst(&noise, &expected.1), (chi_square / expected.2 - 1.0).abs()];
+            assert!(errors.iter().all(|&e| e < 1e-12), "{} seed {seed}: {errors:?}", model.name());
+        }
+    }
+
+    #[test]
+    fn covariances_from_the_one_reused_factor_equal_independent_inverses_to_1e_12() {
+        check::<6>(Model::Diag6, false);
+        check::<9>(Model::Ortho9, false);
+        check::<12>(Model::ReferenceNorm12, true);
+    }
+}
