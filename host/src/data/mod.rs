@@ -13,6 +13,7 @@ mod rows;
 mod write;
 
 pub use rows::{parse_row_list, RowList};
+pub use write::csv_text;
 
 /// One averaged reading and what the file says about it.
 #[derive(Debug, Clone, Default, PartialEq)]
