@@ -9,9 +9,8 @@ use shared::Calibration;
 use super::args::{Device, StreamArgs};
 use crate::calibration::{describe, CalibrationJson};
 use crate::error::Error;
-use crate::link::{
-    ask, explain, is_worth_asking, serial_ports, Answer, LinkError, SerialPortEntry, StreamRequest, LISTEN_FIRST,
-};
+use crate::limits::LISTEN_FIRST;
+use crate::link::{ask, explain, is_worth_asking, serial_ports, Answer, LinkError, SerialPortEntry, StreamRequest};
 use crate::link::{Client, Port};
 use crate::part::check::{check_family, FamilyCheck, FamilyCheckJson};
 use crate::part::{describe as describe_part, format_dump, part_name, register_dump};
