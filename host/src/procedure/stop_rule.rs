@@ -7,27 +7,16 @@ use std::path::Path;
 use shared::protocol::{CaptureGoal, CaptureStats, MIN_GOAL_SAMPLES};
 use shared::Position;
 
-use super::wait::SETTLE_SECONDS;
 use super::{Feedback, ProcedureError};
+use crate::limits::{GOAL_SETTLE_SECONDS, MAX_CAPTURE_SECONDS, MIN_CAPTURE_SECONDS, SETTLE_SECONDS};
 use crate::link::{Client, LinkError, Port};
 
-/// Shortest capture, in seconds.
-// NOTE: half a second holds 50 samples at 100 Hz: enough for a scatter to judge motion by (the
-// chip's motion check), and short next to the 1.5-2 s a person takes to turn the board.
-pub const MIN_SECONDS: f64 = 0.5;
-/// Longest capture, in seconds: beyond it a drifting sensor's mean stops meaning one temperature.
-pub const MAX_SECONDS: f64 = 8.0;
 /// Captures a default session plans for, for the share of the target each mean gets: its fourteen
 /// positions and the first one again (it stops sooner once the fit predicts the target: on the
 /// simulated sensor after thirteen).
 pub const PLANNED_CAPTURES: f64 = 15.0;
 /// Parameters fitted to them: the nine of the orientation-free fit and an offset drift per axis.
 const FITTED_PARAMETERS: f64 = 12.0;
-/// How long the board must rest before a capture that stops by its rule starts, in seconds.
-// NOTE: shorter than the guided procedure's 2 s: such a capture refuses a board that still moves
-// (the chip's scatter check) and a mean away from the position (the tilt check), and a person told
-// the next position once needs no time to read it again.
-const GOAL_SETTLE_SECONDS: f64 = 0.5;
 
 /// How long one capture runs.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -107,7 +96,7 @@ impl StopRule {
     fn goal_for(&self, mean_std_g: f64) -> CaptureGoal {
         let samples = |seconds: f64| ((seconds * f64::from(self.rate_hz)).round() as u32).max(MIN_GOAL_SAMPLES);
         let (min_samples, max_samples) = match &self.noise {
-            Noise::Measured => (samples(MIN_SECONDS), samples(MAX_SECONDS)),
+            Noise::Measured => (samples(MIN_CAPTURE_SECONDS), samples(MAX_CAPTURE_SECONDS)),
             Noise::Report { .. } => {
                 let fixed = samples(self.report_seconds(mean_std_g));
                 (fixed, fixed)
@@ -120,11 +109,11 @@ impl StopRule {
     /// and no longer than the report's useful averaging time.
     fn report_seconds(&self, mean_std_g: f64) -> f64 {
         let Noise::Report { white_noise_g, capture_limit_s } = &self.noise else {
-            return MAX_SECONDS;
+            return MAX_CAPTURE_SECONDS;
         };
         let worst = white_noise_g.iter().copied().fold(0.0, f64::max);
-        let longest = capture_limit_s.unwrap_or(MAX_SECONDS).clamp(MIN_SECONDS, MAX_SECONDS);
-        (worst / mean_std_g).powi(2).clamp(MIN_SECONDS, longest)
+        let longest = capture_limit_s.unwrap_or(MAX_CAPTURE_SECONDS).clamp(MIN_CAPTURE_SECONDS, MAX_CAPTURE_SECONDS);
+        (worst / mean_std_g).powi(2).clamp(MIN_CAPTURE_SECONDS, longest)
     }
 
     /// Why a capture stopped when it did, in words.

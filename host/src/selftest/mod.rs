@@ -20,12 +20,11 @@ use shared::selftest::{self, AxisVerdict, SelfTestRaw};
 use firmware::sensor::registers::ACCEL_CONFIG;
 
 use crate::link::{Client, LinkError, Port};
+use crate::still::StillError;
 use phase::{Phase, PhaseMeans};
 
+use crate::limits::SELF_TEST_ATTEMPTS;
 pub use phase::PhaseName;
-
-/// Attempts before the procedure gives up on a board that keeps moving.
-pub const MAX_ATTEMPTS: u8 = 3;
 
 /// The sample rate the self-test runs at, in Hz, and its filter.
 ///
@@ -66,10 +65,20 @@ pub enum SelfTestError {
     NoSensor(String),
     #[error("the board moved during each of {attempts} attempts, so no response could be measured: rest it on a table, keep your hands off it for 5 s, and run again")]
     KeptMoving { attempts: u8 },
-    #[error("only {received} of {wanted} samples of the {phase} phase arrived: check the cable and run again")]
-    TooFewSamples { phase: &'static str, received: usize, wanted: usize },
+    /// Too few samples arrived (a lost link is [`SelfTestError::Link`]).
+    #[error(transparent)]
+    Stream(StillError),
     #[error("the sensor's configuration registers read {after:02x?} after the self-test, not {before:02x?} as before: unplug the board and plug it in again")]
     NotRestored { before: Vec<u8>, after: Vec<u8> },
+}
+
+impl From<StillError> for SelfTestError {
+    fn from(error: StillError) -> Self {
+        match error {
+            StillError::Link(link) => SelfTestError::Link(link),
+            other => SelfTestError::Stream(other),
+        }
+    }
 }
 
 /// What the procedure tells whoever runs it (and where a test moves the simulated board).
@@ -125,13 +134,13 @@ fn measure<P: Port>(
     client.configure(config)?;
     // NOTE: the board wrote the range; the phases add the self-test bits to what it wrote.
     let accel_config = client.read_registers(ACCEL_CONFIG, 1)?[0];
-    for attempt in 1..=MAX_ATTEMPTS {
+    for attempt in 1..=SELF_TEST_ATTEMPTS {
         match attempt_once(client, family, accel_config, attempt, watcher)? {
             Ok(means) => return Ok((means, attempt)),
             Err(why) => watcher.moved(attempt, &why),
         }
     }
-    Err(SelfTestError::KeptMoving { attempts: MAX_ATTEMPTS })
+    Err(SelfTestError::KeptMoving { attempts: SELF_TEST_ATTEMPTS })
 }
 
 /// Off, on, off: the means, or why the board counts as moved.

@@ -1,8 +1,22 @@
 //! The host's thresholds, in one table, each with the reason for its value. Messages quote these
 //! constants; nothing else restates them. The plausibility limits of a calibration are the system's
 //! one table in `shared` ([`calibration`]), which the chip applies too.
+//!
+//! One table in parts, all read as `limits::NAME`: this file (readings, orientations, verification,
+//! statistics), [`procedure`] (a session's captures), [`fits`] (when a fit is made at all),
+//! [`stream`] (a foreign sketch's stream) and [`link`] (the port and the lot database).
 
 pub use shared::calibration::limits as calibration;
+
+pub mod fits;
+pub mod link;
+pub mod procedure;
+pub mod stream;
+
+pub use fits::*;
+pub use link::*;
+pub use procedure::*;
+pub use stream::*;
 
 /// Largest accelerometer scatter (standard deviation on any axis), in g, of a board that counts as
 /// still.
