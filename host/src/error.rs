@@ -77,6 +77,8 @@ pub enum Error {
     #[error(transparent)]
     SelfTest(#[from] crate::selftest::SelfTestError),
     #[error(transparent)]
+    FamilyCheck(#[from] crate::part::offsets::OffsetCheckError),
+    #[error(transparent)]
     SelfTestHistory(#[from] crate::selftest::history::HistoryError),
     #[error("the self-test failed: an axis' response is outside +-{} % of its factory trim (see above); the part is damaged or not what it claims", shared::selftest::ACCELCAL_BAND_PERCENT)]
     SelfTestFailed,

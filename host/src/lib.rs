@@ -38,6 +38,7 @@ pub mod selftest;
 pub mod session;
 pub mod shown;
 pub mod sim;
+pub mod still;
 pub mod stream;
 
 pub use error::Error;

@@ -39,9 +39,15 @@ impl Orientation {
         faces().into_iter().chain(corners()).find(|o| o.name.eq_ignore_ascii_case(name.trim()))
     }
 
+    /// The face this orientation rests on, by its direction (so the closing capture "+Z again" is
+    /// the face +Z), or `None` for a corner or any other direction.
+    pub fn face_up(&self) -> Option<Position> {
+        Position::ALL.into_iter().find(|p| p.specific_force_g::<f64>() == self.up)
+    }
+
     /// Whether this is one of the six faces.
     pub fn is_face(&self) -> bool {
-        Position::ALL.iter().any(|p| p.name() == self.name)
+        self.face_up().is_some()
     }
 
     /// The tilt, in degrees, of a direction from this orientation's up.

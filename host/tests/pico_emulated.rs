@@ -99,7 +99,14 @@ fn the_default_calibration_on_the_real_pico_binary_is_as_good_as_in_process_and_
     let (pico_mg, sim_mg) = (true_error_mg(SEED, &on_the_pico), true_error_mg(SEED, &in_process));
     println!("true error: {pico_mg:.3} mg on the emulated Pico, {sim_mg:.3} mg in process (seed {SEED})");
     assert!(pico_mg <= 1.5 * sim_mg, "{pico_mg:.3} mg on the Pico, {sim_mg:.3} mg in process");
-    assert!(on_the_pico["verification"]["after_rms_mg"].as_f64().unwrap() < 0.5, "{}", on_the_pico["verification"]);
+    // NOTE: the three-orientation verification judged as the true error is: against the in-process
+    // session's for the same sensor (seed 21's says 0.52 mg in process, its true error 0.30 mg).
+    let verified = |output: &serde_json::Value| output["verification"]["after_rms_mg"].as_f64().unwrap();
+    let (pico_verified, sim_verified) = (verified(&on_the_pico), verified(&in_process));
+    assert!(
+        pico_verified <= 1.5 * sim_verified,
+        "{pico_verified:.3} mg verified on the Pico, {sim_verified:.3} mg in process"
+    );
 
     // Uploaded and saved: after a power cycle the chip starts from its flash with it active.
     let uploaded = active_calibration(&pico.path);

@@ -21,6 +21,33 @@ pub enum Family {
     Mpu6500,
 }
 
+impl Family {
+    /// The accelerometer's x, y, z offset registers, each the high byte of a big-endian pair whose
+    /// low byte follows it.
+    ///
+    /// NOTE: MPU-6050: XA/YA/ZA_OFFS_H at 0x06, 0x08, 0x0A, not in RM-MPU-6000A rev 4.2 but in
+    /// InvenSense's "MPU Hardware Offset Registers" application note (AN-XX-XXXX-XX rev 1.0,
+    /// 2014-02-21); MPU-6500 family: XA/YA/ZA_OFFSET_H at 0x77, 0x7A, 0x7D ("Registers 119, 120,
+    /// 122, 123, 125, 126 - Accelerometer Offset Registers", RM-MPU-6500A-00 rev 2.1 and
+    /// RM-MPU-9250A-00 rev 1.4 section 4.39).
+    pub const fn accel_offset_registers(self) -> [u8; 3] {
+        match self {
+            Family::Mpu6050 => [0x06, 0x08, 0x0A],
+            Family::Mpu6500 => [0x77, 0x7A, 0x7D],
+        }
+    }
+}
+
+/// The offset an accelerometer offset register pair adds to the output, in g, whatever the range.
+///
+/// NOTE: RM-MPU-9250A-00 rev 1.4 4.39 (and RM-MPU-6500A-00's registers 119-126): XA_OFFS[14:7] in
+/// the high byte, XA_OFFS[6:0] in bits 7:1 of the low byte, "+/- 16g Offset cancellation in all Full
+/// Scale modes, 15 bit 0.98-mg steps": a signed 15-bit value in 1/1024 g, bit 0 reserved. The
+/// MPU-6050's pairs at 0x06-0x0B hold the same format (the offset-register application note).
+pub fn accel_offset_g(high: u8, low: u8) -> f32 {
+    f32::from(i16::from_be_bytes([high, low]) >> 1) / 1024.0
+}
+
 /// A part as named by its WHO_AM_I.
 #[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Part {

@@ -1,32 +1,45 @@
 //! Links the on-target binaries; for the host's tests, finds whether they can run here.
 
+use std::path::{Path, PathBuf};
+
 fn main() {
-    // NOTE: link.x comes from .cargo/config.toml for every thumbv7em build.
-    board_link::link(&[]);
-    on_target_cfg();
-}
-
-/// The on-target binaries the tests run under QEMU (tests/common/mod.rs names the same).
-const ELFS: [&str; 2] = ["qemu-tests", "fit-count"];
-
-/// Sets `on_target_runnable` when qemu-system-arm runs and the on-target binaries are built, or when
-/// CI=true (where a missing one must fail): the tests read it in `#[cfg_attr(not(..), ignore)]`, so
-/// a test that cannot run here is reported as ignored with its reason, never "ok".
-fn on_target_cfg() {
-    println!("cargo::rustc-check-cfg=cfg(on_target_runnable)");
+    if std::env::var("CARGO_CFG_TARGET_ARCH").as_deref() == Ok("riscv32") {
+        // NOTE: riscv-rt's link.x, on the virt machine's memory map (only `fit-count` is built for it).
+        board_link::link_memory("memory-riscv32.x", &["-Tlink.x"]);
+    } else {
+        // NOTE: link.x comes from .cargo/config.toml for every thumbv7em build.
+        board_link::link(&[]);
+    }
     println!("cargo::rerun-if-env-changed=CI");
     println!("cargo::rerun-if-env-changed=PATH");
     println!("cargo::rerun-if-env-changed=CARGO_TARGET_DIR");
     let target = std::env::var_os("CARGO_TARGET_DIR")
-        .map(std::path::PathBuf::from)
-        .unwrap_or_else(|| std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../target"));
-    let release = target.join("thumbv7em-none-eabihf/release");
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../target"));
+    runnable_cfg("on_target_runnable", "qemu-system-arm", &target.join("thumbv7em-none-eabihf/release"), &ELFS);
+    runnable_cfg(
+        "rv32_runnable",
+        "qemu-system-riscv32",
+        &target.join("riscv32imc-unknown-none-elf/release"),
+        &RV32_ELFS,
+    );
+}
+
+/// The on-target binaries the tests run under QEMU (tests/common/mod.rs names the same).
+const ELFS: [&str; 2] = ["qemu-tests", "fit-count"];
+/// The one built for the generic RV32IMC.
+const RV32_ELFS: [&str; 1] = ["fit-count"];
+
+/// Sets `cfg` when `qemu` runs and the binaries `elfs` are built in `release`, or when CI=true
+/// (where a missing one must fail): the tests read it in `#[cfg_attr(not(..), ignore)]`, so a test
+/// that cannot run here is reported as ignored with its reason, never "ok".
+fn runnable_cfg(cfg: &str, qemu: &str, release: &Path, elfs: &[&str]) {
+    println!("cargo::rustc-check-cfg=cfg({cfg})");
     // NOTE: a binary built later changes its file, which runs this script again.
-    ELFS.iter().for_each(|elf| println!("cargo::rerun-if-changed={}", release.join(elf).display()));
-    let built = ELFS.iter().all(|elf| release.join(elf).exists());
-    let qemu =
-        std::process::Command::new("qemu-system-arm").arg("--version").output().is_ok_and(|o| o.status.success());
-    if (built && qemu) || std::env::var("CI").as_deref() == Ok("true") {
-        println!("cargo::rustc-cfg=on_target_runnable");
+    elfs.iter().for_each(|elf| println!("cargo::rerun-if-changed={}", release.join(elf).display()));
+    let built = elfs.iter().all(|elf| release.join(elf).exists());
+    let runs = std::process::Command::new(qemu).arg("--version").output().is_ok_and(|o| o.status.success());
+    if (built && runs) || std::env::var("CI").as_deref() == Ok("true") {
+        println!("cargo::rustc-cfg={cfg}");
     }
 }

@@ -39,6 +39,9 @@ pub(super) async fn family_of<I: I2c>(
 async fn keeps_a_value<I: I2c>(bus: &mut I, address: u8, register: u8) -> Result<bool, Error<I::Error>> {
     let original = read_register(bus, address, register).await?;
     // NOTE: flips bits 0 and 2: A_DLPF_CFG's on ACCEL_CONFIG2, the offset's on XA_OFFSET_H.
+    // On XA_OFFSET_H that moves the MPU-6500 family's x output by 625 mg until the restore below,
+    // a few transactions later; no sample of that moment is used: a capture or stream starts by
+    // resetting the FIFO.
     let probe = original ^ 0b0000_0101;
     write_register(bus, address, register, probe).await?;
     let read_back = read_register(bus, address, register).await?;

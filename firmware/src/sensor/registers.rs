@@ -17,9 +17,9 @@ pub const ACCEL_CONFIG: u8 = 0x1C;
 /// ACCEL_CONFIG2 (0x1D) of the MPU-6500 family: the accelerometer's own low-pass filter
 /// (RM-MPU-6500A 4.8); not in the MPU-6050's map.
 pub const ACCEL_CONFIG2: u8 = 0x1D;
-/// XA_OFFSET_H (0x77) of the MPU-6500 family: the accelerometer's x offset, high byte
-/// (RM-MPU-6500A 4.x; the MPU-6050's accelerometer offsets sit at 0x06-0x0B).
-pub const XA_OFFSET_H_6500: u8 = 0x77;
+/// XA_OFFSET_H (0x77) of the MPU-6500 family: the accelerometer's x offset, high byte (the family's
+/// offset map is [`shared::part::Family::accel_offset_registers`]).
+pub const XA_OFFSET_H_6500: u8 = shared::part::Family::Mpu6500.accel_offset_registers()[0];
 /// FIFO_EN (0x23): which measurements go into the FIFO, section 4.6.
 pub const FIFO_EN: u8 = 0x23;
 /// INT_ENABLE (0x38), section 4.15.

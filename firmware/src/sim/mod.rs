@@ -49,13 +49,12 @@ pub struct SimMpu6050 {
 impl SimMpu6050 {
     /// A genuine MPU-6050 at 0x68 with the published error model, still with +Z up.
     pub fn new(seed: u64) -> Self {
-        let mut registers = [0; REGISTER_COUNT];
-        registers[usize::from(reg::PWR_MGMT_1)] = PWR_MGMT_1_RESET;
+        let part = SimPart::mpu6050();
         SimMpu6050 {
             address: reg::ADDRESSES[0],
-            part: SimPart::mpu6050(),
+            part,
             connected: true,
-            registers,
+            registers: power_up_registers(&part),
             fifo: Deque::new(),
             latest: [0; reg::FIFO_SAMPLE_LEN],
             physics: Physics::new(seed),
@@ -106,6 +105,7 @@ impl SimMpu6050 {
     /// Becomes another simulated part (register map, temperature formula, self-test).
     pub fn with_part(mut self, part: SimPart) -> Self {
         self.part = part;
+        self.registers = power_up_registers(&part);
         self
     }
 
@@ -197,6 +197,7 @@ impl SimMpu6050 {
         self.physics.accel_bandwidth_hz = self.part.accel_noise_bandwidth_hz(self.register(part::ACCEL_CONFIG2));
         let mut sample = self.physics.sample(seconds, rate);
         self.part.apply_self_test(self.register(reg::ACCEL_CONFIG), self.register(reg::GYRO_CONFIG), &mut sample);
+        self.part.apply_offsets(&self.registers, &mut sample);
         let accel_lsb = f32::from(16384u16 >> ((self.register(reg::ACCEL_CONFIG) >> reg::FULL_SCALE_SHIFT) & 0x03));
         let gyro_lsb = reg::GYRO_LSB_PER_DPS_BY_FS_SEL
             [usize::from((self.register(reg::GYRO_CONFIG) >> reg::FULL_SCALE_SHIFT) & 0x03)];
@@ -246,8 +247,7 @@ impl SimMpu6050 {
         }
         match address {
             reg::PWR_MGMT_1 if value & reg::PWR_MGMT_1_DEVICE_RESET != 0 => {
-                self.registers = [0; REGISTER_COUNT];
-                self.registers[usize::from(reg::PWR_MGMT_1)] = PWR_MGMT_1_RESET;
+                self.registers = power_up_registers(&self.part);
                 self.fifo.clear();
             }
             reg::USER_CTRL => {
@@ -288,6 +288,14 @@ impl SimMpu6050 {
         }
         Ok(())
     }
+}
+
+/// The register file at power-up: asleep, the factory's accelerometer offsets loaded, the rest 0.
+fn power_up_registers(part: &SimPart) -> [u8; REGISTER_COUNT] {
+    let mut registers = [0; REGISTER_COUNT];
+    registers[usize::from(reg::PWR_MGMT_1)] = PWR_MGMT_1_RESET;
+    part.load_factory_offsets(&mut registers);
+    registers
 }
 
 fn quantise(lsb: f32) -> i16 {

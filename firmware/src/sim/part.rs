@@ -2,7 +2,7 @@
 //! at the register level (WHO_AM_I, which registers exist, the temperature formula, the factory
 //! trim codes and the self-test response), and a faulty axis to inject.
 
-use shared::part::{Family, Part, TemperatureFormula};
+use shared::part::{accel_offset_g, Family, Part, TemperatureFormula};
 use shared::selftest::{self, GYRO_LSB_PER_DPS_AT_250};
 
 use super::physics::PhysicalSample;
@@ -24,6 +24,12 @@ pub struct SimPart {
     pub codes: [u8; 6],
     /// Each axis' self-test response over its factory trim (1: exactly the trim).
     pub response_ratio: [f32; 6],
+    /// What the accelerometer's x, y, z offset register pairs hold at power-up, as 16-bit words: the
+    /// factory's trim, which the physics' offsets already include.
+    pub factory_offsets: [i16; 3],
+    /// Whether a change of the offset registers moves the output (`false`: a part that keeps what is
+    /// written there and ignores it, see [`SimPart::ignoring_offsets`]).
+    pub applies_offsets: bool,
 }
 
 /// The names `--sim-part` takes, in the order of [`SimPart::by_name`].
@@ -43,6 +49,10 @@ impl SimPart {
             temperature: TemperatureFormula::MPU6050,
             codes: [14, 17, 12, 13, 19, 16],
             response_ratio: HEALTHY,
+            // NOTE: factory offsets of a few hundred mg in 1/1024 g, bit 0 (reserved) set on some, as
+            // register dumps of real parts show.
+            factory_offsets: [-2355, 1201, 1642],
+            applies_offsets: true,
         }
     }
 
@@ -57,6 +67,8 @@ impl SimPart {
             // too large stays within +-2 g; gyro codes 201-215 for 146-168 deg/s (at least 60).
             codes: [118, 112, 125, 209, 201, 215],
             response_ratio: HEALTHY,
+            factory_offsets: [7483, -6928, 10849],
+            applies_offsets: true,
         }
     }
 
@@ -89,6 +101,12 @@ impl SimPart {
             self.response_ratio[sensor_axis] = 1.0 + FAULTY_AXIS_ERROR;
         }
         self
+    }
+
+    /// The same part keeping what is written to its accelerometer offset registers but not applying
+    /// it to the output: a part whose offset registers are not what its map says.
+    pub fn ignoring_offsets(self) -> Self {
+        SimPart { applies_offsets: false, ..self }
     }
 
     /// The part its WHO_AM_I names.
@@ -160,6 +178,29 @@ impl SimPart {
             if gyro_config & bit != 0 {
                 sample.gyro_dps[i] += self.self_test_response(i + 3);
             }
+        }
+    }
+
+    /// Loads the factory offsets into `registers` (a register file at power-up or after a reset).
+    pub fn load_factory_offsets(&self, registers: &mut [u8]) {
+        for (&high, word) in self.family.accel_offset_registers().iter().zip(self.factory_offsets) {
+            let at = usize::from(high);
+            registers[at..at + 2].copy_from_slice(&word.to_be_bytes());
+        }
+    }
+
+    /// Adds to each accelerometer axis what its offset register pair (in `registers`) holds beyond
+    /// the factory's value: a step written there moves the output by the same step.
+    pub fn apply_offsets(&self, registers: &[u8], sample: &mut PhysicalSample) {
+        if !self.applies_offsets {
+            return;
+        }
+        let pairs = self.family.accel_offset_registers().into_iter().zip(self.factory_offsets);
+        for (axis, (high, factory)) in pairs.enumerate() {
+            let at = usize::from(high);
+            let [factory_high, factory_low] = factory.to_be_bytes();
+            let step_g = accel_offset_g(registers[at], registers[at + 1]) - accel_offset_g(factory_high, factory_low);
+            sample.accel_g[axis] += step_g;
         }
     }
 

@@ -7,7 +7,7 @@ use crate::shown::escape;
 
 const STYLE: &str = "body{font-family:sans-serif;max-width:52em;margin:2em auto;color:#111}\
 table{border-collapse:collapse;margin:0.5em 0}td,th{border:1px solid #999;padding:0.2em 0.5em;text-align:right}\
-th{background:#eee}td.name,th.name{text-align:left}.hash{font-family:monospace;word-break:break-all}\
+th{background:#eee}td{white-space:nowrap}td.name,th.name{text-align:left;white-space:normal}.hash{font-family:monospace;word-break:break-all}\
 @page{size:A4;margin:15mm}@media print{body{margin:0}}";
 
 /// Every budget component, in the page's column order.
@@ -46,7 +46,7 @@ fn identity(out: &mut String, c: &Certificate) {
     let conditions = &c.conditions;
     let rows = [
         ("serial number", c.board.serial.clone().unwrap_or_else(absent)),
-        ("sensor part", c.part.clone().unwrap_or_else(absent)),
+        ("sensor part", c.board.part.clone().unwrap_or_else(absent)),
         ("firmware", c.board.firmware.clone().unwrap_or_else(absent)),
         ("sensor configuration", c.board.sensor_config.clone().unwrap_or_else(absent)),
         ("date (UTC)", c.date_utc.clone().unwrap_or_else(absent)),
@@ -61,13 +61,32 @@ fn identity(out: &mut String, c: &Certificate) {
         ),
         ("unit of g", format!("{} = the gravity where the board was captured", conditions.g)),
         ("captures", conditions.captures.to_string()),
-        ("self-test", c.self_test.as_ref().map_or_else(absent, |v| v.to_string())),
+        ("self-test", c.self_test.as_ref().map_or_else(absent, self_test_summary)),
     ];
     out.push_str("<table>");
     for (name, value) in rows {
         let _ = write!(out, "<tr><th class=\"name\">{name}</th><td class=\"name\">{}</td></tr>", escape(&value));
     }
     out.push_str("</table>");
+}
+
+/// The self-test the board kept, for a reader: its verdict, date and largest deviation from the
+/// factory trim (the JSON holds every axis).
+fn self_test_summary(kept: &serde_json::Value) -> String {
+    let result = &kept["result"];
+    let verdict = match result["passed"].as_bool() {
+        Some(true) => "passed",
+        Some(false) => "failed",
+        None => "no verdict",
+    };
+    let axes = result["axes"].as_array().map(Vec::as_slice).unwrap_or_default();
+    let deviations = axes.iter().filter_map(|axis| axis["deviation_percent"].as_f64());
+    let largest = deviations.map(f64::abs).reduce(f64::max);
+    let date = kept["date_utc"].as_str().unwrap_or("undated");
+    match largest {
+        Some(percent) => format!("{verdict} ({date} UTC); largest deviation from the factory trim {percent:.1} %"),
+        None => format!("{verdict} ({date} UTC)"),
+    }
 }
 
 /// The parameters with u, U and the budget's components.

@@ -30,10 +30,9 @@ pub const FORMAT: u32 = 1;
 pub struct Certificate {
     /// The certificate format.
     pub format: u32,
-    /// The board: serial, firmware, sensor configuration, range, date of the first capture.
+    /// The board: serial, firmware, sensor part, sensor configuration, range, date of the first
+    /// capture.
     pub board: Board,
-    /// The sensor's part name, where the board reports it.
-    pub part: Option<String>,
     /// When the calibration's last capture ended, UTC.
     pub date_utc: Option<String>,
     /// How the captures were taken.
@@ -119,7 +118,6 @@ impl Certificate {
         let mut certificate = Certificate {
             format: FORMAT,
             board: Board::of(session),
-            part: None,
             date_utc: session.captures.last().map(|c| crate::shown::utc_minutes(c.unix_time_s)),
             method: method(session),
             model: model(&estimate),

@@ -94,6 +94,13 @@ fn the_certificate_quotes_the_self_test_the_board_kept_and_has_none_without_one(
         self_test: Some(entry),
     });
     let certificate = Certificate::issue(&session).unwrap();
+    assert_eq!(certificate.board.part.as_deref(), Some("MPU-6050 at 0x68"));
+    let page = html::page(&certificate);
+    assert!(page.contains(">MPU-6050 at 0x68</td>"), "the page names the part the board reported");
+    assert!(
+        page.contains(">passed (2026-11-24 18:00 UTC); largest deviation from the factory trim 2.5 %</td>"),
+        "{page}"
+    );
     let quoted = certificate.self_test.as_ref().expect("quoted");
     assert_eq!(quoted["date_utc"], "2026-11-24 18:00");
     assert_eq!(quoted["result"]["axes"][0]["deviation_percent"], 2.5);

@@ -12,6 +12,8 @@ use crate::error::Error;
 use crate::link::{
     ask, explain, is_worth_asking, serial_ports, Answer, LinkError, SerialPortEntry, StreamRequest, LISTEN_FIRST,
 };
+use crate::link::{Client, Port};
+use crate::part::check::{check_family, FamilyCheck, FamilyCheckJson};
 use crate::part::{describe as describe_part, format_dump, part_name, register_dump};
 use crate::recording::{SAMPLE_COLUMNS, STREAM_COLUMNS};
 use crate::session::BoardRecord;
@@ -76,6 +78,11 @@ struct InfoJson {
     /// The WHO_AM_I value; null with no sensor.
     who_am_i: Option<u8>,
     sensor: SensorJson,
+    /// What confirmed the family the board runs the part as ("offset registers"); null when nothing
+    /// did (see `family_check`) or with no sensor.
+    family_confirmed_by: Option<&'static str>,
+    /// The offset-register check of the family; null with no sensor.
+    family_check: Option<FamilyCheckJson>,
     range_g: u8,
     sample_rate_hz: u16,
     active: Option<CalibrationJson>,
@@ -101,16 +108,27 @@ pub(super) fn info(device: &Device, json: bool, registers: bool) -> Result<(), E
     let stored = client.calibration(CalibrationSlot::Stored)?;
     let dump = if registers { Some(register_dump(client)?) } else { None };
     let info = &opened.connection.info;
+    client.interrupt_on(super::calibrate::interrupt_on_ctrl_c());
+    let check = family_check(client, info)?;
     if json {
-        let output = InfoJson { registers: dump, ..info_json(info, active.as_ref(), stored.as_ref()) };
+        let output = InfoJson { registers: dump, ..info_json(info, active.as_ref(), stored.as_ref(), check.as_ref()) };
         println!("{}", serde_json::to_string_pretty(&output).unwrap_or_default());
     } else {
-        print_info(info, active.as_ref(), stored.as_ref());
+        print_info(info, active.as_ref(), stored.as_ref(), check.as_ref());
         if let Some(dump) = dump {
             print!("\n{}", format_dump(&dump_heading(info), &dump));
         }
     }
     Ok(())
+}
+
+/// The offset-register check of the board's sensor; `None` with no sensor. Give the client the Ctrl-C
+/// flag first: the check restores its registers after Ctrl-C too.
+pub(super) fn family_check<P: Port>(client: &mut Client<P>, info: &DeviceInfo) -> Result<Option<FamilyCheck>, Error> {
+    let Ok(sensor) = info.sensor else {
+        return Ok(None);
+    };
+    Ok(Some(check_family(client, &sensor, info.config)?))
 }
 
 /// The first line of a register dump: what a person reporting an unknown part is asked for.
@@ -119,7 +137,12 @@ fn dump_heading(info: &DeviceInfo) -> String {
     format!("accelcal {} register dump, firmware {}: {sensor}", env!("CARGO_PKG_VERSION"), firmware_version(info))
 }
 
-fn info_json(info: &DeviceInfo, active: Option<&Calibration>, stored: Option<&Calibration>) -> InfoJson {
+fn info_json(
+    info: &DeviceInfo,
+    active: Option<&Calibration>,
+    stored: Option<&Calibration>,
+    check: Option<&FamilyCheck>,
+) -> InfoJson {
     InfoJson {
         serial: BoardRecord::of(info).serial,
         protocol_version: info.protocol_version,
@@ -127,6 +150,8 @@ fn info_json(info: &DeviceInfo, active: Option<&Calibration>, stored: Option<&Ca
         part: info.sensor.as_ref().ok().map(part_name),
         who_am_i: info.sensor.as_ref().ok().map(|s| s.who_am_i),
         sensor: info.sensor.map_or_else(|e| SensorJson::Missing { error: explain(&e) }, SensorJson::Found),
+        family_confirmed_by: check.and_then(FamilyCheck::confirmed_by),
+        family_check: check.map(FamilyCheckJson::of),
         range_g: info.config.range.full_scale_g(),
         sample_rate_hz: info.config.sample_rate_hz,
         active: active.map(CalibrationJson::from_device),
@@ -135,12 +160,20 @@ fn info_json(info: &DeviceInfo, active: Option<&Calibration>, stored: Option<&Ca
     }
 }
 
-fn print_info(info: &DeviceInfo, active: Option<&Calibration>, stored: Option<&Calibration>) {
+fn print_info(
+    info: &DeviceInfo,
+    active: Option<&Calibration>,
+    stored: Option<&Calibration>,
+    check: Option<&FamilyCheck>,
+) {
     let serial = BoardRecord::of(info).serial;
     println!("board serial {serial}, firmware {}, protocol {}", firmware_version(info), info.protocol_version);
     match info.sensor {
         Ok(s) => println!("sensor: {}", describe_part(&s)),
         Err(e) => println!("sensor: {}", explain(&e)),
+    }
+    if let Some(check) = check {
+        println!("family: {}", check.summary());
     }
     println!("range +-{} g, {} Hz", info.config.range.full_scale_g(), info.config.sample_rate_hz);
     println!("active calibration: {}", active.map_or("none".to_owned(), describe));

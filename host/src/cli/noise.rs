@@ -9,11 +9,17 @@ use crate::stream::{cost, StillPeriods, StreamLog, StreamOptions};
 
 /// `accelcal noise FILE [--json] [--plot FILE.svg]`.
 pub(super) fn noise(args: &NoiseArgs) -> Result<(), Error> {
+    let reading = super::terminal::working(format!("reading {}", args.file.display()));
     let series = match input::read_path(&args.file, args.rate) {
-        Err(NoiseInputError::MissingColumn { .. } | NoiseInputError::BadLine { .. }) => stream_series(args)?,
-        read => read?,
+        Err(NoiseInputError::MissingColumn { .. } | NoiseInputError::BadLine { .. }) => stream_series(args),
+        read => read.map_err(Error::from),
     };
+    reading.finish_and_clear();
+    let series = series?;
+    let samples = series.axes[0].len();
+    let analysing = super::terminal::working(format!("Allan deviation of {samples} samples per axis"));
     let report = noise::analyse(&series);
+    analysing.finish_and_clear();
     if let Some(path) = &args.plot {
         let document = crate::report::allan::svg_document(&json::NoiseJson::of(&report))?;
         std::fs::write(path, document).map_err(|source| Error::WriteFile { path: path.clone(), source })?;

@@ -8,11 +8,13 @@ use serde::Serialize;
 use shared::selftest::StoredSelfTest;
 
 use super::args::Device;
+use super::board::family_check;
 
 use crate::error::Error;
+use crate::part::check::{FamilyCheck, FamilyCheckJson};
 use crate::selftest::history::{self, History, HistoryEntry};
 use crate::selftest::report::{text, SelfTestJson};
-use crate::selftest::{run, PhaseName, Watcher};
+use crate::selftest::{run, PhaseName, SelfTest, Watcher};
 use crate::session::BoardRecord;
 
 /// `accelcal selftest`.
@@ -41,6 +43,10 @@ struct SelftestOutput<'a> {
     previous: Option<&'a HistoryEntry>,
     /// The history file; null when none is kept.
     history: Option<PathBuf>,
+    /// What confirmed the family the self-test ran as ("offset registers"), or null (as `info`).
+    family_confirmed_by: Option<&'static str>,
+    /// The offset-register check of the family (as `info`); null with no sensor.
+    family_check: Option<FamilyCheckJson>,
 }
 
 /// What the procedure shows a person on stderr (nothing with `--json`).
@@ -78,16 +84,11 @@ pub(super) fn selftest(args: &SelftestArgs) -> Result<(), Error> {
     }
     let connection = &mut opened.connection;
     connection.client.interrupt_on(super::calibrate::interrupt_on_ctrl_c());
+    let check = family_check(&mut connection.client, &connection.info)?;
     let test = run(&mut connection.client, &connection.info, &mut Lines { quiet: args.json })?;
     let result = SelfTestJson::of(&test);
-    if args.json {
-        let history_path = history.as_ref().map(|h| h.path().to_path_buf());
-        let output = SelftestOutput { result: &result, previous: previous.as_ref(), history: history_path };
-        // NOTE: a reader that went away (`| head`) is no reason to lose the history entry below.
-        let _ = writeln!(std::io::stdout(), "{}", serde_json::to_string_pretty(&output).unwrap_or_default());
-    } else {
-        let _ = write!(std::io::stdout(), "{}", text(&test, previous.as_ref()));
-    }
+    let shown = Shown { test: &test, result: &result, previous: previous.as_ref(), check: check.as_ref() };
+    shown.print(args.json, history.as_ref().map(|h| h.path().to_path_buf()));
     if let Some(history) = &history {
         history.append(HistoryEntry::now(&result))?;
     }
@@ -97,6 +98,34 @@ pub(super) fn selftest(args: &SelftestArgs) -> Result<(), Error> {
         Ok(())
     } else {
         Err(Error::SelfTestFailed)
+    }
+}
+
+/// What a self-test run shows.
+struct Shown<'a> {
+    test: &'a SelfTest,
+    result: &'a SelfTestJson,
+    previous: Option<&'a HistoryEntry>,
+    check: Option<&'a FamilyCheck>,
+}
+
+impl Shown<'_> {
+    /// On stdout, as JSON (with the history file) or as text.
+    fn print(&self, json: bool, history: Option<PathBuf>) {
+        // NOTE: a reader that went away (`| head`) is no reason to lose the history entry after it.
+        if json {
+            let output = SelftestOutput {
+                result: self.result,
+                previous: self.previous,
+                history,
+                family_confirmed_by: self.check.and_then(FamilyCheck::confirmed_by),
+                family_check: self.check.map(FamilyCheckJson::of),
+            };
+            let _ = writeln!(std::io::stdout(), "{}", serde_json::to_string_pretty(&output).unwrap_or_default());
+        } else {
+            let family = self.check.map_or(String::new(), |c| format!("family: {}\n", c.summary()));
+            let _ = write!(std::io::stdout(), "{}{family}", text(self.test, self.previous));
+        }
     }
 }
 

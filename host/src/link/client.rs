@@ -150,7 +150,11 @@ impl<P: Port> Client<P> {
                 Err(e) if matches!(e.kind(), ErrorKind::TimedOut | ErrorKind::WouldBlock | ErrorKind::Interrupted) => {}
                 Err(e) => return Err(LinkError::disconnected(e)),
             }
-            listening.check(SILENCE_LIMIT)?;
+            // NOTE: a frame just read is taken before the silence is judged: a host that reads late
+            // (busy, or descheduled on a loaded machine) finds the answer waiting, not a silent board.
+            if self.decoded.is_empty() {
+                listening.check(SILENCE_LIMIT)?;
+            }
         }
     }
 
@@ -206,5 +210,50 @@ mod tests {
         assert!(answers(7, protocol::frame::UNKNOWN_REQUEST_ID));
         assert!(!answers(7, 6));
         assert!(!answers(7, 8));
+    }
+
+    /// A port whose answer arrives while the host is busy elsewhere: the first read returns only
+    /// once the silence limit has passed, with the whole answer in it.
+    struct ReadLate {
+        answer: Vec<u8>,
+    }
+
+    impl std::io::Read for ReadLate {
+        fn read(&mut self, buffer: &mut [u8]) -> std::io::Result<usize> {
+            if self.answer.is_empty() {
+                return Err(ErrorKind::TimedOut.into());
+            }
+            std::thread::sleep(SILENCE_LIMIT + READ_SLICE);
+            let n = buffer.len().min(self.answer.len());
+            buffer[..n].copy_from_slice(&self.answer[..n]);
+            self.answer.drain(..n);
+            Ok(n)
+        }
+    }
+
+    impl std::io::Write for ReadLate {
+        fn write(&mut self, bytes: &[u8]) -> std::io::Result<usize> {
+            Ok(bytes.len())
+        }
+
+        fn flush(&mut self) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+
+    impl Port for ReadLate {
+        fn set_read_timeout(&mut self, _: Duration) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn an_answer_read_after_the_silence_limit_is_taken_not_called_foreign_bytes() {
+        let mut frame = [0u8; MAX_FRAME_LEN];
+        let len = protocol::encode(1, &Response::Done, &mut frame).unwrap();
+        let port = ReadLate { answer: frame[..len].to_vec() };
+        let decoded = VecDeque::new();
+        let mut client = Client { port, accumulator: FrameAccumulator::new(), decoded, next_id: 1, interrupt: None };
+        assert!(matches!(client.call(Request::SaveCalibration), Ok(Response::Done)));
     }
 }

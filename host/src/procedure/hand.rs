@@ -58,9 +58,43 @@ impl Hand for PersonHand {
 }
 
 fn describe(target: &Orientation) -> String {
-    if target.is_face() {
-        format!("the {} axis printed on the board toward the sky", target.name)
-    } else {
-        "a corner up: tilt the board so that those three axes point equally upward".to_owned()
+    match target.face_up() {
+        Some(face) => format!("the {} axis printed on the board toward the sky", face.name()),
+        None => "a corner up: tilt the board so that those three axes point equally upward".to_owned(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::orientation::Orientation;
+    use crate::procedure::drift::closing;
+
+    /// Keeps what the person is told.
+    struct Told(Vec<String>);
+
+    impl Feedback for Told {
+        fn say(&mut self, line: &str) {
+            self.0.push(line.to_owned());
+        }
+        fn live(&mut self, _: &str) {}
+        fn progress(&mut self, _: u32, _: u32) {}
+        fn progress_done(&mut self) {}
+        fn confirm(&mut self, _: &str) -> bool {
+            true
+        }
+    }
+
+    #[test]
+    fn the_closing_capture_of_a_face_is_described_as_that_face_not_as_a_corner() {
+        let mut told = Told(Vec::new());
+        let plus_z = Orientation::named("+Z").unwrap();
+        PersonHand.present(&closing(&plus_z), &mut told).unwrap();
+        PersonHand.present(&Orientation::named("+X-Y+Z").unwrap(), &mut told).unwrap();
+        assert_eq!(
+            told.0[0],
+            "Rest the board with +Z again pointing up (the +Z axis printed on the board toward the sky), and hold it still."
+        );
+        assert!(told.0[1].contains("(a corner up: tilt the board"), "{}", told.0[1]);
     }
 }

@@ -20,6 +20,7 @@ use shared::selftest::{self, AxisVerdict, SelfTestRaw};
 use firmware::sensor::registers::ACCEL_CONFIG;
 
 use crate::link::{Client, LinkError, Port};
+use crate::still::StillError;
 use phase::{Phase, PhaseMeans};
 
 pub use phase::PhaseName;
@@ -66,10 +67,20 @@ pub enum SelfTestError {
     NoSensor(String),
     #[error("the board moved during each of {attempts} attempts, so no response could be measured: rest it on a table, keep your hands off it for 5 s, and run again")]
     KeptMoving { attempts: u8 },
-    #[error("only {received} of {wanted} samples of the {phase} phase arrived: check the cable and run again")]
-    TooFewSamples { phase: &'static str, received: usize, wanted: usize },
+    /// Too few samples arrived (a lost link is [`SelfTestError::Link`]).
+    #[error(transparent)]
+    Stream(StillError),
     #[error("the sensor's configuration registers read {after:02x?} after the self-test, not {before:02x?} as before: unplug the board and plug it in again")]
     NotRestored { before: Vec<u8>, after: Vec<u8> },
+}
+
+impl From<StillError> for SelfTestError {
+    fn from(error: StillError) -> Self {
+        match error {
+            StillError::Link(link) => SelfTestError::Link(link),
+            other => SelfTestError::Stream(other),
+        }
+    }
 }
 
 /// What the procedure tells whoever runs it (and where a test moves the simulated board).

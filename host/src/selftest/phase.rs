@@ -2,11 +2,11 @@
 
 use firmware::sensor::registers::{ACCEL_CONFIG, FULL_SCALE_SHIFT, GYRO_CONFIG, GYRO_LSB_PER_DPS, SELF_TEST_BITS};
 use shared::part::Family;
-use shared::protocol::{Sample, StreamKind, MAX_STILL_ACCEL_STD_G, MAX_STILL_GYRO_STD_DPS};
 use shared::selftest::{GYRO_FS_SEL_250, GYRO_LSB_PER_DPS_AT_250};
 
 use super::SelfTestError;
-use crate::link::{Client, Port, StreamRequest};
+use crate::link::{Client, Port};
+use crate::still::StillPhase;
 
 /// Samples averaged in each phase.
 ///
@@ -68,35 +68,22 @@ impl Phase {
         let (gyro_config, accel_config) = self.registers();
         client.write_register(GYRO_CONFIG, gyro_config)?;
         client.write_register(ACCEL_CONFIG, accel_config)?;
-        let samples = self.stream(client)?;
-        Ok(still_mean(&samples).map(|mean| self.to_lsb(mean)))
+        // NOTE: the board's gyro figures are four times the +-250 deg/s rates (it converts at +-1000).
+        let gyro_dps_per_reported = f64::from(GYRO_LSB_PER_DPS / GYRO_LSB_PER_DPS_AT_250);
+        let phase = StillPhase {
+            label: self.name.label(),
+            rate_hz: self.rate_hz,
+            settle: SETTLE_SAMPLES,
+            samples: PHASE_SAMPLES,
+            gyro_dps_per_reported,
+        };
+        Ok(phase.mean(client)?.map(|mean| self.to_lsb(mean)))
     }
 
     /// GYRO_CONFIG and ACCEL_CONFIG for this phase: the trim's ranges, self-test bits on or off.
     fn registers(&self) -> (u8, u8) {
         let bits = if self.name == PhaseName::On { SELF_TEST_BITS } else { 0 };
         (bits | GYRO_FS_SEL_250 << FULL_SCALE_SHIFT, bits | (self.accel_config & !SELF_TEST_BITS))
-    }
-
-    /// The phase's samples after the settling ones.
-    fn stream<P: Port>(&self, client: &mut Client<P>) -> Result<Vec<Sample>, SelfTestError> {
-        let wanted = StreamRequest {
-            kind: StreamKind::Raw,
-            rate_hz: self.rate_hz,
-            count: (SETTLE_SAMPLES + PHASE_SAMPLES) as u32,
-        };
-        let mut samples = Vec::with_capacity(PHASE_SAMPLES);
-        client.stream(wanted, |sample| {
-            if sample.index as usize >= SETTLE_SAMPLES {
-                samples.push(*sample);
-            }
-        })?;
-        // NOTE: a lost sample does not bias a mean; only too few of them make it uncertain.
-        if samples.len() < PHASE_SAMPLES * 9 / 10 {
-            let (phase, received) = (self.name.label(), samples.len());
-            return Err(SelfTestError::TooFewSamples { phase, received, wanted: PHASE_SAMPLES });
-        }
-        Ok(samples)
     }
 
     /// A mean in g and deg/s as the board converts them, back to LSB at the self-test ranges.
@@ -111,22 +98,4 @@ impl Phase {
             (mean[axis] * per_unit) as f32
         })
     }
-}
-
-/// The mean of each axis (accelerometer in g, gyro in deg/s as the board reports them), or why
-/// the board counts as moved: an axis scattered more than a still board's.
-fn still_mean(samples: &[Sample]) -> Result<[f64; 6], String> {
-    let values = |axis: usize| {
-        samples.iter().map(move |s| f64::from(if axis < 3 { s.accel_g[axis] } else { s.gyro_dps[axis - 3] }))
-    };
-    let n = samples.len() as f64;
-    let mean: [f64; 6] = core::array::from_fn(|axis| values(axis).sum::<f64>() / n);
-    let scatter = |axis: usize| (values(axis).map(|v| (v - mean[axis]).powi(2)).sum::<f64>() / (n - 1.0)).sqrt();
-    let accel_std_g = (0..3).map(scatter).fold(0.0, f64::max);
-    // NOTE: the board's gyro figures are a quarter of the +-250 deg/s rates.
-    let gyro_std_dps = (3..6).map(scatter).fold(0.0, f64::max) * f64::from(GYRO_LSB_PER_DPS / GYRO_LSB_PER_DPS_AT_250);
-    if accel_std_g > f64::from(MAX_STILL_ACCEL_STD_G) || gyro_std_dps > f64::from(MAX_STILL_GYRO_STD_DPS) {
-        return Err(format!("the output scattered by {:.1} mg and {gyro_std_dps:.2} deg/s", accel_std_g * 1e3));
-    }
-    Ok(mean)
 }

@@ -41,3 +41,22 @@ fn temperature_formulas_follow_the_datasheets() {
         assert!((formula.celsius(formula.raw(27.3)) - 27.3).abs() < 0.5 / formula.lsb_per_c + 1e-4);
     }
 }
+
+#[test]
+fn an_offset_pair_is_a_15_bit_value_in_steps_of_1_1024_g_with_bit_0_reserved() {
+    // NOTE: RM-MPU-9250A 4.39: XA_OFFS[14:7] in the high byte, XA_OFFS[6:0] in bits 7:1 of the low.
+    let cases = [
+        ([0x00, 0x01], 0.0),
+        ([0x00, 0x02], 1.0 / 1024.0),
+        ([0x01, 0x00], 0.125),
+        ([0xFF, 0xFE], -1.0 / 1024.0),
+        ([0xFF, 0xFF], -1.0 / 1024.0),
+        ([0x7F, 0xFE], 16.0 - 1.0 / 1024.0),
+        ([0x80, 0x00], -16.0),
+    ];
+    for ([high, low], g) in cases {
+        assert_eq!(accel_offset_g(high, low), g, "0x{high:02x}{low:02x}");
+    }
+    assert_eq!(Family::Mpu6050.accel_offset_registers(), [0x06, 0x08, 0x0A]);
+    assert_eq!(Family::Mpu6500.accel_offset_registers(), [0x77, 0x7A, 0x7D]);
+}

@@ -22,15 +22,30 @@ const PHONE: [(Position, [f32; 3]); 6] = [
     (Position::PosZ, [0.231834, 0.482186, 8.60553]),
 ];
 
+// NOTE: the emulated chip's start-up and semihosting: a Cortex-M4F's, or a generic RV32IMC's (only
+// `fit-count` is built for it); both crates name their parts alike.
+#[cfg(all(target_os = "none", target_arch = "arm"))]
+pub use {
+    cortex_m::asm::{nop, wfi},
+    cortex_m_rt::entry,
+    cortex_m_semihosting as semihosting,
+};
+#[cfg(all(target_os = "none", target_arch = "riscv32"))]
+pub use {
+    riscv::asm::{nop, wfi},
+    riscv_rt::entry,
+    riscv_semihosting as semihosting,
+};
+
 /// Ends an emulated run: says `done` (or `failed`) over semihosting and exits QEMU with that status.
 #[cfg(target_os = "none")]
 pub fn finish(ok: bool) -> ! {
-    use cortex_m_semihosting::{debug, hprintln};
+    use semihosting::{debug, hprintln};
     hprintln!("{}", if ok { "done" } else { "failed" });
     debug::exit(if ok { debug::EXIT_SUCCESS } else { debug::EXIT_FAILURE });
     // NOTE: semihosting exit ends QEMU; should it not, sleep rather than spin.
     loop {
-        cortex_m::asm::wfi();
+        wfi();
     }
 }
 
@@ -38,10 +53,10 @@ pub fn finish(ok: bool) -> ! {
 #[cfg(target_os = "none")]
 #[panic_handler]
 fn panic(info: &core::panic::PanicInfo) -> ! {
-    cortex_m_semihosting::hprintln!("panic: {}", info);
-    cortex_m_semihosting::debug::exit(cortex_m_semihosting::debug::EXIT_FAILURE);
+    semihosting::hprintln!("panic: {}", info);
+    semihosting::debug::exit(semihosting::debug::EXIT_FAILURE);
     loop {
-        cortex_m::asm::wfi();
+        wfi();
     }
 }
 

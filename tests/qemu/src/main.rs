@@ -7,8 +7,8 @@ fn main() {}
 
 #[cfg(target_os = "none")]
 mod target {
-    use cortex_m_rt::entry;
-    use cortex_m_semihosting::{hprint, hprintln};
+    use qemu_tests::entry;
+    use qemu_tests::semihosting::{hprint, hprintln};
 
     #[entry]
     fn main() -> ! {

@@ -9,15 +9,18 @@
 
 mod common;
 
+use common::CORTEX_M4F;
+
 use std::collections::BTreeMap;
-use std::process::{Command, Stdio};
+use std::process::Stdio;
 use std::time::{Duration, Instant};
 
 /// Runs the binary under QEMU; its `name hex...` lines as f32 values, by name.
 fn on_target() -> BTreeMap<String, Vec<u32>> {
-    let elf = common::runnable("qemu-tests");
-    let mut qemu = Command::new("qemu-system-arm")
-        .args(["-machine", "netduinoplus2", "-nographic", "-semihosting-config", "enable=on,target=native", "-kernel"])
+    let elf = CORTEX_M4F.runnable("qemu-tests");
+    let mut qemu = CORTEX_M4F
+        .qemu()
+        .arg("-kernel")
         .arg(&elf)
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())

@@ -104,3 +104,73 @@ fn the_temperature_read_is_the_simulated_die_temperature_on_every_family() {
         }
     }
 }
+
+/// The mean accelerometer output over 2 s at 100 Hz, in g (+-2 g, 16384 LSB/g).
+fn mean_accel_g(sim: &mut SimMpu6050, sensor: &mut Sensor) -> [f64; 3] {
+    let mut sum = [0.0; 3];
+    for _ in 0..200 {
+        sim.advance_us(10_000);
+        let sample = block_on(sensor.read_latest(sim)).unwrap();
+        for (total, lsb) in sum.iter_mut().zip(sample.accel) {
+            *total += f64::from(lsb) / 16384.0 / 200.0;
+        }
+    }
+    sum
+}
+
+/// Writes a big-endian offset pair at `high` (the high byte's address).
+fn write_pair(sim: &mut SimMpu6050, high: u8, word: i16) {
+    let [h, l] = word.to_be_bytes();
+    sim.write(0x68, &[high, h, l]).unwrap();
+}
+
+fn read_pair(sim: &mut SimMpu6050, high: u8) -> i16 {
+    let mut bytes = [0u8; 2];
+    sim.write_read(0x68, &[high], &mut bytes).unwrap();
+    i16::from_be_bytes(bytes)
+}
+
+#[test]
+fn each_family_applies_its_own_accelerometer_offset_registers_in_0_98_mg_steps_and_ignores_the_others() {
+    // NOTE: the MPU-6050's XA/YA/ZA_OFFS_H at 0x06, 0x08, 0x0A (offset-register application note); the
+    // MPU-6500 family's XA/YA/ZA_OFFSET_H at 0x77, 0x7A, 0x7D (RM-MPU-6500A registers 119-126). A
+    // pair is a 15-bit value in bits 15:1, 1/1024 g a step; bit 0 is reserved.
+    let cases = [(SimPart::mpu6050(), [0x06, 0x08, 0x0A], 0x77), (SimPart::icm20689(), [0x77, 0x7A, 0x7D], 0x06)];
+    for (seed, (part, own, other)) in cases.into_iter().enumerate() {
+        let mut sim = sim_of(part, 60 + seed as u64);
+        let mut sensor = block_on(Sensor::probe(&mut sim)).unwrap();
+        block_on(sensor.configure(&mut sim, SensorConfig::default())).unwrap();
+        let factory = own.map(|high| read_pair(&mut sim, high));
+        assert_eq!(factory, part.factory_offsets, "{part:?}: the factory's offsets at power-up");
+        let before = mean_accel_g(&mut sim, &mut sensor);
+        // The factory's values are part of the output already: +Z up reads (0, 0, 1) g within the
+        // published model's offsets and sensitivity errors (tens of mg).
+        let gravity_error_g = [before[0], before[1], before[2] - 1.0].map(f64::abs).into_iter().fold(0.0, f64::max);
+        assert!(gravity_error_g < 0.1, "{part:?}: {before:?}");
+        // x: +256 (128 steps, +125 mg); y: -512 (-250 mg); z: bit 0 only (nothing).
+        for (high, (word, change)) in own.into_iter().zip(factory.into_iter().zip([256, -512, 0])) {
+            write_pair(&mut sim, high, if change == 0 { word ^ 1 } else { word + change });
+        }
+        write_pair(&mut sim, other, 0x4000); // the other family's x offset: 8 g, were it applied
+        let after = mean_accel_g(&mut sim, &mut sensor);
+        for (axis, wanted_g) in [0.125, -0.25, 0.0].into_iter().enumerate() {
+            let moved_g = after[axis] - before[axis];
+            // NOTE: two means of 200 samples of 2.8 mg noise differ by 0.3 mg rms.
+            assert!((moved_g - wanted_g).abs() < 0.0015, "{part:?} axis {axis}: moved {moved_g} g, want {wanted_g} g");
+        }
+        sim.write(0x68, &[0x6B, 0x80]).unwrap(); // PWR_MGMT_1: DEVICE_RESET
+        assert_eq!(own.map(|high| read_pair(&mut sim, high)), factory, "{part:?}: a reset reloads the factory's");
+    }
+}
+
+#[test]
+fn a_part_that_ignores_its_offset_registers_keeps_what_is_written_and_its_output_does_not_move() {
+    let mut sim = sim_of(SimPart::mpu6500().ignoring_offsets(), 70);
+    let mut sensor = block_on(Sensor::probe(&mut sim)).unwrap();
+    block_on(sensor.configure(&mut sim, SensorConfig::default())).unwrap();
+    let before = mean_accel_g(&mut sim, &mut sensor);
+    write_pair(&mut sim, 0x77, 0x4000);
+    assert_eq!(read_pair(&mut sim, 0x77), 0x4000);
+    let moved_g = mean_accel_g(&mut sim, &mut sensor)[0] - before[0];
+    assert!(moved_g.abs() < 0.0015, "moved {moved_g} g");
+}

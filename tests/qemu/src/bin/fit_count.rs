@@ -1,6 +1,7 @@
-//! On an emulated Cortex-M4F: the chip's `ortho9` fit of the quick calibration's ten captures alone,
-//! between two calls of a marker whose address it prints (`marker 0x...`), for an instruction count
-//! from QEMU's trace (tests/fit_instructions.rs); then the fit's iterations and `done`.
+//! On an emulated Cortex-M4F, or a generic RV32IMC (the ESP32-C3's instruction set): the chip's
+//! `ortho9` fit of the quick calibration's ten captures alone, between two calls of a marker whose
+//! address it prints (`marker 0x...`), for an instruction count from QEMU's trace
+//! (tests/fit_instructions.rs); then the fit's iterations and `done`.
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
 #[cfg(not(target_os = "none"))]
@@ -8,13 +9,13 @@ fn main() {}
 
 #[cfg(target_os = "none")]
 mod target {
-    use cortex_m_rt::entry;
-    use cortex_m_semihosting::hprintln;
+    use qemu_tests::entry;
+    use qemu_tests::semihosting::hprintln;
 
     /// Marks a point in the instruction trace; never inlined, so every call executes its address.
     #[inline(never)]
     fn marker() {
-        cortex_m::asm::nop();
+        qemu_tests::nop();
     }
 
     #[entry]
