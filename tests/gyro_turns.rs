@@ -17,8 +17,6 @@ use std::time::Duration;
 
 /// The tool's hand is this many degrees off, as `calibrate --sim` places it by default.
 const PLACEMENT_DEG: f64 = 3.0;
-/// `calibrate`'s default --target-mg.
-const DEFAULT_TARGET_MG: f64 = 0.2;
 /// The bounds: scale within 0.2 %, misalignment within 0.1 degree.
 const SCALE_BOUND: f64 = 0.002;
 const MISALIGNMENT_BOUND_DEG: f64 = 0.1;
@@ -48,7 +46,7 @@ fn default_session(seed: u64) -> Recovered {
     let client = &mut connection.client;
     let targets = procedure::targets(false);
     let feedback = &mut Silent { yes: true };
-    let rule = StopRule { target_mg: DEFAULT_TARGET_MG, noise: Noise::Measured, rate_hz };
+    let rule = StopRule { target_mg: accelcal::limits::DEFAULT_TARGET_MG, noise: Noise::Measured, rate_hz };
     let options = AdaptiveOptions { rule, wait_limit: Some(Duration::from_secs(60)), clock: None };
     procedure::collect_adaptive(
         client,

@@ -255,7 +255,7 @@ fn a_looser_target_stops_no_sooner_than_the_drift_can_be_fitted() {
             "seed {seed}: {} captures, {:.3} mg at the mean temperature, {:.3} mg at the end",
             o.captures, o.at_mean_mg, o.at_end_mg
         );
-        assert!(o.captures >= accelcal::fit::drift::MIN_CAPTURES, "seed {seed}: {} captures", o.captures);
+        assert!(o.captures >= accelcal::limits::DRIFT_MIN_CAPTURES, "seed {seed}: {} captures", o.captures);
         assert!(
             o.at_end_mg < o.static_at_end_mg,
             "seed {seed}: {:.3} vs static {:.3} mg",

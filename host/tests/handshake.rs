@@ -10,7 +10,8 @@ use std::sync::atomic::Ordering;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
-use accelcal::link::{ask, find_board, is_worth_asking, open_port, Answer, LinkError, SerialPortEntry, LISTEN_FIRST};
+use accelcal::limits::LISTEN_FIRST;
+use accelcal::link::{ask, find_board, is_worth_asking, open_port, Answer, LinkError, SerialPortEntry};
 use accelcal::sim::replay::Replay;
 use accelcal::sim::sketch::Sketch;
 use common::SimPty;

@@ -82,7 +82,7 @@ fn ctrl_c_under_ten_degc_keeps_the_bins_on_disk_and_a_second_run_goes_on_from_th
 
 #[test]
 // NOTE: once intermittent: a quick 16 degC warming's cubic left the plausible offset drift over -40..85 degC and
-// the fit was refused; the order is now limited by the span learned (fit/thermal.rs, SPAN_PER_ORDER_C).
+// the fit was refused; the order is now limited by the span learned (limits::THERMAL_SPAN_PER_ORDER_C).
 fn ctrl_c_after_ten_degc_fits_and_activates_what_was_learned() {
     let mut sim = calibrated_board("32");
     let bins = temp_path("warming.json");

@@ -83,7 +83,6 @@ export class CdcHost {
     this.onData = onData;
     this.onReady = onReady;
     this.pending = [];
-    this.attached = true;
     this.portOpen = false;
     this.restart();
     usb.onUSBEnabled = () => usb.resetDevice();
@@ -127,14 +126,6 @@ export class CdcHost {
     this.request(setup(CLASS_INTERFACE_OUT, SET_CONTROL_LINE_STATE, lines, this.endpoints.control, 0), 'lines');
   }
 
-  /** The cable: pulled (nothing passes) or plugged in again (a bus reset, then a fresh enumeration). */
-  setAttached(attached) {
-    this.attached = attached;
-    this.pending = [];
-    if (attached) this.usb.resetDevice();
-    else this.restart();
-  }
-
   request(packet, stage) {
     this.stage = stage;
     this.usb.sendSetupPacket(packet);
@@ -142,7 +133,6 @@ export class CdcHost {
 
   /** The device wrote to an IN endpoint: a control stage, or serial data. */
   written(endpoint, bytes) {
-    if (!this.attached) return;
     if (endpoint !== 0) {
       if (endpoint === this.endpoints.in && bytes.length > 0 && this.portOpen) this.onData(bytes);
       return;
@@ -180,7 +170,7 @@ export class CdcHost {
   }
 
   deliver() {
-    if (!this.attached || !this.ready || this.stage || this.outArmed === 0 || this.pending.length === 0) return;
+    if (!this.ready || this.stage || this.outArmed === 0 || this.pending.length === 0) return;
     const chunk = new Uint8Array(this.pending.splice(0, this.outArmed));
     this.outArmed = 0;
     this.usb.endpointReadDone(this.endpoints.out, chunk);

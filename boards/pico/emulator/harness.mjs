@@ -14,7 +14,8 @@
 //   open            the USB serial port exists (the device is enumerated and configured)
 //   t NS CYCLES     a poll: emulated time and the cycles the CPU has executed (not asleep) so far;
 //                   answered by lines "h HEX" (bytes for the device), "power" (a power cycle: the chip
-//                   restarts from its flash), "cable 0" / "cable 1" (the USB cable pulled / plugged in),
+//                   restarts from its flash), "cable 0" / "cable 1" (the USB cable pulled: the chip
+//                   loses its power / plugged in: it boots from its flash),
 //                   "port 0" / "port 1" (the host's program closed / opened the port: DTR falls / rises),
 //                   then "."
 // Anything wrong (a fault, a ROM function the stand-in lacks) is said on stderr and ends the process.
@@ -153,23 +154,39 @@ function main() {
   const flash = new Uint8Array(2 * 1024 * 1024).fill(0xff);
   loadUf2(readFileSync(uf2Path), flash, fail);
   const bridge = new Bridge();
+  // NOTE: a Pico on USB runs from the cable's VBUS (Pico datasheet 4.5): pulling the cable powers it
+  // off, plugging it in boots it from its flash. `chip` is null while the cable is out.
   let chip = new Chip(flash, bridge, 0);
-  let cycles = 0;
+  let kept = { flash, nanos: 0, cycles: 0 };
+  const powerOff = () => {
+    kept = { flash: chip.mcu.flash.slice(0, flash.length), nanos: chip.nanos, cycles: kept.cycles + chip.busyCycles };
+    chip = null;
+  };
+  const powerOn = () => {
+    chip = new Chip(kept.flash, bridge, kept.nanos);
+  };
   let portOpen = false;
   for (;;) {
-    chip.run(POLL_NS);
-    bridge.send(`t ${Math.round(chip.nanos)} ${cycles + chip.busyCycles}`);
+    if (chip) chip.run(POLL_NS);
+    else kept.nanos += POLL_NS;
+    const [nanos, cycles] = chip ? [chip.nanos, kept.cycles + chip.busyCycles] : [kept.nanos, kept.cycles];
+    bridge.send(`t ${Math.round(nanos)} ${cycles}`);
     for (let line = bridge.receive(); line !== '.'; line = bridge.receive()) {
-      if (line.startsWith('h ')) chip.usb.send(Buffer.from(line.slice(2), 'hex'));
+      if (line.startsWith('h ')) chip?.usb.send(Buffer.from(line.slice(2), 'hex'));
       else if (line === 'power') {
         // The flash keeps what was written; RAM, registers and the USB connection start afresh.
-        cycles += chip.busyCycles;
-        chip = new Chip(chip.mcu.flash.slice(0, flash.length), bridge, chip.nanos);
-      } else if (line === 'cable 0' || line === 'cable 1') chip.usb.setAttached(line === 'cable 1');
-      else if (line === 'port 0' || line === 'port 1') portOpen = line === 'port 1';
+        if (chip) {
+          powerOff();
+          powerOn();
+        }
+      } else if (line === 'cable 0') {
+        if (chip) powerOff();
+      } else if (line === 'cable 1') {
+        if (!chip) powerOn();
+      } else if (line === 'port 0' || line === 'port 1') portOpen = line === 'port 1';
       else fail(`the bridge sent '${line}'`);
     }
-    if (chip.usb.portOpen !== portOpen) chip.usb.setPortOpen(portOpen);
+    if (chip && chip.usb.portOpen !== portOpen) chip.usb.setPortOpen(portOpen);
   }
 }
 

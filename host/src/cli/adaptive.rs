@@ -11,6 +11,7 @@ use super::device::Opened;
 use super::length::{ADAPTIVE_VERIFY_POSITIONS, FIXED_VERIFY_POSITIONS};
 use crate::error::Error;
 use crate::fit::drift;
+use crate::limits::DRIFT_MIN_CHANGE_C;
 use crate::link::{Client, Port};
 use crate::procedure::stop_rule::CaptureLength;
 use crate::procedure::{self, AdaptiveOptions, Feedback, Turning, VERIFY_SECONDS};
@@ -91,7 +92,7 @@ pub(super) fn outcome(session: &Session, config: SensorConfig, feedback: &mut dy
             d.slope_g_per_c[1] * 1e3,
             d.slope_g_per_c[2] * 1e3
         )),
-        None if high - low >= 0.1 => feedback.say(&format!(
+        None if high - low >= DRIFT_MIN_CHANGE_C => feedback.say(&format!(
             "the temperature moved {:.2} degC during the session; too few positions to fit the drift it caused",
             high - low
         )),

@@ -9,9 +9,8 @@ use shared::Calibration;
 use super::args::{Device, StreamArgs};
 use crate::calibration::{describe, CalibrationJson};
 use crate::error::Error;
-use crate::link::{
-    ask, explain, is_worth_asking, serial_ports, Answer, LinkError, SerialPortEntry, StreamRequest, LISTEN_FIRST,
-};
+use crate::limits::LISTEN_FIRST;
+use crate::link::{ask, explain, is_worth_asking, serial_ports, Answer, LinkError, SerialPortEntry, StreamRequest};
 use crate::link::{Client, Port};
 use crate::part::check::{check_family, FamilyCheck, FamilyCheckJson};
 use crate::part::{describe as describe_part, format_dump, part_name, register_dump};
@@ -191,13 +190,11 @@ pub(super) fn stream(args: &StreamArgs) -> Result<(), Error> {
     let mut opened = args.device.open()?;
     let kind = if args.calibrated { StreamKind::Calibrated } else { StreamKind::Raw };
     let request = StreamRequest { kind, rate_hz: args.rate, count: args.count };
-    let stdout = std::io::stdout();
-    let mut out = stdout.lock();
+    let mut out = csv::Writer::from_writer(std::io::stdout().lock());
     let serial = BoardRecord::of(&opened.connection.info).serial;
-    let header = [STREAM_COLUMNS.as_slice(), &SAMPLE_COLUMNS, &["board"]].concat().join(",");
-    let mut reading = writeln!(out, "{header}").is_ok();
+    let mut reading = write_row(&mut out, header()).is_ok();
     let tally = opened.connection.client.stream_while(request, |sample| {
-        reading = reading && write_sample(&mut out, sample, &serial).is_ok();
+        reading = reading && write_row(&mut out, sample_cells(sample, &serial)).is_ok();
         reading
     })?;
     if reading && out.flush().is_ok() {
@@ -206,10 +203,66 @@ pub(super) fn stream(args: &StreamArgs) -> Result<(), Error> {
     Ok(())
 }
 
-/// One sample's row; every row names the board, so that a file cut or joined still says whose it is.
-fn write_sample(out: &mut impl Write, s: &Sample, serial: &str) -> std::io::Result<()> {
-    let [ax, ay, az] = s.accel_g;
-    let [gx, gy, gz] = s.gyro_dps;
-    let time_s = s.time_us as f64 * 1e-6;
-    writeln!(out, "{},{time_s:.6},{ax:.6},{ay:.6},{az:.6},{gx:.4},{gy:.4},{gz:.4},{:.2},{serial}", s.index, s.temp_c)
+/// The stream's columns: the sample number and time, the sample's columns, and the board.
+fn header() -> Vec<&'static str> {
+    [STREAM_COLUMNS.as_slice(), &SAMPLE_COLUMNS, &["board"]].concat()
+}
+
+/// One row, flushed at once: the stream is live, and a reader that went away shows at the next row.
+fn write_row<T: AsRef<[u8]>>(
+    out: &mut csv::Writer<impl Write>,
+    cells: impl IntoIterator<Item = T>,
+) -> std::io::Result<()> {
+    out.write_record(cells)?;
+    out.flush()
+}
+
+/// One sample's cells; every row names the board, so that a file cut or joined still says whose it is.
+fn sample_cells(s: &Sample, serial: &str) -> [String; 10] {
+    let [ax, ay, az] = s.accel_g.map(|v| format!("{v:.6}"));
+    let [gx, gy, gz] = s.gyro_dps.map(|v| format!("{v:.4}"));
+    let time_s = format!("{:.6}", s.time_us as f64 * 1e-6);
+    [s.index.to_string(), time_s, ax, ay, az, gx, gy, gz, format!("{:.2}", s.temp_c), serial.to_owned()]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Records what reached it in each `write` call, as a pipe's reader would see it arrive.
+    #[derive(Default)]
+    struct Arrivals(Vec<String>);
+
+    impl Write for Arrivals {
+        fn write(&mut self, bytes: &[u8]) -> std::io::Result<usize> {
+            self.0.push(String::from_utf8_lossy(bytes).into_owned());
+            Ok(bytes.len())
+        }
+        fn flush(&mut self) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn each_sample_reaches_the_reader_as_its_own_line_with_the_stream_s_decimals() {
+        let sample = |index: u32| Sample {
+            index,
+            time_us: 1_250_000 + u64::from(index) * 10_000,
+            accel_g: [0.012_345_67, -0.5, 1.000_000_4],
+            gyro_dps: [0.123_456, -2.0, 250.0],
+            temp_c: 24.126,
+        };
+        let mut out = csv::Writer::from_writer(Arrivals::default());
+        write_row(&mut out, header()).unwrap();
+        write_row(&mut out, sample_cells(&sample(3), "53494D")).unwrap();
+        write_row(&mut out, sample_cells(&sample(4), "53494D")).unwrap();
+        let arrived = out.into_inner().map_err(|_| "unflushed").unwrap().0;
+        // Written literally: the line `accelcal stream` printed before the csv crate wrote it.
+        let expected = [
+            "index,time_s,ax_g,ay_g,az_g,gx_dps,gy_dps,gz_dps,temp_c,board\n",
+            "3,1.280000,0.012346,-0.500000,1.000000,0.1235,-2.0000,250.0000,24.13,53494D\n",
+            "4,1.290000,0.012346,-0.500000,1.000000,0.1235,-2.0000,250.0000,24.13,53494D\n",
+        ];
+        assert_eq!(arrived, expected);
+    }
 }

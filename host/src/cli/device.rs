@@ -7,7 +7,8 @@ use std::time::{Duration, Instant};
 use clap::Args;
 
 use crate::error::Error;
-use crate::link::port::{BAUD_RANGE, DEFAULT_BAUD};
+use crate::limits::{BAUD_RANGE, SIM_WAIT_LIMIT};
+use crate::link::port::DEFAULT_BAUD;
 use crate::link::{
     find_board, open_listening, open_port, resolve_port, serial_ports, Connection, PortOpened, TalkingPort,
 };
@@ -59,9 +60,6 @@ fn baud(text: &str) -> Result<u32, String> {
         ))
     }
 }
-
-/// How long the tool waits for the simulated board (which it turns itself) to settle.
-const SIM_WAIT_LIMIT: Duration = Duration::from_secs(60);
 
 /// An open device, and the simulated board behind it when there is one.
 pub(super) struct Opened {

@@ -16,15 +16,12 @@ use super::foreign_session::Kept;
 use super::foreign_status::{status, Progress};
 use crate::error::Error;
 use crate::fit::{FitOptions, Model, ModelChoice};
+use crate::limits::{LIVE_DETECTION_LINES, STREAM_QUIET_S};
 use crate::link::TalkingPort;
 use crate::report::stream::{self, StreamReport};
 use crate::stream::live::LiveStream;
 use crate::stream::{Layout, LineReader, StreamLog, StreamOptions};
 
-/// A stream silent this long has stopped (long enough that a busy machine's pause is not taken for it).
-const QUIET_S: f64 = 10.0;
-/// Lines heard before the dialect is decided.
-const DETECT_LINES: usize = 40;
 /// How often the person is told where things stand, in seconds.
 const STATUS_EVERY: Duration = Duration::from_secs(1);
 
@@ -68,10 +65,10 @@ fn listen_until_done(
         if interrupt.load(Ordering::SeqCst) {
             return Ok("stopped by Ctrl-C".to_owned());
         }
-        if live.quiet_s() > QUIET_S {
+        if live.quiet_s() > STREAM_QUIET_S {
             return Ok("the stream stopped".to_owned());
         }
-        if live.lines.len() < DETECT_LINES || last_status.elapsed() < STATUS_EVERY {
+        if live.lines.len() < LIVE_DETECTION_LINES || last_status.elapsed() < STATUS_EVERY {
             continue;
         }
         last_status = Instant::now();

@@ -8,8 +8,9 @@ use super::args::CalibrateArgs;
 use super::foreign_session::Kept;
 use super::length::ADAPTIVE_VERIFY_POSITIONS;
 use crate::error::Error;
+use crate::limits::MAX_CAPTURE_SECONDS;
 use crate::limits::MOVING_SCATTER_G;
-use crate::procedure::stop_rule::{Noise, StopRule, MAX_SECONDS};
+use crate::procedure::stop_rule::{Noise, StopRule};
 use crate::stream::guide::{all_rested, nearest_name, next_turn};
 use crate::stream::live::{arrival_hz, LiveStream};
 use crate::stream::segment::{mean_std, Segment, Stillness};
@@ -97,7 +98,7 @@ fn status_line(log: &StreamLog, still: &StillPeriods, want_g: f64) -> String {
 }
 
 /// The position being held, when the board rests in a still period: how much longer to hold it,
-/// or, once its mean is known to `want_g` per axis (or held [`MAX_SECONDS`]), where to turn next.
+/// or, once its mean is known to `want_g` per axis (or held [`MAX_CAPTURE_SECONDS`]), where to turn next.
 fn holding(log: &StreamLog, still: &StillPeriods, want_g: f64) -> Option<String> {
     let hz = log.rate?.hz;
     let segment = current(log, still, hz)?;
@@ -105,13 +106,13 @@ fn holding(log: &StreamLog, still: &StillPeriods, want_g: f64) -> Option<String>
     let worst_std = segment.std_g.iter().copied().fold(0.0, f64::max);
     let known_mg = worst_std / n.sqrt() * 1e3;
     let name = nearest_name(segment.mean_g);
-    let (held_s, needed_s) = (n / hz, ((worst_std / want_g).powi(2) / hz).min(MAX_SECONDS));
+    let (held_s, needed_s) = (n / hz, ((worst_std / want_g).powi(2) / hz).min(MAX_CAPTURE_SECONDS));
     let wanted = format!("its mean known to {known_mg:.3} mg, {:.3} mg wanted", want_g * 1e3);
     let rested: Vec<[f64; 3]> = still.segments.iter().map(|s| s.mean_g).collect();
     Some(match (known_mg <= want_g * 1e3, held_s >= needed_s) {
         (true, _) => format!("{name} taken ({wanted}); {}", next_turn(segment.mean_g, &rested)),
         (false, true) => format!(
-            "{name} taken after {held_s:.1} s ({wanted}: this stream's noise allows no better in {MAX_SECONDS} s); {}",
+            "{name} taken after {held_s:.1} s ({wanted}: this stream's noise allows no better in {MAX_CAPTURE_SECONDS} s); {}",
             next_turn(segment.mean_g, &rested)
         ),
         (false, false) => format!("{name}: hold it still {:.1} s more ({wanted})", needed_s - held_s),

@@ -5,12 +5,10 @@ use std::path::PathBuf;
 
 use clap::Args;
 
+use crate::limits::DEFAULT_TARGET_MG;
 use crate::procedure::stop_rule::{noise_from_report, Noise, StopRule};
 use crate::procedure::ProcedureError;
 
-/// The default target: the error the 9-parameter fit reaches at fresh orientations on a settled
-/// sensor with about 18 s of averaging in all (issue 16's measurement).
-pub const DEFAULT_TARGET_MG: f64 = 0.2;
 /// Verification positions of an adaptive session: enough for an RMS, each as long as the target needs.
 pub const ADAPTIVE_VERIFY_POSITIONS: u8 = 3;
 /// Verification positions with fixed capture lengths (the guided procedure's classic count).

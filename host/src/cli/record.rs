@@ -10,6 +10,7 @@ use shared::protocol::{SensorConfig, StreamKind};
 use super::args::Device;
 use super::calibrate::interrupt_on_ctrl_c;
 use crate::error::Error;
+use crate::limits::MAX_RECORD_SECONDS;
 use crate::link::{Client, LinkError, Port, StreamRequest, Tally};
 use crate::recording::{Recorder, RecordingError};
 use crate::session::BoardRecord;
@@ -30,10 +31,6 @@ pub struct RecordArgs {
     pub rate: u16,
 }
 
-/// Longest recording, in seconds.
-///
-/// NOTE: a day at 1 kHz is 86.4 million samples, within the stream's u32 sample count.
-const MAX_RECORD_SECONDS: i64 = 24 * 3600;
 /// `accelcal record (--port P | --sim) -o FILE [--seconds S] [--rate HZ]`.
 pub(super) fn record(args: &RecordArgs) -> Result<(), Error> {
     let mut opened = args.device.open()?;

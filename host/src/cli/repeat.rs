@@ -5,8 +5,8 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 
 use super::device::Device;
-use super::length::DEFAULT_TARGET_MG;
 use crate::error::Error;
+use crate::limits::DEFAULT_TARGET_MG;
 use crate::procedure::SimulatedSession;
 use crate::repeat::{self, RepeatOptions, RepeatReport};
 

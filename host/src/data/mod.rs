@@ -12,7 +12,9 @@ mod read;
 mod rows;
 mod write;
 
+use crate::limits::{REPEAT_FRACTION, SAMPLE_FILE_ROWS};
 pub use rows::{parse_row_list, RowList};
+pub use write::csv_text;
 
 /// One averaged reading and what the file says about it.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -46,11 +48,6 @@ pub struct Dataset {
     /// The rows, in file order.
     pub rows: Vec<Row>,
 }
-
-/// Rows from which a file of single samples is told from a file of averaged positions.
-const SAMPLE_FILE_ROWS: usize = 30;
-/// Successive rows this close (relative to the reading's size) repeat one position.
-const REPEAT_FRACTION: f64 = 0.05;
 
 impl Dataset {
     /// Whether the rows are single samples rather than averaged positions: no row says how many

@@ -81,8 +81,12 @@ pub fn ardupilot(source: &Source) -> Export {
     if let Some(model) = &source.calibration.temperature {
         params.extend(ardupilot_tcal(model));
     }
-    let body: String = params.iter().map(|(name, value)| format!("{name},{value}\n")).collect();
-    text(lines(source, &said, &loss), &HASH, &body, loss)
+    text(lines(source, &said, &loss), &HASH, &name_value_lines(&params), loss)
+}
+
+/// The parameters as NAME,VALUE lines (names and numbers need no quoting).
+fn name_value_lines(params: &[(String, String)]) -> String {
+    crate::data::csv_text(params.iter().map(|(name, value)| vec![name.clone(), value.clone()]))
 }
 
 /// INS_TCAL1_*: the model's offset and gyro-bias polynomials re-expanded about ArduPilot's 35 degC, with

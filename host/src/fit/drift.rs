@@ -7,16 +7,10 @@ use shared::linalg::Vec3;
 
 use super::{fit, Fit, FitError, FitOptions, Model, ModelChoice};
 use crate::data::{Dataset, Row};
+use crate::limits::{DRIFT_MIN_CAPTURES, DRIFT_MIN_CHANGE_C};
 
 pub mod learned;
 
-/// Smallest temperature span of the captures, in degC, that a drift per degree is fitted over;
-/// below it the sensor did not warm and no correction is made.
-// NOTE: the reading's resolution is 1/340 degC (register map 4.18); over a tenth of a degree a
-// drift of 1 mg/degC moves the offset by 0.1 mg, half the default target.
-pub const MIN_CHANGE_C: f64 = 0.1;
-/// Fewest captures a drift is fitted from: twelve parameters and one more.
-pub const MIN_CAPTURES: usize = 13;
 /// The spread of offset drifts expected before a session measures one, in g/degC: a prior that
 /// keeps a slope from two or three spare captures from fitting their noise.
 // NOTE: the Product Specification (rev 3.4, table 6.2) bounds the zero-g change over 0-70 degC to
@@ -42,7 +36,7 @@ pub struct Drift {
 /// too few, the temperature did not move enough, or a fit fails.
 pub fn fitted(captures: &Dataset) -> Option<Drift> {
     let span_c = span_c(captures);
-    if captures.rows.len() < MIN_CAPTURES || span_c.1 - span_c.0 < MIN_CHANGE_C {
+    if captures.rows.len() < DRIFT_MIN_CAPTURES || span_c.1 - span_c.0 < DRIFT_MIN_CHANGE_C {
         return None;
     }
     let ref_c = mean_temp_c(captures);

@@ -9,9 +9,8 @@ use shared::calibration::{drift, TemperatureModel};
 use shared::linalg::{self, Mat3};
 
 use super::thermal::ThermalPoint;
+use crate::limits::MIN_HYSTERESIS_OVERLAP_C;
 
-/// Narrowest overlap of the two segments worth comparing, in degC.
-pub const MIN_OVERLAP_C: f64 = 5.0;
 /// Milli-g per g.
 const MG_PER_G: f64 = 1000.0;
 
@@ -32,14 +31,14 @@ pub struct Hysteresis {
 
 /// Compares the `heating` and `cooling` bins around the static `matrix` and the fitted `model` (which
 /// removes gravity's share of each reading); `None` when they overlap by less than
-/// [`MIN_OVERLAP_C`] or either has too few bins there for a quadratic with scatter.
+/// [`MIN_HYSTERESIS_OVERLAP_C`] or either has too few bins there for a quadratic with scatter.
 pub fn compare(
     model: &TemperatureModel,
     matrix: &Mat3<f64>,
     heating: &[ThermalPoint],
     cooling: &[ThermalPoint],
 ) -> Option<Hysteresis> {
-    let overlap = overlap_c(heating, cooling).filter(|[low, high]| high - low >= MIN_OVERLAP_C)?;
+    let overlap = overlap_c(heating, cooling).filter(|[low, high]| high - low >= MIN_HYSTERESIS_OVERLAP_C)?;
     let temp_c = (overlap[0] + overlap[1]) / 2.0;
     let inside = |points: &[ThermalPoint]| -> Vec<ThermalPoint> {
         points.iter().filter(|p| (overlap[0]..=overlap[1]).contains(&p.temp_c)).copied().collect()

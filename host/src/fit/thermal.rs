@@ -9,6 +9,7 @@
 //! smallest held-out error: the points are split into alternate temperature bins, each half predicts
 //! the other; an order is tried only where the span learned supports it (10 degC per order).
 
+use crate::limits::{SCALE_DRIFT_FORCE_G, THERMAL_SPAN_PER_ORDER_C};
 use nalgebra::{DMatrix, DVector};
 use shared::calibration::{TempCoefficients, TemperatureModel, MAX_TEMP_ORDER};
 use shared::linalg::{self, Mat3, Vec3};
@@ -100,18 +101,11 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
-/// The learned span each polynomial order needs, in degC: order k is tried from k times this.
-/// NOTE: the chip applies the model over the whole operating range (-40..85 degC), mostly outside
-/// the span learned, where a polynomial's error grows as (distance / span)^order: a cubic fitted to
-/// a quick 16 degC warming once drifted past the 0.5 g plausibility limit at -40 degC and the fit was
-/// refused. 10 degC is also the smallest span `thermal` accepts, so a first order is always allowed.
-const SPAN_PER_ORDER_C: f64 = 10.0;
-
 /// The highest order the points' temperature span supports (1..=3).
 fn highest_order(points: &[ThermalPoint]) -> usize {
     let (low, high) =
         points.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| (l.min(p.temp_c), h.max(p.temp_c)));
-    ((high - low) / SPAN_PER_ORDER_C).floor().clamp(1.0, MAX_TEMP_ORDER as f64) as usize
+    ((high - low) / THERMAL_SPAN_PER_ORDER_C).floor().clamp(1.0, MAX_TEMP_ORDER as f64) as usize
 }
 
 /// How a temperature polynomial's order is chosen: by its error on the rows it was not fitted to,
@@ -174,7 +168,8 @@ pub fn fit_temperature(reference: &ThermalReference, points: &[ThermalPoint]) ->
     let mut squares = 0.0;
     for axis in 0..3 {
         let u: Vec<f64> = points.iter().map(|p| explained(&sensor, p.force_g, axis)).collect();
-        let scale = u.iter().fold(0.0f64, |m, v| m.max(v.abs())) > 0.5 && u.iter().any(|v| *v < -0.5);
+        let scale = u.iter().fold(0.0f64, |m, v| m.max(v.abs())) > SCALE_DRIFT_FORCE_G
+            && u.iter().any(|v| *v < -SCALE_DRIFT_FORCE_G);
         let values: Vec<f64> = points.iter().map(|p| p.accel_g[axis]).collect();
         let build = |order| points.iter().zip(&u).map(|(p, u)| accel_row(p.temp_c - ref_c, *u, order, scale)).collect();
         let (order, error) = choose_order(build, &values, folds);

@@ -11,9 +11,8 @@ use shared::protocol::{self, DeviceInfo, Feed, FrameAccumulator, Request, Respon
 use super::error::LinkError;
 use super::listening::Listening;
 use super::port::Port;
+use crate::limits::SILENCE_LIMIT;
 
-/// Longest silence from a device before it is declared gone.
-pub const SILENCE_LIMIT: Duration = Duration::from_secs(2);
 /// How long one read waits, so that silence is noticed promptly.
 const READ_SLICE: Duration = Duration::from_millis(50);
 

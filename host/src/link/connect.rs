@@ -12,10 +12,7 @@ use super::client::Client;
 use super::error::LinkError;
 use super::listening::describe;
 use super::port::{open_serial, Port};
-
-/// How long a port is listened to before anything is written to it: a sketch printing at 1 Hz or
-/// faster has said something by then.
-pub const LISTEN_FIRST: Duration = Duration::from_millis(1200);
+use crate::limits::LISTEN_FIRST;
 
 /// An open session with a device.
 pub struct Connection {

@@ -13,8 +13,8 @@ mod probe;
 mod requests;
 mod tally;
 
-pub use client::{Client, SILENCE_LIMIT};
-pub use connect::{listen, open_listening, open_port, Connection, Opened as PortOpened, TalkingPort, LISTEN_FIRST};
+pub use client::Client;
+pub use connect::{listen, open_listening, open_port, Connection, Opened as PortOpened, TalkingPort};
 pub use discovery::{resolve_port, serial_ports, SerialPortEntry};
 pub use error::LinkError;
 pub use explain::explain;

@@ -48,9 +48,6 @@ impl Port for serialport::TTYPort {
 /// The baud rate a port opens at unless told otherwise (`--baud`): accelcal's firmware and most
 /// sketches' `Serial.begin(115200)`. NOTE: USB CDC ignores it; it matters only to UART bridges.
 pub const DEFAULT_BAUD: u32 = 115_200;
-/// The baud rates a port may be opened at: from the slowest rate a sketch prints a sensor at to
-/// the fastest USB UART bridges (CP2102 and FT232R 3 MBd, CH343 6 MBd).
-pub const BAUD_RANGE: std::ops::RangeInclusive<u32> = 300..=6_000_000;
 
 /// Opens a serial port (the board, or a pseudo-terminal of `accelcal sim --pty`) at `baud`.
 pub fn open_serial(path: &str, baud: u32) -> Result<Box<dyn SerialPort>, serialport::Error> {

@@ -14,14 +14,13 @@ use std::time::Duration;
 use rusqlite::{params, Connection, OpenFlags, TransactionBehavior};
 
 use crate::certificate::Certificate;
+use crate::limits::LOT_BUSY_WAIT;
 pub use error::LotError;
 pub use spec::{Limits, Spec};
 pub use summary::{Distribution, LotSummary};
 
 /// The schema's version, in SQLite's `user_version`.
 const SCHEMA_VERSION: i64 = 1;
-/// How long a writer waits for another writer's transaction to end before it gives up.
-const BUSY_WAIT: Duration = Duration::from_secs(30);
 /// One row per certificate (the whole sealed JSON) and one row per certified parameter, for queries.
 const SCHEMA: &str = "
 CREATE TABLE IF NOT EXISTS certificates (
@@ -78,14 +77,16 @@ impl Lot {
         let connection = Connection::open_with_flags(path, flags)
             .map_err(|source| LotError::from_sqlite(path, source, open_failed))?;
         let lot = Lot { connection, path: path.into(), pause_in_write: None };
-        lot.connection.busy_timeout(BUSY_WAIT).map_err(|source| LotError::from_sqlite(path, source, open_failed))?;
+        lot.connection
+            .busy_timeout(LOT_BUSY_WAIT)
+            .map_err(|source| LotError::from_sqlite(path, source, open_failed))?;
         lot.check_version()?;
         Ok(lot)
     }
 
     /// WAL (readers never wait for a writer), the wait for other writers, the tables.
     fn prepare(&self) -> rusqlite::Result<()> {
-        self.connection.busy_timeout(BUSY_WAIT)?;
+        self.connection.busy_timeout(LOT_BUSY_WAIT)?;
         self.connection.pragma_update_and_check(None, "journal_mode", "WAL", |_| Ok(()))?;
         // NOTE: FULL: a committed board survives a power cut too, not only a killed process.
         self.connection.pragma_update(None, "synchronous", "FULL")?;

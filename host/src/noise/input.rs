@@ -9,6 +9,7 @@ use std::path::Path;
 use shared::protocol::Sample;
 
 use super::RateSeries;
+use crate::limits::NOISE_MIN_SAMPLES;
 use crate::limits::RATE_AGREEMENT;
 use crate::recording::{self, read::is_npy, RecordingError, SAMPLE_COLUMNS, STREAM_COLUMNS};
 
@@ -19,9 +20,6 @@ pub const COLUMNS: [&str; 6] = {
     [c[0], c[1], c[2], c[3], c[4], c[5]]
 };
 
-/// Fewest samples for an Allan deviation curve worth fitting (ten averaging times from 1 to N / 10).
-pub const MIN_SAMPLES: usize = 100;
-
 /// Why a recording cannot be analysed.
 #[derive(Debug, thiserror::Error)]
 pub enum NoiseInputError {
@@ -31,7 +29,7 @@ pub enum NoiseInputError {
     MissingColumn { column: &'static str },
     #[error("line {line}: {reason}")]
     BadLine { line: usize, reason: String },
-    #[error("{samples} samples is too few for an Allan deviation: record at least {MIN_SAMPLES}")]
+    #[error("{samples} samples is too few for an Allan deviation: record at least {NOISE_MIN_SAMPLES}")]
     TooShort { samples: usize },
     #[error(transparent)]
     Recording(#[from] RecordingError),
@@ -110,7 +108,7 @@ fn check_rate(rate_hz: f64) -> Result<(), NoiseInputError> {
 
 fn check_length(series: RateSeries) -> Result<RateSeries, NoiseInputError> {
     match series.axes[0].len() {
-        samples if samples < MIN_SAMPLES => Err(NoiseInputError::TooShort { samples }),
+        samples if samples < NOISE_MIN_SAMPLES => Err(NoiseInputError::TooShort { samples }),
         _ => Ok(series),
     }
 }

@@ -2,8 +2,9 @@
 //! deg/s, at the rate its timestamps give (or `--rate`); a stream with neither is refused, since a
 //! rate guessed would scale every noise term.
 
-use super::input::{NoiseInputError, MIN_SAMPLES};
+use super::input::NoiseInputError;
 use super::RateSeries;
+use crate::limits::NOISE_MIN_SAMPLES;
 use crate::stream::{Segment, StillPeriods, StreamLog};
 
 /// The longest still period of `log`, and the series the analysis takes from it.
@@ -14,7 +15,7 @@ pub fn longest_still(log: &StreamLog) -> Result<(Segment, RateSeries), NoiseInpu
     let still = StillPeriods::of(log);
     let longest =
         still.segments.into_iter().max_by_key(|s| s.samples).ok_or(NoiseInputError::TooShort { samples: 0 })?;
-    if longest.samples < MIN_SAMPLES {
+    if longest.samples < NOISE_MIN_SAMPLES {
         return Err(NoiseInputError::TooShort { samples: longest.samples });
     }
     let mut axes: [Vec<f64>; 6] = Default::default();

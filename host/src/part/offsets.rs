@@ -204,3 +204,22 @@ fn baseline_moved(before: &[f64; 6], after: &[f64; 6]) -> Option<String> {
 pub fn expected_step_g(found: u8) -> f64 {
     f64::from(accel_offset_g(found ^ STEP_BIT, 0) - accel_offset_g(found, 0))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use shared::protocol::LowPassFilter;
+
+    #[test]
+    fn a_phase_streams_at_a_rate_dividing_the_boards_and_settles_for_its_filter() {
+        // The board's rates are 1 kHz / (1 + SMPLRT_DIV); a stream's rate must divide them.
+        let rates: Vec<u16> = [100, 1000, 500, 333, 8].into_iter().map(stream_rate_hz).collect();
+        assert_eq!(rates, [100, 200, 125, 111, 8]);
+        let phase = |sample_rate_hz, filter| phase_for(SensorConfig { sample_rate_hz, filter, ..Default::default() });
+        let default = phase(100, LowPassFilter::Hz44);
+        assert_eq!((default.rate_hz, default.settle, default.samples), (100, 5, 40));
+        let slow_filter = phase(1000, LowPassFilter::Hz5);
+        assert_eq!((slow_filter.rate_hz, slow_filter.settle, slow_filter.samples), (200, 40, 80));
+        assert_eq!(phase(8, LowPassFilter::Hz5).samples, 40, "never fewer than 40");
+    }
+}

@@ -7,17 +7,12 @@ use std::time::Duration;
 
 use super::collect::capture_at;
 use super::drift;
-use super::stop_rule::{CaptureLength, StopRule, MAX_SECONDS, TAIL_OVER_RMS};
+use super::stop_rule::{CaptureLength, StopRule};
 use super::wait::{wait_for_target, Rest};
 use super::{Feedback, Orientation, ProcedureError, Turning};
+use crate::limits::{CAPTURE_ATTEMPTS, MAX_CAPTURE_SECONDS, MIN_ADAPTIVE_POSITIONS, TAIL_OVER_RMS};
 use crate::link::{Client, Port};
 use crate::session::{CaptureRecord, Session, SessionError, SessionKind};
-
-/// Captures of a position tried before giving up on a board that keeps moving.
-const CAPTURE_ATTEMPTS: usize = 5;
-/// Fewest positions before the prediction may end the session: the nine parameters and one more,
-/// so that the fit has a residual to check itself by.
-const MIN_POSITIONS: usize = 10;
 
 /// A reader of the board's clock, in seconds (the simulated board's own time).
 pub type BoardClock = Arc<dyn Fn() -> f64 + Send + Sync>;
@@ -86,7 +81,7 @@ pub fn collect_adaptive<P: Port>(
 // drift can be fitted, a warming board kept it in the calibration (--target-mg 0.5, seed 2: 1.04 mg
 // at verification where 0.43 was predicted).
 fn enough(session: &Session, target_mg: f64, feedback: &mut dyn Feedback) -> bool {
-    if session.captures.len() < MIN_POSITIONS || drift::unfitted_after(session, 1) {
+    if session.captures.len() < MIN_ADAPTIVE_POSITIONS || drift::unfitted_after(session, 1) {
         return false;
     }
     let Some(predicted_mg) = predicted_mg(session) else {
@@ -125,11 +120,11 @@ fn prediction_line(session: &Session, predicted_mg: f64, target_mg: f64) -> Stri
     if predicted_mg <= target_mg {
         return format!("{head}: within the {target_mg} mg wanted as an rms; every position is taken");
     }
-    let longest = session.captures.iter().filter(|c| f64::from(c.stats.seconds) >= MAX_SECONDS - 0.01).count();
+    let longest = session.captures.iter().filter(|c| f64::from(c.stats.seconds) >= MAX_CAPTURE_SECONDS - 0.01).count();
     let why = match longest {
         0 => String::new(),
         k => format!(
-            ", {k} of them averaged for the longest capture ({MAX_SECONDS} s): this sensor's noise allows no better"
+            ", {k} of them averaged for the longest capture ({MAX_CAPTURE_SECONDS} s): this sensor's noise allows no better"
         ),
     };
     format!("{head}, not the {target_mg} mg wanted: every position is taken{why}; a larger --target-mg ends sooner")

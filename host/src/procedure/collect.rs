@@ -5,13 +5,11 @@ use shared::protocol::{CaptureStats, DeviceError};
 use shared::Position;
 
 use super::stop_rule::CaptureLength;
-use super::wait::{wait_for_target, Rest, SETTLE_SECONDS};
+use super::wait::{wait_for_target, Rest};
 use super::{CollectOptions, Feedback, Hand, Moves, Orientation, ProcedureError, Turning};
+use crate::limits::{CAPTURE_ATTEMPTS, SETTLE_SECONDS};
 use crate::link::{explain, Client, LinkError, Port};
 use crate::session::{CaptureRecord, Session, SessionError};
-
-/// Captures of a position tried before giving up on a board that keeps moving.
-pub(super) const CAPTURE_ATTEMPTS: usize = 5;
 
 /// Captures every target, in whatever order the board arrives at them.
 pub fn collect<P: Port>(

@@ -1,7 +1,8 @@
 //! The order that measures a slow drift during a session (the first position again at the end,
 //! A ... Z ... A); the drift per degree itself is fitted in [`crate::fit::drift`].
 
-use crate::fit::drift::{span_c, MIN_CAPTURES, MIN_CHANGE_C};
+use crate::fit::drift::span_c;
+use crate::limits::{DRIFT_MIN_CAPTURES, DRIFT_MIN_CHANGE_C};
 use crate::orientation::Orientation;
 use crate::session::Session;
 
@@ -40,7 +41,9 @@ pub fn closing(first: &Orientation) -> Orientation {
 /// it after `more` further captures (never with a learned temperature model, which is kept).
 pub fn unfitted_after(session: &Session, more: usize) -> bool {
     let span_c = span_c(&session.dataset());
-    session.learned.is_none() && span_c.1 - span_c.0 >= MIN_CHANGE_C && session.captures.len() + more < MIN_CAPTURES
+    session.learned.is_none()
+        && span_c.1 - span_c.0 >= DRIFT_MIN_CHANGE_C
+        && session.captures.len() + more < DRIFT_MIN_CAPTURES
 }
 
 #[cfg(test)]
@@ -74,7 +77,7 @@ mod tests {
         let mut still = warming_session([1e-3; 3], 2.8e-3);
         still.captures.iter_mut().for_each(|c| c.stats.temp_c = 25.0);
         let mut few = warming_session([1e-3; 3], 2.8e-3);
-        few.captures.truncate(MIN_CAPTURES - 1);
+        few.captures.truncate(DRIFT_MIN_CAPTURES - 1);
         // One capture short: the closing one makes it fitted; a board that stayed needs none.
         assert!(unfitted_after(&few, 0) && !unfitted_after(&few, 1));
         assert!(!unfitted_after(&still, 0));

@@ -2,16 +2,13 @@
 //! collects it (for `accelcal repeat` and the statistical tests): no files, no feedback.
 
 use std::sync::Arc;
-use std::time::Duration;
 
 use super::stop_rule::{Noise, StopRule};
 use super::{collect_adaptive, targets, AdaptiveOptions, Moves, ProcedureError, Silent, SimulatedHand, Turning};
+use crate::limits::SIM_WAIT_LIMIT;
 use crate::link::Connection;
 use crate::session::{BoardRecord, Session, SessionKind};
 use crate::sim::SimBoard;
-
-/// How long the simulated hand may take to reach a position, as `calibrate --sim` allows.
-const WAIT_LIMIT: Duration = Duration::from_secs(60);
 
 /// How the simulated session is taken: the hand's placement error (degrees) and its seed, the
 /// target at a fresh orientation (mg).
@@ -28,7 +25,7 @@ impl SimulatedSession {
         let rate_hz = connection.info.config.sample_rate_hz;
         let mut hand = SimulatedHand::new(board.controls(), self.placement_deg, self.hand_seed);
         let rule = StopRule { target_mg: self.target_mg, noise: Noise::Measured, rate_hz };
-        let options = AdaptiveOptions { rule, wait_limit: Some(WAIT_LIMIT), clock: Some(Arc::new(board.clock())) };
+        let options = AdaptiveOptions { rule, wait_limit: Some(SIM_WAIT_LIMIT), clock: Some(Arc::new(board.clock())) };
         let record = BoardRecord::of(&connection.info);
         let mut session = Session { board: Some(record), kind: SessionKind::Adaptive, ..Session::default() };
         collect_adaptive(

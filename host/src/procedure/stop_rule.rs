@@ -7,35 +7,12 @@ use std::path::Path;
 use shared::protocol::{CaptureGoal, CaptureStats, MIN_GOAL_SAMPLES};
 use shared::Position;
 
-use super::wait::SETTLE_SECONDS;
 use super::{Feedback, ProcedureError};
+use crate::limits::{
+    GOAL_SETTLE_SECONDS, MAX_CAPTURE_SECONDS, MIN_CAPTURE_SECONDS, SETTLE_SECONDS, VERIFICATION_LOOSER,
+};
 use crate::link::{Client, LinkError, Port};
 
-/// Shortest capture, in seconds.
-// NOTE: half a second holds 50 samples at 100 Hz: enough for a scatter to judge motion by (the
-// chip's motion check), and short next to the 1.5-2 s a person takes to turn the board.
-pub const MIN_SECONDS: f64 = 0.5;
-/// Longest capture, in seconds: beyond it a drifting sensor's mean stops meaning one temperature.
-pub const MAX_SECONDS: f64 = 8.0;
-/// How far above the fit's predicted rms error one session in twenty ends up, at the 95th
-/// percentile: the stop rule aims that percentile, not the rms, at the target.
-// NOTE: the true error at fresh orientations is the rms of a linear function of the twelve fitted
-// parameters' errors, a weighted chi with about 8.4 effective degrees of freedom for the order of
-// procedure/drift.rs (host/tools/session_budget.py: 200 000 draws): its 95th percentile
-// is 1.38 times its rms. Aimed at the rms, 4 of 20 seeds of tests/one_minute.rs ended above 0.2 mg.
-pub const TAIL_OVER_RMS: f64 = 1.38;
-/// How long the board must rest before a capture that stops by its rule starts, in seconds.
-// NOTE: shorter than the guided procedure's 2 s: such a capture refuses a board that still moves
-// (the chip's scatter check) and a mean away from the position (the tilt check), and a person told
-// the next position once needs no time to read it again. A quarter second, the still end of a
-// recorded move (limits::MOVE_STILL_SECONDS), so that the move's end counts as the wait.
-const GOAL_SETTLE_SECONDS: f64 = 0.25;
-/// How much looser than the target a verification capture's mean is known: the check's noise
-/// floor, which the verification takes out of its figure (`after_rms_without_noise_mg`).
-// NOTE: at the target itself each check averaged about 2 s, three times over; at twice it the
-// shortest capture (0.5 s) on this sensor, which left the minute 2.9 s for the calibration's own
-// captures and ends the session nearer the temperature it was made at.
-const VERIFICATION_LOOSER: f64 = 2.0;
 
 /// How long one capture runs.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -118,7 +95,7 @@ impl StopRule {
     fn goal_for(&self, mean_std_g: f64) -> CaptureGoal {
         let samples = |seconds: f64| ((seconds * f64::from(self.rate_hz)).round() as u32).max(MIN_GOAL_SAMPLES);
         let (min_samples, max_samples) = match &self.noise {
-            Noise::Measured => (samples(MIN_SECONDS), samples(MAX_SECONDS)),
+            Noise::Measured => (samples(MIN_CAPTURE_SECONDS), samples(MAX_CAPTURE_SECONDS)),
             Noise::Report { .. } => {
                 let fixed = samples(self.report_seconds(mean_std_g));
                 (fixed, fixed)
@@ -131,11 +108,11 @@ impl StopRule {
     /// and no longer than the report's useful averaging time.
     fn report_seconds(&self, mean_std_g: f64) -> f64 {
         let Noise::Report { white_noise_g, capture_limit_s } = &self.noise else {
-            return MAX_SECONDS;
+            return MAX_CAPTURE_SECONDS;
         };
         let worst = white_noise_g.iter().copied().fold(0.0, f64::max);
-        let longest = capture_limit_s.unwrap_or(MAX_SECONDS).clamp(MIN_SECONDS, MAX_SECONDS);
-        (worst / mean_std_g).powi(2).clamp(MIN_SECONDS, longest)
+        let longest = capture_limit_s.unwrap_or(MAX_CAPTURE_SECONDS).clamp(MIN_CAPTURE_SECONDS, MAX_CAPTURE_SECONDS);
+        (worst / mean_std_g).powi(2).clamp(MIN_CAPTURE_SECONDS, longest)
     }
 
     /// Why a capture stopped when it did, in words.

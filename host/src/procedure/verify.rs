@@ -7,10 +7,10 @@ use shared::linalg;
 use shared::protocol::{CalibrationSlot, CaptureStats, DeviceError, StreamKind};
 use shared::Calibration;
 
-use super::collect::CAPTURE_ATTEMPTS;
 use super::stop_rule::CaptureLength;
 use super::wait::{wait_for_fresh, Rest, LIVE_WINDOW};
 use super::{Feedback, Hand, ProcedureError};
+use crate::limits::CAPTURE_ATTEMPTS;
 use crate::limits::CHIP_AGREEMENT_SIGMAS;
 use crate::link::{explain, Client, LinkError, Port, StreamRequest};
 use crate::session::Check;

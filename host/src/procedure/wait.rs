@@ -147,17 +147,10 @@ fn not_gravity(window: &Window) -> Option<String> {
     Some(format!("the sensor reads {magnitude_g:.2} g, {meaning}"))
 }
 
-/// How long, in seconds, the board must rest where it should after the prompt before it counts.
-///
-/// NOTE: a person needs a moment to read the instruction, and a board already lying on a face (or
-/// put down and still settling) must not be captured at once: two seconds of accepted windows in a
-/// row, after the prompt, since the windows start only then.
-pub const SETTLE_SECONDS: f64 = 2.0;
-
-/// Accepted live windows in a row that make [`SETTLE_SECONDS`].
+/// Accepted live windows in a row that make [`crate::limits::SETTLE_SECONDS`].
 #[cfg(test)]
 fn settle_windows() -> usize {
-    windows_for(SETTLE_SECONDS)
+    windows_for(crate::limits::SETTLE_SECONDS)
 }
 
 /// Live windows that cover `seconds` (at least one).
@@ -218,6 +211,7 @@ fn window_of(samples: &[[f64; 3]]) -> Window {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::limits::SETTLE_SECONDS;
     use shared::Position;
 
     #[test]

@@ -23,10 +23,8 @@ use crate::link::{Client, LinkError, Port};
 use crate::still::StillError;
 use phase::{Phase, PhaseMeans};
 
+use crate::limits::SELF_TEST_ATTEMPTS;
 pub use phase::PhaseName;
-
-/// Attempts before the procedure gives up on a board that keeps moving.
-pub const MAX_ATTEMPTS: u8 = 3;
 
 /// The sample rate the self-test runs at, in Hz, and its filter.
 ///
@@ -136,13 +134,13 @@ fn measure<P: Port>(
     client.configure(config)?;
     // NOTE: the board wrote the range; the phases add the self-test bits to what it wrote.
     let accel_config = client.read_registers(ACCEL_CONFIG, 1)?[0];
-    for attempt in 1..=MAX_ATTEMPTS {
+    for attempt in 1..=SELF_TEST_ATTEMPTS {
         match attempt_once(client, family, accel_config, attempt, watcher)? {
             Ok(means) => return Ok((means, attempt)),
             Err(why) => watcher.moved(attempt, &why),
         }
     }
-    Err(SelfTestError::KeptMoving { attempts: MAX_ATTEMPTS })
+    Err(SelfTestError::KeptMoving { attempts: SELF_TEST_ATTEMPTS })
 }
 
 /// Off, on, off: the means, or why the board counts as moved.

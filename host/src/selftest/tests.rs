@@ -118,7 +118,7 @@ impl Watcher for Shaking {
 fn a_board_that_keeps_moving_is_named_after_the_last_attempt() {
     let (mut connection, board) = SimBoard::in_process_part((3, SimSensor::Realistic, part("mpu6050"))).unwrap();
     let result = run(&mut connection.client, &connection.info, &mut Shaking(board.controls()));
-    assert!(matches!(result, Err(SelfTestError::KeptMoving { attempts: MAX_ATTEMPTS })), "{result:?}");
+    assert!(matches!(result, Err(SelfTestError::KeptMoving { attempts: SELF_TEST_ATTEMPTS })), "{result:?}");
 }
 
 #[test]

@@ -6,6 +6,7 @@ use serde::Serialize;
 use super::log::StreamLog;
 use super::segment::Segment;
 use super::timing::{lost_in_gaps, RateSource};
+use crate::limits::FOLDED_NOISE_FACTOR;
 
 /// The MPU-6050's accelerometer noise density, in g/sqrt(Hz) (Product Specification 6.2).
 const ACCEL_DENSITY_G: f64 = 400e-6;
@@ -13,8 +14,6 @@ const ACCEL_DENSITY_G: f64 = 400e-6;
 const LOW_PASS_HZ: [f64; 7] = [260.0, 184.0, 94.0, 44.0, 21.0, 10.0, 5.0];
 /// A position's mean known to this, in g, is what the capture times below are for.
 const MEAN_GOAL_G: f64 = 1e-4;
-/// Noise more than this many times what the rate's band holds is folded in from above.
-const FOLDED_FACTOR: f64 = 1.5;
 
 /// One cost of the stream.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -39,7 +38,7 @@ pub fn costs(log: &StreamLog, segments: &[Segment]) -> Vec<Cost> {
 fn aliasing(log: &StreamLog, scatter_g: f64) -> Option<Cost> {
     let rate = log.rate?.hz;
     let band_hz = (scatter_g / ACCEL_DENSITY_G).powi(2);
-    if band_hz < FOLDED_FACTOR * rate / 2.0 {
+    if band_hz < FOLDED_NOISE_FACTOR * rate / 2.0 {
         return None;
     }
     let here_s = (scatter_g / MEAN_GOAL_G).powi(2) / rate;

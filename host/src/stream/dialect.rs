@@ -7,6 +7,7 @@ use serde::Serialize;
 use super::columns::{name_columns, Columns};
 use super::line::{fields, Fields, Words};
 use super::StreamError;
+use crate::limits::DETECTION_LINES;
 
 /// The printing conventions accelcal reads.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -85,9 +86,6 @@ pub struct Layout {
     /// The header line (1-based), when there is one.
     pub header_line: Option<usize>,
 }
-
-/// Lines looked at to find the dialect.
-pub const DETECTION_LINES: usize = 2000;
 
 impl Layout {
     /// Finds the dialect and its columns from the first [`DETECTION_LINES`] lines.

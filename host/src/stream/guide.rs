@@ -4,10 +4,8 @@
 //! edges), to verify the calibration where it was not trained. A still period near a face or corner
 //! trains the calibration; one away from them all is fresh and verifies it.
 
+use crate::limits::VISITED_DEG;
 use shared::linalg::{dot, norm, scale};
-
-/// A still period this close to a target, in degrees, has visited it.
-pub const VISITED_DEG: f64 = 25.0;
 
 /// A target: its name (the axes that point up) and its direction.
 fn targets() -> Vec<(String, [f64; 3])> {

@@ -7,6 +7,7 @@ use super::line::{fields, Words};
 use super::timing::{self, Rate, RateSource};
 use super::units::{AccelUnit, GyroUnit};
 use super::StreamError;
+use crate::limits::STREAM_MIN_SAMPLES;
 
 /// What the command line may settle about a stream.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -124,7 +125,7 @@ impl StreamLog {
         rate: Option<Rate>,
         options: &StreamOptions,
     ) -> Result<StreamLog, StreamError> {
-        if samples.len() < MIN_SAMPLES {
+        if samples.len() < STREAM_MIN_SAMPLES {
             return Err(StreamError::TooFewSamples { samples: samples.len() });
         }
         let given = options.rate_hz.map(|hz| Rate { hz, source: RateSource::Given });
@@ -152,9 +153,6 @@ impl StreamLog {
         self.samples.iter().map(|s| s.gyro.map(|g| g.map(|v| v / per_dps))).collect()
     }
 }
-
-/// Fewest samples worth reading as a calibration stream.
-pub const MIN_SAMPLES: usize = 30;
 
 /// Seconds per unit of the time column: by its name, else by the rate its steps would give.
 fn time_unit(layout: &Layout, samples: &[StreamSample]) -> Option<f64> {

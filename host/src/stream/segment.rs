@@ -8,6 +8,7 @@
 //! start or end of a turn do little harm: every sample reads 1 g, so a mixture only shortens the
 //! mean by the square of the angle.
 
+use crate::limits::{MIN_STILL_SEGMENT_S, STILL_SCATTER_FACTOR, STILL_SCATTER_FLOOR_G, STREAM_GYRO_STILL_DPS};
 use serde::Serialize;
 use shared::linalg::{norm, sub};
 
@@ -22,17 +23,9 @@ pub struct Stillness {
     pub trim: usize,
 }
 
-/// Window, shortest segment and trim in seconds, at a known rate.
+/// Window and trim in seconds, at a known rate.
 const WINDOW_S: f64 = 0.5;
-const MIN_SEGMENT_S: f64 = 1.5;
 const TRIM_S: f64 = 0.1;
-/// A window's scatter may be this many times the median window's and still rest.
-const SCATTER_FACTOR: f64 = 3.0;
-/// Scatter that always counts as rest, in g: below a quantisation step of a printed value.
-const SCATTER_FLOOR_G: f64 = 0.002;
-/// A gyro within this many deg/s of its median rests: a hand's turn runs at 50-300 deg/s, and its
-/// last 0.05 s, where the rate falls below this, turns the board by a few hundredths of a degree.
-const GYRO_STILL_DPS: f64 = 3.0;
 
 impl Stillness {
     /// The windows for a stream at `rate_hz`; without a rate, lengths that suit 10-100 Hz.
@@ -40,7 +33,7 @@ impl Stillness {
         match rate_hz {
             Some(hz) => Stillness {
                 window: ((WINDOW_S * hz).round() as usize).max(5),
-                min_samples: ((MIN_SEGMENT_S * hz).round() as usize).max(10),
+                min_samples: ((MIN_STILL_SEGMENT_S * hz).round() as usize).max(10),
                 trim: ((TRIM_S * hz).round() as usize).max(1),
             },
             None => Stillness { window: 9, min_samples: 15, trim: 1 },
@@ -69,7 +62,7 @@ pub fn segment(accel_g: &[[f64; 3]], gyro_dps: Option<&[[f64; 3]]>, stillness: &
     let mut still = accel_rests(accel_g, stillness.window);
     if let Some(gyro) = gyro_dps {
         let bias = median3(gyro);
-        still.iter_mut().zip(gyro).for_each(|(s, g)| *s &= norm(sub(*g, bias)) <= GYRO_STILL_DPS);
+        still.iter_mut().zip(gyro).for_each(|(s, g)| *s &= norm(sub(*g, bias)) <= STREAM_GYRO_STILL_DPS);
     }
     runs(&still)
         .into_iter()
@@ -83,7 +76,8 @@ fn accel_rests(accel: &[[f64; 3]], window: usize) -> Vec<bool> {
     let scatter: Vec<f64> = (0..accel.len()).map(|i| window_scatter(accel, i, window)).collect();
     let mut sorted = scatter.clone();
     sorted.sort_by(f64::total_cmp);
-    let limit = (SCATTER_FACTOR * sorted.get(sorted.len() / 2).copied().unwrap_or(0.0)).max(SCATTER_FLOOR_G);
+    let limit =
+        (STILL_SCATTER_FACTOR * sorted.get(sorted.len() / 2).copied().unwrap_or(0.0)).max(STILL_SCATTER_FLOOR_G);
     scatter.iter().map(|&s| s <= limit).collect()
 }
 

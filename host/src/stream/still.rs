@@ -9,6 +9,7 @@ use serde::Serialize;
 use super::log::StreamLog;
 use super::segment::{segment, Segment, Stillness};
 use crate::data::{Dataset, Row};
+use crate::limits::MIN_TRAINING_PERIODS;
 
 /// A segment as the report lists it: its lines in the stream, and its scatter.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -23,10 +24,6 @@ pub struct SegmentLines {
     /// Whether it verifies the calibration (a fresh orientation, held out of the fit).
     pub verifies: bool,
 }
-
-/// Fewest training periods for fresh ones to be held out: the live session's stop rule asks for
-/// twelve, and `ortho9` needs nine.
-pub const MIN_TRAINING: usize = 12;
 
 /// A stream's still periods.
 #[derive(Debug, Clone)]
@@ -48,7 +45,7 @@ impl StillPeriods {
         let segments = segment(&log.accel_g(), gyro.as_deref(), &Stillness::for_rate(log.rate.map(|r| r.hz)));
         let per_g = log.accel_unit.per_g();
         let trains: Vec<bool> = segments.iter().map(|s| super::guide::trains(s.mean_g)).collect();
-        let hold_out = trains.iter().filter(|&&t| t).count() >= MIN_TRAINING;
+        let hold_out = trains.iter().filter(|&&t| t).count() >= MIN_TRAINING_PERIODS;
         let verifies: Vec<bool> = trains.iter().map(|&t| hold_out && !t).collect();
         let (mut dataset, mut held_out) = (Dataset { rows: Vec::new() }, Dataset { rows: Vec::new() });
         for (segment, &verifying) in segments.iter().zip(&verifies) {

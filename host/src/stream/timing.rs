@@ -1,6 +1,7 @@
 //! A stream's clock: the unit of its time column (by its name, else by the rate it would give) and
 //! the sample rate, from the timestamps, else from when the lines arrived, else as given.
 
+use crate::limits::PLAUSIBLE_HZ;
 use serde::Serialize;
 
 /// Where a stream's rate comes from.
@@ -35,9 +36,6 @@ pub(super) fn unit_by_name(name: &str) -> Option<f64> {
         _ => None,
     }
 }
-
-/// Rates a sketch prints at, in Hz: a time unit that puts the rate outside is the wrong one.
-const PLAUSIBLE_HZ: (f64, f64) = (0.5, 10_000.0);
 
 /// Seconds per unit of a time column whose name does not say: the largest of s, ms, us, ns that
 /// gives a plausible rate for the median step between lines.

@@ -11,12 +11,8 @@ use super::segment::Segment;
 use super::units::GyroUnit;
 use crate::fit::gyro::{fit_gyro, GyroFit, GyroFitError, Turn};
 use crate::fit::Fit;
+use crate::limits::{GYRO_RANGE_TOLERANCE, MIN_TURN_RATE_HZ};
 
-/// Slowest stream whose turns are integrated: a hand's turn of 0.6-2 s at up to 300 deg/s is
-/// followed by 25 or more samples at 40 Hz, each turning the board by at most 8 degrees.
-pub const MIN_TURN_RATE_HZ: f64 = 40.0;
-/// A G scale this close to a range's ratio names that range.
-const RANGE_TOLERANCE: f64 = 0.1;
 /// The MPU-6050's gyro ranges in counts (register map 4.4, FS_SEL 0-3).
 const COUNT_RANGES: [GyroUnit; 4] =
     [GyroUnit::Counts250, GyroUnit::Counts500, GyroUnit::Counts1000, GyroUnit::Counts2000];
@@ -70,7 +66,7 @@ fn range_check(fit: &GyroFit, unit: GyroUnit, assumed: bool) -> Option<String> {
     }
     let g_scale = (0..3).map(|k| fit.matrix[k][k]).sum::<f64>() / 3.0;
     let implied = unit.per_dps() / g_scale;
-    let near = COUNT_RANGES.iter().find(|r| (r.per_dps() / implied - 1.0).abs() <= RANGE_TOLERANCE);
+    let near = COUNT_RANGES.iter().find(|r| (r.per_dps() / implied - 1.0).abs() <= GYRO_RANGE_TOLERANCE);
     let how = if assumed { "assumed" } else { "given" };
     Some(match near {
         Some(&range) if range == unit => {

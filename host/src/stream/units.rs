@@ -6,6 +6,7 @@ use serde::Serialize;
 
 use super::dialect::Dialect;
 use super::StreamError;
+use crate::limits::UNIT_TOLERANCE;
 
 /// Standard gravity, in m/s^2 (the unit's definition, CGPM 1901).
 pub const STANDARD_GRAVITY: f64 = 9.80665;
@@ -13,9 +14,6 @@ pub const STANDARD_GRAVITY: f64 = 9.80665;
 const MOTIONCAL_COUNTS_PER_MS2: f64 = 8192.0 / 9.8;
 /// MotionCal's sketch prints the gyro as deg/s * 16.
 const MOTIONCAL_COUNTS_PER_DPS: f64 = 16.0;
-/// How far the median |a| may be from 1 g in a unit for the stream to be taken as in that unit: the
-/// units' sizes differ by 2x at least, a sensor's scale and offset errors by a few percent.
-const UNIT_TOLERANCE: f64 = 0.25;
 
 /// The unit of an accelerometer's values.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]

@@ -63,6 +63,6 @@ fn no_drift_is_fitted_when_the_temperature_stayed_or_the_captures_are_too_few() 
     still.rows.iter_mut().for_each(|r| r.temp_c = Some(25.0));
     assert_eq!(fitted(&still), None);
     let mut few = warming_captures([1e-3; 3], 2.8e-3);
-    few.rows.truncate(MIN_CAPTURES - 1);
+    few.rows.truncate(DRIFT_MIN_CAPTURES - 1);
     assert_eq!(fitted(&few), None);
 }

@@ -13,13 +13,11 @@ use std::fmt;
 use serde::Serialize;
 use shared::linalg::{Mat3, Vec3};
 
+use crate::limits::MIN_GYRO_TURNS;
 pub use integrate::{rotate_up, turned_deg, Turn};
-pub use observability::{informative_turn_deg, MIN_INFORMATIVE_TURN_DEG};
+pub use observability::informative_turn_deg;
 pub use solve::fit_gyro;
 pub use summary::{summarise_turn, TurnSummary};
-
-/// Turns needed at least: nine parameters, two constraints per turn, with room to judge the residuals.
-pub const MIN_TURNS: usize = 6;
 
 /// A fitted gyro correction.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -49,7 +47,7 @@ impl fmt::Display for GyroFitError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             GyroFitError::TooFewTurns { turns } => {
-                write!(f, "only {turns} usable turns between positions; the gyro fit needs {MIN_TURNS}: turn the board from face to face between the positions (a full calibration, without --quick, has 13)")
+                write!(f, "only {turns} usable turns between positions; the gyro fit needs {MIN_GYRO_TURNS}: turn the board from face to face between the positions (a full calibration, without --quick, has 13)")
             }
             GyroFitError::Unobservable { axes, turned_deg } => write!(f, "{}", observability::advice(axes, turned_deg)),
             GyroFitError::Diverged => write!(f, "the gyro fit did not converge: the turns do not agree with the positions (was the board moved during a capture?)"),

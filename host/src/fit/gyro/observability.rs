@@ -5,12 +5,7 @@ use nalgebra::{UnitQuaternion, Vector3};
 use shared::linalg::Vec3;
 
 use super::integrate::Turn;
-
-/// Turning, in degrees, each gyro axis needs about a horizontal line for its column of G.
-///
-/// NOTE: a single quarter turn about an axis already fixes its scale to about the noise of the
-/// gravity directions; half a turn (two quarter turns) leaves margin for a hand's wobble.
-pub const MIN_INFORMATIVE_TURN_DEG: f64 = 150.0;
+use crate::limits::MIN_INFORMATIVE_TURN_DEG;
 
 /// Per raw gyro axis, the degrees it turned while lying horizontal (weighted by how horizontal).
 pub fn informative_turn_deg(turns: &[Turn]) -> Vec3<f64> {

@@ -6,7 +6,8 @@ use shared::linalg::Mat3;
 
 use super::integrate::{rotate_up, Turn};
 use super::observability::{informative_turn_deg, missing_axes};
-use super::{GyroFit, GyroFitError, MIN_TURNS};
+use super::{GyroFit, GyroFitError};
+use crate::limits::MIN_GYRO_TURNS;
 
 /// Gauss-Newton steps tried before giving up.
 const MAX_ITERATIONS: usize = 20;
@@ -17,7 +18,7 @@ const DIFFERENCE_STEP: f64 = 1e-7;
 
 /// Fits G to `turns`; refuses too few turns, or turns that leave an axis unobservable.
 pub fn fit_gyro(turns: &[Turn]) -> Result<GyroFit, GyroFitError> {
-    if turns.len() < MIN_TURNS {
+    if turns.len() < MIN_GYRO_TURNS {
         return Err(GyroFitError::TooFewTurns { turns: turns.len() });
     }
     let turned_deg = informative_turn_deg(turns);

@@ -143,8 +143,8 @@ fn a_turn_about_the_vertical_counts_for_nothing() {
 
 #[test]
 fn fewer_turns_than_the_fit_needs_are_refused_by_name() {
-    let error = fit_gyro(&session(&[0, 1, 2], MIN_TURNS - 1, 0.0, 1)).unwrap_err();
-    assert_eq!(error, GyroFitError::TooFewTurns { turns: MIN_TURNS - 1 });
+    let error = fit_gyro(&session(&[0, 1, 2], MIN_GYRO_TURNS - 1, 0.0, 1)).unwrap_err();
+    assert_eq!(error, GyroFitError::TooFewTurns { turns: MIN_GYRO_TURNS - 1 });
 }
 
 /// Fits of `runs` sessions of twelve noisy turns: the scatter of each entry of G over the runs, and

@@ -65,7 +65,8 @@ struct Bridge {
 /// Serves the Pico binary `uf2` under the emulator until killed, with the simulated sensor of
 /// `seed` and `kind`; prints the pseudo-terminal's path once the board's port is open (and again
 /// after each `cable in`). Lines on stdin move the board as with `sim --pty`; `restart` is a power
-/// cycle, `cable out` and `cable in` pull and plug the USB cable.
+/// cycle, `cable out` and `cable in` pull and plug the USB cable (which powers the Pico: a boot
+/// from its flash when it is back).
 pub fn serve_emulated(uf2: &Path, seed: u64, kind: SimSensor) -> Result<(), EmulatorError> {
     let dir = Path::new(EMULATOR_DIR);
     if !dir.join("node_modules/rp2040js").is_dir() {

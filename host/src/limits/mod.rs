@@ -1,8 +1,22 @@
 //! The host's thresholds, in one table, each with the reason for its value. Messages quote these
 //! constants; nothing else restates them. The plausibility limits of a calibration are the system's
 //! one table in `shared` ([`calibration`]), which the chip applies too.
+//!
+//! One table in parts, all read as `limits::NAME`: this file (readings, orientations, verification,
+//! statistics), [`procedure`] (a session's captures), [`fits`] (when a fit is made at all),
+//! [`stream`] (a foreign sketch's stream) and [`link`] (the port and the lot database).
 
 pub use shared::calibration::limits as calibration;
+
+pub mod fits;
+pub mod link;
+pub mod procedure;
+pub mod stream;
+
+pub use fits::*;
+pub use link::*;
+pub use procedure::*;
+pub use stream::*;
 
 /// Largest accelerometer scatter (standard deviation on any axis), in g, of a board that counts as
 /// still.
@@ -126,7 +140,7 @@ pub const MOVE_TILTED_DEG: f64 = 5.0;
 /// Still time, in seconds, that ends a recorded move: long enough that the turn has ended, short
 /// enough not to lengthen the session (the wait for the next position asks for 2 s more).
 ///
-/// NOTE: a quarter second, as long as the adaptive session's settling (procedure/stop_rule.rs):
+/// NOTE: a quarter second, as long as the adaptive session's settling ([`GOAL_SETTLE_SECONDS`]):
 /// over 120 simulated sessions (seeds 21-140 of tests/one_minute.rs) the calibration was as good as
 /// after half a second (0.188 against 0.191 mg rms at the mean temperature) and the session 3.3 s
 /// shorter; the capture after it refuses a board still moving.

@@ -1,0 +1,71 @@
+//! The thresholds of a foreign stream (someone's own sketch): how it is read, when it has stopped,
+//! which stretches rest, and which units and rates it is taken to have.
+
+/// A stream silent this long has stopped, in seconds (long enough that a busy machine's pause is not
+/// taken for it).
+pub const STREAM_QUIET_S: f64 = 10.0;
+
+/// Lines heard before the dialect of a live stream is decided.
+///
+/// NOTE: the dialect is the commonest shape of the lines; forty outnumber a board's boot banner of a
+/// few lines many times over, and take a sketch printing at 10 Hz four seconds.
+pub const LIVE_DETECTION_LINES: usize = 40;
+
+/// Lines of a file looked at to find the dialect.
+///
+/// NOTE: a file's dialect is set by its first lines; 2000 lets the commonest shape stand out
+/// whatever the banner, and reading them is instant.
+pub const DETECTION_LINES: usize = 2000;
+
+/// Shortest still period that counts as a position, in seconds.
+///
+/// NOTE: a person holds a position for several seconds; a hand pausing mid-turn holds under one.
+pub const MIN_STILL_SEGMENT_S: f64 = 1.5;
+
+/// A window's scatter may be this many times the median window's and still rest.
+pub const STILL_SCATTER_FACTOR: f64 = 3.0;
+
+/// Scatter that always counts as rest, in g: below a quantisation step of a printed value.
+pub const STILL_SCATTER_FLOOR_G: f64 = 0.002;
+
+/// A gyro within this many deg/s of its median rests: a hand's turn runs at 50-300 deg/s, and its
+/// last 0.05 s, where the rate falls below this, turns the board by a few hundredths of a degree.
+pub const STREAM_GYRO_STILL_DPS: f64 = 3.0;
+
+/// A still period this close to a target, in degrees, has visited it.
+///
+/// NOTE: five degrees beyond the face tolerance, for a hand's rough placement; the edges lie 45
+/// degrees from their faces, so no still period visits an edge and a face at once.
+pub const VISITED_DEG: f64 = 25.0;
+
+/// Fewest training periods for fresh ones to be held out: the live session's stop rule asks for
+/// twelve, and `ortho9` needs nine.
+pub const MIN_TRAINING_PERIODS: usize = 12;
+
+/// How far the median |a| may be from 1 g in a unit for the stream to be taken as in that unit: the
+/// units' sizes differ by 2x at least, a sensor's scale and offset errors by a few percent.
+pub const UNIT_TOLERANCE: f64 = 0.25;
+
+/// Noise more than this many times what the rate's band holds is folded in from above.
+///
+/// NOTE: the band is estimated from one period's scatter; half again is a margin over that
+/// estimate's own error, so only noise clearly beyond the band is named as folded.
+pub const FOLDED_NOISE_FACTOR: f64 = 1.5;
+
+/// Fewest samples worth reading as a calibration stream.
+///
+/// NOTE: fewer hold no still period of [`MIN_STILL_SEGMENT_S`] at 20 Hz, nothing to calibrate from.
+pub const STREAM_MIN_SAMPLES: usize = 30;
+
+/// Rates a sketch prints at, in Hz: a time unit that puts the rate outside is the wrong one.
+pub const PLAUSIBLE_HZ: (f64, f64) = (0.5, 10_000.0);
+
+/// Slowest stream whose turns are integrated: a hand's turn of 0.6-2 s at up to 300 deg/s is
+/// followed by 25 or more samples at 40 Hz, each turning the board by at most 8 degrees.
+pub const MIN_TURN_RATE_HZ: f64 = 40.0;
+
+/// A G scale this close to a range's ratio names that range.
+///
+/// NOTE: the ranges' ratios are 2x apart; 10 % is far inside that and above a gyro's own scale
+/// error (+-3 %, Product Specification 6.1).
+pub const GYRO_RANGE_TOLERANCE: f64 = 0.1;
