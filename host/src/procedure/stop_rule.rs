@@ -13,7 +13,6 @@ use crate::limits::{
 };
 use crate::link::{Client, LinkError, Port};
 
-
 /// How long one capture runs.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum CaptureLength {
