@@ -139,18 +139,13 @@ pub const MOVE_STILL_DPS: f64 = 3.0;
 pub const MOVE_TILTED_DEG: f64 = 5.0;
 /// Still time, in seconds, that ends a recorded move: long enough that the turn has ended, short
 /// enough not to lengthen the session (the wait for the next position asks for 2 s more).
-///
-/// NOTE: a quarter second, as long as the adaptive session's settling ([`GOAL_SETTLE_SECONDS`]):
-/// over 120 simulated sessions (seeds 21-140 of tests/one_minute.rs) the calibration was as good as
-/// after half a second (0.188 against 0.191 mg rms at the mean temperature) and the session 3.3 s
-/// shorter; the capture after it refuses a board still moving.
-pub const MOVE_STILL_SECONDS: f64 = 0.25;
+pub const MOVE_STILL_SECONDS: f64 = 0.5;
 /// Longest move recorded, in seconds: a person reads the instruction and turns the board.
 pub const MAX_MOVE_SECONDS: u32 = 30;
 /// Largest angle, in degrees, between where a move ended and where the next capture was taken: the
 /// board was moved again after the recording ended, so the turn does not reach that pose.
 ///
-/// NOTE: the accelerometer's direction over a quarter second of samples is good to 0.03 degrees; a
+/// NOTE: the accelerometer's direction over half a second of samples is good to 0.03 degrees; a
 /// tenth of a degree is already a 0.1 % scale error on a 90 degree turn.
 pub const MOVED_AFTER_TURN_DEG: f64 = 0.2;
 /// A raw gyro sample within this fraction of the full-scale range counts as clipped.

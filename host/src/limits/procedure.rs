@@ -34,26 +34,8 @@ pub const SETTLE_SECONDS: f64 = 2.0;
 ///
 /// NOTE: shorter than the guided procedure's 2 s: such a capture refuses a board that still moves
 /// (the chip's scatter check) and a mean away from the position (the tilt check), and a person told
-/// the next position once needs no time to read it again. A quarter second, the still end of a
-/// recorded move ([`super::MOVE_STILL_SECONDS`]), so that the move's end counts as the wait.
-pub const GOAL_SETTLE_SECONDS: f64 = 0.25;
-
-/// How far above the fit's predicted rms error one session in twenty ends up, at the 95th
-/// percentile: the adaptive session's stop rule aims that percentile, not the rms, at the target.
-///
-/// NOTE: the true error at fresh orientations is the rms of a linear function of the twelve fitted
-/// parameters' errors, a weighted chi with about 8.4 effective degrees of freedom for the order of
-/// procedure/drift.rs (host/tools/session_budget.py: 200 000 draws): its 95th percentile is 1.38
-/// times its rms. Aimed at the rms, 4 of the 20 seeds of tests/one_minute.rs ended above 0.2 mg.
-pub const TAIL_OVER_RMS: f64 = 1.38;
-
-/// How much looser than the target a verification capture's mean is known: the check's noise
-/// floor, which the verification takes out of its figure (`after_rms_without_noise_mg`).
-///
-/// NOTE: at the target itself each check averaged about 2 s, three times over; at twice it the
-/// shortest capture (0.5 s) on this sensor, which left the minute 2.9 s for the calibration's own
-/// captures and ends the session nearer the temperature it was made at.
-pub const VERIFICATION_LOOSER: f64 = 2.0;
+/// the next position once needs no time to read it again.
+pub const GOAL_SETTLE_SECONDS: f64 = 0.5;
 
 /// Attempts before the self-test gives up on a board that keeps moving.
 ///

@@ -82,13 +82,13 @@ fn a_move_that_came_to_rest_at_the_target_ends_the_wait_for_it_and_no_other_does
     let (plus_z, plus_x) =
         (faces.iter().find(|f| f.name == "+Z").unwrap(), faces.iter().find(|f| f.name == "+X").unwrap());
     let mut moves = Moves::at(100);
-    assert!(!moves.rests_at(plus_z, 0.25), "no move recorded yet");
+    assert!(!moves.rests_at(plus_z, 0.5), "no move recorded yet");
     let (watch, _) = watched(&turn(5, 20, 90.0, 200), 50);
     moves.pending = Some((0, watch.finish(0, "+Z").unwrap()));
-    // The recording ended at rest with 1 g on z: at +Z, for the quarter second a goal's capture needs.
-    assert!(moves.rests_at(plus_z, 0.25));
-    assert!(!moves.rests_at(plus_x, 0.25), "at rest, but at another position");
-    assert!(!moves.rests_at(plus_z, 0.5), "a rest shorter than the settle asked for");
+    // The recording ended at rest with 1 g on z: at +Z, for the half second a goal's capture needs.
+    assert!(moves.rests_at(plus_z, 0.5));
+    assert!(!moves.rests_at(plus_x, 0.5), "at rest, but at another position");
+    assert!(!moves.rests_at(plus_z, 2.0), "a rest shorter than the settle asked for");
 }
 
 #[test]
@@ -102,7 +102,7 @@ fn a_move_that_came_to_rest_just_outside_the_target_s_tolerance_does_not_end_the
         let (watch, _) = watched(&turn(5, 20, 90.0, 200), 50);
         let recording = Recording { end_mean_g: tilted(deg), ..watch.finish(0, "+Z").unwrap() };
         moves.pending = Some((0, recording));
-        moves.rests_at(plus_z, 0.25)
+        moves.rests_at(plus_z, 0.5)
     };
     assert!(rest_at(&mut moves, plus_z.tolerance_deg - 1.0), "inside the tolerance");
     assert!(!rest_at(&mut moves, plus_z.tolerance_deg + 1.0), "outside it: the wait must still judge the board");
