@@ -5,7 +5,7 @@
 //! A small Levenberg-Marquardt on the 9x9 normal equations: fixed size, no allocation, generic over
 //! f32 (chip) and f64 (host). NOTE: nalgebra's static matrices (Cholesky on `SMatrix`) would solve
 //! it in no_std as well; it is written here for flash. The firmware must fit 64 KiB (`cargo xtask
-//! dist`) and the Black Pill images leave 284-392 B of it free; measured for thumbv7em at opt-level
+//! dist`) and the Black Pill images leave 228-312 B of it free; measured for thumbv7em at opt-level
 //! "s" with fat LTO, the guarded scaled solve of the 9x9 system is 644 B of code written here and
 //! 1 044 B on nalgebra 0.34's `SMatrix` Cholesky (+400 B, and 886 B more of memcpy where an image
 //! lacks it), so by that measure the chip's fit on nalgebra would not fit the Black Pill. The problem
