@@ -41,11 +41,8 @@ pub fn fitted(captures: &Dataset) -> Option<Drift> {
     }
     let ref_c = mean_temp_c(captures);
     let start = ortho9(captures).ok()?;
-    let mut p = Joint {
-        matrix: Matrix3::from_fn(|i, j| start.matrix[i][j]),
-        offset: start.offset.into(),
-        slope: Vector3::zeros(),
-    };
+    let matrix = Matrix3::from_fn(|i, j| start.matrix[i][j]);
+    let mut p = Joint { matrix, offset: start.offset.into(), slope: Vector3::zeros() };
     for _ in 0..MAX_ROUNDS {
         let step = gauss_newton_step(captures, &p, ref_c)?;
         p.apply(&step);

@@ -96,10 +96,9 @@ pub fn run<P: Port>(
     watcher: &mut dyn Watcher,
 ) -> Result<SelfTest, SelfTestError> {
     let identity = info.sensor.map_err(|e| SelfTestError::NoSensor(crate::link::explain(&e)))?;
-    let family = identity.family;
-    let codes = trim_codes(client, family)?;
+    let codes = trim_codes(client, identity.family)?;
     let before = client.read_registers(CONFIGURATION_FIRST, CONFIGURATION_COUNT)?;
-    let measured = measure(client, family, watcher);
+    let measured = measure(client, identity.family, watcher);
     // NOTE: after Ctrl-C too: the board must not be left with its self-test on.
     let interrupt = client.take_interrupt();
     let restored = restore(client, info.config, &before);
@@ -108,7 +107,7 @@ pub fn run<P: Port>(
     }
     let (means, attempts) = measured?;
     restored?;
-    let raw = SelfTestRaw { family, codes, off_lsb: means.off_lsb, on_lsb: means.on_lsb, attempts };
+    let raw = SelfTestRaw { family: identity.family, codes, off_lsb: means.off_lsb, on_lsb: means.on_lsb, attempts };
     Ok(SelfTest { identity, raw, verdicts: selftest::evaluate(&raw) })
 }
 
