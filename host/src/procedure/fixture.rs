@@ -47,13 +47,23 @@ struct Meeting {
     held: u64,
     /// The last meeting's answer: whether every board had enough.
     answer: bool,
+    /// The time, in seconds, each simulated board was last told to wait until: its clock may not
+    /// show it yet, as the board takes its commands in its own thread.
+    waited_until_s: Vec<f64>,
 }
 
 impl Fixture {
     /// A fixture of these boards (`None` for a real board, which keeps its own time).
     pub fn new(simulated: Vec<Option<SimulatedMember>>, pull: Option<Pull>) -> Arc<Self> {
-        let meeting =
-            Meeting { on_fixture: vec![true; simulated.len()], arrived: 0, all_enough: true, held: 0, answer: true };
+        let boards = simulated.len();
+        let meeting = Meeting {
+            on_fixture: vec![true; boards],
+            arrived: 0,
+            all_enough: true,
+            held: 0,
+            answer: true,
+            waited_until_s: vec![f64::NEG_INFINITY; boards],
+        };
         Arc::new(Fixture { state: Mutex::new(meeting), met: Condvar::new(), simulated, pull })
     }
 
@@ -106,19 +116,28 @@ impl Fixture {
     fn hold(&self, meeting: &mut Meeting) {
         meeting.answer = meeting.all_enough;
         (meeting.arrived, meeting.all_enough, meeting.held) = (0, true, meeting.held + 1);
-        self.keep_one_time(&meeting.on_fixture);
+        self.keep_one_time(meeting);
         self.met.notify_all();
     }
 
     /// Lets each simulated board on the fixture wait until the latest one's time.
-    fn keep_one_time(&self, on_fixture: &[bool]) {
-        let members = || self.simulated.iter().zip(on_fixture).filter(|(_, &on)| on).filter_map(|(m, _)| m.as_ref());
-        let latest_s = members().map(|m| (m.clock)()).fold(f64::NEG_INFINITY, f64::max);
-        for member in members() {
-            let waited_s = latest_s - (member.clock)();
+    fn keep_one_time(&self, meeting: &mut Meeting) {
+        // NOTE: a board's time is the later of its clock and the time it was already told to wait
+        // until: a Wait sent at the last meeting may not have reached its clock yet (the board runs
+        // in its own thread), and telling it again would make it wait twice (seen under load: 71 s
+        // on the fixture for 56 s alone).
+        let members: Vec<(usize, &SimulatedMember, f64)> = (self.simulated.iter().enumerate())
+            .filter(|(index, _)| meeting.on_fixture[*index])
+            .filter_map(|(index, member)| member.as_ref().map(|m| (index, m)))
+            .map(|(index, member)| (index, member, (member.clock)().max(meeting.waited_until_s[index])))
+            .collect();
+        let latest_s = members.iter().map(|(_, _, now_s)| *now_s).fold(f64::NEG_INFINITY, f64::max);
+        for (index, member, now_s) in members {
+            let waited_s = latest_s - now_s;
             if waited_s > LEAST_WAIT_S {
                 // NOTE: a board that stopped is found by its own session; nothing to do here.
                 let _ = member.controls.send(SimCommand::Wait(waited_s as f32));
+                meeting.waited_until_s[index] = latest_s;
             }
         }
     }
@@ -249,5 +268,29 @@ mod tests {
             assert!(!waiting.join().unwrap());
         });
         assert!(fixture.leads(0) && !fixture.leads(2));
+    }
+
+    #[test]
+    fn a_board_told_to_wait_is_not_told_again_before_its_clock_shows_the_wait() {
+        // Two simulated boards whose clocks stand still: the commands are never applied, as when
+        // a board's thread has not yet taken them.
+        let member = |now_s: f64| {
+            let (controls, commands) = std::sync::mpsc::channel();
+            (SimulatedMember { clock: Arc::new(move || now_s), controls }, commands)
+        };
+        let ((ahead, _ahead_commands), (behind, behind_commands)) = (member(10.0), member(4.0));
+        let fixture = Fixture::new(vec![Some(ahead), Some(behind)], None);
+        for _ in 0..3 {
+            let mut meeting = fixture.lock();
+            fixture.hold(&mut meeting);
+        }
+        let waits: Vec<f32> = behind_commands
+            .try_iter()
+            .map(|command| match command {
+                SimCommand::Wait(seconds) => seconds,
+                _ => f32::NAN,
+            })
+            .collect();
+        assert_eq!(waits, vec![6.0], "one wait of the 6 s between the boards, however often they meet");
     }
 }
