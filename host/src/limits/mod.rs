@@ -4,17 +4,20 @@
 //!
 //! One table in parts, all read as `limits::NAME`: this file (readings, orientations, verification,
 //! statistics), [`procedure`] (a session's captures), [`fits`] (when a fit is made at all),
-//! [`stream`] (a foreign sketch's stream) and [`link`] (the port and the lot database).
+//! [`stream`] (a foreign sketch's stream), [`link`] (the port and the lot database) and [`part`]
+//! (the sensor family's offset-register check).
 
 pub use shared::calibration::limits as calibration;
 
 pub mod fits;
 pub mod link;
+pub mod part;
 pub mod procedure;
 pub mod stream;
 
 pub use fits::*;
 pub use link::*;
+pub use part::*;
 pub use procedure::*;
 pub use stream::*;
 

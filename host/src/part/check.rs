@@ -7,20 +7,15 @@ use shared::protocol::{SensorConfig, SensorIdentity};
 
 use super::family_name;
 use super::offsets::{measure, Measured, OffsetCheckError, OffsetStep};
+use crate::limits::FAMILY_STEP_TOLERANCE;
 use crate::link::{Client, Port};
-
-/// How far a step's effect may be from what it should be, as a fraction of the step.
-///
-/// NOTE: 20 % of the 125 mg step is 25 mg, far beyond what noise and a still board's drift leave
-/// (see `offsets::BASELINE_MOVE_G`), and far below what a register that applies the step leaves.
-const STEP_TOLERANCE: f64 = 0.2;
 
 /// What a step did to the x output.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum StepResponse {
-    /// Moved by the step, within [`STEP_TOLERANCE`].
+    /// Moved by the step, within [`FAMILY_STEP_TOLERANCE`].
     AsExpected,
-    /// Stayed within [`STEP_TOLERANCE`] of the step of where it was.
+    /// Stayed within [`FAMILY_STEP_TOLERANCE`] of the step of where it was.
     NotMoved,
     /// Moved, but by another amount.
     Unexpected,
@@ -29,7 +24,7 @@ pub enum StepResponse {
 impl OffsetStep {
     /// What the step did.
     pub fn response(&self) -> StepResponse {
-        let margin = STEP_TOLERANCE * self.expected_g.abs();
+        let margin = FAMILY_STEP_TOLERANCE * self.expected_g.abs();
         if (self.moved_g - self.expected_g).abs() < margin {
             StepResponse::AsExpected
         } else if self.moved_g.abs() < margin {

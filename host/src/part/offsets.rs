@@ -7,6 +7,7 @@
 use shared::part::{accel_offset_g, Family};
 use shared::protocol::SensorConfig;
 
+use crate::limits::{FAMILY_BASELINE_MOVE_G, FAMILY_CHECK_ATTEMPTS, FAMILY_PHASE_MIN_SAMPLES};
 use crate::link::{Client, LinkError, Port};
 use crate::still::{StillError, StillPhase};
 
@@ -20,22 +21,7 @@ pub const FAMILIES: [Family; 2] = [Family::Mpu6050, Family::Mpu6500];
 /// high bytes where the maps put them. A flip never overflows the value, unlike an addition.
 const STEP_BIT: u8 = 0x01;
 
-/// Attempts before the check gives up on a board that keeps moving.
-pub const MAX_ATTEMPTS: u8 = 3;
-
-/// How far the accelerometer's output with the offsets as found may move between the phase before and
-/// the phase after the steps for the attempt to count, in g.
-///
-/// NOTE: a step is judged against its expected 125 mg with a margin of 25 mg (`check`). A still
-/// board's output scatters by at most 15 mg a sample (more spoils the phase); a mean of at least
-/// [`MIN_SAMPLES`] is then known to 15 / sqrt(40) = 2.4 mg, a step (its phase minus the mean of the two
-/// baselines) to 2.9 mg. A baseline that moved 5 mg shifts a step by at most 5 mg, which leaves
-/// 20 mg, 6.9 standard deviations at the worst still scatter (a probability below 1e-11) and over 30
-/// at a real part's 2-3 mg.
-const BASELINE_MOVE_G: f64 = 0.005;
-
-/// Samples averaged in each phase: at least [`MIN_SAMPLES`], and 0.4 s worth.
-const MIN_SAMPLES: usize = 40;
+/// Seconds each phase lasts at the least.
 const PHASE_SECONDS: f64 = 0.4;
 
 /// The fastest stream the check asks for, in Hz (as the self-test's: well within a full-speed USB port).
@@ -92,13 +78,13 @@ pub fn measure<P: Port>(client: &mut Client<P>, config: SensorConfig) -> Result<
     let registers = FAMILIES.map(|family| family.accel_offset_registers()[0]);
     let found = [client.register(registers[0], None)?, client.register(registers[1], None)?];
     let mut why = String::new();
-    for attempt in 1..=MAX_ATTEMPTS {
+    for attempt in 1..=FAMILY_CHECK_ATTEMPTS {
         match attempt_once(client, &phase, registers, found)? {
             Ok(steps) => return Ok(Measured::Steps { steps, attempts: attempt }),
             Err(reason) => why = reason,
         }
     }
-    Ok(Measured::KeptMoving { attempts: MAX_ATTEMPTS, why })
+    Ok(Measured::KeptMoving { attempts: FAMILY_CHECK_ATTEMPTS, why })
 }
 
 /// A phase at the board's own configuration: the stream's rate, the settling after a step (the
@@ -113,7 +99,7 @@ fn phase_for(config: SensorConfig) -> StillPhase {
         label: "family check",
         rate_hz,
         settle: (settle_s * per_s).ceil() as usize,
-        samples: ((PHASE_SECONDS * per_s).ceil() as usize).max(MIN_SAMPLES),
+        samples: ((PHASE_SECONDS * per_s).ceil() as usize).max(FAMILY_PHASE_MIN_SAMPLES),
         gyro_dps_per_reported: 1.0,
     }
 }
@@ -193,10 +179,10 @@ fn restore<P: Port>(client: &mut Client<P>, register: u8, found: u8) -> Result<(
 }
 
 /// Why the two baselines say the board moved, if they do: an accelerometer axis moved more than
-/// [`BASELINE_MOVE_G`].
+/// [`FAMILY_BASELINE_MOVE_G`].
 fn baseline_moved(before: &[f64; 6], after: &[f64; 6]) -> Option<String> {
     let moved_g = (0..3).map(|axis| (after[axis] - before[axis]).abs()).fold(0.0, f64::max);
-    (moved_g > BASELINE_MOVE_G)
+    (moved_g > FAMILY_BASELINE_MOVE_G)
         .then(|| format!("the output with the offsets as found moved {:.1} mg between before and after", moved_g * 1e3))
 }
 
