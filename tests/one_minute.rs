@@ -37,6 +37,8 @@ fn reading_now(client: &mut Client<PipeEnd>) -> f32 {
 struct Outcome {
     captures: usize,
     board_seconds: f64,
+    /// Seconds of those the positions' captures averaged.
+    averaged_s: f64,
     temp_change_c: f64,
     /// The calibration (with its fitted drift) at the temperature the session ends at, mg rms.
     at_end_mg: f64,
@@ -95,6 +97,7 @@ fn session_on(seed: u64, kind: SimSensor, target_mg: f64, learned: Option<Calibr
     Outcome {
         captures: session.captures.len(),
         board_seconds,
+        averaged_s: session.captures.iter().map(|c| f64::from(c.stats.seconds)).sum(),
         temp_change_c: high - low,
         at_end_mg: board.true_error_mg(&calibration, end_c),
         at_mean_mg: board.true_error_mg(&calibration, accelcal::fit::drift::mean_temp_c(&session.dataset()) as f32),
@@ -153,32 +156,59 @@ fn worst(values: impl Iterator<Item = f64>) -> f64 {
     values.fold(0.0, f64::max)
 }
 
-#[test]
-fn twenty_default_sessions_on_warming_boards_that_learned_their_temperature_model() {
+/// The twenty sessions at `target_mg` on boards that learned their temperature model, each seed's
+/// figures and their worst printed.
+fn learned_sessions(target_mg: f64) -> Vec<Outcome> {
     let mut outcomes = Vec::new();
     for seed in 1..=SEEDS {
-        let o = session_on(seed, SimSensor::Realistic, TARGET_MG, Some(learned_on(seed)));
+        let o = session_on(seed, SimSensor::Realistic, target_mg, Some(learned_on(seed)));
         println!(
-            "seed {seed:2}: {} captures, board {:.1} s, warmed {:.2} degC; true error {:.3} mg at the mean \
-             temperature, {:.3} mg at the end; verified {:.3} mg",
-            o.captures, o.board_seconds, o.temp_change_c, o.at_mean_mg, o.at_end_mg, o.verified_mg
+            "seed {seed:2}: {} captures, board {:.1} s ({:.1} s averaging), warmed {:.2} degC; true error {:.3} mg \
+             at the mean temperature, {:.3} mg at the end; verified {:.3} mg",
+            o.captures, o.board_seconds, o.averaged_s, o.temp_change_c, o.at_mean_mg, o.at_end_mg, o.verified_mg
         );
         outcomes.push(o);
     }
     let (at_mean, at_end) = (worst(outcomes.iter().map(|o| o.at_mean_mg)), worst(outcomes.iter().map(|o| o.at_end_mg)));
-    let longest = worst(outcomes.iter().map(|o| o.board_seconds));
     println!(
-        "worst of {SEEDS} seeds: {at_mean:.3} mg at the mean temperature, {at_end:.3} mg at the end; rms {:.3} and \
-         {:.3} mg; longest session {longest:.1} s",
+        "target {target_mg} mg, worst of {SEEDS} seeds: {at_mean:.3} mg at the mean temperature, {at_end:.3} mg at \
+         the end; rms {:.3} and {:.3} mg; longest session {:.1} s",
         rms(outcomes.iter().map(|o| o.at_mean_mg)),
-        rms(outcomes.iter().map(|o| o.at_end_mg))
+        rms(outcomes.iter().map(|o| o.at_end_mg)),
+        worst(outcomes.iter().map(|o| o.board_seconds))
     );
-    // Measured: worst 0.230 mg at the mean temperature and 0.230 at the end (rms 0.173 and 0.173),
-    // where the session's own first-order drift left 0.232 and 0.424 (rms 0.180 and 0.284).
+    outcomes
+}
+
+#[test]
+fn twenty_default_sessions_on_warming_boards_that_learned_their_temperature_model() {
+    let outcomes = learned_sessions(TARGET_MG);
+    // Measured: worst 0.221 mg at the mean temperature and 0.221 at the end (rms 0.173 and 0.173),
+    // 23.7-26.8 s of averaging in sessions of 55.8-60.0 s; the session's own first-order drift left
+    // 0.232 and 0.424 (rms 0.180 and 0.284).
+    let longest = worst(outcomes.iter().map(|o| o.board_seconds));
     assert!(longest <= 60.0, "longest session {longest:.1} s");
     let carried = worst(outcomes.iter().map(|o| (o.at_end_mg - o.at_mean_mg).abs()));
     assert!(carried <= 0.02, "the learned model carries the calibration to the end: {carried:.3} mg apart");
     assert!(rms(outcomes.iter().map(|o| o.at_end_mg)) <= 0.2, "the stop rule aims at 0.2 mg");
+}
+
+/// Every seed within 0.2 mg, at both temperatures, is what a session aimed at 0.13 mg rms gives, in
+/// about 100 s: not in one minute.
+// NOTE: the fit is at its statistical limit, 9 N^2 / T for T seconds of averaging (N = 283 ug
+// sqrt(s), the datasheet's noise density), so the default session's 24-27 s give 0.173 mg rms, and
+// then about one seed in five lies above 0.2 mg (six of these twenty: the error's square goes as
+// chi-square with nine degrees of freedom). A worst of twenty at 0.2 mg needs about 0.13 mg rms,
+// 44 s of averaging, where turns at a person's pace and the verification take 33 s of the minute.
+#[test]
+fn every_seed_within_0_2_mg_at_both_temperatures_takes_a_target_of_0_13_mg() {
+    let outcomes = learned_sessions(0.13);
+    // Measured: worst 0.186 mg at the mean temperature and 0.188 at the end (rms 0.118), 55.2-60.0 s
+    // of averaging in sessions of 95.1-101.2 s.
+    let (at_mean, at_end) = (worst(outcomes.iter().map(|o| o.at_mean_mg)), worst(outcomes.iter().map(|o| o.at_end_mg)));
+    assert!(at_mean <= TARGET_MG && at_end <= TARGET_MG, "worst {at_mean:.3} and {at_end:.3} mg");
+    let longest = worst(outcomes.iter().map(|o| o.board_seconds));
+    assert!(longest <= 110.0, "longest session {longest:.1} s");
 }
 
 fn rms(values: impl Iterator<Item = f64>) -> f64 {

@@ -111,7 +111,10 @@ fn predicted(estimate: &Estimate, moves: &[(Matrix3<f64>, Vector3<f64>)]) -> Pre
 /// Every input of the budget that can err for this session and model.
 fn sources(session: &Session, estimate: &Estimate) -> Vec<Source> {
     let mut sources = capture_sources(session, estimate);
-    sources.extend(temperature_sources(session, estimate));
+    // NOTE: captures without a temperature (a board's own stream) have no spread to move them by.
+    if drift::carries_temperature(&session.dataset()) {
+        sources.extend(temperature_sources(session, estimate));
+    }
     sources.extend((0..3).map(|axis| {
         let moved = move |s: &Session| shifted(s, |_, m| m[axis] += BIAS_WANDER_G);
         Source { component: Component::BiasWander, moved: Box::new(moved), ideal: vec![0.0; estimate.values.len()] }

@@ -2,7 +2,7 @@
 
 use std::fmt::Write;
 
-use super::{Certificate, CertifiedValue, Component, Interval};
+use super::{Certificate, CertifiedValue, Component, Conditions, Interval};
 use crate::shown::escape;
 
 const STYLE: &str = "body{font-family:sans-serif;max-width:52em;margin:2em auto;color:#111}\
@@ -52,13 +52,7 @@ fn identity(out: &mut String, c: &Certificate) {
         ("date (UTC)", c.date_utc.clone().unwrap_or_else(absent)),
         ("method", c.method.clone()),
         ("model", c.model.clone()),
-        (
-            "die temperature",
-            format!(
-                "{:.2} degC mean ({:.2} to {:.2} degC)",
-                conditions.temp_mean_c, conditions.temp_low_c, conditions.temp_high_c
-            ),
-        ),
+        ("die temperature", die_temperature(conditions)),
         ("unit of g", format!("{} = the gravity where the board was captured", conditions.g)),
         ("captures", conditions.captures.to_string()),
         ("self-test", c.self_test.as_ref().map_or_else(absent, self_test_summary)),
@@ -72,6 +66,14 @@ fn identity(out: &mut String, c: &Certificate) {
 
 /// The self-test the board kept, for a reader: its verdict, date and largest deviation from the
 /// factory trim (the JSON holds every axis).
+/// The captures' die temperatures, or why there are none.
+fn die_temperature(conditions: &Conditions) -> String {
+    match (conditions.temp_mean_c, conditions.temp_low_c, conditions.temp_high_c) {
+        (Some(mean), Some(low), Some(high)) => format!("{mean:.2} degC mean ({low:.2} to {high:.2} degC)"),
+        _ => "not measured (the captures carry no temperature)".to_owned(),
+    }
+}
+
 fn self_test_summary(kept: &serde_json::Value) -> String {
     let result = &kept["result"];
     let verdict = match result["passed"].as_bool() {

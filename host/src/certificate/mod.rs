@@ -12,6 +12,7 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
+use crate::data::Dataset;
 use crate::fit::drift;
 use crate::fit::FitError;
 use crate::session::{Board, Session, SessionKind, Verification};
@@ -58,15 +59,33 @@ pub struct Certificate {
 /// The conditions of the calibration.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Conditions {
-    /// The captures' mean die temperature (where the parameters hold), degC.
-    pub temp_mean_c: f64,
-    /// Lowest and highest die temperature of the captures, degC.
-    pub temp_low_c: f64,
-    pub temp_high_c: f64,
+    /// The captures' mean die temperature (where the parameters hold), degC; `None` when the
+    /// captures carry no temperature (still periods of a board's own stream).
+    pub temp_mean_c: Option<f64>,
+    /// Lowest and highest die temperature of the captures, degC (`None` likewise).
+    pub temp_low_c: Option<f64>,
+    pub temp_high_c: Option<f64>,
     /// The g the outputs are in: 1 = the gravity where the board was captured (|a| = 1 at rest).
     pub g: f64,
     /// Captures the calibration was fitted to.
     pub captures: usize,
+}
+
+impl Conditions {
+    /// The conditions of `captures` (of `count` captures), their temperatures left unstated where
+    /// none carries one.
+    fn of(captures: &Dataset, count: usize) -> Self {
+        let measured = drift::carries_temperature(captures);
+        let (low, high) = drift::span_c(captures);
+        let stated = |value: f64| Some(value).filter(|_| measured);
+        Conditions {
+            temp_mean_c: stated(drift::mean_temp_c(captures)),
+            temp_low_c: stated(low),
+            temp_high_c: stated(high),
+            g: 1.0,
+            captures: count,
+        }
+    }
 }
 
 /// A value with its uncertainties.
@@ -114,20 +133,13 @@ impl Certificate {
         let estimate = Estimate::of(session)?;
         let budget = budget(session, &estimate)?;
         let captures = session.dataset();
-        let (low, high) = drift::span_c(&captures);
         let mut certificate = Certificate {
             format: FORMAT,
             board: Board::of(session),
             date_utc: session.captures.last().map(|c| crate::shown::utc_minutes(c.unix_time_s)),
             method: method(session),
             model: model(&estimate),
-            conditions: Conditions {
-                temp_mean_c: drift::mean_temp_c(&captures),
-                temp_low_c: low,
-                temp_high_c: high,
-                g: 1.0,
-                captures: session.captures.len(),
-            },
+            conditions: Conditions::of(&captures, session.captures.len()),
             coverage_factor: COVERAGE_FACTOR,
             parameters: parameters(&estimate, &budget),
             predicted: Predicted {

@@ -109,3 +109,25 @@ fn the_certificate_quotes_the_self_test_the_board_kept_and_has_none_without_one(
     assert_eq!(check(&path).unwrap(), certificate, "sealed with it");
     std::fs::remove_file(&path).unwrap();
 }
+
+#[test]
+fn a_certificate_states_the_captures_temperatures_and_none_where_a_stream_carried_none() {
+    // The session warms 1 degC from 21.5 over its fifteen captures (the last at 22.5 again).
+    let mut session = session(4, 1.0, 2.8e-3);
+    let conditions = Certificate::issue(&session).unwrap().conditions;
+    let mean = 21.5 + 1.0 * (0..15).map(|i| f64::from(i) / 14.0).sum::<f64>() / 15.0;
+    assert!((conditions.temp_mean_c.unwrap() - mean).abs() < 1e-9, "{conditions:?}");
+    assert_eq!((conditions.temp_low_c, conditions.temp_high_c), (Some(21.5), Some(22.5)));
+    session.kind = SessionKind::Stream;
+    let certificate = Certificate::issue(&session).unwrap();
+    let conditions = &certificate.conditions;
+    assert_eq!((conditions.temp_mean_c, conditions.temp_low_c, conditions.temp_high_c), (None, None, None));
+    // NOTE: with no temperature there is no spread to move the captures by: the budget has no
+    // temperature part (before, a stream's 0 degC against a NaN mean made every moved capture NaN).
+    let parameter = &certificate.parameters["o_x"];
+    assert!(parameter.value.is_finite() && parameter.u > 0.0, "{parameter:?}");
+    assert!(!parameter.budget.contains_key(&Component::Temperature), "{parameter:?}");
+    let page = html::page(&certificate);
+    assert!(page.contains(">not measured (the captures carry no temperature)</td>"), "{page}");
+    assert!(!page.contains("NaN") && !page.contains("inf to -inf"), "{page}");
+}

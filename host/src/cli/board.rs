@@ -80,8 +80,11 @@ struct InfoJson {
     /// What confirmed the family the board runs the part as ("offset registers"); null when nothing
     /// did (see `family_check`) or with no sensor.
     family_confirmed_by: Option<&'static str>,
-    /// The offset-register check of the family; null with no sensor.
+    /// The offset-register check of the family; null with no sensor or when it could not measure.
     family_check: Option<FamilyCheckJson>,
+    /// Why the family check could not measure (the rest of `info` stands); absent when it could.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    family_check_error: Option<String>,
     range_g: u8,
     sample_rate_hz: u16,
     active: Option<CalibrationJson>,
@@ -108,12 +111,12 @@ pub(super) fn info(device: &Device, json: bool, registers: bool) -> Result<(), E
     let dump = if registers { Some(register_dump(client)?) } else { None };
     let info = &opened.connection.info;
     client.interrupt_on(super::calibrate::interrupt_on_ctrl_c());
-    let check = family_check(client, info)?;
+    let family = family_check_for_info(client, info)?;
     if json {
-        let output = InfoJson { registers: dump, ..info_json(info, active.as_ref(), stored.as_ref(), check.as_ref()) };
+        let output = InfoJson { registers: dump, ..info_json(info, active.as_ref(), stored.as_ref(), family) };
         println!("{}", serde_json::to_string_pretty(&output).unwrap_or_default());
     } else {
-        print_info(info, active.as_ref(), stored.as_ref(), check.as_ref());
+        print_info(info, active.as_ref(), stored.as_ref(), &family);
         if let Some(dump) = dump {
             print!("\n{}", format_dump(&dump_heading(info), &dump));
         }
@@ -130,6 +133,33 @@ pub(super) fn family_check<P: Port>(client: &mut Client<P>, info: &DeviceInfo) -
     Ok(Some(check_family(client, &sensor, info.config)?))
 }
 
+/// The family check as `info` reports it: the check (`None` with no sensor), or why it could not
+/// measure.
+struct FamilyOutcome {
+    check: Option<FamilyCheck>,
+    unmeasured: Option<String>,
+}
+
+impl FamilyOutcome {
+    /// The `family:` line, when there is one.
+    fn line(&self) -> Option<String> {
+        let why = self.unmeasured.as_ref().map(|why| format!("not checked: {why}"));
+        self.check.as_ref().map(FamilyCheck::summary).or(why)
+    }
+}
+
+/// The family check for `info`: the check, or why it could not measure when it left the offset
+/// registers as it found them (the rest of `info` stands then); any other failure ends `info`.
+fn family_check_for_info<P: Port>(client: &mut Client<P>, info: &DeviceInfo) -> Result<FamilyOutcome, Error> {
+    match family_check(client, info) {
+        Ok(check) => Ok(FamilyOutcome { check, unmeasured: None }),
+        Err(Error::FamilyCheck(error)) if error.left_registers_as_found() => {
+            Ok(FamilyOutcome { check: None, unmeasured: Some(error.to_string()) })
+        }
+        Err(error) => Err(error),
+    }
+}
+
 /// The first line of a register dump: what a person reporting an unknown part is asked for.
 fn dump_heading(info: &DeviceInfo) -> String {
     let sensor = info.sensor.map_or_else(|e| explain(&e), |s| describe_part(&s));
@@ -140,7 +170,7 @@ fn info_json(
     info: &DeviceInfo,
     active: Option<&Calibration>,
     stored: Option<&Calibration>,
-    check: Option<&FamilyCheck>,
+    family: FamilyOutcome,
 ) -> InfoJson {
     InfoJson {
         serial: BoardRecord::of(info).serial,
@@ -149,8 +179,9 @@ fn info_json(
         part: info.sensor.as_ref().ok().map(part_name),
         who_am_i: info.sensor.as_ref().ok().map(|s| s.who_am_i),
         sensor: info.sensor.map_or_else(|e| SensorJson::Missing { error: explain(&e) }, SensorJson::Found),
-        family_confirmed_by: check.and_then(FamilyCheck::confirmed_by),
-        family_check: check.map(FamilyCheckJson::of),
+        family_confirmed_by: family.check.as_ref().and_then(FamilyCheck::confirmed_by),
+        family_check: family.check.as_ref().map(FamilyCheckJson::of),
+        family_check_error: family.unmeasured,
         range_g: info.config.range.full_scale_g(),
         sample_rate_hz: info.config.sample_rate_hz,
         active: active.map(CalibrationJson::from_device),
@@ -159,20 +190,15 @@ fn info_json(
     }
 }
 
-fn print_info(
-    info: &DeviceInfo,
-    active: Option<&Calibration>,
-    stored: Option<&Calibration>,
-    check: Option<&FamilyCheck>,
-) {
+fn print_info(info: &DeviceInfo, active: Option<&Calibration>, stored: Option<&Calibration>, family: &FamilyOutcome) {
     let serial = BoardRecord::of(info).serial;
     println!("board serial {serial}, firmware {}, protocol {}", firmware_version(info), info.protocol_version);
     match info.sensor {
         Ok(s) => println!("sensor: {}", describe_part(&s)),
         Err(e) => println!("sensor: {}", explain(&e)),
     }
-    if let Some(check) = check {
-        println!("family: {}", check.summary());
+    if let Some(line) = family.line() {
+        println!("family: {line}");
     }
     println!("range +-{} g, {} Hz", info.config.range.full_scale_g(), info.config.sample_rate_hz);
     println!("active calibration: {}", active.map_or("none".to_owned(), describe));

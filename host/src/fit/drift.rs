@@ -138,6 +138,11 @@ pub fn mean_temp_c(captures: &Dataset) -> f64 {
     captures.rows.iter().map(temp_of).sum::<f64>() / n
 }
 
+/// Whether any capture carries a die temperature (a board's own stream carries none).
+pub fn carries_temperature(captures: &Dataset) -> bool {
+    captures.rows.iter().any(|r| r.temp_c.is_some())
+}
+
 /// The spread of the captures' die temperatures, in degC: (lowest, highest).
 pub fn span_c(captures: &Dataset) -> (f64, f64) {
     let temps = captures.rows.iter().filter_map(|r| r.temp_c);

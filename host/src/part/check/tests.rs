@@ -131,3 +131,18 @@ fn a_board_that_keeps_moving_is_not_checked_and_says_so() {
     assert_eq!((check.verdict, check.confirmed_by()), (Verdict::BoardMoved, None));
     assert!(check.summary().starts_with("not checked: the board moved during each of 3 attempts"));
 }
+
+#[test]
+fn a_check_whose_samples_are_lost_cannot_measure_and_says_it_left_the_offsets_as_found() {
+    let (mut connection, board) = SimBoard::in_process_part((5, SimSensor::Realistic, SimPart::mpu6050())).unwrap();
+    let before = offset_registers(&mut connection);
+    board.controls().send(crate::sim::SimCommand::LoseSamples(1_000_000)).unwrap();
+    let (info, client) = (connection.info.clone(), &mut connection.client);
+    let error = check_family(client, &info.sensor.unwrap(), info.config).unwrap_err();
+    assert!(matches!(error, OffsetCheckError::Stream(_)), "{error:?}");
+    assert!(error.left_registers_as_found(), "{error}");
+    assert!(error.to_string().contains("check the cable"), "{error}");
+    assert_eq!(offset_registers(&mut connection), before);
+    let interrupted = OffsetCheckError::Link(LinkError::Interrupted);
+    assert!(!interrupted.left_registers_as_found(), "a link error may have cut a restore short");
+}
