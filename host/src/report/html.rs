@@ -83,7 +83,7 @@ fn sphere(out: &mut String, report: &SessionReport) -> Result<(), PlotError> {
 fn position_row(out: &mut String, i: usize, p: &PositionResult) {
     let _ = write!(out, "<tr><td>{}</td>", escape(&p.name));
     let vector = |key: &str, v: &[f64; 3]| {
-        let cells: Vec<String> = (0..3).map(|k| span(&format!("/positions/{i}/{key}/{k}"), v[k], 4)).collect();
+        let cells: Vec<String> = (0..3).map(|k| fixed_span(&format!("/positions/{i}/{key}/{k}"), v[k], 4)).collect();
         format!("<td class=\"num vec\">{}</td>", cells.join(" "))
     };
     out.push_str(&vector("raw_g", &p.raw_g));
@@ -257,6 +257,14 @@ pub(super) fn span(pointer: &str, value: f64, digits: usize) -> String {
     format!("<span data-json=\"{pointer}\" data-value=\"{value:e}\">{}</span>", shown(value, digits))
 }
 
+/// A value in a column of vector components: always `digits` decimals (a component near zero next
+/// to one near 1 g reads 0.0000, not in scientific notation), never a negative zero.
+fn fixed_span(pointer: &str, value: f64, digits: usize) -> String {
+    let text = format!("{value:.digits$}");
+    let text = if text.trim_start_matches(['-', '0', '.']).is_empty() { format!("{:.digits$}", 0.0) } else { text };
+    format!("<span data-json=\"{pointer}\" data-value=\"{value:e}\">{text}</span>")
+}
+
 /// `digits` decimals, or as many significant digits in scientific notation for small values.
 pub fn shown(value: f64, digits: usize) -> String {
     if value != 0.0 && value.abs() < 1e-3 {
@@ -269,3 +277,6 @@ pub fn shown(value: f64, digits: usize) -> String {
 pub(super) fn absent(what: &str) -> String {
     format!("<p class=\"absent\">{what}</p>")
 }
+
+#[cfg(test)]
+mod tests;
