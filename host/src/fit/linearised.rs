@@ -2,7 +2,7 @@
 //! on fixed-size matrices. The solver's interface, the conditioning check and the statistics all read
 //! their rows here.
 
-use nalgebra::{Matrix3, SMatrix, Vector3};
+use nalgebra::{Const, Dyn, Matrix3, OMatrix, SMatrix, Vector3};
 
 use super::nonlinear::Observation;
 use super::shape::Shape;
@@ -18,19 +18,61 @@ pub(super) struct Linearised {
     pub matrix: Matrix3<f64>,
     /// o (solver units).
     pub offset: Vector3<f64>,
-    /// dM/dp_k for k < n.
-    derivatives: [Matrix3<f64>; MAX_PARAMETERS - 3],
+    /// dM/dp_k for k < n, by its nonzero entries: each at most three (row, column, value), the
+    /// unused ones of value zero.
+    derivatives: [[(usize, usize, f64); 3]; MAX_PARAMETERS - 3],
 }
 
-/// One observation's residuals and Jacobian rows: three for a reference row, one (along the
-/// corrected reading) for a norm row; the rows past `count` and the columns past the model's
-/// parameters are zero.
+/// One observation's weighted residuals: three for a reference row, one (along the corrected
+/// reading) for a norm row; the residuals past `count` are zero.
 pub(super) struct RowsAt {
-    pub jacobian: SMatrix<f64, 3, MAX_PARAMETERS>,
     pub residuals: Vector3<f64>,
     pub count: usize,
     /// The direction of the corrected reading M (m - o), for a norm row.
     pub direction: Option<Vector3<f64>>,
+}
+
+/// One observation's weighted Jacobian rows over `P` parameters, transposed (a column per residual,
+/// `count` of them; the rest are zero).
+pub(super) type RowsTransposed<const P: usize> = SMatrix<f64, P, 3>;
+
+/// Every observation's Jacobian rows stacked, transposed (a column per residual, over the model's
+/// `P` parameters): J^T J and its kin then come from one matrix product each.
+pub(super) struct Stacked<const P: usize> {
+    transposed: OMatrix<f64, Const<P>, Dyn>,
+    /// Columns filled so far.
+    filled: usize,
+}
+
+impl<const P: usize> Stacked<P> {
+    /// Room for the residuals of `observations`: three for a reference row, one for a norm row.
+    pub(super) fn for_observations(observations: &[Observation]) -> Self {
+        let residuals = observations.iter().map(|o| if o.reference.is_some() { 3 } else { 1 }).sum();
+        Stacked { transposed: OMatrix::zeros_generic(Const::<P>, Dyn(residuals)), filled: 0 }
+    }
+
+    /// Appends one observation's rows, each multiplied by `scale` (the identity for J itself; V_i
+    /// for V J).
+    pub(super) fn push(&mut self, (rows, count): (&RowsTransposed<P>, usize), scale: &Matrix3<f64>) {
+        if count == 1 {
+            let column = rows.column(0) * scale[(0, 0)];
+            self.transposed.fixed_view_mut::<P, 1>(0, self.filled).copy_from(&column);
+        } else {
+            let columns = rows * scale.transpose();
+            self.transposed.fixed_view_mut::<P, 3>(0, self.filled).copy_from(&columns);
+        }
+        self.filled += count;
+    }
+
+    /// (this)^T `other`: J^T J with `other` this, J^T V J with this V J.
+    pub(super) fn tr_mul(&self, other: &Stacked<P>) -> SMatrix<f64, P, P> {
+        let mut product = SMatrix::<f64, P, P>::zeros();
+        for (mine, theirs) in self.transposed.column_iter().zip(other.transposed.column_iter()) {
+            product.syger(1.0, &mine, &theirs, 1.0);
+        }
+        product.fill_upper_triangle_with_lower_triangle();
+        product
+    }
 }
 
 impl Linearised {
@@ -38,7 +80,8 @@ impl Linearised {
     pub(super) fn new(shape: Shape, params: &[f64]) -> Self {
         let n = shape.len();
         let p = &params[..n];
-        let derivatives = std::array::from_fn(|k| if k < n { shape.derivative(p, k) } else { Matrix3::zeros() });
+        let derivatives =
+            std::array::from_fn(|k| if k < n { nonzero(&shape.derivative(p, k)) } else { [(0, 0, 0.0); 3] });
         let offset = Vector3::new(params[n], params[n + 1], params[n + 2]);
         Linearised { n, matrix: shape.matrix(p), offset, derivatives }
     }
@@ -52,34 +95,47 @@ impl Linearised {
         }
     }
 
-    /// The weighted residuals and Jacobian rows of one observation.
-    pub(super) fn rows(&self, observation: &Observation) -> RowsAt {
-        let (residuals, count) = self.residuals(observation);
-        let centered = observation.reading - self.offset;
-        let mut jacobian = SMatrix::<f64, 3, MAX_PARAMETERS>::zeros();
-        let direction = match observation.reference {
-            Some(_) => {
-                for (k, d) in self.derivatives[..self.n].iter().enumerate() {
-                    jacobian.set_column(k, &(d * centered));
-                }
-                jacobian.fixed_view_mut::<3, 3>(0, self.n).copy_from(&(-self.matrix));
-                None
-            }
-            None => Some(self.norm_row(&mut jacobian, &centered)),
-        };
-        jacobian *= observation.weight;
-        RowsAt { jacobian, residuals, count, direction }
-    }
-
-    /// The Jacobian row of a norm residual |a| - 1 into the first row; returns a's direction.
-    fn norm_row(&self, jacobian: &mut SMatrix<f64, 3, MAX_PARAMETERS>, centered: &Vector3<f64>) -> Vector3<f64> {
+    /// The weighted residuals and Jacobian rows (transposed, over `P` >= the model's parameters) of
+    /// one observation.
+    pub(super) fn rows<const P: usize>(&self, observation: &Observation) -> (RowsTransposed<P>, RowsAt) {
+        let (centered, weight) = (observation.reading - self.offset, observation.weight);
         let a = self.matrix * centered;
-        let direction = a / a.norm();
-        for (k, d) in self.derivatives[..self.n].iter().enumerate() {
-            jacobian[(0, k)] = direction.dot(&(d * centered));
-        }
-        let offset_row = -(direction.transpose() * self.matrix);
-        jacobian.fixed_view_mut::<1, 3>(0, self.n).copy_from(&offset_row);
-        direction
+        let mut rows = RowsTransposed::<P>::zeros();
+        let at = match observation.reference {
+            Some(reference) => {
+                for (k, entries) in self.derivatives[..self.n].iter().enumerate() {
+                    for &(i, j, value) in entries {
+                        rows[(k, i)] += value * centered[j] * weight;
+                    }
+                }
+                rows.fixed_view_mut::<3, 3>(self.n, 0).copy_from(&(-self.matrix.transpose() * weight));
+                RowsAt { residuals: (a - reference) * weight, count: 3, direction: None }
+            }
+            None => {
+                let length = a.norm();
+                let direction = a / length;
+                for (k, entries) in self.derivatives[..self.n].iter().enumerate() {
+                    rows[(k, 0)] =
+                        entries.iter().map(|&(i, j, value)| direction[i] * value * centered[j]).sum::<f64>() * weight;
+                }
+                rows.fixed_view_mut::<3, 1>(self.n, 0).copy_from(&(-self.matrix.tr_mul(&direction) * weight));
+                RowsAt {
+                    residuals: Vector3::new((length - 1.0) * weight, 0.0, 0.0),
+                    count: 1,
+                    direction: Some(direction),
+                }
+            }
+        };
+        (rows, at)
     }
+}
+
+/// The nonzero entries of a derivative dM/dp_k (at most three in every model), padded with zeros.
+fn nonzero(derivative: &Matrix3<f64>) -> [(usize, usize, f64); 3] {
+    let mut entries = [(0, 0, 0.0); 3];
+    let found = (0..9).map(|e| (e / 3, e % 3)).filter(|&(i, j)| derivative[(i, j)] != 0.0);
+    for (slot, (i, j)) in entries.iter_mut().zip(found) {
+        *slot = (i, j, derivative[(i, j)]);
+    }
+    entries
 }

@@ -24,6 +24,7 @@ pub mod thermal;
 mod uncertainty;
 mod verdict;
 
+use std::borrow::Cow;
 use std::collections::HashSet;
 use std::fmt;
 use std::str::FromStr;
@@ -114,12 +115,15 @@ impl Default for FitOptions {
 
 impl FitOptions {
     /// The rows the fit sees: the training rows, with references only where they are to be used.
-    fn training_set(&self, dataset: &Dataset) -> Result<Dataset, FitError> {
+    fn training_set<'a>(&self, dataset: &'a Dataset) -> Result<Cow<'a, Dataset>, FitError> {
         let count = dataset.rows.len();
         for &row in self.training_rows.iter().chain(&self.reference_rows).flatten() {
             if row == 0 || row > count {
                 return Err(FitError::NoSuchRow { row, rows: count });
             }
+        }
+        if self.training_rows.is_none() && self.reference_rows.is_none() {
+            return Ok(Cow::Borrowed(dataset));
         }
         let set = |rows: &Option<Vec<usize>>| rows.as_ref().map(|r| r.iter().copied().collect::<HashSet<usize>>());
         let (training, references) = (set(&self.training_rows), set(&self.reference_rows));
@@ -136,7 +140,7 @@ impl FitOptions {
                 row
             })
             .collect();
-        Ok(Dataset { rows })
+        Ok(Cow::Owned(Dataset { rows }))
     }
 }
 

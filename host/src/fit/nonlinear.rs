@@ -8,7 +8,7 @@
 use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt};
 use nalgebra::{DMatrix, DVector, Dyn, Owned, Vector3};
 
-use super::linearised::Linearised;
+use super::linearised::{Linearised, RowsAt, MAX_PARAMETERS};
 use super::shape::Shape;
 use super::FitError;
 
@@ -76,11 +76,9 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
         let mut jacobian = DMatrix::zeros(self.residual_count(), columns);
         let mut row = 0;
         for observation in self.observations {
-            let rows = at.rows(observation);
-            jacobian
-                .view_mut((row, 0), (rows.count, columns))
-                .copy_from(&rows.jacobian.view((0, 0), (rows.count, columns)));
-            row += rows.count;
+            let (rows, RowsAt { count, .. }) = at.rows::<{ MAX_PARAMETERS }>(observation);
+            jacobian.view_mut((row, 0), (count, columns)).copy_from(&rows.view((0, 0), (columns, count)).transpose());
+            row += count;
         }
         Some(jacobian)
     }

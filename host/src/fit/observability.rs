@@ -3,9 +3,10 @@
 //! conditioning at the start.
 
 use nalgebra::allocator::Allocator;
-use nalgebra::{Const, DefaultAllocator, DimDiff, DimSub, SMatrix, Vector3, U1};
+use nalgebra::{Const, DefaultAllocator, DimDiff, DimSub, Matrix3, SMatrix, Vector3, U1};
 
-use super::linearised::Linearised;
+use super::covariance::inverse_factor;
+use super::linearised::{Linearised, Stacked};
 use super::models::parameter_name;
 use super::nonlinear::Observation;
 use super::normalization::Normalization;
@@ -146,7 +147,8 @@ pub(super) fn surely_conditioned<const P: usize>(a: &SMatrix<f64, P, P>) -> bool
     let Some(cholesky) = a.cholesky() else {
         return false;
     };
-    let bound = 1.0 / (a.trace() * cholesky.inverse().trace());
+    // NOTE: trace(A^-1) = trace(L^-T L^-1), the sum of L^-1's squared entries.
+    let bound = 1.0 / (a.trace() * inverse_factor(&cholesky.unpack()).norm_squared());
     bound.is_finite() && bound >= POORLY_CONDITIONED_RATIO.powi(2) * 1.01
 }
 
@@ -157,12 +159,12 @@ fn column_scaled_normal<const P: usize>(
     start: &[f64],
 ) -> SMatrix<f64, P, P> {
     let at = Linearised::new(shape, start);
-    let mut normal = SMatrix::<f64, P, P>::zeros();
+    let mut stacked = Stacked::<P>::for_observations(observations);
     for observation in observations {
-        let rows = at.rows(observation);
-        let used = rows.jacobian.fixed_view::<3, P>(0, 0).rows(0, rows.count).into_owned();
-        normal += used.transpose() * used;
+        let (rows, at_row) = at.rows(observation);
+        stacked.push((&rows, at_row.count), &Matrix3::identity());
     }
+    let normal = stacked.tr_mul(&stacked);
     let lengths = normal.diagonal().map(|v| if v > 0.0 { v.sqrt() } else { 1.0 });
     SMatrix::from_fn(|i, j| normal[(i, j)] / (lengths[i] * lengths[j]))
 }
