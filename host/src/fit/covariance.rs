@@ -54,7 +54,7 @@ pub(super) fn accumulate<const P: usize>(
             sandwich.as_mut()?.push((&transposed, rows.count), &scale);
             Some(sum + term)
         });
-        own = own.and_then(|sum| Some(sum + own_term(row, &rows, &at.matrix, normalization)?));
+        own = own.and_then(|sum| Some(sum + own_term(row, &rows, &at.matrix, normalization, observation.weight)?));
     }
     let pooled = sandwich.zip(pooled_chi_square).map(|(s, chi_square)| (s.tr_mul(&jacobian), chi_square));
     Accumulated { normal: jacobian.tr_mul(&jacobian), residuals, pooled, own }
@@ -78,10 +78,20 @@ fn pooled_term(rows: &RowsAt, reading: &Vector3<f64>, matrix: &Matrix3<f64>) -> 
     }
 }
 
-/// One row's share of the noise test's chi-square, from the noise it states itself.
-fn own_term(row: &Row, rows: &RowsAt, matrix: &Matrix3<f64>, normalization: &Normalization) -> Option<f64> {
+/// One row's share of the noise test's chi-square, from the noise it states itself; `weight` the
+/// row's weight in the fit, which its residuals carry.
+fn own_term(
+    row: &Row,
+    rows: &RowsAt,
+    matrix: &Matrix3<f64>,
+    normalization: &Normalization,
+    weight: f64,
+) -> Option<f64> {
     let sigma = statistics::normalised_sigma_of_mean(row, normalization)?;
-    Some(statistics::chi_square_term(&rows.residuals, rows.direction, matrix, &sigma.component_mul(&sigma)))
+    // NOTE: the weighted residual w r has variance w^2 var(r): dividing it by var(r) alone counted
+    // a row of twice the mean count four times over (issue 29).
+    let variances = sigma.component_mul(&sigma) * weight.powi(2);
+    Some(statistics::chi_square_term(&rows.residuals, rows.direction, matrix, &variances))
 }
 
 /// The covariances behind the standard errors, in the solver's units, from one Cholesky factor of
@@ -202,6 +212,36 @@ mod tests {
             let errors =
                 [worst(&scatter, &expected.0), worst(&noise, &expected.1), (chi_square / expected.2 - 1.0).abs()];
             assert!(errors.iter().all(|&e| e < 1e-12), "{} seed {seed}: {errors:?}", model.name());
+        }
+    }
+
+    /// The noise test's chi-square written out: each row's unweighted residual (|a| - 1, or a - ref
+    /// per axis) squared over its variance from the noise the row states, sigma^2 / count per axis.
+    fn own_chi_square<const P: usize>(data: &Dataset, model: Model) -> (f64, f64) {
+        let solved = solved(data, model, &FitOptions::default()).unwrap();
+        let at = Linearised::new(solved.shape, solved.solution.params.as_slice());
+        let term = |(row, observation): (&Row, &Observation)| {
+            let a = at.matrix * (observation.reading - at.offset);
+            let sigma = statistics::normalised_sigma_of_mean(row, &solved.normalization).unwrap();
+            let covariance = at.matrix * Matrix3::from_diagonal(&sigma.component_mul(&sigma)) * at.matrix.transpose();
+            match observation.reference {
+                Some(reference) => (0..3).map(|k| (a - reference)[k].powi(2) / covariance[(k, k)]).sum(),
+                None => (a.norm() - 1.0).powi(2) / (a.normalize().transpose() * covariance * a.normalize())[0],
+            }
+        };
+        let expected = data.rows.iter().zip(&solved.observations).map(term).sum();
+        let sums = accumulate::<P>(data, solved.shape, &solved.solution, &solved.observations, &solved.normalization);
+        (sums.own.unwrap(), expected)
+    }
+
+    #[test]
+    fn the_noise_test_divides_each_rows_own_residual_by_its_own_variance_when_the_rows_weigh_differently() {
+        for seed in 0..5 {
+            let norm_rows = own_chi_square::<9>(&problem(60 + seed, false), Model::Ortho9);
+            let reference_rows = own_chi_square::<12>(&problem(60 + seed, true), Model::ReferenceNorm12);
+            for (ours, expected) in [norm_rows, reference_rows] {
+                assert!((ours / expected - 1.0).abs() < 1e-12, "seed {seed}: {ours} vs {expected}");
+            }
         }
     }
 
