@@ -66,12 +66,11 @@ fn quadruples() -> impl Iterator<Item = (usize, usize, usize, usize)> {
 pub fn predict(g: f64, covariance: &Quadratic) -> Prediction {
     let moment = moments();
     let (mut norm, mut trace) = (0.0, 0.0);
-    for (a, b, i, j) in quadruples() {
-        if i < 3 && j < 3 {
+    for (a, b) in (0..16).map(|k| (k / 4, k % 4)) {
+        for (i, j) in (0..9).map(|k| (k / 3, k % 3)) {
             norm += moment[a][b][i][j] * covariance[a][b][(i, j)];
-        } else if (i, j) == (3, 3) {
-            trace += moment[a][b][3][3] * covariance[a][b].trace();
         }
+        trace += moment[a][b][3][3] * covariance[a][b].trace();
     }
     let tilt = trace - norm;
     Prediction {
