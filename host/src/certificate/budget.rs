@@ -111,9 +111,10 @@ fn predicted(estimate: &Estimate, moves: &[(Matrix3<f64>, Vector3<f64>)]) -> Pre
 /// Every input of the budget that can err for this session and model.
 fn sources(session: &Session, estimate: &Estimate) -> Vec<Source> {
     let mut sources = capture_sources(session, estimate);
+    let captures = session.dataset();
     // NOTE: captures without a temperature (a board's own stream) have no spread to move them by.
-    if drift::carries_temperature(&session.dataset()) {
-        sources.extend(temperature_sources(session, estimate));
+    if drift::carries_temperature(&captures) {
+        sources.extend(temperature_sources(drift::mean_temp_c(&captures), estimate));
     }
     sources.extend((0..3).map(|axis| {
         let moved = move |s: &Session| shifted(s, |_, m| m[axis] += BIAS_WANDER_G);
@@ -152,9 +153,8 @@ fn capture_sources(session: &Session, estimate: &Estimate) -> Vec<Source> {
 }
 
 /// The offset's and the sensitivity's drift per degree, per axis, each at its spread between parts,
-/// applied to the captures around their mean temperature (where the parameters are stated).
-fn temperature_sources(session: &Session, estimate: &Estimate) -> Vec<Source> {
-    let mean_c = drift::mean_temp_c(&session.dataset());
+/// applied to the captures around their mean temperature `mean_c` (where the parameters are stated).
+fn temperature_sources(mean_c: f64, estimate: &Estimate) -> Vec<Source> {
     let offset = estimate.offset;
     let mut sources = Vec::new();
     for axis in 0..3 {

@@ -64,8 +64,6 @@ fn identity(out: &mut String, c: &Certificate) {
     out.push_str("</table>");
 }
 
-/// The self-test the board kept, for a reader: its verdict, date and largest deviation from the
-/// factory trim (the JSON holds every axis).
 /// The captures' die temperatures, or why there are none.
 fn die_temperature(conditions: &Conditions) -> String {
     match (conditions.temp_mean_c, conditions.temp_low_c, conditions.temp_high_c) {
@@ -74,6 +72,8 @@ fn die_temperature(conditions: &Conditions) -> String {
     }
 }
 
+/// The self-test the board kept, for a reader: its verdict, date and largest deviation from the
+/// factory trim (the JSON holds every axis).
 fn self_test_summary(kept: &serde_json::Value) -> String {
     let result = &kept["result"];
     let verdict = match result["passed"].as_bool() {

@@ -254,7 +254,7 @@ pub(super) fn cell(pointer: &str, value: Option<f64>, digits: usize) -> String {
 
 /// `value` shown with `digits` decimals, tagged with its JSON pointer and full value.
 pub(super) fn span(pointer: &str, value: f64, digits: usize) -> String {
-    format!("<span data-json=\"{pointer}\" data-value=\"{value:e}\">{}</span>", shown(value, digits))
+    tagged(pointer, value, &shown(value, digits))
 }
 
 /// A value in a column of vector components: always `digits` decimals (a component near zero next
@@ -262,6 +262,11 @@ pub(super) fn span(pointer: &str, value: f64, digits: usize) -> String {
 fn fixed_span(pointer: &str, value: f64, digits: usize) -> String {
     let text = format!("{value:.digits$}");
     let text = if text.trim_start_matches(['-', '0', '.']).is_empty() { format!("{:.digits$}", 0.0) } else { text };
+    tagged(pointer, value, &text)
+}
+
+/// `text` showing `value`, tagged with where the JSON holds it and its full value.
+fn tagged(pointer: &str, value: f64, text: &str) -> String {
     format!("<span data-json=\"{pointer}\" data-value=\"{value:e}\">{text}</span>")
 }
 
