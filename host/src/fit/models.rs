@@ -6,7 +6,7 @@ use nalgebra::{DVector, Matrix3, SVector, Vector3};
 use super::covariance::{self, Accumulated, Square};
 use super::nonlinear::{solve, Observation, Solution};
 use super::normalization::Normalization;
-use super::observability::{check_conditioning, check_positions};
+use super::observability::{check_conditioning, check_normal, check_positions};
 use super::ortho9;
 use super::prediction::{self, Prediction};
 use super::shape::Shape;
@@ -80,8 +80,12 @@ pub(super) fn solved(training: &Dataset, model: Model, options: &FitOptions) -> 
     let observations = observations(training, model, &normalization, options.g);
     let start: Vec<f64> = shape.identity().into_iter().chain([0.0; 3]).collect();
     let mut warnings = Vec::new();
-    check_conditioning(model, shape, &observations, &start, &mut warnings)?;
-    let solution = ortho9::solve_or(shape, &observations, || solve(shape, &observations, DVector::from_vec(start)))?;
+    let solution = if ortho9::applies(shape, &observations) {
+        ortho9::solve(&observations, |normal| check_normal(model, shape, normal, &mut warnings))?
+    } else {
+        check_conditioning(model, shape, &observations, &start, &mut warnings)?;
+        solve(shape, &observations, DVector::from_vec(start))?
+    };
     Ok(Solved { shape, normalization, observations, solution, warnings })
 }
 

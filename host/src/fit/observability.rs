@@ -97,12 +97,27 @@ pub(super) fn check_conditioning(
     start: &[f64],
     warnings: &mut Vec<String>,
 ) -> Result<(), FitError> {
-    let poor = match shape {
-        Shape::Diagonal => poor_conditioning::<6>(shape, observations, start),
-        Shape::TriangularTimesDiagonal => poor_conditioning::<9>(shape, observations, start),
-        Shape::Full => poor_conditioning::<12>(shape, observations, start),
-    };
-    let Some((ratio, weakest)) = poor else {
+    match shape {
+        Shape::Diagonal => check_normal(model, shape, &normal_at::<6>(shape, observations, start), warnings),
+        Shape::TriangularTimesDiagonal => {
+            check_normal(model, shape, &normal_at::<9>(shape, observations, start), warnings)
+        }
+        Shape::Full => check_normal(model, shape, &normal_at::<12>(shape, observations, start), warnings),
+    }
+}
+
+/// [`check_conditioning`] from J^T J at the start, `normal`, where the solver has built it.
+pub(super) fn check_normal<const P: usize>(
+    model: Model,
+    shape: Shape,
+    normal: &SMatrix<f64, P, P>,
+    warnings: &mut Vec<String>,
+) -> Result<(), FitError>
+where
+    Const<P>: DimSub<U1>,
+    DefaultAllocator: Allocator<DimDiff<Const<P>, U1>>,
+{
+    let Some((ratio, weakest)) = poor_conditioning(shape, &column_scaled(normal)) else {
         return Ok(());
     };
     if ratio < UNOBSERVABLE_RATIO {
@@ -116,17 +131,17 @@ pub(super) fn check_conditioning(
 }
 
 /// Where the ratio of smallest to largest singular value of the column-scaled Jacobian is below
-/// [`POORLY_CONDITIONED_RATIO`]: the ratio, and the parameter the smallest one weighs most.
+/// [`POORLY_CONDITIONED_RATIO`]: the ratio, and the parameter the smallest one weighs most; `scaled`
+/// its normal matrix.
 ///
 /// NOTE: the singular values of the column-scaled Jacobian are the square roots of the eigenvalues
 /// of its small normal matrix, which is much cheaper to decompose than J itself.
-fn poor_conditioning<const P: usize>(shape: Shape, observations: &[Observation], start: &[f64]) -> Option<(f64, String)>
+fn poor_conditioning<const P: usize>(shape: Shape, scaled: &SMatrix<f64, P, P>) -> Option<(f64, String)>
 where
     Const<P>: DimSub<U1>,
     DefaultAllocator: Allocator<DimDiff<Const<P>, U1>>,
 {
-    let scaled = column_scaled_normal::<P>(shape, observations, start);
-    if surely_conditioned(&scaled) {
+    if surely_conditioned(scaled) {
         return None;
     }
     let eigen = scaled.symmetric_eigen();
@@ -152,19 +167,19 @@ pub(super) fn surely_conditioned<const P: usize>(a: &SMatrix<f64, P, P>) -> bool
     bound.is_finite() && bound >= POORLY_CONDITIONED_RATIO.powi(2) * 1.01
 }
 
-/// J^T J at `start` with J's columns scaled to unit length (a zero column stays zero), in one pass.
-fn column_scaled_normal<const P: usize>(
-    shape: Shape,
-    observations: &[Observation],
-    start: &[f64],
-) -> SMatrix<f64, P, P> {
+/// J^T J at `start`, in one pass over the rows.
+fn normal_at<const P: usize>(shape: Shape, observations: &[Observation], start: &[f64]) -> SMatrix<f64, P, P> {
     let at = Linearised::new(shape, start);
     let mut stacked = Stacked::<P>::for_observations(observations);
     for observation in observations {
         let (rows, at_row) = at.rows(observation);
         stacked.push((&rows, at_row.count), &Matrix3::identity());
     }
-    let normal = stacked.tr_mul(&stacked);
+    stacked.tr_mul(&stacked)
+}
+
+/// `normal` (J^T J) with J's columns scaled to unit length (a zero column stays zero).
+fn column_scaled<const P: usize>(normal: &SMatrix<f64, P, P>) -> SMatrix<f64, P, P> {
     let lengths = normal.diagonal().map(|v| if v > 0.0 { v.sqrt() } else { 1.0 });
     SMatrix::from_fn(|i, j| normal[(i, j)] / (lengths[i] * lengths[j]))
 }

@@ -106,23 +106,41 @@ pub fn fit<T: Real>(readings: &[Vec3<T>]) -> Result<Ortho9Fit<T>, Ortho9Error> {
 
 /// Fits `ortho9` to readings in g from the parameters `start`.
 pub fn fit_from<T: Real>(readings: &[Vec3<T>], start: Params<T>) -> Result<Ortho9Fit<T>, Ortho9Error> {
+    fit_checked(readings, start, |_| Ok(()))
+}
+
+/// J^T J at the fit's start, its lower triangle (entry [i][j] for j <= i, the rest zero), in
+/// [`PARAMETERS`] order: what [`fit_checked`] hands its check.
+pub type StartNormal<T> = [[T; PARAMETERS]; PARAMETERS];
+
+/// Fits as [`fit_from`] does, once `check` has accepted J^T J at `start`; its error ends the fit.
+///
+/// NOTE: for a caller with its own conditioning rule (the host's names the parameter and warns of a
+/// poor condition number): it reads the normal equations the first step solves anyway, where building
+/// them again took a third of the host's whole fit.
+pub fn fit_checked<T: Real, E: From<Ortho9Error>>(
+    readings: &[Vec3<T>],
+    start: Params<T>,
+    check: impl FnOnce(&StartNormal<T>) -> Result<(), E>,
+) -> Result<Ortho9Fit<T>, E> {
     if readings.len() < MIN_READINGS {
-        return Err(Ortho9Error::TooFewReadings(readings.len().min(255) as u8));
+        return Err(Ortho9Error::TooFewReadings(readings.len().min(255) as u8).into());
     }
     // NOTE: built in place, not returned from a constructor: moving the solver copies its two 9x9
     // systems, which on the chip took a sixth of the fit.
     let normals = [Normal::new(), Normal::new()];
     let mut solver = Solver { readings, params: start, normals, current: 0, lambda: T::zero() };
     if !accumulate(readings, &start, &mut solver.normals[0]) {
-        return Err(Ortho9Error::NotFinite);
+        return Err(Ortho9Error::NotFinite.into());
     }
+    check(&solver.normals[0].jtj)?;
     for iteration in 1..=MAX_ITERATIONS {
         if solver.step()? {
             let cost = cost(readings, &solver.params);
             return Ok(Ortho9Fit { params: solver.params, cost, iterations: iteration });
         }
     }
-    Err(Ortho9Error::NotConverged)
+    Err(Ortho9Error::NotConverged.into())
 }
 
 /// Levenberg-Marquardt's state: parameters, their normal equations and the damping.

@@ -153,3 +153,20 @@ fn refuses_a_reading_that_is_not_finite() {
     readings[4][1] = f64::NAN;
     assert_eq!(fit(&readings), Err(Ortho9Error::NotFinite));
 }
+
+#[test]
+fn the_check_sees_the_start_normal_equations_and_its_refusal_ends_the_fit() {
+    let (_, readings) = problem(77, 12, 1e-4);
+    let mut expected = Normal::new();
+    assert!(accumulate(&readings, &identity(), &mut expected));
+    let mut seen = None;
+    let refused = fit_checked(&readings, identity(), |normal| {
+        seen = Some(*normal);
+        Err(Ortho9Error::IllConditioned(4))
+    });
+    assert_eq!(refused, Err(Ortho9Error::IllConditioned(4)));
+    assert_eq!(seen, Some(expected.jtj));
+    let accepted = fit_checked(&readings, identity(), |_| Ok::<(), Ortho9Error>(()));
+    assert_eq!(accepted, fit(&readings));
+    assert!(accepted.is_ok());
+}
