@@ -1,7 +1,7 @@
-//! On an emulated Cortex-M4F, or a generic RV32IMC (the ESP32-C3's instruction set): the chip's
-//! `ortho9` fit of the quick calibration's ten captures alone, between two calls of a marker whose
-//! address it prints (`marker 0x...`), for an instruction count from QEMU's trace
-//! (tests/fit_instructions.rs); then the fit's iterations and `done`.
+//! On an emulated Cortex-M4F, a Cortex-M0 (the Pico's instruction set) or a generic RV32IMC (the
+//! ESP32-C3's): the chip's `ortho9` fit of the quick calibration's ten captures alone, between two
+//! calls of a marker whose address it prints (`marker 0x...`), for an instruction count from QEMU's
+//! trace (tests/fit_instructions.rs); then the fit's iterations and `done`.
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
 #[cfg(not(target_os = "none"))]

@@ -1,5 +1,5 @@
 //! Finding the on-target binaries and QEMU, for the tests that run them. Each such test is
-//! `#[cfg_attr(not(on_target_runnable), ignore = ...)]` (or `rv32_runnable`): where tests/qemu/build.rs
+//! `#[cfg_attr(not(on_target_runnable), ignore = ...)]` (or `m0_runnable`, `rv32_runnable`): where tests/qemu/build.rs
 //! found QEMU or the binaries missing (and CI is not true) it is reported as ignored with its reason,
 //! never "ok".
 
@@ -26,6 +26,15 @@ pub const CORTEX_M4F: Chip = Chip {
     qemu: "qemu-system-arm",
     package: "qemu-system-arm",
     machine: &["-machine", "netduinoplus2"],
+};
+
+/// QEMU's micro:bit, an nRF51822: a Cortex-M0, the ARMv6-M instruction set of the Pico's RP2040
+/// (a Cortex-M0+), without an FPU.
+pub const CORTEX_M0: Chip = Chip {
+    target: "thumbv6m-none-eabi",
+    qemu: "qemu-system-arm",
+    package: "qemu-system-arm",
+    machine: &["-machine", "microbit"],
 };
 
 /// QEMU's virt machine with a generic RV32IMC, the ESP32-C3's instruction set (no FPU: its F and D
