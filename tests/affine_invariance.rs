@@ -53,7 +53,7 @@ fn largest_difference(original: &Fit, converted: &Fit, scale: f64, shift: [f64; 
     let mut worst: f64 = 0.0;
     for (a, b) in original.parameters.iter().zip(&converted.parameters) {
         assert_eq!(a.name, b.name);
-        let (value, error) = mapped_back(&b.name, b.value, b.std_error, scale, shift);
+        let (value, error) = mapped_back(b.name, b.value, b.std_error, scale, shift);
         let size = a.value.abs().max(1e-3);
         worst = worst.max(relative(a.value, value, size));
         if let (Some(e), Some(f)) = (a.std_error, error) {

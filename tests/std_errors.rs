@@ -32,7 +32,7 @@ fn spread_rows(with_reference: impl Fn(usize) -> bool) -> Vec<SyntheticRow> {
 }
 
 fn values_and_errors(fit: &Fit, names: &[&str]) -> (Vec<f64>, Vec<f64>) {
-    let found: Vec<&str> = fit.parameters.iter().map(|p| p.name.as_str()).collect();
+    let found: Vec<&str> = fit.parameters.iter().map(|p| p.name).collect();
     assert_eq!(found, names, "{} parameters", fit.model.name());
     let errors =
         fit.parameters.iter().map(|p| p.scatter_std_error.unwrap_or_else(|| panic!("{} has no error", p.name)));

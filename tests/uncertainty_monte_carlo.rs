@@ -81,7 +81,7 @@ fn ratios(directions: &[Vector3<f64>]) -> Vec<(String, f64, f64)> {
             let actual = spread(&fits.iter().map(|f| f.parameters[k].value).collect::<Vec<_>>());
             let reported = median(column(k, |p| p.std_error)) / actual;
             let scatter = median(column(k, |p| p.scatter_std_error)) / actual;
-            (fits[0].parameters[k].name.clone(), reported, scatter)
+            (fits[0].parameters[k].name.to_owned(), reported, scatter)
         })
         .collect()
 }

@@ -37,7 +37,7 @@ impl Estimate {
     pub fn with(session: &Session, choice: ModelChoice) -> Result<Self, FitError> {
         let fitted = session.fitted();
         let (fit, drift) = (fit::fit(&fitted.captures, choice, &FitOptions::default())?, fitted.drift);
-        let mut names: Vec<String> = fit.parameters.iter().map(|p| p.name.clone()).collect();
+        let mut names: Vec<String> = fit.parameters.iter().map(|p| p.name.to_owned()).collect();
         let mut values: Vec<f64> = fit.parameters.iter().map(|p| p.value).collect();
         if let Some(drift) = drift {
             names.extend(SLOPE_NAMES.map(String::from));

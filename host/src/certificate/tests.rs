@@ -58,7 +58,7 @@ fn the_noise_s_part_of_the_budget_is_the_fit_s_own_standard_error() {
     let certificate = Certificate::issue(&session).unwrap();
     for parameter in &fit.parameters {
         let expected = parameter.noise_std_error.unwrap();
-        let noise = certificate.parameters[&parameter.name].budget[&Component::Noise];
+        let noise = certificate.parameters[parameter.name].budget[&Component::Noise];
         assert!((noise / expected - 1.0).abs() < 0.03, "{}: {noise:e} vs the fit's {expected:e}", parameter.name);
     }
     assert!(certificate.parameters.keys().all(|name| !name.starts_with("c_")));

@@ -5,7 +5,7 @@
 
 use nalgebra::{Matrix3, SMatrix, Vector3};
 
-use super::linearised::{Linearised, RowsAt, Stacked};
+use super::linearised::{Gram, Linearised, RowsAt};
 use super::nonlinear::{Observation, Solution};
 use super::normalization::Normalization;
 use super::shape::Shape;
@@ -39,14 +39,11 @@ pub(super) fn accumulate<const P: usize>(
     let at = Linearised::new(shape, solution.params.as_slice());
     let pooled = uncertainty::pooled_sample_variance(training);
     let per_sample = pooled.map(|v| Vector3::from_fn(|k, _| v[k] / normalization.radii[k].powi(2)));
-    let (mut jacobian, mut sandwich) = (
-        Stacked::<P>::for_observations(observations),
-        per_sample.map(|_| Stacked::<P>::for_observations(observations)),
-    );
+    let (mut normal, mut sandwich) = (Gram::<P>::new(), per_sample.map(|_| Gram::<P>::new()));
     let (mut residuals, mut pooled_chi_square, mut own) = (0, Some(0.0), Some(0.0));
     for (row, observation) in training.rows.iter().zip(observations) {
         let (transposed, rows) = at.rows(observation);
-        jacobian.push((&transposed, rows.count), &Matrix3::identity());
+        normal.push((&transposed, rows.count), &Matrix3::identity());
         residuals += rows.count;
         pooled_chi_square = pooled_chi_square.zip(per_sample).and_then(|(sum, noise)| {
             let reading = noise / f64::from(row.count?) * observation.weight.powi(2);
@@ -56,8 +53,8 @@ pub(super) fn accumulate<const P: usize>(
         });
         own = own.and_then(|sum| Some(sum + own_term(row, &rows, &at.matrix, normalization, observation.weight)?));
     }
-    let pooled = sandwich.zip(pooled_chi_square).map(|(s, chi_square)| (s.tr_mul(&jacobian), chi_square));
-    Accumulated { normal: jacobian.tr_mul(&jacobian), residuals, pooled, own }
+    let pooled = sandwich.zip(pooled_chi_square).map(|(s, chi_square)| (s.matrix(), chi_square));
+    Accumulated { normal: normal.matrix(), residuals, pooled, own }
 }
 
 /// One row's V_i (the covariance of its residuals from the pooled noise; its [0][0] for a norm row)

@@ -2,7 +2,7 @@
 //! on fixed-size matrices. The solver's interface, the conditioning check and the statistics all read
 //! their rows here.
 
-use nalgebra::{Const, Dyn, Matrix3, OMatrix, SMatrix, Vector3};
+use nalgebra::{Const, Matrix3, SMatrix, Storage, Vector, Vector3};
 
 use super::nonlinear::Observation;
 use super::shape::Shape;
@@ -36,43 +36,52 @@ pub(super) struct RowsAt {
 /// `count` of them; the rest are zero).
 pub(super) type RowsTransposed<const P: usize> = SMatrix<f64, P, 3>;
 
-/// Every observation's Jacobian rows stacked, transposed (a column per residual, over the model's
-/// `P` parameters): J^T J and its kin then come from one matrix product each.
-pub(super) struct Stacked<const P: usize> {
-    transposed: OMatrix<f64, Const<P>, Dyn>,
-    /// Columns filled so far.
-    filled: usize,
+/// Sum over the rows pushed of x y^T, P x P, kept in its lower triangle: J^T J with x = y = a
+/// Jacobian row, J^T V J with x the row of V J.
+///
+/// NOTE: summed row by row as they are built, not stacked into a P x N matrix first: the stacked
+/// matrices' allocations and nalgebra's rank-one updates on dynamic views took a tenth of the whole
+/// fit. The sums are the same, in the same order.
+pub(super) struct Gram<const P: usize> {
+    lower: SMatrix<f64, P, P>,
 }
 
-impl<const P: usize> Stacked<P> {
-    /// Room for the residuals of `observations`: three for a reference row, one for a norm row.
-    pub(super) fn for_observations(observations: &[Observation]) -> Self {
-        let residuals = observations.iter().map(|o| if o.reference.is_some() { 3 } else { 1 }).sum();
-        Stacked { transposed: OMatrix::zeros_generic(Const::<P>, Dyn(residuals)), filled: 0 }
+impl<const P: usize> Gram<P> {
+    pub(super) fn new() -> Self {
+        Gram { lower: SMatrix::zeros() }
     }
 
-    /// Appends one observation's rows, each multiplied by `scale` (the identity for J itself; V_i
-    /// for V J).
+    /// Adds one observation's rows (transposed, `count` of them), x each row multiplied by `scale`
+    /// (the identity for J itself; V_i for V J) and y the row itself.
     #[inline(always)]
     pub(super) fn push(&mut self, (rows, count): (&RowsTransposed<P>, usize), scale: &Matrix3<f64>) {
         if count == 1 {
-            let column = rows.column(0) * scale[(0, 0)];
-            self.transposed.fixed_view_mut::<P, 1>(0, self.filled).copy_from(&column);
+            self.add(&(rows.column(0) * scale[(0, 0)]), &rows.column(0));
         } else {
-            let columns = rows * scale.transpose();
-            self.transposed.fixed_view_mut::<P, 3>(0, self.filled).copy_from(&columns);
+            let scaled = rows * scale.transpose();
+            for c in 0..3 {
+                self.add(&scaled.column(c), &rows.column(c));
+            }
         }
-        self.filled += count;
     }
 
-    /// (this)^T `other`: J^T J with `other` this, J^T V J with this V J.
-    pub(super) fn tr_mul(&self, other: &Stacked<P>) -> SMatrix<f64, P, P> {
-        let mut product = SMatrix::<f64, P, P>::zeros();
-        for (mine, theirs) in self.transposed.column_iter().zip(other.transposed.column_iter()) {
-            product.syger(1.0, &mine, &theirs, 1.0);
+    #[inline(always)]
+    fn add<X: Storage<f64, Const<P>>, Y: Storage<f64, Const<P>>>(
+        &mut self,
+        x: &Vector<f64, Const<P>, X>,
+        y: &Vector<f64, Const<P>, Y>,
+    ) {
+        for j in 0..P {
+            for i in j..P {
+                self.lower[(i, j)] += x[i] * y[j];
+            }
         }
-        product.fill_upper_triangle_with_lower_triangle();
-        product
+    }
+
+    /// The symmetric sum.
+    pub(super) fn matrix(mut self) -> SMatrix<f64, P, P> {
+        self.lower.fill_upper_triangle_with_lower_triangle();
+        self.lower
     }
 }
 

@@ -148,7 +148,7 @@ impl FitOptions {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Parameter {
     /// Name: `M11` ... `M33` for a full matrix, `a_yz` ... `s_z` for T K, `o_x` ... `o_z` the offset.
-    pub name: String,
+    pub name: &'static str,
     /// Value (M dimensionless, o in the file's unit).
     pub value: f64,
     /// The standard error reported: the noise-based one, scaled up when the residuals are
@@ -164,7 +164,7 @@ pub struct Parameter {
 impl Parameter {
     /// A parameter with its scatter- and noise-based standard errors; `inflation` scales the noise's
     /// for what the residuals show beyond the noise.
-    fn new(name: String, value: f64, errors: [Option<f64>; 2], inflation: f64) -> Self {
+    fn new(name: &'static str, value: f64, errors: [Option<f64>; 2], inflation: f64) -> Self {
         let [scatter_std_error, noise_std_error] = errors;
         let std_error = noise_std_error.map(|e| e * inflation).or(scatter_std_error);
         Parameter { name, value, std_error, scatter_std_error, noise_std_error }
@@ -274,16 +274,17 @@ fn full_parameters(
     [scatter, noise]: [FullErrors; 2],
     inflation: f64,
 ) -> Vec<Parameter> {
+    let name = |k: usize| models::parameter_name(shape::Shape::Full, k);
     let mut parameters = Vec::with_capacity(12);
     for (i, row) in matrix.iter().enumerate() {
         for (j, &value) in row.iter().enumerate() {
             let (a, b) = (scatter.map(|(m, _)| m[i][j]), noise.map(|(m, _)| m[i][j]));
-            parameters.push(Parameter::new(format!("M{}{}", i + 1, j + 1), value, [a, b], inflation));
+            parameters.push(Parameter::new(name(3 * i + j), value, [a, b], inflation));
         }
     }
-    for (k, (&value, axis)) in offset.iter().zip(["x", "y", "z"]).enumerate() {
+    for (k, &value) in offset.iter().enumerate() {
         let (a, b) = (scatter.map(|(_, o)| o[k]), noise.map(|(_, o)| o[k]));
-        parameters.push(Parameter::new(format!("o_{axis}"), value, [a, b], inflation));
+        parameters.push(Parameter::new(name(9 + k), value, [a, b], inflation));
     }
     parameters
 }

@@ -171,8 +171,9 @@ fn calibration_of(shape: Shape, parameters: &[Parameter]) -> (Mat3<f64>, Vec3<f6
     ([0, 1, 2].map(|i| [0, 1, 2].map(|j| matrix[(i, j)])), offset)
 }
 
-pub(super) fn parameter_name(shape: Shape, index: usize) -> String {
-    shape.names().get(index).map_or_else(|| format!("o_{}", ['x', 'y', 'z'][index - shape.len()]), |n| (*n).to_owned())
+/// The name of parameter `index` of the model of `shape`: the shape's matrix parameters, then o.
+pub(super) fn parameter_name(shape: Shape, index: usize) -> &'static str {
+    shape.names().get(index).copied().unwrap_or_else(|| ["o_x", "o_y", "o_z"][index - shape.len()])
 }
 
 /// The parameters in the file's units: M = g M' diag(1/r), o = c + r o'; `errors` the scatter- and

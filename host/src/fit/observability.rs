@@ -6,7 +6,7 @@ use nalgebra::allocator::Allocator;
 use nalgebra::{Const, DefaultAllocator, DimDiff, DimSub, Matrix3, SMatrix, Vector3, U1};
 
 use super::covariance::inverse_factor;
-use super::linearised::{Linearised, Stacked};
+use super::linearised::{Gram, Linearised};
 use super::models::parameter_name;
 use super::nonlinear::Observation;
 use super::normalization::Normalization;
@@ -121,7 +121,7 @@ where
         return Ok(());
     };
     if ratio < UNOBSERVABLE_RATIO {
-        return Err(FitError::Unobservable { model: model.name(), parameter: weakest });
+        return Err(FitError::Unobservable { model: model.name(), parameter: weakest.to_owned() });
     }
     warnings.push(format!(
         "poor condition number {:.1e}: the positions barely determine {weakest}; add positions spread over the sphere",
@@ -136,7 +136,7 @@ where
 ///
 /// NOTE: the singular values of the column-scaled Jacobian are the square roots of the eigenvalues
 /// of its small normal matrix, which is much cheaper to decompose than J itself.
-fn poor_conditioning<const P: usize>(shape: Shape, scaled: &SMatrix<f64, P, P>) -> Option<(f64, String)>
+fn poor_conditioning<const P: usize>(shape: Shape, scaled: &SMatrix<f64, P, P>) -> Option<(f64, &'static str)>
 where
     Const<P>: DimSub<U1>,
     DefaultAllocator: Allocator<DimDiff<Const<P>, U1>>,
@@ -170,12 +170,12 @@ pub(super) fn surely_conditioned<const P: usize>(a: &SMatrix<f64, P, P>) -> bool
 /// J^T J at `start`, in one pass over the rows.
 fn normal_at<const P: usize>(shape: Shape, observations: &[Observation], start: &[f64]) -> SMatrix<f64, P, P> {
     let at = Linearised::new(shape, start);
-    let mut stacked = Stacked::<P>::for_observations(observations);
+    let mut normal = Gram::<P>::new();
     for observation in observations {
         let (rows, at_row) = at.rows(observation);
-        stacked.push((&rows, at_row.count), &Matrix3::identity());
+        normal.push((&rows, at_row.count), &Matrix3::identity());
     }
-    stacked.tr_mul(&stacked)
+    normal.matrix()
 }
 
 /// `normal` (J^T J) with J's columns scaled to unit length (a zero column stays zero).

@@ -44,7 +44,7 @@ impl From<Ortho9Error> for FitError {
             }
             Ortho9Error::IllConditioned(k) => FitError::Unobservable {
                 model,
-                parameter: super::models::parameter_name(Shape::TriangularTimesDiagonal, k.into()),
+                parameter: super::models::parameter_name(Shape::TriangularTimesDiagonal, k.into()).to_owned(),
             },
             Ortho9Error::NotConverged => FitError::NotConverged {
                 reason: format!("no negligible step in {} iterations", ortho9::MAX_ITERATIONS),

@@ -177,7 +177,7 @@ impl HostFitSummary {
             model: fit.model.name(),
             cost: fit.cost,
             iterations: fit.iterations,
-            std_errors: fit.parameters.iter().map(|p| (p.name.clone(), p.std_error)).collect(),
+            std_errors: fit.parameters.iter().map(|p| (p.name.to_owned(), p.std_error)).collect(),
         }
     }
 }

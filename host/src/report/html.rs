@@ -106,7 +106,7 @@ fn parameters(out: &mut String, report: &SessionReport) {
         let _ = write!(
             out,
             "<tr><td>{}</td>{}",
-            escape(&p.name),
+            escape(p.name),
             cell(&format!("/fit/parameters/{i}/value"), Some(p.value), 6)
         );
         let _ = write!(out, "{}</tr>", cell(&format!("/fit/parameters/{i}/std_error"), p.std_error, 6));
