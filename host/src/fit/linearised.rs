@@ -18,8 +18,7 @@ pub(super) struct Linearised {
     pub matrix: Matrix3<f64>,
     /// o (solver units).
     pub offset: Vector3<f64>,
-    /// dM/dp_k for k < n, by its nonzero entries: each at most three (row, column, value), the
-    /// unused ones of value zero.
+    /// dM/dp_k for k < n, by the entries that can be nonzero ([`Shape::derivative_entries`]).
     derivatives: [[(usize, usize, f64); 3]; MAX_PARAMETERS - 3],
 }
 
@@ -91,7 +90,7 @@ impl Linearised {
         let n = shape.len();
         let p = &params[..n];
         let derivatives =
-            std::array::from_fn(|k| if k < n { nonzero(&shape.derivative(p, k)) } else { [(0, 0, 0.0); 3] });
+            std::array::from_fn(|k| if k < n { shape.derivative_entries(p, k) } else { [(0, 0, 0.0); 3] });
         let offset = Vector3::new(params[n], params[n + 1], params[n + 2]);
         Linearised { n, matrix: shape.matrix(p), offset, derivatives }
     }
@@ -141,14 +140,4 @@ impl Linearised {
         };
         (rows, at)
     }
-}
-
-/// The nonzero entries of a derivative dM/dp_k (at most three in every model), padded with zeros.
-fn nonzero(derivative: &Matrix3<f64>) -> [(usize, usize, f64); 3] {
-    let mut entries = [(0, 0, 0.0); 3];
-    let found = (0..9).map(|e| (e / 3, e % 3)).filter(|&(i, j)| derivative[(i, j)] != 0.0);
-    for (slot, (i, j)) in entries.iter_mut().zip(found) {
-        *slot = (i, j, derivative[(i, j)]);
-    }
-    entries
 }

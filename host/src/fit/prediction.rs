@@ -95,7 +95,9 @@ pub(super) fn least_squares<const P: usize>(
         if a < 3 {
             let centered = sensor.column(a) * g;
             for k in 0..n {
-                jacobian.set_column(k, &(shape.derivative(&parameters[..n], k) * centered));
+                for (i, j, value) in shape.derivative_entries(&parameters[..n], k) {
+                    jacobian[(i, k)] += value * centered[j];
+                }
             }
         } else {
             jacobian.fixed_view_mut::<3, 3>(0, n).copy_from(&(-matrix));

@@ -50,29 +50,32 @@ impl Shape {
         }
     }
 
-    /// dM / dp_k.
+    /// dM / dp_k as a matrix, for the tests that check [`Shape::derivative_entries`].
+    #[cfg(test)]
     pub(super) fn derivative(self, p: &[f64], k: usize) -> Matrix3<f64> {
         let mut d = Matrix3::zeros();
-        match self {
-            Shape::Diagonal => d[(k, k)] = 1.0,
-            Shape::Full => d[(k / 3, k % 3)] = 1.0,
-            Shape::TriangularTimesDiagonal => match k {
-                0 => d[(0, 1)] = p[4],
-                1 => d[(0, 2)] = p[5],
-                2 => d[(1, 2)] = p[5],
-                3 => d[(0, 0)] = 1.0,
-                4 => {
-                    d[(0, 1)] = p[0];
-                    d[(1, 1)] = 1.0;
-                }
-                _ => {
-                    d[(0, 2)] = p[1];
-                    d[(1, 2)] = p[2];
-                    d[(2, 2)] = 1.0;
-                }
-            },
+        for (i, j, value) in self.derivative_entries(p, k) {
+            d[(i, j)] += value;
         }
         d
+    }
+
+    /// dM / dp_k by its entries that can be nonzero, each (row, column, value): at most three in
+    /// every model, padded with zeros at (0, 0).
+    pub(super) fn derivative_entries(self, p: &[f64], k: usize) -> [(usize, usize, f64); 3] {
+        let pad = (0, 0, 0.0);
+        match self {
+            Shape::Diagonal => [(k, k, 1.0), pad, pad],
+            Shape::Full => [(k / 3, k % 3, 1.0), pad, pad],
+            Shape::TriangularTimesDiagonal => match k {
+                0 => [(0, 1, p[4]), pad, pad],
+                1 => [(0, 2, p[5]), pad, pad],
+                2 => [(1, 2, p[5]), pad, pad],
+                3 => [(0, 0, 1.0), pad, pad],
+                4 => [(0, 1, p[0]), (1, 1, 1.0), pad],
+                _ => [(0, 2, p[1]), (1, 2, p[2]), (2, 2, 1.0)],
+            },
+        }
     }
 
     /// The factor that takes matrix parameter `k` from the normalised fit (m' = (m - c) / r, unit g)

@@ -84,10 +84,13 @@ fn linear_chi_square(residuals: &DMatrix<f64>, factors: &[f64], per_sample: &Vec
 /// rows of 2 and of 3000 samples differ 1500-fold in variance, and an unweighted fit lets the short
 /// rows' noise into every parameter.
 pub(super) fn row_weights(dataset: &Dataset) -> Vec<f64> {
-    let counts: Option<Vec<f64>> = dataset.rows.iter().map(|r| r.count.map(f64::from)).collect();
-    match counts.filter(|_| pooled_sample_variance(dataset).is_some()) {
-        Some(counts) => relative_weights(&counts),
-        None => vec![1.0; dataset.rows.len()],
+    // NOTE: checked before collecting: a collect into Option<Vec> cannot know its length and grew
+    // the vector three times per fit.
+    if dataset.rows.iter().all(|r| r.count.is_some()) && pooled_sample_variance(dataset).is_some() {
+        let counts: Vec<f64> = dataset.rows.iter().map(|r| r.count.map_or(0.0, f64::from)).collect();
+        relative_weights(&counts)
+    } else {
+        vec![1.0; dataset.rows.len()]
     }
 }
 
