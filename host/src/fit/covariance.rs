@@ -61,14 +61,14 @@ pub(super) fn accumulate<const P: usize>(
 /// and its share r^T V_i^-1 r of chi-square: `reading` the variances of its normalised reading per
 /// axis, already scaled by the row's weight squared. `None` where V_i is not positive definite.
 fn pooled_term(rows: &RowsAt, reading: &Vector3<f64>, matrix: &Matrix3<f64>) -> Option<(Matrix3<f64>, f64)> {
-    match rows.direction {
+    match rows.along {
         None => {
             let full = matrix * Matrix3::from_diagonal(reading) * matrix.transpose();
             let term = (rows.residuals.transpose() * full.cholesky()?.inverse() * rows.residuals)[0];
             Some((full, term))
         }
-        Some(d) => {
-            let variance = statistics::variance_along(matrix, reading, &d);
+        Some(along) => {
+            let variance = statistics::variance_along(&along, reading);
             // NOTE: not positive (or NaN): no variance, as a Cholesky factor would refuse it.
             (variance > 0.0).then(|| (Matrix3::from_diagonal_element(variance), rows.residuals[0].powi(2) / variance))
         }
@@ -88,7 +88,7 @@ fn own_term(
     // NOTE: the weighted residual w r has variance w^2 var(r): dividing it by var(r) alone counted
     // a row of twice the mean count four times over (issue 29).
     let variances = sigma.component_mul(&sigma) * weight.powi(2);
-    Some(statistics::chi_square_term(&rows.residuals, rows.direction, matrix, &variances))
+    Some(statistics::chi_square_term(&rows.residuals, rows.along, matrix, &variances))
 }
 
 /// The covariances behind the standard errors, in the solver's units, from one Cholesky factor of

@@ -27,16 +27,17 @@ pub(super) struct Linearised {
 pub(super) struct RowsAt {
     pub residuals: Vector3<f64>,
     pub count: usize,
-    /// The direction of the corrected reading M (m - o), for a norm row.
-    pub direction: Option<Vector3<f64>>,
+    /// For a norm row, M^T d with d the direction of the corrected reading M (m - o): the
+    /// residual's sensitivity to the reading, which its variance reads.
+    pub along: Option<Vector3<f64>>,
 }
 
 /// One observation's weighted Jacobian rows over `P` parameters, transposed (a column per residual,
 /// `count` of them; the rest are zero).
 pub(super) type RowsTransposed<const P: usize> = SMatrix<f64, P, 3>;
 
-/// Sum over the rows pushed of x y^T, P x P, kept in its lower triangle: J^T J with x = y = a
-/// Jacobian row, J^T V J with x the row of V J.
+/// Sum over the rows added of x y^T, P x P, kept in its lower triangle: J^T J with x = y = a
+/// Jacobian row, J^T V J with x the row of V J (and the normalisation's 6 x 6 normal matrix).
 ///
 /// NOTE: summed row by row as they are built, not stacked into a P x N matrix first: the stacked
 /// matrices' allocations and nalgebra's rank-one updates on dynamic views took a tenth of the whole
@@ -64,8 +65,9 @@ impl<const P: usize> Gram<P> {
         }
     }
 
+    /// Adds x y^T.
     #[inline(always)]
-    fn add<X: Storage<f64, Const<P>>, Y: Storage<f64, Const<P>>>(
+    pub(super) fn add<X: Storage<f64, Const<P>>, Y: Storage<f64, Const<P>>>(
         &mut self,
         x: &Vector<f64, Const<P>, X>,
         y: &Vector<f64, Const<P>, Y>,
@@ -121,7 +123,7 @@ impl Linearised {
                     }
                 }
                 rows.fixed_view_mut::<3, 3>(self.n, 0).copy_from(&(-self.matrix.transpose() * weight));
-                RowsAt { residuals: (a - reference) * weight, count: 3, direction: None }
+                RowsAt { residuals: (a - reference) * weight, count: 3, along: None }
             }
             None => {
                 let length = a.norm();
@@ -130,12 +132,9 @@ impl Linearised {
                     rows[(k, 0)] =
                         entries.iter().map(|&(i, j, value)| direction[i] * value * centered[j]).sum::<f64>() * weight;
                 }
-                rows.fixed_view_mut::<3, 1>(self.n, 0).copy_from(&(-self.matrix.tr_mul(&direction) * weight));
-                RowsAt {
-                    residuals: Vector3::new((length - 1.0) * weight, 0.0, 0.0),
-                    count: 1,
-                    direction: Some(direction),
-                }
+                let along = self.matrix.tr_mul(&direction);
+                rows.fixed_view_mut::<3, 1>(self.n, 0).copy_from(&(-along * weight));
+                RowsAt { residuals: Vector3::new((length - 1.0) * weight, 0.0, 0.0), count: 1, along: Some(along) }
             }
         };
         (rows, at)

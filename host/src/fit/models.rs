@@ -4,6 +4,7 @@
 use nalgebra::{DVector, Matrix3, SVector, Vector3};
 
 use super::covariance::{self, Accumulated, Square};
+use super::linearised::MAX_PARAMETERS;
 use super::nonlinear::{solve, Observation, Solution};
 use super::normalization::Normalization;
 use super::observability::{check_conditioning, check_normal, check_positions};
@@ -101,8 +102,8 @@ fn predicted<const P: usize>(
     let factor =
         |k: usize| if k < n { shape.unit_factor(k, g, &normalization.radii) } else { normalization.radii[k - n] };
     let file = Square::<P>::from_fn(|i, j| factor(i) * covariance[(i, j)] * factor(j));
-    let values: Vec<f64> = parameters.iter().map(|p| p.value).collect();
-    prediction::least_squares(shape, &values, &file, g)
+    let values = SVector::<f64, P>::from_fn(|k, _| parameters[k].value);
+    prediction::least_squares(shape, values.as_slice(), &file, g)
 }
 
 /// What the noise test's failure points to, and too little redundancy or too short captures.
@@ -165,7 +166,10 @@ pub(super) fn observations(
 
 /// M and o from the parameters in the file's units.
 fn calibration_of(shape: Shape, parameters: &[Parameter]) -> (Mat3<f64>, Vec3<f64>) {
-    let values: Vec<f64> = parameters.iter().map(|p| p.value).collect();
+    let mut values = [0.0; MAX_PARAMETERS];
+    for (value, parameter) in values.iter_mut().zip(parameters) {
+        *value = parameter.value;
+    }
     let matrix = shape.matrix(&values[..shape.len()]);
     let offset = [0, 1, 2].map(|k| values[shape.len() + k]);
     ([0, 1, 2].map(|i| [0, 1, 2].map(|j| matrix[(i, j)])), offset)

@@ -2,7 +2,9 @@
 //! readings gives a centre c and radii r, and the solver sees m' = (m - c) / r, where the answer is
 //! near M' = I, o' = 0 whatever the file's unit.
 
-use nalgebra::{Matrix6, Vector3, Vector6};
+use nalgebra::{Vector3, Vector6};
+
+use super::linearised::Gram;
 
 /// The centre and per-axis radius of the readings: the map to the solver's units.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -70,13 +72,13 @@ impl Normalization {
 fn quadric_coefficients(scaled: &[Vector3<f64>]) -> Option<Vector6<f64>> {
     // Normal equations: with the readings scaled to order one, the 6 x 6 system is well conditioned
     // whenever the readings determine an ellipsoid at all, and Cholesky says when they do not.
-    let (mut normal, mut right) = (Matrix6::zeros(), Vector6::zeros());
+    let (mut normal, mut right) = (Gram::<6>::new(), Vector6::zeros());
     for v in scaled {
         let row = Vector6::new(v[0] * v[0], v[1] * v[1], v[2] * v[2], v[0], v[1], v[2]);
-        normal += row * row.transpose();
+        normal.add(&row, &row);
         right += row;
     }
-    Some(normal.cholesky()?.solve(&right))
+    Some(normal.matrix().cholesky()?.solve(&right))
 }
 
 #[cfg(test)]

@@ -60,28 +60,27 @@ pub(super) fn normalised_sigma_of_mean(row: &Row, normalization: &Normalization)
 }
 
 /// One row's share of chi-square: its three residuals a - ref over their variances, or (a norm row,
-/// `direction` that of the corrected reading) its one residual over the variance along it; the
-/// residuals are those of a reading with per-axis `variances` corrected by `matrix`.
+/// `along` its [`variance_along`] vector) its one residual over its variance; the residuals are
+/// those of a reading with per-axis `variances` corrected by `matrix`.
 pub(super) fn chi_square_term(
     residuals: &Vector3<f64>,
-    direction: Option<Vector3<f64>>,
+    along: Option<Vector3<f64>>,
     matrix: &Matrix3<f64>,
     variances: &Vector3<f64>,
 ) -> f64 {
-    match direction {
+    match along {
         None => {
             let axis_variances = matrix.component_mul(matrix) * variances;
             (0..3).map(|k| residuals[k].powi(2) / axis_variances[k]).sum()
         }
-        Some(d) => residuals[0].powi(2) / variance_along(matrix, variances, &d),
+        Some(along) => residuals[0].powi(2) / variance_along(&along, variances),
     }
 }
 
-/// The variance along the unit vector `direction` of `matrix` times a reading with per-axis
-/// `variances`: d^T M diag(v) M^T d, as the sum of v_k (M^T d)_k^2.
-pub(super) fn variance_along(matrix: &Matrix3<f64>, variances: &Vector3<f64>, direction: &Vector3<f64>) -> f64 {
-    let along = matrix.tr_mul(direction);
-    along.component_mul(&along).dot(variances)
+/// The variance along the unit vector d of M times a reading with per-axis `variances`,
+/// d^T M diag(v) M^T d, as the sum of v_k (M^T d)_k^2; `along` is M^T d.
+pub(super) fn variance_along(along: &Vector3<f64>, variances: &Vector3<f64>) -> f64 {
+    along.component_mul(along).dot(variances)
 }
 
 /// The rotation, in degrees, between a 12-parameter fit (which knows the orientations) and a
