@@ -5,7 +5,7 @@
 
 use nalgebra::{Matrix3, SMatrix, Vector3};
 
-use super::linearised::{Gram, Linearised, RowsAt};
+use super::linearised::{Gram, Linearised, RowsAt, RowsTransposed};
 use super::nonlinear::{Observation, Solution};
 use super::normalization::Normalization;
 use super::shape::Shape;
@@ -41,8 +41,9 @@ pub(super) fn accumulate<const P: usize>(
     let per_sample = pooled.map(|v| Vector3::from_fn(|k, _| v[k] / normalization.radii[k].powi(2)));
     let (mut normal, mut sandwich) = (Gram::<P>::new(), per_sample.map(|_| Gram::<P>::new()));
     let (mut residuals, mut pooled_chi_square, mut own) = (0, Some(0.0), Some(0.0));
+    let mut transposed = RowsTransposed::<P>::zeros();
     for (row, observation) in training.rows.iter().zip(observations) {
-        let (transposed, rows) = at.rows(observation);
+        let rows = at.rows(observation, &mut transposed);
         normal.push((&transposed, rows.count), &Matrix3::identity());
         residuals += rows.count;
         pooled_chi_square = pooled_chi_square.zip(per_sample).and_then(|(sum, noise)| {
