@@ -85,10 +85,9 @@ fn own_term(
     normalization: &Normalization,
     weight: f64,
 ) -> Option<f64> {
-    let sigma = statistics::normalised_sigma_of_mean(row, normalization)?;
     // NOTE: the weighted residual w r has variance w^2 var(r): dividing it by var(r) alone counted
     // a row of twice the mean count four times over (issue 29).
-    let variances = sigma.component_mul(&sigma) * weight.powi(2);
+    let variances = statistics::normalised_variance_of_mean(row, normalization)? * weight.powi(2);
     Some(statistics::chi_square_term(&rows.residuals, rows.along, matrix, &variances))
 }
 
@@ -220,8 +219,8 @@ mod tests {
         let at = Linearised::new(solved.shape, solved.solution.params.as_slice());
         let term = |(row, observation): (&Row, &Observation)| {
             let a = at.matrix * (observation.reading - at.offset);
-            let sigma = statistics::normalised_sigma_of_mean(row, &solved.normalization).unwrap();
-            let covariance = at.matrix * Matrix3::from_diagonal(&sigma.component_mul(&sigma)) * at.matrix.transpose();
+            let variance = statistics::normalised_variance_of_mean(row, &solved.normalization).unwrap();
+            let covariance = at.matrix * Matrix3::from_diagonal(&variance) * at.matrix.transpose();
             match observation.reference {
                 Some(reference) => (0..3).map(|k| (a - reference)[k].powi(2) / covariance[(k, k)]).sum(),
                 None => (a.norm() - 1.0).powi(2) / (a.normalize().transpose() * covariance * a.normalize())[0],
