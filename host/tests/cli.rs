@@ -459,3 +459,19 @@ fn a_resumed_quick_session_says_it_stays_quick_and_a_fixed_length_one_is_not_cal
     let fixed = resumed(&["--seconds", "5"], &["--seconds", "6"], "fixed");
     assert!(!fixed.contains("begun adaptive") && !fixed.contains("is not used"), "{fixed}");
 }
+
+#[test]
+fn a_reader_that_goes_away_ends_the_command_quietly_with_the_closed_pipe_s_status() {
+    // NOTE: the pipe's reading end is closed before the command starts, so its first print fails
+    // (as `accelcal fit FILE | head -0` would), whatever the timing.
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    let output = Command::new(env!("CARGO_BIN_EXE_accelcal"))
+        .args(["fit", &phone_data(), "--g", "9.81"])
+        .stdout(writer)
+        .output()
+        .expect("accelcal runs");
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(accelcal::cli::READER_GONE_EXIT), "{stderr}");
+    assert!(stderr.is_empty(), "nothing said when nobody reads: {stderr}");
+}
