@@ -219,7 +219,8 @@ mod tests {
         let at = Linearised::new(solved.shape, solved.solution.params.as_slice());
         let term = |(row, observation): (&Row, &Observation)| {
             let a = at.matrix * (observation.reading - at.offset);
-            let variance = statistics::normalised_variance_of_mean(row, &solved.normalization).unwrap();
+            let (count, std, radii) = (f64::from(row.count.unwrap()), row.std.unwrap(), solved.normalization.radii);
+            let variance = Vector3::from_fn(|k, _| (std[k] / count.sqrt() / radii[k]).powi(2));
             let covariance = at.matrix * Matrix3::from_diagonal(&variance) * at.matrix.transpose();
             match observation.reference {
                 Some(reference) => (0..3).map(|k| (a - reference)[k].powi(2) / covariance[(k, k)]).sum(),
