@@ -3,6 +3,7 @@
 //! whatever unit), and the gyro's follows the accelerometer's convention unless a flag says better.
 
 use serde::Serialize;
+use shared::AccelRange;
 
 use super::dialect::Dialect;
 use super::StreamError;
@@ -84,6 +85,17 @@ impl AccelUnit {
         }
     }
 
+    /// The range a stream's counts name; +-2 g (the chip's power-on range) for values in g or m/s^2,
+    /// whose range the stream does not say.
+    pub fn range(self) -> AccelRange {
+        match self {
+            AccelUnit::Counts4g => AccelRange::G4,
+            AccelUnit::Counts8g => AccelRange::G8,
+            AccelUnit::Counts16g => AccelRange::G16,
+            _ => AccelRange::G2,
+        }
+    }
+
     /// The name `--input-unit` takes and `--json` prints.
     pub fn name(self) -> &'static str {
         match self {
@@ -122,6 +134,12 @@ impl GyroUnit {
             GyroUnit::Counts2000 => 16.4,
             GyroUnit::MotionCal => MOTIONCAL_COUNTS_PER_DPS,
         }
+    }
+
+    /// Raw counts per deg/s when the unit is a range's counts (what int16 readings are), else none.
+    pub fn counts_per_dps(self) -> Option<f64> {
+        matches!(self, GyroUnit::Counts250 | GyroUnit::Counts500 | GyroUnit::Counts1000 | GyroUnit::Counts2000)
+            .then(|| self.per_dps())
     }
 
     /// The name `--gyro-unit` takes and `--json` prints.
