@@ -12,6 +12,13 @@ pub const STREAM_QUIET_S: f64 = 10.0;
 /// without a number is no pause of a working stream, and still short enough to act on.
 pub const STREAM_UNREADABLE_S: f64 = 5.0;
 
+/// Share of a file's characters that may be bytes that are not text (or control characters) for it to
+/// be read as a log.
+///
+/// NOTE: an ESP32's boot noise is a handful of bytes in a log of megabytes; a program, a `.npy`
+/// recording or a stream read at the wrong baud rate is more than half such bytes.
+pub const NOT_TEXT_SHARE: f64 = 0.25;
+
 /// Lines heard before the dialect of a live stream is decided.
 ///
 /// NOTE: the dialect is the commonest shape of the lines; forty outnumber a board's boot banner of a

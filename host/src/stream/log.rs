@@ -7,7 +7,7 @@ use super::line::{fields, Words};
 use super::timing::{self, Rate, RateSource};
 use super::units::{AccelUnit, GyroUnit};
 use super::StreamError;
-use crate::limits::STREAM_MIN_SAMPLES;
+use crate::limits::{NOT_TEXT_SHARE, STREAM_MIN_SAMPLES};
 
 /// What the command line may settle about a stream.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -82,10 +82,23 @@ impl LineReader {
     }
 }
 
-/// The text of a saved log: bytes that are not UTF-8 (an ESP32's boot noise, a wrong baud rate)
-/// become U+FFFD, so that their lines are dropped as [`DropReason::NotText`] and the rest is read.
+/// The text of a saved log: bytes that are not UTF-8 (an ESP32's boot noise) become U+FFFD, so that
+/// their lines are dropped as [`DropReason::NotText`] and the rest is read; a file mostly of such
+/// bytes (a program, a recording, a stream read at the wrong baud rate) is refused as not text.
 pub fn read_text(path: &std::path::Path) -> std::io::Result<String> {
-    std::fs::read(path).map(|bytes| text_of(&bytes))
+    let text = text_of(&std::fs::read(path)?);
+    let not_text = text.chars().filter(|&c| c == char::REPLACEMENT_CHARACTER || is_binary_control(c)).count();
+    if not_text as f64 > NOT_TEXT_SHARE * text.chars().count() as f64 {
+        let words =
+            "over a quarter of it is bytes that are not text: a binary file, or a stream saved at the wrong --baud";
+        return Err(std::io::Error::new(std::io::ErrorKind::InvalidData, words));
+    }
+    Ok(text)
+}
+
+/// A control character no text log holds (a line's own tab, carriage return and newline aside).
+fn is_binary_control(c: char) -> bool {
+    c.is_control() && !matches!(c, '\t' | '\r' | '\n')
 }
 
 /// Bytes from a port or a file as text, those that are not UTF-8 replaced by U+FFFD.
@@ -242,6 +255,17 @@ mod tests {
         assert_eq!((periods(&log), periods(&reference)), (19, 19));
         let costs = cost::costs(&log, &StillPeriods::of(&log).segments);
         assert!(costs.iter().all(|c| c.kind != "lost"), "{:?}", costs.iter().map(|c| &c.words).collect::<Vec<_>>());
+    }
+
+    #[test]
+    fn a_file_mostly_of_bytes_that_are_not_text_is_refused_naming_the_cause() {
+        let path = std::env::temp_dir().join(format!("accelcal-binary-{}.log", std::process::id()));
+        let mut bytes = b"\x7fELF\x02\x01\x01\0\0\0\0\0\0\0\0\0\x03\0>\0\x01\0\0\0\xc0\xe3\x0e\0\0\0\0\0".to_vec();
+        bytes.extend_from_slice(b"1,2,3\n");
+        std::fs::write(&path, &bytes).unwrap();
+        let error = read_text(&path).unwrap_err().to_string();
+        std::fs::remove_file(&path).unwrap();
+        assert!(error.contains("not text") && error.contains("--baud"), "{error}");
     }
 
     #[test]
