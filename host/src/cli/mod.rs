@@ -43,6 +43,7 @@ pub use terminal::Terminal;
 /// Runs `accelcal` with the process's arguments: 0 on success, else one line naming the cause and
 /// 1 (2: a calibration uploaded and saved that missed `--target-mg` by more than its noise).
 pub fn main() -> ExitCode {
+    end_quietly_when_the_reader_goes_away();
     match run(Cli::parse()) {
         Ok(()) => ExitCode::SUCCESS,
         Err(error) => {
@@ -50,6 +51,28 @@ pub fn main() -> ExitCode {
             ExitCode::from(error.exit_code())
         }
     }
+}
+
+/// Exit status when whoever read the output went away (`| head`): 128 + SIGPIPE, what a shell
+/// reports for a Unix tool that a closed pipe ended.
+pub const READER_GONE_EXIT: i32 = 141;
+
+/// Ends the process at once, with [`READER_GONE_EXIT`] and no message, when printing to standard
+/// output fails because its reader closed the pipe: `println!` panics then, which is no fault of
+/// the command's. Every file a command writes is written before it prints, and a session file
+/// after each capture, so nothing is lost that was not already going to the closed pipe.
+// NOTE: Rust ignores SIGPIPE so that a write fails instead; restoring the signal's default would
+// also end the process silently when a child it pipes to (the emulated Pico) dies, which must be
+// named instead.
+fn end_quietly_when_the_reader_goes_away() {
+    let default = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let message = info.payload_as_str().unwrap_or_default();
+        if message.starts_with("failed printing to stdout") && message.contains("Broken pipe") {
+            std::process::exit(READER_GONE_EXIT);
+        }
+        default(info);
+    }));
 }
 
 /// Runs one command.

@@ -36,10 +36,11 @@ pub struct ReportArgs {
 pub(super) fn report(args: &ReportArgs) -> Result<(), Error> {
     let report = with_given(args)?;
     if args.json {
-        println!("{}", report::json::session_report(&report));
+        // NOTE: the page first, so that a reader gone from the JSON (`| head`) does not cost it.
         if let Some(path) = &args.output {
             write_page(&report, path)?;
         }
+        println!("{}", report::json::session_report(&report));
         return Ok(());
     }
     let path = args.output.clone().unwrap_or_else(|| beside(&args.session));

@@ -5,7 +5,7 @@
 
 use nalgebra::{Matrix3, SMatrix, Vector3};
 
-use super::linearised::{Gram, Linearised, RowsAt};
+use super::linearised::{Gram, Linearised, RowsAt, RowsTransposed};
 use super::nonlinear::{Observation, Solution};
 use super::normalization::Normalization;
 use super::shape::Shape;
@@ -41,8 +41,9 @@ pub(super) fn accumulate<const P: usize>(
     let per_sample = pooled.map(|v| Vector3::from_fn(|k, _| v[k] / normalization.radii[k].powi(2)));
     let (mut normal, mut sandwich) = (Gram::<P>::new(), per_sample.map(|_| Gram::<P>::new()));
     let (mut residuals, mut pooled_chi_square, mut own) = (0, Some(0.0), Some(0.0));
+    let mut transposed = RowsTransposed::<P>::zeros();
     for (row, observation) in training.rows.iter().zip(observations) {
-        let (transposed, rows) = at.rows(observation);
+        let rows = at.rows(observation, &mut transposed);
         normal.push((&transposed, rows.count), &Matrix3::identity());
         residuals += rows.count;
         pooled_chi_square = pooled_chi_square.zip(per_sample).and_then(|(sum, noise)| {
@@ -84,10 +85,9 @@ fn own_term(
     normalization: &Normalization,
     weight: f64,
 ) -> Option<f64> {
-    let sigma = statistics::normalised_sigma_of_mean(row, normalization)?;
     // NOTE: the weighted residual w r has variance w^2 var(r): dividing it by var(r) alone counted
     // a row of twice the mean count four times over (issue 29).
-    let variances = sigma.component_mul(&sigma) * weight.powi(2);
+    let variances = statistics::normalised_variance_of_mean(row, normalization)? * weight.powi(2);
     Some(statistics::chi_square_term(&rows.residuals, rows.along, matrix, &variances))
 }
 
@@ -219,8 +219,9 @@ mod tests {
         let at = Linearised::new(solved.shape, solved.solution.params.as_slice());
         let term = |(row, observation): (&Row, &Observation)| {
             let a = at.matrix * (observation.reading - at.offset);
-            let sigma = statistics::normalised_sigma_of_mean(row, &solved.normalization).unwrap();
-            let covariance = at.matrix * Matrix3::from_diagonal(&sigma.component_mul(&sigma)) * at.matrix.transpose();
+            let (count, std, radii) = (f64::from(row.count.unwrap()), row.std.unwrap(), solved.normalization.radii);
+            let variance = Vector3::from_fn(|k, _| (std[k] / count.sqrt() / radii[k]).powi(2));
+            let covariance = at.matrix * Matrix3::from_diagonal(&variance) * at.matrix.transpose();
             match observation.reference {
                 Some(reference) => (0..3).map(|k| (a - reference)[k].powi(2) / covariance[(k, k)]).sum(),
                 None => (a.norm() - 1.0).powi(2) / (a.normalize().transpose() * covariance * a.normalize())[0],

@@ -107,16 +107,17 @@ impl Linearised {
     }
 
     /// The weighted residuals and Jacobian rows (transposed, over `P` >= the model's parameters) of
-    /// one observation.
-    // NOTE: inlined into each pass, so the rows are built where they are stacked rather than
-    // returned and copied: the statistics pass went from 3.8 to 2.9 us on the bench's problems.
+    /// one observation; the rows are written into `rows`, whose columns past `count` are left as
+    /// they were.
+    // NOTE: inlined into each pass and written into the caller's matrix, so the rows are built
+    // where they are summed rather than returned and copied (a copy of 216 bytes per row).
     #[inline(always)]
-    pub(super) fn rows<const P: usize>(&self, observation: &Observation) -> (RowsTransposed<P>, RowsAt) {
+    pub(super) fn rows<const P: usize>(&self, observation: &Observation, rows: &mut RowsTransposed<P>) -> RowsAt {
         let (centered, weight) = (observation.reading - self.offset, observation.weight);
         let a = self.matrix * centered;
-        let mut rows = RowsTransposed::<P>::zeros();
-        let at = match observation.reference {
+        match observation.reference {
             Some(reference) => {
+                rows.fill(0.0);
                 for (k, entries) in self.derivatives[..self.n].iter().enumerate() {
                     for &(i, j, value) in entries {
                         rows[(k, i)] += value * centered[j] * weight;
@@ -126,6 +127,7 @@ impl Linearised {
                 RowsAt { residuals: (a - reference) * weight, count: 3, along: None }
             }
             None => {
+                rows.column_mut(0).fill(0.0);
                 let length = a.norm();
                 let direction = a / length;
                 for (k, entries) in self.derivatives[..self.n].iter().enumerate() {
@@ -136,7 +138,6 @@ impl Linearised {
                 rows.fixed_view_mut::<3, 1>(self.n, 0).copy_from(&(-along * weight));
                 RowsAt { residuals: Vector3::new((length - 1.0) * weight, 0.0, 0.0), count: 1, along: Some(along) }
             }
-        };
-        (rows, at)
+        }
     }
 }

@@ -8,7 +8,7 @@
 use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt};
 use nalgebra::{DMatrix, DVector, Dyn, Owned, Vector3};
 
-use super::linearised::{Linearised, RowsAt, MAX_PARAMETERS};
+use super::linearised::{Linearised, RowsAt, RowsTransposed, MAX_PARAMETERS};
 use super::shape::Shape;
 use super::FitError;
 
@@ -75,8 +75,9 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
         let columns = self.params.len();
         let mut jacobian = DMatrix::zeros(self.residual_count(), columns);
         let mut row = 0;
+        let mut rows = RowsTransposed::<{ MAX_PARAMETERS }>::zeros();
         for observation in self.observations {
-            let (rows, RowsAt { count, .. }) = at.rows::<{ MAX_PARAMETERS }>(observation);
+            let RowsAt { count, .. } = at.rows(observation, &mut rows);
             jacobian.view_mut((row, 0), (count, columns)).copy_from(&rows.view((0, 0), (columns, count)).transpose());
             row += count;
         }

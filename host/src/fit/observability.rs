@@ -6,7 +6,7 @@ use nalgebra::allocator::Allocator;
 use nalgebra::{Const, DefaultAllocator, DimDiff, DimSub, Matrix3, SMatrix, Vector3, U1};
 
 use super::covariance::inverse_factor;
-use super::linearised::{Gram, Linearised};
+use super::linearised::{Gram, Linearised, RowsTransposed};
 use super::models::parameter_name;
 use super::nonlinear::Observation;
 use super::normalization::Normalization;
@@ -170,9 +170,9 @@ pub(super) fn surely_conditioned<const P: usize>(a: &SMatrix<f64, P, P>) -> bool
 /// J^T J at `start`, in one pass over the rows.
 fn normal_at<const P: usize>(shape: Shape, observations: &[Observation], start: &[f64]) -> SMatrix<f64, P, P> {
     let at = Linearised::new(shape, start);
-    let mut normal = Gram::<P>::new();
+    let (mut normal, mut rows) = (Gram::<P>::new(), RowsTransposed::<P>::zeros());
     for observation in observations {
-        let (rows, at_row) = at.rows(observation);
+        let at_row = at.rows(observation, &mut rows);
         normal.push((&rows, at_row.count), &Matrix3::identity());
     }
     normal.matrix()

@@ -52,11 +52,14 @@ pub(super) fn noise_test(chi_square: Option<f64>, residuals: usize, parameters: 
     Some(NoiseTest { chi_square, degrees_of_freedom, p_value, passed: p_value >= NOISE_TEST_LEVEL })
 }
 
-/// The standard deviation of a row's mean, per axis, in the solver's units: std / sqrt(count) / r.
-pub(super) fn normalised_sigma_of_mean(row: &Row, normalization: &Normalization) -> Option<Vector3<f64>> {
-    let (count, std) = (f64::from(row.count?), row.std?);
-    let sigma = Vector3::from_fn(|k, _| std[k] / count.sqrt() / normalization.radii[k]);
-    (count >= 1.0 && sigma.iter().all(|s| s.is_finite() && *s > 0.0)).then_some(sigma)
+/// The variance of a row's mean, per axis, in the solver's units: std^2 / (count r^2).
+///
+/// NOTE: as a variance, not a standard deviation squared afterwards: a square root and two divisions
+/// in a row were the longest chain of the statistics pass (issue 29).
+pub(super) fn normalised_variance_of_mean(row: &Row, normalization: &Normalization) -> Option<Vector3<f64>> {
+    let (count, std, radii) = (f64::from(row.count?), row.std?, normalization.radii);
+    let variance = Vector3::from_fn(|k, _| std[k] * std[k] / (count * (radii[k] * radii[k])));
+    (count >= 1.0 && variance.iter().all(|v| v.is_finite() && *v > 0.0)).then_some(variance)
 }
 
 /// One row's share of chi-square: its three residuals a - ref over their variances, or (a norm row,

@@ -34,7 +34,14 @@ pub(super) fn pooled_sample_variance(dataset: &Dataset) -> Option<Vector3<f64>> 
 
 /// The factor by which the noise-based errors are scaled: sqrt(chi-square / dof) when the
 /// residuals exceed the noise significantly, else 1.
+///
+/// NOTE: a chi-square at or below its degrees of freedom (its mean) is never significant at 5 %: its
+/// tail beyond the mean is 0.32 for one degree of freedom and grows towards one half, so the tail
+/// probability (a series statrs sums for every fit) is computed only above it.
 pub(super) fn inflation(chi_square: f64, degrees_of_freedom: usize) -> f64 {
+    if chi_square <= degrees_of_freedom as f64 {
+        return 1.0;
+    }
     let Ok(distribution) = ChiSquared::new(degrees_of_freedom as f64) else {
         return 1.0;
     };
@@ -122,4 +129,24 @@ fn short_rows_warning(training: &Dataset) -> Option<String> {
             lines.join(", ")
         )
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_chi_square_at_or_below_its_mean_is_never_significant_so_the_shortcut_changes_nothing() {
+        for dof in (1..=200).chain([500, 1000, 5000, 20000]) {
+            let k = dof as f64;
+            let tail = ChiSquared::new(k).unwrap().sf(k);
+            assert!(tail > 0.3 && tail < 0.5, "{dof} degrees of freedom: tail beyond the mean {tail}");
+            for ratio in [0.0, 0.5, 0.99, 1.0, 1.01, 1.2, 1.5, 2.0, 3.0] {
+                let chi_square = ratio * k;
+                let significant = ChiSquared::new(k).unwrap().sf(chi_square) < SCATTER_SIGNIFICANCE;
+                let expected = if significant { (chi_square / k).sqrt() } else { 1.0 };
+                assert_eq!(inflation(chi_square, dof), expected, "{dof} degrees of freedom, chi-square {chi_square}");
+            }
+        }
+    }
 }
