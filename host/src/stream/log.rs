@@ -155,7 +155,8 @@ impl StreamLog {
         if samples.len() < STREAM_MIN_SAMPLES {
             return Err(StreamError::TooFewSamples { samples: samples.len() });
         }
-        let given = options.rate_hz.map(|hz| Rate { hz, source: RateSource::Given });
+        let rate = timing::settle(rate, options.rate_hz)
+            .map_err(|(given_hz, shown_hz)| StreamError::RateDiffers { given_hz, shown_hz })?;
         let accel_unit = match options.accel_unit {
             Some(unit) => unit,
             None => AccelUnit::infer(layout.dialect, median_norm(&samples))?,
@@ -170,7 +171,7 @@ impl StreamLog {
         if samples.len() < STREAM_MIN_SAMPLES {
             return Err(StreamError::TooFewSamples { samples: samples.len() });
         }
-        Ok(StreamLog { layout, samples, dropped, accel_unit, gyro_unit, rate: rate.or(given) })
+        Ok(StreamLog { layout, samples, dropped, accel_unit, gyro_unit, rate })
     }
 
     /// The accelerometer's samples in g.
@@ -266,6 +267,18 @@ mod tests {
         let error = read_text(&path).unwrap_err().to_string();
         std::fs::remove_file(&path).unwrap();
         assert!(error.contains("not text") && error.contains("--baud"), "{error}");
+    }
+
+    #[test]
+    fn a_rate_given_against_the_timestamps_is_refused_naming_both() {
+        let (clean, _) = csv_session(&[]);
+        let at = |hz| StreamLog::parse(&text_of(&clean), &StreamOptions { rate_hz: Some(hz), ..Default::default() });
+        let error = at(50.0).unwrap_err().to_string();
+        assert!(error.contains("--rate 50 differs from the 100.000 Hz"), "{error}");
+        assert_eq!(
+            at(100.5).unwrap().rate.map(|r| (r.source, (r.hz * 1e3).round())),
+            Some((RateSource::Timestamps, 1e5))
+        );
     }
 
     #[test]

@@ -1,7 +1,7 @@
 //! A stream's clock: the unit of its time column (by its name, else by the rate it would give) and
 //! the sample rate, from the timestamps, else from when the lines arrived, else as given.
 
-use crate::limits::PLAUSIBLE_HZ;
+use crate::limits::{PLAUSIBLE_HZ, RATE_AGREEMENT};
 use serde::Serialize;
 
 /// Where a stream's rate comes from.
@@ -63,6 +63,24 @@ pub fn rate_of(times: &[f64], source: RateSource) -> Option<Rate> {
     median_step(times).map(|step| Rate { hz: 1.0 / step, source })
 }
 
+/// Whether a rate someone gives agrees with the one a file shows, within [`RATE_AGREEMENT`].
+pub fn agrees(given_hz: f64, shown_hz: f64) -> bool {
+    (given_hz - shown_hz).abs() <= RATE_AGREEMENT * shown_hz
+}
+
+/// The rate of a stream: `--rate` (`given_hz`) must agree with its timestamps and stands over the
+/// lines' arrival, which a port's bursts blur; `Err` with both when it disagrees.
+pub fn settle(shown: Option<Rate>, given_hz: Option<f64>) -> Result<Option<Rate>, (f64, f64)> {
+    let given = given_hz.map(|hz| Rate { hz, source: RateSource::Given });
+    match (shown, given) {
+        (Some(shown), Some(given)) if shown.source == RateSource::Timestamps && !agrees(given.hz, shown.hz) => {
+            Err((given.hz, shown.hz))
+        }
+        (Some(shown), _) if shown.source == RateSource::Timestamps => Ok(Some(shown)),
+        (shown, given) => Ok(given.or(shown)),
+    }
+}
+
 /// Samples lost in gaps of the clock: each step longer than 1.5 periods hides round(step / period) - 1.
 /// A single time out of sequence (garbled on its line) is passed over, not taken for a gap.
 pub fn lost_in_gaps(times: &[f64], rate: Rate) -> usize {
@@ -100,6 +118,17 @@ mod tests {
         let rate = rate_of(&[0.0, 0.01, 0.02, 0.05, 0.06], RateSource::Timestamps).unwrap();
         assert!((rate.hz - 100.0).abs() < 1e-9);
         assert_eq!(lost_in_gaps(&[0.0, 0.01, 0.02, 0.05, 0.06], rate), 2);
+    }
+
+    #[test]
+    fn a_given_rate_must_agree_with_the_timestamps_and_stands_over_the_arrival() {
+        let stamped = Some(Rate { hz: 200.0, source: RateSource::Timestamps });
+        assert_eq!(settle(stamped, Some(50.0)), Err((50.0, 200.0)));
+        assert_eq!(settle(stamped, Some(201.0)), Ok(stamped));
+        assert_eq!(settle(stamped, None), Ok(stamped));
+        let arrived = Some(Rate { hz: 298.1, source: RateSource::ArrivalTimes });
+        assert_eq!(settle(arrived, Some(100.0)), Ok(Some(Rate { hz: 100.0, source: RateSource::Given })));
+        assert_eq!(settle(arrived, None), Ok(arrived));
     }
 
     #[test]
