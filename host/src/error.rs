@@ -42,6 +42,11 @@ pub enum Error {
     ThermalFit(#[from] crate::fit::thermal::ThermalFitError),
     #[error("{}: cannot report this session: {source}", .path.display())]
     CannotReport { path: PathBuf, source: FitError },
+    #[error(
+        "{}: no certificate: its verification found {verified_mg:.3} mg at fresh orientations (without its {floor_mg:.3} mg of noise), beyond the U = {predicted_mg:.3} mg the certificate would state; let the board warm up, rest it firmly and calibrate again",
+        .path.display()
+    )]
+    Contradicted { path: PathBuf, verified_mg: f64, floor_mg: f64, predicted_mg: f64 },
     #[error(transparent)]
     Plot(#[from] PlotError),
     #[error(transparent)]

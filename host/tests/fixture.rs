@@ -39,7 +39,7 @@ fn eight_boards_on_one_fixture_take_at_most_1_2x_a_board_alone_and_each_keeps_it
         printed(&accelcal(&["calibrate", "--sim", "--boards", "8", "--seed", "3", "--yes", "--json"]), &[0, 2]);
     let boards = together["boards"].as_array().expect("boards");
     assert_eq!(boards.len(), BOARDS as usize);
-    let mut waited_s = 0.0f64;
+    let (mut waited_s, mut uncertified) = (0.0f64, 0);
     for (k, board) in boards.iter().enumerate() {
         let seed = (SEED + k as u64).to_string();
         // NOTE: the same sensor (its seed, a drawn part) and the same hand as on the fixture.
@@ -65,9 +65,16 @@ fn eight_boards_on_one_fixture_take_at_most_1_2x_a_board_alone_and_each_keeps_it
         eprintln!("board {k}: {time:.2} s ({time_alone:.2} alone), true error {error:.4} mg ({error_alone:.4} alone)");
         assert!(time <= 1.2 * time_alone, "board {k}: {time} s on the fixture, {time_alone} s alone");
         assert!(error <= 1.2 * error_alone, "board {k}: {error} mg on the fixture, {error_alone} mg alone");
-        assert!(board["certificate"]["parameters"]["o_x"]["U"].as_f64().is_some(), "board {k} has its certificate");
+        // NOTE: a board whose verification contradicts the certificate's U gets none (board 0 here:
+        // 0.573 mg verified without its noise, where the certificate would state 0.383 mg); such a
+        // board missed its target.
+        let certified = board["certificate"]["parameters"]["o_x"]["U"].as_f64().is_some();
+        let missed = board["target"]["missed"].as_bool().expect("the verdict");
+        assert!(certified || missed, "board {k} has its certificate");
+        uncertified += usize::from(!certified);
         waited_s = waited_s.max(time - time_alone);
     }
+    assert!(uncertified <= 1, "{uncertified} boards without a certificate");
     // The boards keep one time: one that finished a step early waits for the others.
     assert!(waited_s > 1.0, "no board waited for the others ({waited_s} s at most)");
     let offsets: Vec<&Value> = boards.iter().map(|b| &b["truth"]["drift"]["ref_offset"]).collect();
@@ -100,16 +107,24 @@ fn a_board_pulled_mid_session_is_named_and_the_others_complete() {
     let error = pulled["error"].as_str().expect("the pulled board's error");
     assert!(error.contains("went away") && error.contains("4 captures so far are kept"), "{error}");
     assert!(stderr.contains(&format!("board {serial}: the device went away")), "{stderr}");
+    let mut certified = 0;
     for (k, board) in boards.iter().enumerate().filter(|(k, _)| *k != 1) {
         assert!(board.get("error").is_none(), "board {k}: {board:.300}");
         assert_eq!(number(board, "captures"), 14.0, "board {k} took every position");
-        let certificate = board["certificate"]["sha256"].as_str().expect("certificate");
-        assert_eq!(certificate.len(), 64);
+        // NOTE: a board that missed its target gets no certificate (board 0, as on the fixture of eight).
+        let missed = board["target"]["missed"].as_bool().expect("the verdict");
+        match board["certificate"]["sha256"].as_str() {
+            Some(certificate) => assert_eq!(certificate.len(), 64),
+            None => assert!(missed, "board {k} has its certificate"),
+        }
+        certified += usize::from(!missed);
     }
+    assert!(certified >= 2, "{certified} of 3 completed boards certified");
     let kept = |name: &str| {
         std::fs::read_dir(&dir).unwrap().flatten().filter(|e| e.file_name().to_string_lossy().ends_with(name)).count()
     };
-    assert_eq!(kept(".certificate.json"), 3, "a certificate beside each completed board's session");
+    assert_eq!(kept(".certificate.json"), certified, "a certificate beside each certified board's session");
+    assert_eq!(kept(".html"), 3 + certified, "a report beside each completed board's session, and its certificate");
     let pulled_session = std::fs::read_dir(&dir)
         .unwrap()
         .flatten()

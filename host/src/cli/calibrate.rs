@@ -19,7 +19,7 @@ use crate::error::Error;
 use crate::link::{Client, LinkError, Port};
 use crate::procedure::{self, CollectOptions, Feedback, Moves, ProcedureError, TurnCheck, Turning, Verification};
 use crate::report::{self, CalibrateReport};
-use crate::session::{stem_file, Session, SessionError, SessionKind};
+use crate::session::{stem_file, Session, SessionError, SessionKind, TargetVerdict};
 
 /// `accelcal calibrate`: captures, fit, upload, save, verification; several boards on one fixture
 /// together.
@@ -154,12 +154,12 @@ fn finish(
     let board_seconds = first_capture_s.map(|first| clock() - first);
     let check = super::gyro::check(client, hand.as_mut(), rate_hz, &fitted.gyro, feedback).map_err(on_board)?;
     let uploaded = Some(fitted.chosen);
+    let target = verification.against((kind == SessionKind::Adaptive).then_some(args.length.target_mg));
     let verified = Session { verification: Some(verification.clone()), uploaded, ..fitted.session.clone() };
-    let certificate = certify(&verified, kept_at, args.lot.as_deref(), feedback)?;
+    let certificate = certify(&verified, &target, kept_at, args.lot.as_deref(), feedback)?;
     let mut report = report_of(opened, fitted, verification, check);
     report.board_seconds = board_seconds;
-    report.certificate = Some(certificate);
-    let target = report.verification.against((kind == SessionKind::Adaptive).then_some(args.length.target_mg));
+    report.certificate = certificate;
     report.target = Some(target);
     Ok(report)
 }
@@ -183,19 +183,22 @@ fn report_of(
 }
 
 /// The verified session's certificate, kept with the session (`kept_at`) and its report, and added
-/// to the `lot` database when one is given.
+/// to the `lot` database when one is given; none when the calibration failed its own check (the
+/// session and its report are kept all the same).
 fn certify(
     verified: &Session,
+    target: &TargetVerdict,
     kept_at: Option<&Path>,
     lot: Option<&Path>,
     feedback: &mut dyn Feedback,
-) -> Result<Certificate, Error> {
-    let certificate = super::certificate::issue(verified, kept_at.unwrap_or(Path::new("the session")))?;
+) -> Result<Option<Certificate>, Error> {
+    let path = kept_at.unwrap_or(Path::new("the session"));
+    let certificate = super::certificate::unless_failed(verified, target, path, feedback)?;
     if let Some(stem) = kept_at {
-        keep_with_report(verified, &certificate, stem, feedback)?;
+        keep_with_report(verified, certificate.as_ref(), stem, feedback)?;
     }
-    if let Some(lot) = lot {
-        feedback.say(&super::lot::add_issued(lot, &certificate)?);
+    if let (Some(lot), Some(certificate)) = (lot, &certificate) {
+        feedback.say(&super::lot::add_issued(lot, certificate)?);
     }
     Ok(certificate)
 }
@@ -203,7 +206,7 @@ fn certify(
 /// Saves the verified session again, writes its report and certificate beside it, and says where.
 fn keep_with_report(
     session: &Session,
-    certificate: &Certificate,
+    certificate: Option<&Certificate>,
     stem: &Path,
     feedback: &mut dyn Feedback,
 ) -> Result<(), Error> {
@@ -211,13 +214,13 @@ fn keep_with_report(
     let json = stem_file(stem, "json");
     let page = super::report::beside(&json);
     super::report::write_page(&super::report::build(session, &json)?, &page)?;
-    let (certificate, _) = super::certificate::written(certificate, &json)?;
-    feedback.say(&format!(
-        "session kept in {}; report written to {}; certificate to {}",
-        json.display(),
-        page.display(),
-        certificate.display()
-    ));
+    let certificate = match certificate {
+        Some(certificate) => {
+            format!("; certificate to {}", super::certificate::written(certificate, &json)?.0.display())
+        }
+        None => String::new(),
+    };
+    feedback.say(&format!("session kept in {}; report written to {}{certificate}", json.display(), page.display()));
     Ok(())
 }
 

@@ -21,7 +21,7 @@ pub mod units;
 pub use columns::Columns;
 pub use dialect::{Dialect, Layout};
 pub use dropped::{DropReason, Dropped};
-pub use log::{LineReader, StreamLog, StreamOptions, StreamSample};
+pub use log::{read_text, text_of, LineReader, StreamLog, StreamOptions, StreamSample};
 pub use segment::{segment, Segment, Stillness};
 pub use still::{SegmentLines, StillPeriods};
 pub use units::{AccelUnit, GyroUnit};

@@ -64,10 +64,25 @@ pub fn rate_of(times: &[f64], source: RateSource) -> Option<Rate> {
 }
 
 /// Samples lost in gaps of the clock: each step longer than 1.5 periods hides round(step / period) - 1.
+/// A single time out of sequence (garbled on its line) is passed over, not taken for a gap.
 pub fn lost_in_gaps(times: &[f64], rate: Rate) -> usize {
     let period = 1.0 / rate.hz;
     let hidden = |step: f64| if step > 1.5 * period { (step / period).round() as usize - 1 } else { 0 };
-    times.windows(2).map(|w| hidden(w[1] - w[0])).sum()
+    in_sequence(times).windows(2).map(|w| hidden(w[1] - w[0])).sum()
+}
+
+/// The times without those out of sequence on their own: a time outside the step from the one before
+/// to the one after, when those two are in order, is one garbled line (a clock that jumps stays jumped).
+fn in_sequence(times: &[f64]) -> Vec<f64> {
+    let mut kept: Vec<f64> = Vec::with_capacity(times.len());
+    for (i, &time) in times.iter().enumerate() {
+        let after = times.get(i + 1).copied().unwrap_or(f64::INFINITY);
+        let glitch = kept.last().is_some_and(|&before| before < after && !(before < time && time <= after));
+        if !glitch {
+            kept.push(time);
+        }
+    }
+    kept
 }
 
 #[cfg(test)]
@@ -85,5 +100,19 @@ mod tests {
         let rate = rate_of(&[0.0, 0.01, 0.02, 0.05, 0.06], RateSource::Timestamps).unwrap();
         assert!((rate.hz - 100.0).abs() < 1e-9);
         assert_eq!(lost_in_gaps(&[0.0, 0.01, 0.02, 0.05, 0.06], rate), 2);
+    }
+
+    #[test]
+    fn a_single_time_out_of_sequence_is_a_glitch_not_a_gap_and_a_clock_that_jumps_stays_jumped() {
+        let rate = Rate { hz: 100.0, source: RateSource::Timestamps };
+        let back = [90.10, 90.11, 3.0, 90.12, 90.13];
+        let ahead = [90.10, 90.11, 99999.0, 90.12, 90.13, 90.16];
+        assert_eq!((lost_in_gaps(&back, rate), lost_in_gaps(&ahead, rate)), (0, 2));
+        assert_eq!(in_sequence(&ahead), vec![90.10, 90.11, 90.12, 90.13, 90.16]);
+        // A board reset: millis start again, and stay started.
+        assert_eq!(lost_in_gaps(&[50.0, 50.01, 0.0, 0.01, 0.02], rate), 0);
+        assert_eq!(in_sequence(&[50.0, 50.01, 0.0, 0.01, 0.02]).len(), 5);
+        // A real gap that the clock keeps: 4 lost.
+        assert_eq!(lost_in_gaps(&[1.0, 1.01, 1.06, 1.07], rate), 4);
     }
 }

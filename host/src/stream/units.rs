@@ -6,7 +6,7 @@ use serde::Serialize;
 
 use super::dialect::Dialect;
 use super::StreamError;
-use crate::limits::UNIT_TOLERANCE;
+use crate::limits::{COUNTS_SPAN, READABLE_MARGIN, UNIT_TOLERANCE, WIDEST_RANGE_DPS, WIDEST_RANGE_G};
 
 /// Standard gravity, in m/s^2 (the unit's definition, CGPM 1901).
 pub const STANDARD_GRAVITY: f64 = 9.80665;
@@ -84,6 +84,14 @@ impl AccelUnit {
         }
     }
 
+    /// The largest size a value in this unit can have and be a reading: the counts' 16-bit span,
+    /// else the widest range, each with [`READABLE_MARGIN`].
+    pub fn readable_max(self) -> f64 {
+        let counts =
+            matches!(self, AccelUnit::Counts2g | AccelUnit::Counts4g | AccelUnit::Counts8g | AccelUnit::Counts16g);
+        READABLE_MARGIN * if counts { COUNTS_SPAN } else { WIDEST_RANGE_G * self.per_g() }
+    }
+
     /// The name `--input-unit` takes and `--json` prints.
     pub fn name(self) -> &'static str {
         match self {
@@ -122,6 +130,13 @@ impl GyroUnit {
             GyroUnit::Counts2000 => 16.4,
             GyroUnit::MotionCal => MOTIONCAL_COUNTS_PER_DPS,
         }
+    }
+
+    /// The largest size a value in this unit can have and be a reading, as [`AccelUnit::readable_max`].
+    pub fn readable_max(self) -> f64 {
+        let counts =
+            matches!(self, GyroUnit::Counts250 | GyroUnit::Counts500 | GyroUnit::Counts1000 | GyroUnit::Counts2000);
+        READABLE_MARGIN * if counts { COUNTS_SPAN } else { WIDEST_RANGE_DPS * self.per_dps() }
     }
 
     /// The name `--gyro-unit` takes and `--json` prints.
