@@ -12,6 +12,13 @@ pub fn shown(value: f64, digits: usize) -> f64 {
     }
 }
 
+/// A rate in Hz to the millihertz, without trailing zeros: `100`, `298.123` (a rate from
+/// timestamps in ms comes out as 100.00000000000213).
+pub fn hz(rate_hz: f64) -> String {
+    let text = format!("{rate_hz:.3}");
+    text.trim_end_matches('0').trim_end_matches('.').to_owned()
+}
+
 /// Seconds since the Unix epoch as `YYYY-MM-DD HH:MM` UTC (the epoch itself for a time `time`
 /// cannot represent).
 pub fn utc_minutes(unix_time_s: f64) -> String {
@@ -33,6 +40,13 @@ mod tests {
         assert_eq!(super::utc_minutes(0.0), "1970-01-01 00:00");
         assert_eq!(super::utc_minutes(951_782_400.0 + 3_660.0), "2000-02-29 01:01");
         assert_eq!(super::utc_minutes(1_795_000_000.0), "2026-11-18 11:06");
+    }
+
+    #[test]
+    fn a_rate_is_shown_to_the_millihertz_without_trailing_zeros() {
+        assert_eq!(super::hz(100.00000000000213), "100");
+        assert_eq!(super::hz(298.12345), "298.123");
+        assert_eq!(super::hz(9.5), "9.5");
     }
 
     #[test]

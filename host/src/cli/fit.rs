@@ -16,7 +16,7 @@ pub(super) fn fit(args: &FitArgs) -> Result<(), Error> {
         return Err(Error::BadGravity { g: args.g });
     }
     let text =
-        std::fs::read_to_string(&args.file).map_err(|source| Error::ReadFile { path: args.file.clone(), source })?;
+        crate::stream::read_text(&args.file).map_err(|source| Error::ReadFile { path: args.file.clone(), source })?;
     match Dataset::from_reader(text.as_bytes(), args.g) {
         Ok(dataset) if !dataset.looks_like_samples() => fit_dataset(args, &dataset),
         Ok(_) => fit_stream(args, &text).map_err(|e| stream_refused(args, e, None)),

@@ -16,10 +16,10 @@ use super::foreign_session::Kept;
 use super::foreign_status::{status, Progress};
 use crate::error::Error;
 use crate::fit::{FitOptions, Model, ModelChoice};
-use crate::limits::{LIVE_DETECTION_LINES, STREAM_QUIET_S};
+use crate::limits::LIVE_DETECTION_LINES;
 use crate::link::TalkingPort;
 use crate::report::stream::{self, StreamReport};
-use crate::stream::live::LiveStream;
+use crate::stream::live::{LiveStream, Silence};
 use crate::stream::{Layout, LineReader, StreamLog, StreamOptions};
 
 /// How often the person is told where things stand, in seconds.
@@ -58,6 +58,7 @@ fn listen_until_done(
     let interrupt = interrupt_on_ctrl_c();
     let mut last_status = Instant::now();
     let mut progress = Progress::new(args);
+    let mut warned = false;
     loop {
         if let Err(e) = live.poll(Duration::from_millis(200)) {
             return Ok(format!("the port went away ({e})"));
@@ -65,8 +66,18 @@ fn listen_until_done(
         if interrupt.load(Ordering::SeqCst) {
             return Ok("stopped by Ctrl-C".to_owned());
         }
-        if live.quiet_s() > STREAM_QUIET_S {
-            return Ok("the stream stopped".to_owned());
+        match live.silence() {
+            Silence::Stopped => return Ok("the stream stopped".to_owned()),
+            Silence::Unreadable { seconds, ended } if ended || !warned => {
+                warned = true;
+                let words = unreadable(seconds, args.device.baud);
+                match ended {
+                    true => return Ok(words),
+                    false => eprintln!("{words}"),
+                }
+            }
+            Silence::Unreadable { .. } => {}
+            Silence::Talking => warned = false,
         }
         if live.lines.len() < LIVE_DETECTION_LINES || last_status.elapsed() < STATUS_EVERY {
             continue;
@@ -76,6 +87,14 @@ fn listen_until_done(
             return Ok(done);
         }
     }
+}
+
+/// A stream whose bytes hold no line of numbers, in words, with the likely cause and the way out.
+fn unreadable(seconds: f64, baud: u32) -> String {
+    format!(
+        "nothing readable for {seconds:.0} s: bytes come but no line of numbers, most likely the wrong baud rate \
+         (read at {baud} Bd): give the sketch's Serial.begin rate as --baud (9600, 38400, 57600, 115200 ...)"
+    )
 }
 
 /// The indices of the lines that carry samples.
@@ -121,6 +140,6 @@ fn report(args: &CalibrateArgs, kept: &Kept, options: &StreamOptions) -> Result<
 }
 
 fn read_log(path: &Path, options: &StreamOptions) -> Result<StreamLog, Error> {
-    let text = std::fs::read_to_string(path).map_err(|source| Error::ReadFile { path: path.to_owned(), source })?;
+    let text = crate::stream::read_text(path).map_err(|source| Error::ReadFile { path: path.to_owned(), source })?;
     StreamLog::parse(&text, options).map_err(|source| Error::Stream { path: path.to_owned(), source })
 }

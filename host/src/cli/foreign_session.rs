@@ -100,7 +100,7 @@ fn resume(path: &Path, port: &str) -> Result<(Kept, String), Error> {
         return Err(SessionError::NotAStream { path: path.to_owned() }.into());
     };
     let log = source.log.clone();
-    let before = std::fs::read_to_string(&log).map_err(|source| Error::ReadFile { path: log, source })?;
+    let before = crate::stream::read_text(&log).map_err(|source| Error::ReadFile { path: log, source })?;
     let source = StreamSource { port: port.to_owned(), ..source };
     Ok((Kept { stem, source, began_unix_s: unix_time_s() }, before))
 }

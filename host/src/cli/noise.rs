@@ -35,7 +35,7 @@ pub(super) fn noise(args: &NoiseArgs) -> Result<(), Error> {
 /// The file as a sketch's stream: its longest still period, said on stderr with what the stream costs.
 fn stream_series(args: &NoiseArgs) -> Result<RateSeries, Error> {
     let text =
-        std::fs::read_to_string(&args.file).map_err(|source| Error::ReadFile { path: args.file.clone(), source })?;
+        crate::stream::read_text(&args.file).map_err(|source| Error::ReadFile { path: args.file.clone(), source })?;
     let options = StreamOptions { rate_hz: args.rate, ..StreamOptions::default() };
     let log = StreamLog::parse(&text, &options).map_err(|source| Error::Stream { path: args.file.clone(), source })?;
     let (longest, series) = noise::stream::longest_still(&log)?;

@@ -5,6 +5,20 @@
 /// taken for it).
 pub const STREAM_QUIET_S: f64 = 10.0;
 
+/// A live stream whose bytes hold no line of numbers this long is named unreadable (the wrong baud
+/// rate, most likely), in seconds; after [`STREAM_QUIET_S`] so the session ends.
+///
+/// NOTE: a sketch prints several lines a second and its boot banner within one; five seconds of bytes
+/// without a number is no pause of a working stream, and still short enough to act on.
+pub const STREAM_UNREADABLE_S: f64 = 5.0;
+
+/// Share of a file's characters that may be bytes that are not text (or control characters) for it to
+/// be read as a log.
+///
+/// NOTE: an ESP32's boot noise is a handful of bytes in a log of megabytes; a program, a `.npy`
+/// recording or a stream read at the wrong baud rate is more than half such bytes.
+pub const NOT_TEXT_SHARE: f64 = 0.25;
+
 /// Lines heard before the dialect of a live stream is decided.
 ///
 /// NOTE: the dialect is the commonest shape of the lines; forty outnumber a board's boot banner of a
@@ -56,6 +70,26 @@ pub const FOLDED_NOISE_FACTOR: f64 = 1.5;
 ///
 /// NOTE: fewer hold no still period of [`MIN_STILL_SEGMENT_S`] at 20 Hz, nothing to calibrate from.
 pub const STREAM_MIN_SAMPLES: usize = 30;
+
+/// The widest accelerometer range of the sensors a sketch prints, in g.
+///
+/// NOTE: MPU-6050 Product Specification 6.2 (AFS_SEL = 3, +-16 g); the MPU-6500, MPU-9250 and
+/// ICM-20948 stop at 16 g too. A value beyond it (with [`READABLE_MARGIN`]) is no reading.
+pub const WIDEST_RANGE_G: f64 = 16.0;
+
+/// The widest gyro range of the sensors a sketch prints, in deg/s.
+///
+/// NOTE: Product Specification 6.1 (FS_SEL = 3, +-2000 deg/s), the same on the parts above.
+pub const WIDEST_RANGE_DPS: f64 = 2000.0;
+
+/// The largest size of a value printed in counts: the output registers are 16-bit two's
+/// complement (register map 4.17 and 4.19, ACCEL_XOUT_H ... GYRO_ZOUT_L), -32768 to 32767.
+pub const COUNTS_SPAN: f64 = 32768.0;
+
+/// How far beyond the sensor's reach a printed value may go and still be a sample: a sketch may
+/// print counts less an offset or scaled by its own calibration, which moves them by a few percent;
+/// a quarter more is no such correction.
+pub const READABLE_MARGIN: f64 = 1.25;
 
 /// Rates a sketch prints at, in Hz: a time unit that puts the rate outside is the wrong one.
 pub const PLAUSIBLE_HZ: (f64, f64) = (0.5, 10_000.0);

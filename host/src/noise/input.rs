@@ -10,8 +10,8 @@ use shared::protocol::Sample;
 
 use super::RateSeries;
 use crate::limits::NOISE_MIN_SAMPLES;
-use crate::limits::RATE_AGREEMENT;
 use crate::recording::{self, read::is_npy, RecordingError, SAMPLE_COLUMNS, STREAM_COLUMNS};
+use crate::stream::timing::agrees;
 
 /// The six columns the analysis needs, in [`super::AXES`] order: a recording's sample columns
 /// without the temperature.
@@ -71,7 +71,7 @@ pub fn read_path(path: &Path, rate_hz: Option<f64>) -> Result<RateSeries, NoiseI
 /// The rate a file shows, when `given` (if any) agrees with it.
 fn agreed_rate(given: Option<f64>, recorded_hz: f64, shown_by: &'static str) -> Result<f64, NoiseInputError> {
     match given {
-        Some(given_hz) if (given_hz - recorded_hz).abs() > RATE_AGREEMENT * recorded_hz => {
+        Some(given_hz) if !agrees(given_hz, recorded_hz) => {
             Err(NoiseInputError::RateDiffers { given_hz, recorded_hz, shown_by })
         }
         _ => Ok(recorded_hz),

@@ -34,7 +34,8 @@ fn accel_axes(report: &NoiseReport) -> impl Iterator<Item = &AxisNoise> {
 pub fn render(report: &NoiseReport) -> String {
     let mut out = String::new();
     let minutes = report.samples as f64 / report.rate_hz / 60.0;
-    let _ = writeln!(out, "{} samples at {} Hz ({minutes:.1} min) per axis", report.samples, report.rate_hz);
+    let rate = crate::shown::hz(report.rate_hz);
+    let _ = writeln!(out, "{} samples at {rate} Hz ({minutes:.1} min) per axis", report.samples);
     if let Some(serial) = &report.board {
         let _ = writeln!(out, "recorded on board {serial}");
     }

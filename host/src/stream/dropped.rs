@@ -17,6 +17,10 @@ pub enum DropReason {
     SideRecord,
     /// Numbers, but not as the stream's lines have them: cut short, run together, or other labels.
     OtherShape,
+    /// Bytes that are not text: boot noise, or the whole stream read at the wrong baud rate.
+    NotText,
+    /// A value beyond what the sensor can read (its widest range, or 16-bit counts): a garbled line.
+    BeyondRange,
 }
 
 impl DropReason {
@@ -28,6 +32,8 @@ impl DropReason {
             DropReason::Header => "the header",
             DropReason::SideRecord => "the sketch's other records (Uni:, Cal1:, Cal2:)",
             DropReason::OtherShape => "cut short, run together or otherwise not as the other lines",
+            DropReason::NotText => "bytes that are not text (boot noise; all of them: the wrong --baud)",
+            DropReason::BeyondRange => "a value beyond what the sensor can read (a garbled line)",
         }
     }
 }
@@ -52,7 +58,10 @@ impl Dropped {
     pub fn add(&mut self, reason: DropReason, line: usize) {
         match self.0.iter_mut().find(|d| d.reason == reason) {
             Some(dropped) => dropped.lines += 1,
-            None => self.0.push(DroppedLines { reason, lines: 1, first_line: line }),
+            None => {
+                let at = self.0.partition_point(|d| d.first_line < line);
+                self.0.insert(at, DroppedLines { reason, lines: 1, first_line: line });
+            }
         }
     }
 

@@ -5,6 +5,7 @@
 use std::io::{ErrorKind, Read, Write};
 use std::time::{Duration, Instant};
 
+use crate::limits::{STREAM_QUIET_S, STREAM_UNREADABLE_S};
 use crate::link::{Port, TalkingPort};
 
 /// The line a live session adds at the end of its log: the rate it measured from the lines'
@@ -19,6 +20,36 @@ pub struct LiveStream {
     pub lines: Vec<(String, f64)>,
     start: Instant,
     log: std::fs::File,
+    /// When the last bytes came, in seconds since listening began.
+    last_bytes_s: f64,
+    /// When the last line holding numbers came, in seconds since listening began.
+    last_readable_s: f64,
+}
+
+/// What a live stream's silence says.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Silence {
+    /// Lines of numbers keep coming (or not yet long without).
+    Talking,
+    /// Bytes still come but no line of numbers, for this many seconds: the wrong baud rate, most likely.
+    Unreadable { seconds: f64, ended: bool },
+    /// Nothing at all has come for [`STREAM_QUIET_S`]: the stream stopped.
+    Stopped,
+}
+
+impl Silence {
+    /// The silence of a stream whose last bytes came `quiet_s` ago and last line of numbers
+    /// `unreadable_s` ago.
+    pub fn judge(quiet_s: f64, unreadable_s: f64) -> Silence {
+        match () {
+            _ if quiet_s > STREAM_QUIET_S => Silence::Stopped,
+            // NOTE: bytes in the later half of the stretch: a stream that stopped mid-line is not garbled.
+            _ if unreadable_s > STREAM_UNREADABLE_S && quiet_s < unreadable_s / 2.0 => {
+                Silence::Unreadable { seconds: unreadable_s, ended: unreadable_s > STREAM_QUIET_S }
+            }
+            _ => Silence::Talking,
+        }
+    }
 }
 
 impl LiveStream {
@@ -26,7 +57,10 @@ impl LiveStream {
     /// heard while listening, keeping lines in `log`.
     pub fn new(talking: TalkingPort, log: std::fs::File, before: &str) -> std::io::Result<Self> {
         let lines = before.lines().map(|line| (line.to_owned(), 0.0)).collect();
-        let mut live = LiveStream { port: talking.port, pending: Vec::new(), lines, start: Instant::now(), log };
+        let start = Instant::now();
+        let (last_bytes_s, last_readable_s) = (0.0, 0.0);
+        let mut live =
+            LiveStream { port: talking.port, pending: Vec::new(), lines, start, log, last_bytes_s, last_readable_s };
         live.take(&talking.heard)?;
         // NOTE: lines heard while listening came at unknown times: 0 keeps them out of the rate.
         live.lines.iter_mut().for_each(|line| line.1 = 0.0);
@@ -49,9 +83,15 @@ impl LiveStream {
         self.log.write_all(bytes)?;
         let now = self.start.elapsed().as_secs_f64();
         let before = self.lines.len();
+        if !bytes.is_empty() {
+            self.last_bytes_s = now;
+        }
         for &byte in bytes {
             if byte == b'\n' {
-                let text = String::from_utf8_lossy(&self.pending).trim_end_matches('\r').to_owned();
+                let text = super::text_of(&self.pending).trim_end_matches('\r').to_owned();
+                if holds_numbers(&text) {
+                    self.last_readable_s = now;
+                }
                 self.lines.push((text, now));
                 self.pending.clear();
             } else {
@@ -61,9 +101,10 @@ impl LiveStream {
         Ok(self.lines.len() - before)
     }
 
-    /// Seconds since the last line came.
-    pub fn quiet_s(&self) -> f64 {
-        self.start.elapsed().as_secs_f64() - self.lines.last().map_or(0.0, |l| l.1)
+    /// What the stream's silence says now.
+    pub fn silence(&self) -> Silence {
+        let now = self.start.elapsed().as_secs_f64();
+        Silence::judge(now - self.last_bytes_s, now - self.last_readable_s)
     }
 
     /// Closes the log with the rate of the lines `data` (indices) by their arrival, when known.
@@ -81,6 +122,11 @@ impl LiveStream {
     }
 }
 
+/// Whether a line holds numbers as some dialect's samples do (its dialect aside): readable.
+fn holds_numbers(text: &str) -> bool {
+    !text.contains(char::REPLACEMENT_CHARACTER) && super::line::fields(text).is_ok()
+}
+
 /// The rate of lines that arrived at `times` (seconds; 0 for those heard while listening): their
 /// count over their span, since a port hands over lines in bursts.
 pub fn arrival_hz(times: &[f64]) -> Option<f64> {
@@ -95,4 +141,24 @@ pub fn arrival_hz(times: &[f64]) -> Option<f64> {
 pub fn arrival_rate(text: &str) -> Option<f64> {
     let line = text.lines().rev().find(|l| l.starts_with(ARRIVAL_RATE_TAG))?;
     line[ARRIVAL_RATE_TAG.len()..].trim().trim_end_matches("Hz").trim().parse().ok()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::stream::text_of;
+
+    #[test]
+    fn wrong_baud_bytes_are_unreadable_and_named_before_the_stream_counts_as_stopped() {
+        // NOTE: 115200 Bd read at 38400: mostly high bytes, a few newlines (usertrial's junkfeed).
+        let garbled = text_of(&[0xf8, 0x80, 0x66, 0xfe, 0x00, 0x1c, 0x78, 0x98, 0x9e, 0x06, 0xe0]);
+        assert!(!holds_numbers(&garbled), "{garbled:?}");
+        assert!(!holds_numbers("ets Jun  8 2016 00:22:57"));
+        assert!(holds_numbers("90112,12449,-11115,-895,-152,96,53"));
+        assert_eq!(Silence::judge(0.1, 2.0), Silence::Talking);
+        assert_eq!(Silence::judge(0.1, 6.0), Silence::Unreadable { seconds: 6.0, ended: false });
+        assert_eq!(Silence::judge(0.1, 10.5), Silence::Unreadable { seconds: 10.5, ended: true });
+        assert_eq!(Silence::judge(6.0, 6.0), Silence::Talking, "a stream that stopped is not garbled");
+        assert_eq!(Silence::judge(10.5, 10.5), Silence::Stopped);
+    }
 }

@@ -7,7 +7,7 @@ use super::line::{fields, Words};
 use super::timing::{self, Rate, RateSource};
 use super::units::{AccelUnit, GyroUnit};
 use super::StreamError;
-use crate::limits::STREAM_MIN_SAMPLES;
+use crate::limits::{NOT_TEXT_SHARE, STREAM_MIN_SAMPLES};
 
 /// What the command line may settle about a stream.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -52,6 +52,9 @@ impl LineReader {
         if Some(self.line) == self.layout.header_line {
             return Err(DropReason::Header);
         }
+        if text.contains(char::REPLACEMENT_CHARACTER) {
+            return Err(DropReason::NotText);
+        }
         let parsed = match fields(text) {
             Ok(parsed) => parsed,
             Err(_) if text.trim().is_empty() => return Err(DropReason::Empty),
@@ -77,6 +80,30 @@ impl LineReader {
     pub fn layout(&self) -> &Layout {
         &self.layout
     }
+}
+
+/// The text of a saved log: bytes that are not UTF-8 (an ESP32's boot noise) become U+FFFD, so that
+/// their lines are dropped as [`DropReason::NotText`] and the rest is read; a file mostly of such
+/// bytes (a program, a recording, a stream read at the wrong baud rate) is refused as not text.
+pub fn read_text(path: &std::path::Path) -> std::io::Result<String> {
+    let text = text_of(&std::fs::read(path)?);
+    let not_text = text.chars().filter(|&c| c == char::REPLACEMENT_CHARACTER || is_binary_control(c)).count();
+    if not_text as f64 > NOT_TEXT_SHARE * text.chars().count() as f64 {
+        let words =
+            "over a quarter of it is bytes that are not text: a binary file, or a stream saved at the wrong --baud";
+        return Err(std::io::Error::new(std::io::ErrorKind::InvalidData, words));
+    }
+    Ok(text)
+}
+
+/// A control character no text log holds (a line's own tab, carriage return and newline aside).
+fn is_binary_control(c: char) -> bool {
+    c.is_control() && !matches!(c, '\t' | '\r' | '\n')
+}
+
+/// Bytes from a port or a file as text, those that are not UTF-8 replaced by U+FFFD.
+pub fn text_of(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
 }
 
 /// A whole stream, read.
@@ -128,7 +155,8 @@ impl StreamLog {
         if samples.len() < STREAM_MIN_SAMPLES {
             return Err(StreamError::TooFewSamples { samples: samples.len() });
         }
-        let given = options.rate_hz.map(|hz| Rate { hz, source: RateSource::Given });
+        let rate = timing::settle(rate, options.rate_hz)
+            .map_err(|(given_hz, shown_hz)| StreamError::RateDiffers { given_hz, shown_hz })?;
         let accel_unit = match options.accel_unit {
             Some(unit) => unit,
             None => AccelUnit::infer(layout.dialect, median_norm(&samples))?,
@@ -138,7 +166,12 @@ impl StreamLog {
             None => GyroUnit::infer(layout.dialect, accel_unit),
         });
         let gyro_unit = gyro_unit.map(|(unit, fixed)| (unit, !fixed && options.gyro_unit.is_none()));
-        Ok(StreamLog { layout, samples, dropped, accel_unit, gyro_unit, rate: rate.or(given) })
+        let (mut samples, mut dropped) = (samples, dropped);
+        drop_beyond_range(&mut samples, &mut dropped, accel_unit, gyro_unit.map(|(unit, _)| unit));
+        if samples.len() < STREAM_MIN_SAMPLES {
+            return Err(StreamError::TooFewSamples { samples: samples.len() });
+        }
+        Ok(StreamLog { layout, samples, dropped, accel_unit, gyro_unit, rate })
     }
 
     /// The accelerometer's samples in g.
@@ -154,6 +187,19 @@ impl StreamLog {
     }
 }
 
+/// Moves the samples holding a value the sensor cannot read (a garbled line) to the dropped lines.
+fn drop_beyond_range(samples: &mut Vec<StreamSample>, dropped: &mut Dropped, accel: AccelUnit, gyro: Option<GyroUnit>) {
+    let beyond = |values: [f64; 3], max: f64| values.iter().any(|v| v.abs() > max);
+    samples.retain(|sample| {
+        let gyro_beyond = sample.gyro.zip(gyro).is_some_and(|(values, unit)| beyond(values, unit.readable_max()));
+        let impossible = gyro_beyond || beyond(sample.accel, accel.readable_max());
+        if impossible {
+            dropped.add(DropReason::BeyondRange, sample.line);
+        }
+        !impossible
+    });
+}
+
 /// Seconds per unit of the time column: by its name, else by the rate its steps would give.
 fn time_unit(layout: &Layout, samples: &[StreamSample]) -> Option<f64> {
     let (_, name) = layout.columns.time.as_ref()?;
@@ -166,4 +212,81 @@ fn median_norm(samples: &[StreamSample]) -> f64 {
     let mut norms: Vec<f64> = samples.iter().map(|s| shared::linalg::norm(s.accel)).collect();
     norms.sort_by(f64::total_cmp);
     norms[norms.len() / 2]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sim::person::PersonSession;
+    use crate::sim::sketch::Sketch;
+    use crate::stream::{cost, StillPeriods};
+
+    /// A simulated person's CSV session as bytes, and the same with `glitches` after its 9000th line.
+    fn csv_session(glitches: &[&[u8]]) -> (Vec<u8>, Vec<u8>) {
+        let session = PersonSession::new(5, Sketch::Csv.reading());
+        let clean: String = Sketch::Csv.lines(&session).into_iter().map(|l| l.text).collect();
+        let mut glitched = Vec::new();
+        for (i, line) in clean.split_inclusive('\n').enumerate() {
+            if i == 9000 {
+                glitches.iter().for_each(|g| glitched.extend_from_slice(g));
+            }
+            glitched.extend_from_slice(line.as_bytes());
+        }
+        (clean.into_bytes(), glitched)
+    }
+
+    #[test]
+    fn bad_bytes_and_impossible_values_are_dropped_lines_and_cost_no_period_and_no_loss() {
+        let glitches: [&[u8]; 4] = [
+            b"\xe0\x80\x1c\xfe boot\n",
+            b"3000,1e308,1e308,1e308,0,0,0\n",
+            b"456,-99999999,5,5,1,1,1\n",
+            b"12,5,5,5,1,1,50000\n",
+        ];
+        let (clean, glitched) = csv_session(&glitches);
+        let path = std::env::temp_dir().join(format!("accelcal-glitched-{}.log", std::process::id()));
+        std::fs::write(&path, &glitched).unwrap();
+        let text = read_text(&path);
+        std::fs::remove_file(&path).unwrap();
+        let log = StreamLog::parse(&text.unwrap(), &StreamOptions::default()).unwrap();
+        let reference = StreamLog::parse(&text_of(&clean), &StreamOptions::default()).unwrap();
+        assert_eq!(log.samples.len(), reference.samples.len());
+        assert_eq!((log.dropped.count(DropReason::NotText), log.dropped.count(DropReason::BeyondRange)), (1, 3));
+        let periods = |log: &StreamLog| StillPeriods::of(log).segments.len();
+        assert_eq!((periods(&log), periods(&reference)), (19, 19));
+        let costs = cost::costs(&log, &StillPeriods::of(&log).segments);
+        assert!(costs.iter().all(|c| c.kind != "lost"), "{:?}", costs.iter().map(|c| &c.words).collect::<Vec<_>>());
+    }
+
+    #[test]
+    fn a_file_mostly_of_bytes_that_are_not_text_is_refused_naming_the_cause() {
+        let path = std::env::temp_dir().join(format!("accelcal-binary-{}.log", std::process::id()));
+        let mut bytes = b"\x7fELF\x02\x01\x01\0\0\0\0\0\0\0\0\0\x03\0>\0\x01\0\0\0\xc0\xe3\x0e\0\0\0\0\0".to_vec();
+        bytes.extend_from_slice(b"1,2,3\n");
+        std::fs::write(&path, &bytes).unwrap();
+        let error = read_text(&path).unwrap_err().to_string();
+        std::fs::remove_file(&path).unwrap();
+        assert!(error.contains("not text") && error.contains("--baud"), "{error}");
+    }
+
+    #[test]
+    fn a_rate_given_against_the_timestamps_is_refused_naming_both() {
+        let (clean, _) = csv_session(&[]);
+        let at = |hz| StreamLog::parse(&text_of(&clean), &StreamOptions { rate_hz: Some(hz), ..Default::default() });
+        let error = at(50.0).unwrap_err().to_string();
+        assert!(error.contains("--rate 50 differs from the 100.000 Hz"), "{error}");
+        assert_eq!(
+            at(100.5).unwrap().rate.map(|r| (r.source, (r.hz * 1e3).round())),
+            Some((RateSource::Timestamps, 1e5))
+        );
+    }
+
+    #[test]
+    fn a_value_is_a_reading_up_to_the_sensors_reach_with_its_margin() {
+        assert_eq!(AccelUnit::Counts2g.readable_max(), 40960.0);
+        assert_eq!(AccelUnit::G.readable_max(), 20.0);
+        assert!((AccelUnit::MetersPerSecond2.readable_max() - 20.0 * 9.80665).abs() < 1e-9);
+        assert_eq!(GyroUnit::Counts250.readable_max(), 40960.0);
+        assert_eq!(GyroUnit::DegPerS.readable_max(), 2500.0);
+    }
 }

@@ -21,7 +21,7 @@ pub mod units;
 pub use columns::Columns;
 pub use dialect::{Dialect, Layout};
 pub use dropped::{DropReason, Dropped};
-pub use log::{LineReader, StreamLog, StreamOptions, StreamSample};
+pub use log::{read_text, text_of, LineReader, StreamLog, StreamOptions, StreamSample};
 pub use segment::{segment, Segment, Stillness};
 pub use still::{SegmentLines, StillPeriods};
 pub use units::{AccelUnit, GyroUnit};
@@ -43,6 +43,8 @@ pub enum StreamError {
          or the counts of a range: give --input-unit (g, mg, m/s2, counts-2g, counts-4g, counts-8g, counts-16g)"
     )]
     UnclearUnit { median_norm: f64 },
+    #[error("--rate {given_hz} differs from the {shown_hz:.3} Hz the stream's timestamps show; leave --rate out")]
+    RateDiffers { given_hz: f64, shown_hz: f64 },
     #[error("only {samples} samples were read: a calibration needs a few seconds at each of 9 or more positions")]
     TooFewSamples { samples: usize },
 }

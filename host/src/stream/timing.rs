@@ -1,7 +1,7 @@
 //! A stream's clock: the unit of its time column (by its name, else by the rate it would give) and
 //! the sample rate, from the timestamps, else from when the lines arrived, else as given.
 
-use crate::limits::PLAUSIBLE_HZ;
+use crate::limits::{PLAUSIBLE_HZ, RATE_AGREEMENT};
 use serde::Serialize;
 
 /// Where a stream's rate comes from.
@@ -63,11 +63,44 @@ pub fn rate_of(times: &[f64], source: RateSource) -> Option<Rate> {
     median_step(times).map(|step| Rate { hz: 1.0 / step, source })
 }
 
+/// Whether a rate someone gives agrees with the one a file shows, within [`RATE_AGREEMENT`].
+pub fn agrees(given_hz: f64, shown_hz: f64) -> bool {
+    (given_hz - shown_hz).abs() <= RATE_AGREEMENT * shown_hz
+}
+
+/// The rate of a stream: `--rate` (`given_hz`) must agree with its timestamps and stands over the
+/// lines' arrival, which a port's bursts blur; `Err` with both when it disagrees.
+pub fn settle(shown: Option<Rate>, given_hz: Option<f64>) -> Result<Option<Rate>, (f64, f64)> {
+    let given = given_hz.map(|hz| Rate { hz, source: RateSource::Given });
+    match (shown, given) {
+        (Some(shown), Some(given)) if shown.source == RateSource::Timestamps && !agrees(given.hz, shown.hz) => {
+            Err((given.hz, shown.hz))
+        }
+        (Some(shown), _) if shown.source == RateSource::Timestamps => Ok(Some(shown)),
+        (shown, given) => Ok(given.or(shown)),
+    }
+}
+
 /// Samples lost in gaps of the clock: each step longer than 1.5 periods hides round(step / period) - 1.
+/// A single time out of sequence (garbled on its line) is passed over, not taken for a gap.
 pub fn lost_in_gaps(times: &[f64], rate: Rate) -> usize {
     let period = 1.0 / rate.hz;
     let hidden = |step: f64| if step > 1.5 * period { (step / period).round() as usize - 1 } else { 0 };
-    times.windows(2).map(|w| hidden(w[1] - w[0])).sum()
+    in_sequence(times).windows(2).map(|w| hidden(w[1] - w[0])).sum()
+}
+
+/// The times without those out of sequence on their own: a time outside the step from the one before
+/// to the one after, when those two are in order, is one garbled line (a clock that jumps stays jumped).
+fn in_sequence(times: &[f64]) -> Vec<f64> {
+    let mut kept: Vec<f64> = Vec::with_capacity(times.len());
+    for (i, &time) in times.iter().enumerate() {
+        let after = times.get(i + 1).copied().unwrap_or(f64::INFINITY);
+        let glitch = kept.last().is_some_and(|&before| before < after && !(before < time && time <= after));
+        if !glitch {
+            kept.push(time);
+        }
+    }
+    kept
 }
 
 #[cfg(test)]
@@ -85,5 +118,30 @@ mod tests {
         let rate = rate_of(&[0.0, 0.01, 0.02, 0.05, 0.06], RateSource::Timestamps).unwrap();
         assert!((rate.hz - 100.0).abs() < 1e-9);
         assert_eq!(lost_in_gaps(&[0.0, 0.01, 0.02, 0.05, 0.06], rate), 2);
+    }
+
+    #[test]
+    fn a_given_rate_must_agree_with_the_timestamps_and_stands_over_the_arrival() {
+        let stamped = Some(Rate { hz: 200.0, source: RateSource::Timestamps });
+        assert_eq!(settle(stamped, Some(50.0)), Err((50.0, 200.0)));
+        assert_eq!(settle(stamped, Some(201.0)), Ok(stamped));
+        assert_eq!(settle(stamped, None), Ok(stamped));
+        let arrived = Some(Rate { hz: 298.1, source: RateSource::ArrivalTimes });
+        assert_eq!(settle(arrived, Some(100.0)), Ok(Some(Rate { hz: 100.0, source: RateSource::Given })));
+        assert_eq!(settle(arrived, None), Ok(arrived));
+    }
+
+    #[test]
+    fn a_single_time_out_of_sequence_is_a_glitch_not_a_gap_and_a_clock_that_jumps_stays_jumped() {
+        let rate = Rate { hz: 100.0, source: RateSource::Timestamps };
+        let back = [90.10, 90.11, 3.0, 90.12, 90.13];
+        let ahead = [90.10, 90.11, 99999.0, 90.12, 90.13, 90.16];
+        assert_eq!((lost_in_gaps(&back, rate), lost_in_gaps(&ahead, rate)), (0, 2));
+        assert_eq!(in_sequence(&ahead), vec![90.10, 90.11, 90.12, 90.13, 90.16]);
+        // A board reset: millis start again, and stay started.
+        assert_eq!(lost_in_gaps(&[50.0, 50.01, 0.0, 0.01, 0.02], rate), 0);
+        assert_eq!(in_sequence(&[50.0, 50.01, 0.0, 0.01, 0.02]).len(), 5);
+        // A real gap that the clock keeps: 4 lost.
+        assert_eq!(lost_in_gaps(&[1.0, 1.01, 1.06, 1.07], rate), 4);
     }
 }

@@ -7,7 +7,7 @@ use shared::AccelRange;
 
 use super::dialect::Dialect;
 use super::StreamError;
-use crate::limits::UNIT_TOLERANCE;
+use crate::limits::{COUNTS_SPAN, READABLE_MARGIN, UNIT_TOLERANCE, WIDEST_RANGE_DPS, WIDEST_RANGE_G};
 
 /// Standard gravity, in m/s^2 (the unit's definition, CGPM 1901).
 pub const STANDARD_GRAVITY: f64 = 9.80665;
@@ -96,6 +96,17 @@ impl AccelUnit {
         }
     }
 
+    /// Whether the unit is a range's raw counts.
+    fn is_counts(self) -> bool {
+        matches!(self, AccelUnit::Counts2g | AccelUnit::Counts4g | AccelUnit::Counts8g | AccelUnit::Counts16g)
+    }
+
+    /// The largest size a value in this unit can have and be a reading: the counts' 16-bit span,
+    /// else the widest range, each with [`READABLE_MARGIN`].
+    pub fn readable_max(self) -> f64 {
+        READABLE_MARGIN * if self.is_counts() { COUNTS_SPAN } else { WIDEST_RANGE_G * self.per_g() }
+    }
+
     /// The name `--input-unit` takes and `--json` prints.
     pub fn name(self) -> &'static str {
         match self {
@@ -136,10 +147,19 @@ impl GyroUnit {
         }
     }
 
-    /// Raw counts per deg/s when the unit is a range's counts (what int16 readings are), else none.
-    pub fn counts_per_dps(self) -> Option<f64> {
+    /// Whether the unit is a range's raw counts (what int16 readings are).
+    fn is_counts(self) -> bool {
         matches!(self, GyroUnit::Counts250 | GyroUnit::Counts500 | GyroUnit::Counts1000 | GyroUnit::Counts2000)
-            .then(|| self.per_dps())
+    }
+
+    /// Raw counts per deg/s when the unit is a range's counts, else none.
+    pub fn counts_per_dps(self) -> Option<f64> {
+        self.is_counts().then(|| self.per_dps())
+    }
+
+    /// The largest size a value in this unit can have and be a reading, as [`AccelUnit::readable_max`].
+    pub fn readable_max(self) -> f64 {
+        READABLE_MARGIN * if self.is_counts() { COUNTS_SPAN } else { WIDEST_RANGE_DPS * self.per_dps() }
     }
 
     /// The name `--gyro-unit` takes and `--json` prints.
