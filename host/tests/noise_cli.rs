@@ -10,8 +10,9 @@ const RATE_HZ: f64 = 1000.0;
 const ACCEL_DENSITY_G: f64 = 400e-6;
 const GYRO_DENSITY_DPS: f64 = 0.005;
 
-/// A minute of white noise on all six axes, as `accelcal stream` writes it.
-fn white_recording() -> std::path::PathBuf {
+/// A minute of white noise on all six axes, as `accelcal stream` writes it, in a file of its own
+/// for each test (`name`).
+fn white_recording(name: &str) -> std::path::PathBuf {
     let samples = 60_000;
     let white = |density: f64, mean: f64, seed: u64| {
         let truth = TrueNoise { white_noise_density: density, bias_instability: 0.0, random_walk: 0.0 };
@@ -25,7 +26,7 @@ fn white_recording() -> std::path::PathBuf {
         let row: Vec<String> = axes.iter().map(|a| format!("{:.9}", a[i])).collect();
         let _ = writeln!(text, "{i},{},25.0", row.join(","));
     }
-    let path = std::env::temp_dir().join(format!("accelcal-noise-{}.csv", std::process::id()));
+    let path = std::env::temp_dir().join(format!("accelcal-noise-{}-{name}.csv", std::process::id()));
     std::fs::write(&path, text).expect("temporary recording written");
     path
 }
@@ -36,7 +37,7 @@ fn close(value: &serde_json::Value, truth: f64, tolerance: f64) -> bool {
 
 #[test]
 fn noise_json_has_every_axis_in_its_named_units_and_finds_the_white_noise() {
-    let recording = white_recording();
+    let recording = white_recording("json");
     let plot = recording.with_extension("svg");
     let output = Command::new(env!("CARGO_BIN_EXE_accelcal"))
         .args(["noise", &recording.display().to_string(), "--json", "--plot", &plot.display().to_string()])
@@ -97,4 +98,29 @@ fn an_older_noise_report_without_the_newer_fields_still_reads() {
     assert!(report.axis("gyro_z").unwrap_err().contains("it has no gyro_z"));
     assert!(report.calibration.capture_limit_s.is_none() && !report.calibration.capture_limit_is_lower_bound);
     assert!(report.kalibr.unwrap().discrete_time.is_none());
+}
+
+#[test]
+fn a_position_longer_than_the_recording_resolves_is_not_predicted() {
+    let recording = white_recording("positions");
+    let run = |json: bool| {
+        let mut args = vec!["noise".to_owned(), recording.display().to_string()];
+        args.extend(json.then(|| "--json".to_owned()));
+        let output = Command::new(env!("CARGO_BIN_EXE_accelcal")).args(&args).output().expect("accelcal runs");
+        assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+        String::from_utf8(output.stdout).unwrap()
+    };
+    let json: serde_json::Value = serde_json::from_str(&run(true)).unwrap();
+    let longest = json["accel_x"]["tau_s"].as_array().unwrap().last().unwrap().as_f64().unwrap();
+    // NOTE: a minute resolves averaging times up to a tenth of it.
+    assert!((5.0..=6.0).contains(&longest), "longest {longest} s");
+    let text = run(false);
+    for seconds in [1, 2, 5, 10, 30, 60] {
+        let line =
+            text.lines().find(|l| l.starts_with(&format!("a {seconds:>3} s position"))).expect("every length shown");
+        let predicted = line.contains("mean known to");
+        assert_eq!(predicted, f64::from(seconds) <= longest, "{line}");
+        assert!(predicted || line.contains(&format!("record at least {} s", 10 * seconds)), "{line}");
+    }
+    let _ = std::fs::remove_file(recording);
 }

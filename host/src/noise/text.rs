@@ -96,7 +96,19 @@ fn write_calibration(out: &mut String, report: &NoiseReport) {
         }
         None => {}
     }
+    let longest_s = accel_axes(report).filter_map(|a| a.curve.last().map(|p| p.tau_s)).reduce(f64::max);
     for seconds in CAPTURE_SECONDS_SHOWN {
+        // NOTE: past the longest averaging time the recording reaches (a tenth of it:
+        // `allan::averaging_factors`), its noise terms say nothing of what a longer mean does (a drift
+        // can set in unseen).
+        if let Some(longest) = longest_s.filter(|&longest| seconds > longest) {
+            let _ = writeln!(
+                out,
+                "a {seconds:>3.0} s position: beyond the {longest:.1} s this recording resolves (record at least {:.0} s to know)",
+                10.0 * seconds
+            );
+            continue;
+        }
         let errors: Vec<String> = accel_axes(report)
             .map(|a| a.terms.map_or("-".to_owned(), |t| format!("{:.1}", t.adev(seconds) * UG_PER_G)))
             .collect();
