@@ -480,3 +480,49 @@ fn a_reader_that_goes_away_ends_the_command_quietly_with_the_closed_pipe_s_statu
     assert_eq!(output.status.code(), Some(accelcal::cli::READER_GONE_EXIT), "{stderr}");
     assert!(stderr.is_empty(), "nothing said when nobody reads: {stderr}");
 }
+
+/// The numbers of the C header's `static const float NAME[...] = {...};` line, in order.
+fn c_floats(header: &str, name: &str) -> Vec<f64> {
+    let line =
+        header.lines().find(|l| l.contains(&format!(" {name}["))).unwrap_or_else(|| panic!("{name} in {header}"));
+    let values = &line[line.find('=').unwrap() + 1..line.rfind(';').unwrap()];
+    values.split(',').map(|v| v.trim_matches(|c: char| " {}f".contains(c)).parse().unwrap()).collect()
+}
+
+#[test]
+fn a_sketch_s_fit_exports_in_g_with_its_own_gyro_counts_its_turns_g_and_no_invented_temperature() {
+    let log = write_temp("sketch.log", "");
+    let printed = accelcal(&["sim", "--sketch", "csv", "--seed", "3"]);
+    std::fs::write(&log, &printed.stdout).unwrap();
+    let fitted = accelcal(&["fit", log.to_str().unwrap(), "--json"]);
+    assert!(fitted.status.success(), "{}", String::from_utf8_lossy(&fitted.stderr));
+    let fit: serde_json::Value = serde_json::from_slice(&fitted.stdout).unwrap();
+    assert_eq!((fit["input_unit"].as_str(), fit["gyro_unit"].as_str()), (Some("counts-2g"), Some("counts-250dps")));
+    let json = write_temp("sketch-fit.json", &String::from_utf8(fitted.stdout).unwrap());
+    let exported = accelcal(&["export", json.to_str().unwrap(), "--to", "c"]);
+    let header = String::from_utf8_lossy(&exported.stdout);
+    assert!(exported.status.success(), "{}", String::from_utf8_lossy(&exported.stderr));
+    // NOTE: the fit's M takes counts (16384 a g at +-2 g): in g it is 16384 times larger, its o
+    // 16384 times smaller; the gyro's counts are 131 a deg/s at +-250 deg/s (Product Specification 6.1-6.2).
+    let flat = |v: &serde_json::Value| -> Vec<f64> {
+        v.as_array()
+            .unwrap()
+            .iter()
+            .flat_map(|x| x.as_array().cloned().unwrap_or(vec![x.clone()]))
+            .map(|x| x.as_f64().unwrap())
+            .collect()
+    };
+    let close = |ours: &[f64], theirs: Vec<f64>, scale: f64, what: &str| {
+        for (a, b) in ours.iter().zip(&theirs) {
+            assert!(
+                (a - b * scale).abs() <= 1e-6 * (b * scale).abs().max(1e-3),
+                "{what}: {ours:?} against {theirs:?} x {scale}"
+            );
+        }
+    };
+    close(&c_floats(&header, "accelcal_accel_matrix"), flat(&fit["matrix"]), 16384.0, "M");
+    close(&c_floats(&header, "accelcal_accel_offset_g"), flat(&fit["offset"]), 1.0 / 16384.0, "o");
+    close(&c_floats(&header, "accelcal_gyro_matrix"), flat(&fit["gyro_fit"]["matrix"]), 1.0, "G");
+    assert!(header.contains("#define ACCELCAL_GYRO_LSB_PER_DPS 131.0f"), "{header}");
+    assert!(header.contains("made at: die temperature not measured"), "{header}");
+}

@@ -8,7 +8,7 @@ use shared::protocol::CalibrationSlot;
 
 use super::args::Device;
 use crate::error::Error;
-use crate::export::{self, Noise, Source, Target};
+use crate::export::{self, Noise, Readings, Source, Target};
 use crate::session::{write_atomically, BoardRecord};
 
 /// `accelcal export`.
@@ -72,7 +72,8 @@ fn from_board(device: &Device) -> Result<Source, Error> {
     let calibration = connection.client.calibration(CalibrationSlot::Active)?.ok_or(Error::NothingToDownload)?;
     let from =
         device.port.clone().map_or_else(|| "the simulated board (--sim)".to_owned(), |p| format!("the board on {p}"));
-    Ok(Source { calibration, serial: Some(board.serial), from, noise: None })
+    let readings = Readings::board(board.sensor, calibration.mean_temp_c);
+    Ok(Source { calibration, serial: Some(board.serial), from, noise: None, readings })
 }
 
 fn read(path: &Path) -> Result<String, Error> {

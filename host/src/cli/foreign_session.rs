@@ -6,7 +6,6 @@
 use std::path::{Path, PathBuf};
 
 use shared::protocol::CaptureStats;
-use shared::AccelRange;
 
 use super::args::CalibrateArgs;
 use super::kept::new_session_path;
@@ -15,7 +14,7 @@ use crate::error::Error;
 use crate::session::{stem_file, stem_of, unix_time_s, CaptureRecord, Session, SessionError, SessionKind};
 use crate::session::{StreamSource, Verification};
 use crate::stream::guide::nearest_name;
-use crate::stream::{AccelUnit, StillPeriods, StreamLog};
+use crate::stream::{StillPeriods, StreamLog};
 
 /// A stream session being kept.
 pub(super) struct Kept {
@@ -41,6 +40,7 @@ impl Kept {
             log,
             dialect: String::new(),
             input_unit: String::new(),
+            gyro_unit: None,
             rate_hz: None,
         };
         Ok((Kept { stem, source, began_unix_s: unix_time_s() }, String::new()))
@@ -58,6 +58,7 @@ impl Kept {
         let source = StreamSource {
             dialect: log.layout.dialect.name().to_owned(),
             input_unit: log.accel_unit.name().to_owned(),
+            gyro_unit: log.gyro_unit.map(|(unit, _)| unit.name().to_owned()),
             rate_hz: log.rate.map(|r| r.hz),
             ..self.source.clone()
         };
@@ -84,21 +85,10 @@ impl Kept {
             // NOTE: a stream carries no temperature; `Session::dataset` leaves it out of the rows.
             temp_c: 0.0,
             clipped: 0,
-            range: range_of(log.accel_unit),
+            range: log.accel_unit.range(),
         };
         let name = format!("{} from line {}", nearest_name(mean_g), row.line);
         CaptureRecord { name, target: None, face: None, unix_time_s: self.began_unix_s, stats, closing: false }
-    }
-}
-
-/// The range a stream's counts name; +-2 g (the chip's power-on range) for values in g or m/s^2,
-/// whose range the stream does not say.
-fn range_of(unit: AccelUnit) -> AccelRange {
-    match unit {
-        AccelUnit::Counts4g => AccelRange::G4,
-        AccelUnit::Counts8g => AccelRange::G8,
-        AccelUnit::Counts16g => AccelRange::G16,
-        _ => AccelRange::G2,
     }
 }
 

@@ -5,7 +5,7 @@ use shared::linalg::{Mat3, Vec3};
 
 use super::loss::loss;
 use super::statement::{lines, Said};
-use super::{float, text, Export, Source, C_BLOCK, GYRO_LSB_PER_DPS, SLASHES, STANDARD_GRAVITY};
+use super::{float, text, Export, Source, C_BLOCK, SLASHES, STANDARD_GRAVITY};
 
 /// What both float code targets state.
 const CONVENTION: &[&str] = &[
@@ -30,12 +30,13 @@ pub fn c(source: &Source) -> Export {
     let loss = loss(&full, &full);
     let body = format!(
         "\n#ifndef ACCELCAL_CALIBRATION_H\n#define ACCELCAL_CALIBRATION_H\n\n#include <stdint.h>\n\n\
-         #define ACCELCAL_ACCEL_LSB_PER_G {:?}f\n#define ACCELCAL_GYRO_LSB_PER_DPS {GYRO_LSB_PER_DPS}f\n\
+         #define ACCELCAL_ACCEL_LSB_PER_G {:?}f\n#define ACCELCAL_GYRO_LSB_PER_DPS {:?}f\n\
          #define ACCELCAL_STANDARD_GRAVITY {STANDARD_GRAVITY}f\n\n\
          static const float accelcal_accel_matrix[3][3] = {};\nstatic const float accelcal_accel_offset_g[3] = {};\n\
          static const float accelcal_gyro_matrix[3][3] = {};\nstatic const float accelcal_gyro_bias_dps[3] = {};\n\n{C_FUNCTIONS}\
          \n#endif /* ACCELCAL_CALIBRATION_H */\n",
         source.lsb_per_g(),
+        source.readings.gyro_lsb_per_dps as f32,
         c_matrix(&full.matrix),
         c_vector(&full.offset_g),
         c_matrix(&full.gyro_matrix),
@@ -86,13 +87,14 @@ pub fn rust(source: &Source) -> Export {
     let loss = loss(&full, &full);
     let body = format!(
         "\n/// Raw accelerometer counts per g.\npub const ACCEL_LSB_PER_G: f32 = {:?};\n\
-         /// Raw gyro counts per deg/s.\npub const GYRO_LSB_PER_DPS: f32 = {GYRO_LSB_PER_DPS:?};\n\
+         /// Raw gyro counts per deg/s.\npub const GYRO_LSB_PER_DPS: f32 = {:?};\n\
          /// m/s^2 per g.\npub const STANDARD_GRAVITY: f32 = {STANDARD_GRAVITY:?};\n\
          /// M, row i = output axis i.\npub const ACCEL_MATRIX: [[f32; 3]; 3] = {};\n\
          /// o, in g.\npub const ACCEL_OFFSET_G: [f32; 3] = {};\n\
          /// G, row i = output axis i.\npub const GYRO_MATRIX: [[f32; 3]; 3] = {};\n\
          /// b, in deg/s.\npub const GYRO_BIAS_DPS: [f32; 3] = {};\n{RUST_FUNCTIONS}",
         source.lsb_per_g(),
+        source.readings.gyro_lsb_per_dps as f32,
         rust_matrix(&full.matrix),
         rust_vector(&full.offset_g),
         rust_matrix(&full.gyro_matrix),

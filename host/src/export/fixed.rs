@@ -5,7 +5,7 @@ use shared::linalg::{Mat3, Vec3};
 
 use super::loss::{loss, Carried};
 use super::statement::{lines, Said};
-use super::{text, Export, ExportError, Source, C_BLOCK, GYRO_LSB_PER_DPS};
+use super::{text, Export, ExportError, Source, C_BLOCK};
 
 /// Fraction bits of the matrices: 1.0 is 16384, so entries up to +-1.99994 fit an int16.
 const Q: u32 = 14;
@@ -31,8 +31,9 @@ struct Quantised {
 pub fn c_fixed(source: &Source) -> Result<Export, ExportError> {
     let full = source.full();
     let accel = quantise(&full.matrix, &full.offset_g.map(|v| v * source.lsb_per_g()))?;
-    let gyro = quantise(&full.gyro_matrix, &source.gyro_bias_dps().map(|v| v * GYRO_LSB_PER_DPS))?;
-    let loss = loss(&full, &carried(&accel, &gyro, source.lsb_per_g()));
+    let gyro_lsb = source.gyro_lsb_per_dps();
+    let gyro = quantise(&full.gyro_matrix, &source.gyro_bias_dps().map(|v| v * gyro_lsb))?;
+    let loss = loss(&full, &carried(&accel, &gyro, source.lsb_per_g(), gyro_lsb));
     let step = format!(
         "M, o, G, b rounded to Q14 and whole counts; over every int16 reading the result differs from the \
          float correction by at most {} counts per axis (accelerometer) and {} (gyro)",
@@ -45,12 +46,12 @@ pub fn c_fixed(source: &Source) -> Result<Export, ExportError> {
 }
 
 /// What the quantised values apply, in accelcal's units.
-fn carried(accel: &Quantised, gyro: &Quantised, lsb_per_g: f64) -> Carried {
+fn carried(accel: &Quantised, gyro: &Quantised, lsb_per_g: f64, gyro_lsb_per_dps: f64) -> Carried {
     Carried {
         matrix: accel.matrix.map(|row| row.map(|v| f64::from(v) / ONE)),
         offset_g: accel.offset.map(|v| f64::from(v) / lsb_per_g),
         gyro_matrix: gyro.matrix.map(|row| row.map(|v| f64::from(v) / ONE)),
-        gyro_bias_dps: Some(gyro.offset.map(|v| f64::from(v) / GYRO_LSB_PER_DPS)),
+        gyro_bias_dps: Some(gyro.offset.map(|v| f64::from(v) / gyro_lsb_per_dps)),
     }
 }
 
@@ -58,13 +59,14 @@ fn carried(accel: &Quantised, gyro: &Quantised, lsb_per_g: f64) -> Carried {
 fn body(source: &Source, accel: &Quantised, gyro: &Quantised) -> String {
     format!(
         "\n#ifndef ACCELCAL_CALIBRATION_Q14_H\n#define ACCELCAL_CALIBRATION_Q14_H\n\n#include <stdint.h>\n\n\
-         #define ACCELCAL_ACCEL_LSB_PER_G {}\n#define ACCELCAL_GYRO_LSB_PER_DPS {GYRO_LSB_PER_DPS}f\n\
+         #define ACCELCAL_ACCEL_LSB_PER_G {}\n#define ACCELCAL_GYRO_LSB_PER_DPS {:?}f\n\
          /* The largest |fixed - float| per axis over every int16 reading, in counts. */\n\
          static const float accelcal_accel_step_lsb[3] = {};\nstatic const float accelcal_gyro_step_lsb[3] = {};\n\n\
          static const int16_t accelcal_accel_matrix_q14[3][3] = {};\nstatic const int16_t accelcal_accel_offset_lsb[3] = {};\n\
          static const int16_t accelcal_gyro_matrix_q14[3][3] = {};\nstatic const int16_t accelcal_gyro_bias_lsb[3] = {};\n\n{FUNCTIONS}\
          \n#endif /* ACCELCAL_CALIBRATION_Q14_H */\n",
         source.lsb_per_g(),
+        source.gyro_lsb_per_dps() as f32,
         float_list(&accel.step_lsb),
         float_list(&gyro.step_lsb),
         int_matrix(&accel.matrix),

@@ -6,7 +6,7 @@
 use super::code::{c_matrix, c_vector};
 use super::loss::loss;
 use super::statement::{lines, Said};
-use super::{text, Export, Source, GYRO_LSB_PER_DPS, SLASHES};
+use super::{text, Export, Source, SLASHES};
 
 const CONVENTION: &[&str] = &[
     "FusionCalibrationInertial: calibrated = misalignment * ((uncalibrated - offset) .* sensitivity)",
@@ -40,8 +40,8 @@ pub fn fusion(source: &Source) -> Export {
         c_vector(&[1.0 / lsb; 3]),
         c_vector(&full.offset_g.map(|v| v * lsb)),
         flat(&full.gyro_matrix),
-        c_vector(&[1.0 / GYRO_LSB_PER_DPS; 3]),
-        c_vector(&source.gyro_bias_dps().map(|v| v * GYRO_LSB_PER_DPS)),
+        c_vector(&[1.0 / source.gyro_lsb_per_dps(); 3]),
+        c_vector(&source.gyro_bias_dps().map(|v| v * source.gyro_lsb_per_dps())),
     );
     text(lines(source, &FUSION_SAID, &loss), &SLASHES, &body, loss)
 }

@@ -6,7 +6,7 @@ use shared::linalg::{self, Mat3, Vec3};
 
 use super::loss::loss;
 use super::statement::{lines, Said};
-use super::{float, text, Comment, Export, Source, GYRO_LSB_PER_DPS, STANDARD_GRAVITY};
+use super::{float, text, Comment, Export, Source, STANDARD_GRAVITY};
 
 /// `% ...`.
 const PERCENT: Comment = Comment { open: "", line: "% ", close: "" };
@@ -30,9 +30,10 @@ pub fn matlab(source: &Source) -> Export {
     let loss = loss(&full, &full);
     let c0 = linalg::scale(linalg::mul_vec(&full.matrix, full.offset_g), -1.0);
     let body = format!(
-        "\naccel_lsb_per_g = {};\ngyro_lsb_per_dps = {GYRO_LSB_PER_DPS};\nstandard_gravity = {STANDARD_GRAVITY};\n\n\
+        "\naccel_lsb_per_g = {};\ngyro_lsb_per_dps = {};\nstandard_gravity = {STANDARD_GRAVITY};\n\n\
          A = {};\nb = {};\nc0 = {};\n\nAg = {};\nbg = {};\n",
         source.lsb_per_g(),
+        source.gyro_lsb_per_dps(),
         matrix(&linalg::transpose(&full.matrix)),
         row(&full.offset_g),
         row(&c0),

@@ -16,7 +16,7 @@ pub mod source;
 pub mod statement;
 
 pub use loss::{Carried, Loss};
-pub use source::{Noise, Source};
+pub use source::{Noise, Readings, Source};
 
 use crate::calibration::CalibrationRecordError;
 use crate::fit::FitError;

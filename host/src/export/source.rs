@@ -5,11 +5,14 @@ use shared::linalg::{self, Vec3};
 use shared::protocol::SensorConfig;
 use shared::{AccelRange, Calibration};
 
+use clap::ValueEnum;
+
 use super::loss::Carried;
-use super::ExportError;
+use super::{ExportError, GYRO_LSB_PER_DPS};
 use crate::calibration::{self, CalibrationJson};
 use crate::noise;
-use crate::session::{OutcomeError, Session};
+use crate::session::{OutcomeError, Session, SessionKind};
+use crate::stream::units::{AccelUnit, GyroUnit};
 
 /// A calibration to export and where it came from.
 #[derive(Debug, Clone)]
@@ -22,6 +25,45 @@ pub struct Source {
     pub from: String,
     /// Kalibr's noise terms, when a noise report was given.
     pub noise: Option<Noise>,
+    /// What the readings are that the calibration applies to.
+    pub readings: Readings,
+}
+
+/// The readings a calibration applies to: the sensor, the gyro's counts and the temperature it was
+/// made at, as far as what it was read from records them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Readings {
+    /// The sensor part as the board named it, when recorded.
+    pub sensor: Option<String>,
+    /// Raw gyro counts per deg/s of the readings the exported functions take.
+    pub gyro_lsb_per_dps: f64,
+    /// The die temperature the calibration was made at, degC; none where none was measured (a
+    /// board's own stream carries none).
+    pub made_at_c: Option<f32>,
+    /// A board's own stream's units (`accelerometer counts-2g, gyro counts-250dps`), when the
+    /// calibration came from one.
+    pub stream_units: Option<String>,
+}
+
+impl Readings {
+    /// Our firmware's readings: its gyro at +-1000 deg/s.
+    pub fn board(sensor: Option<String>, made_at_c: f32) -> Self {
+        Readings { sensor, gyro_lsb_per_dps: GYRO_LSB_PER_DPS, made_at_c: Some(made_at_c), stream_units: None }
+    }
+
+    /// A board's own stream's, its units by the names `fit --json` and a session give them: the
+    /// gyro's counts when it printed counts (else the exported functions take counts at +-1000 deg/s,
+    /// as the statement says).
+    pub fn stream(accel_unit: &str, gyro_unit: Option<&str>) -> Self {
+        let gyro = gyro_unit.and_then(|name| GyroUnit::from_str(name, false).ok());
+        let units = format!("accelerometer {accel_unit}, gyro {}", gyro_unit.unwrap_or("not recorded"));
+        Readings {
+            sensor: None,
+            gyro_lsb_per_dps: gyro.and_then(GyroUnit::counts_per_dps).unwrap_or(GYRO_LSB_PER_DPS),
+            made_at_c: None,
+            stream_units: Some(units),
+        }
+    }
 }
 
 /// Kalibr's four continuous-time noise terms and the sample rate, from `accelcal noise --json`.
@@ -50,9 +92,31 @@ impl Source {
                 serde_json::from_value(value).map_err(|e| ExportError::NotJson { reason: e.to_string() })?;
             return Self::from_session(&session, from);
         }
+        if let Some(unit) = value.get("input_unit").and_then(serde_json::Value::as_str) {
+            return Self::from_stream_fit(&value, unit, from);
+        }
         let record = CalibrationJson::from_text(text)?;
         let calibration = record.to_device(AccelRange::default())?;
-        Ok(Source { calibration, serial: None, from: from.to_owned(), noise: None })
+        let readings = Readings::board(None, calibration.mean_temp_c);
+        Ok(Source { calibration, serial: None, from: from.to_owned(), noise: None, readings })
+    }
+
+    /// What `fit LOG --json` wrote for a board's own stream: M and o in the stream's unit, turned
+    /// into g; the gyro's G from the turns when they gave one.
+    fn from_stream_fit(value: &serde_json::Value, unit_name: &str, from: &str) -> Result<Self, ExportError> {
+        let unit = AccelUnit::from_str(unit_name, false)
+            .map_err(|_| ExportError::NotJson { reason: format!("unknown input_unit {unit_name:?}") })?;
+        let mut record: CalibrationJson =
+            serde_json::from_value(value.clone()).map_err(|e| ExportError::NotJson { reason: e.to_string() })?;
+        let per_g = unit.per_g();
+        // NOTE: a = M (m - o) with m in the unit is (M per_g) (m / per_g - o / per_g) in g.
+        record.matrix = record.matrix.map(|row| row.map(|v| v * per_g));
+        record.offset = record.offset.map(|v| v / per_g);
+        record.gyro_matrix = value.pointer("/gyro_fit/matrix").and_then(|m| serde_json::from_value(m.clone()).ok());
+        let calibration = record.to_device(unit.range())?;
+        let gyro_unit = value.get("gyro_unit").and_then(serde_json::Value::as_str);
+        let readings = Readings::stream(unit_name, gyro_unit);
+        Ok(Source { calibration, serial: None, from: from.to_owned(), noise: None, readings })
     }
 
     /// The calibration a session's captures give, fitted as `calibrate` fitted it (the gyro's G, which
@@ -65,7 +129,11 @@ impl Source {
             Err(OutcomeError::Calibration(e)) => return Err(e.into()),
         };
         let serial = session.board.as_ref().map(|b| b.serial.clone());
-        Ok(Source { calibration, serial, from: from.to_owned(), noise: None })
+        let readings = match (&session.stream, session.kind) {
+            (Some(stream), SessionKind::Stream) => Readings::stream(&stream.input_unit, stream.gyro_unit.as_deref()),
+            _ => Readings::board(session.board.as_ref().and_then(|b| b.sensor.clone()), calibration.mean_temp_c),
+        };
+        Ok(Source { calibration, serial, from: from.to_owned(), noise: None, readings })
     }
 
     /// The full calibration in f64 (the record's f32 values widened), as the loss's reference.
@@ -83,6 +151,11 @@ impl Source {
     /// Raw counts per g of the calibration's range.
     pub fn lsb_per_g(&self) -> f64 {
         f64::from(self.calibration.range.lsb_per_g())
+    }
+
+    /// Raw gyro counts per deg/s of the readings the exported functions take.
+    pub fn gyro_lsb_per_dps(&self) -> f64 {
+        self.readings.gyro_lsb_per_dps
     }
 
     /// The gyro bias in deg/s.
@@ -111,5 +184,44 @@ impl Noise {
             gyro_random_walk: terms.gyroscope_random_walk,
             rate_hz: report.sample_rate_hz.ok_or_else(|| lacks("sample_rate_hz"))?,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::session::StreamSource;
+
+    fn stream_session(gyro_unit: Option<&str>) -> Session {
+        let stream = StreamSource {
+            port: "/dev/ttyUSB0".into(),
+            log: "s.log".into(),
+            dialect: "csv".into(),
+            input_unit: "counts-2g".into(),
+            gyro_unit: gyro_unit.map(str::to_owned),
+            rate_hz: Some(100.0),
+        };
+        let session = crate::certificate::tests::session(1, 0.0, 0.004);
+        Session { kind: SessionKind::Stream, stream: Some(stream), board: None, ..session }
+    }
+
+    #[test]
+    fn a_stream_session_exports_for_its_gyro_counts_and_claims_no_temperature() {
+        let source = Source::from_session(&stream_session(Some("counts-250dps")), "s.json").unwrap();
+        // NOTE: 131 LSB per deg/s at +-250 deg/s (MPU-6050 Product Specification 6.1).
+        assert_eq!(source.readings.gyro_lsb_per_dps, 131.0);
+        assert_eq!(source.readings.made_at_c, None);
+        let text = String::from_utf8(crate::export::export(&source, crate::export::Target::C).unwrap().bytes).unwrap();
+        assert!(text.contains("#define ACCELCAL_GYRO_LSB_PER_DPS 131.0f"), "{text}");
+        assert!(text.contains("made at: die temperature not measured"), "{text}");
+        assert!(text.contains("its stream printed accelerometer counts-2g, gyro counts-250dps"), "{text}");
+    }
+
+    #[test]
+    fn a_stream_printing_its_gyro_in_deg_per_s_leaves_the_functions_at_the_firmware_s_counts() {
+        let source = Source::from_session(&stream_session(Some("deg/s")), "s.json").unwrap();
+        assert_eq!(source.readings.gyro_lsb_per_dps, GYRO_LSB_PER_DPS);
+        let board = Source::from_session(&crate::certificate::tests::session(1, 0.0, 0.004), "b.json").unwrap();
+        assert_eq!(board.readings.made_at_c, Some(board.calibration.mean_temp_c));
     }
 }

@@ -5,7 +5,7 @@
 use shared::calibration::{TempCoefficients, TemperatureModel};
 
 use super::loss::{Loss, SPHERE_POINTS};
-use super::{Source, GYRO_LSB_PER_DPS, STANDARD_GRAVITY};
+use super::{Source, STANDARD_GRAVITY};
 
 /// What one target says of itself.
 pub struct Said<'a> {
@@ -26,10 +26,7 @@ pub fn lines(source: &Source, said: &Said, loss: &Loss) -> Vec<String> {
         format!("from: {}", source.from),
         format!("board serial: {}", serial(source)),
         sensor(source),
-        format!(
-            "made at: {:.1} degC die temperature (the mean of the captures it was fitted to)",
-            source.calibration.mean_temp_c
-        ),
+        made_at(source),
         format!("temperature model: {}", temperature_model(source.calibration.temperature.as_ref())),
         format!("temperature model in this file: {}", said.temperature),
     ];
@@ -47,16 +44,38 @@ fn serial(source: &Source) -> String {
     })
 }
 
-/// Sensor, range and filter.
+/// Sensor, range and filter: our firmware's setting, or a stream's units.
 fn sensor(source: &Source) -> String {
-    let calibration = &source.calibration;
-    format!(
-        "sensor: MPU-6050, accelerometer +-{} g ({} LSB per g), low-pass filter {} Hz, gyro +-1000 deg/s \
-         ({GYRO_LSB_PER_DPS} LSB per deg/s); the calibration holds at this range and filter only",
-        calibration.range.full_scale_g(),
+    let (calibration, readings) = (&source.calibration, &source.readings);
+    let counts = format!(
+        "the functions below take raw counts at {} LSB per g and {} LSB per deg/s",
         calibration.range.lsb_per_g(),
+        readings.gyro_lsb_per_dps
+    );
+    if let Some(units) = &readings.stream_units {
+        return format!(
+            "sensor: as the board's own code set it up (a stream records no part, range or filter); its stream \
+             printed {units}; {counts}; the calibration holds at that setting only"
+        );
+    }
+    let part = readings
+        .sensor
+        .as_deref()
+        .unwrap_or("MPU-6050 family (the part is not recorded in what this was exported from)");
+    format!(
+        "sensor: {part}, accelerometer +-{} g, low-pass filter {} Hz, gyro +-1000 deg/s; {counts}; the calibration \
+         holds at this range and filter only",
+        calibration.range.full_scale_g(),
         calibration.filter.bandwidth_hz()
     )
+}
+
+/// The die temperature it was made at, or that none was measured.
+fn made_at(source: &Source) -> String {
+    match source.readings.made_at_c {
+        Some(c) => format!("made at: {c:.1} degC die temperature (the mean of the captures it was fitted to)"),
+        None => "made at: die temperature not measured (a board's own stream carries none)".to_owned(),
+    }
 }
 
 /// The loss lines, in a fixed form (tests read them back).

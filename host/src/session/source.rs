@@ -16,6 +16,10 @@ pub struct StreamSource {
     pub dialect: String,
     /// The unit the stream prints the accelerometer in (`g`, `counts-2g`, ...).
     pub input_unit: String,
+    /// The unit it prints the gyro in (`deg/s`, `counts-250dps`, ...), when it prints one (absent in
+    /// sessions before it was kept).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gyro_unit: Option<String>,
     /// Samples a second, when known.
     pub rate_hz: Option<f64>,
 }

@@ -3,6 +3,7 @@
 //! whatever unit), and the gyro's follows the accelerometer's convention unless a flag says better.
 
 use serde::Serialize;
+use shared::AccelRange;
 
 use super::dialect::Dialect;
 use super::StreamError;
@@ -84,12 +85,26 @@ impl AccelUnit {
         }
     }
 
+    /// The range a stream's counts name; +-2 g (the chip's power-on range) for values in g or m/s^2,
+    /// whose range the stream does not say.
+    pub fn range(self) -> AccelRange {
+        match self {
+            AccelUnit::Counts4g => AccelRange::G4,
+            AccelUnit::Counts8g => AccelRange::G8,
+            AccelUnit::Counts16g => AccelRange::G16,
+            _ => AccelRange::G2,
+        }
+    }
+
+    /// Whether the unit is a range's raw counts.
+    fn is_counts(self) -> bool {
+        matches!(self, AccelUnit::Counts2g | AccelUnit::Counts4g | AccelUnit::Counts8g | AccelUnit::Counts16g)
+    }
+
     /// The largest size a value in this unit can have and be a reading: the counts' 16-bit span,
     /// else the widest range, each with [`READABLE_MARGIN`].
     pub fn readable_max(self) -> f64 {
-        let counts =
-            matches!(self, AccelUnit::Counts2g | AccelUnit::Counts4g | AccelUnit::Counts8g | AccelUnit::Counts16g);
-        READABLE_MARGIN * if counts { COUNTS_SPAN } else { WIDEST_RANGE_G * self.per_g() }
+        READABLE_MARGIN * if self.is_counts() { COUNTS_SPAN } else { WIDEST_RANGE_G * self.per_g() }
     }
 
     /// The name `--input-unit` takes and `--json` prints.
@@ -132,11 +147,19 @@ impl GyroUnit {
         }
     }
 
+    /// Whether the unit is a range's raw counts (what int16 readings are).
+    fn is_counts(self) -> bool {
+        matches!(self, GyroUnit::Counts250 | GyroUnit::Counts500 | GyroUnit::Counts1000 | GyroUnit::Counts2000)
+    }
+
+    /// Raw counts per deg/s when the unit is a range's counts, else none.
+    pub fn counts_per_dps(self) -> Option<f64> {
+        self.is_counts().then(|| self.per_dps())
+    }
+
     /// The largest size a value in this unit can have and be a reading, as [`AccelUnit::readable_max`].
     pub fn readable_max(self) -> f64 {
-        let counts =
-            matches!(self, GyroUnit::Counts250 | GyroUnit::Counts500 | GyroUnit::Counts1000 | GyroUnit::Counts2000);
-        READABLE_MARGIN * if counts { COUNTS_SPAN } else { WIDEST_RANGE_DPS * self.per_dps() }
+        READABLE_MARGIN * if self.is_counts() { COUNTS_SPAN } else { WIDEST_RANGE_DPS * self.per_dps() }
     }
 
     /// The name `--gyro-unit` takes and `--json` prints.
