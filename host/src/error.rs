@@ -91,6 +91,8 @@ pub enum Error {
     RepeatNeedsSim,
     #[error("the device has no calibration to download: calibrate or upload one first")]
     NothingToDownload,
+    #[error("the board holds no active calibration, so --calibrated would print its raw readings: calibrate it first (accelcal calibrate), upload one (accelcal upload), or stream without --calibrated")]
+    NothingToApply,
     #[error("{source}; the bins learned so far (a span of {span_c:.1} degC) are kept in {}: go on from them with `accelcal thermal --port {device} --bins {}`", .path.display(), .path.display())]
     ThermalStopped { source: Box<Error>, span_c: f64, path: PathBuf, device: String },
     #[error(transparent)]

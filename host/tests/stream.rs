@@ -88,3 +88,23 @@ fn a_count_of_zero_is_refused_when_parsed_with_the_range() {
     assert!(stderr.contains("invalid value '0' for '--count <COUNT>'"), "{stderr}");
     assert!(stderr.contains("1.."), "{stderr}");
 }
+
+#[test]
+fn a_calibrated_stream_from_a_board_without_a_calibration_is_refused_and_streams_once_one_is_uploaded() {
+    let sim = SimPty::start(&["--fast"]);
+    let args = ["stream", "--port", &sim.path, "--count", "20", "--rate", "100", "--calibrated"];
+    let (output, _) = accelcal_within(&args, Duration::from_secs(60));
+    let stderr = String::from_utf8(output.stderr).unwrap();
+    assert!(!output.status.success(), "{stderr}");
+    assert!(stderr.contains("no active calibration, so --calibrated would print its raw readings"), "{stderr}");
+    assert!(output.stdout.is_empty(), "nothing streamed");
+    let file = std::env::temp_dir().join(format!("accelcal-stream-{}-offset.json", std::process::id()));
+    let offset = r#"{"model": "ortho9", "matrix": [[1,0,0],[0,1,0],[0,0,1]], "offset": [0.25, 0, 0], "g": 1.0}"#;
+    std::fs::write(&file, offset).unwrap();
+    let (uploaded, _) =
+        accelcal_within(&["upload", "--port", &sim.path, file.to_str().unwrap()], Duration::from_secs(60));
+    assert!(uploaded.status.success(), "{}", String::from_utf8_lossy(&uploaded.stderr));
+    let (output, _) = accelcal_within(&args, Duration::from_secs(60));
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    assert_eq!(indices(&output.stdout).len(), 20);
+}

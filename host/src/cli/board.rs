@@ -214,6 +214,9 @@ fn firmware_version(info: &DeviceInfo) -> String {
 /// A reader that goes away (`| head`) ends the stream on the board and the command quietly.
 pub(super) fn stream(args: &StreamArgs) -> Result<(), Error> {
     let mut opened = args.device.open()?;
+    if args.calibrated && opened.connection.client.calibration(CalibrationSlot::Active)?.is_none() {
+        return Err(Error::NothingToApply);
+    }
     let kind = if args.calibrated { StreamKind::Calibrated } else { StreamKind::Raw };
     let request = StreamRequest { kind, rate_hz: args.rate, count: args.count };
     let mut out = csv::Writer::from_writer(std::io::stdout().lock());
