@@ -12,8 +12,10 @@ use super::Certificate;
 pub enum SealError {
     #[error("cannot read {path}: {source}; give the certificate's .json file")]
     Read { path: PathBuf, source: std::io::Error },
-    #[error("{path} is not a certificate ({reason}); give the .json file calibrate wrote")]
+    #[error("{path} is not a certificate ({reason}); give the .certificate.json file calibrate --session or `certificate issue` wrote")]
     NotACertificate { path: PathBuf, reason: String },
+    #[error("{path} is a session, not its certificate; issue one with `accelcal certificate issue {path}` and give the .certificate.json file it writes")]
+    ASession { path: PathBuf },
     #[error("{path} was changed after it was issued: its content hashes to {found}, the certificate states {stated}; ask for the original")]
     Changed { path: PathBuf, stated: String, found: String },
 }
@@ -40,6 +42,9 @@ pub fn check(path: &Path) -> Result<Certificate, SealError> {
     let text = std::fs::read_to_string(path).map_err(|source| SealError::Read { path: path.into(), source })?;
     let refused = |reason: String| SealError::NotACertificate { path: path.into(), reason };
     let value: serde_json::Value = serde_json::from_str(&text).map_err(|e| refused(e.to_string()))?;
+    if value.get("captures").is_some_and(serde_json::Value::is_array) {
+        return Err(SealError::ASession { path: path.into() });
+    }
     let certificate: Certificate = serde_json::from_value(value.clone()).map_err(|e| refused(e.to_string()))?;
     let found = digest_of(value);
     if found != certificate.sha256 {

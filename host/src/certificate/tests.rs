@@ -131,3 +131,15 @@ fn a_certificate_states_the_captures_temperatures_and_none_where_a_stream_carrie
     assert!(page.contains(">not measured (the captures carry no temperature)</td>"), "{page}");
     assert!(!page.contains("NaN") && !page.contains("inf to -inf"), "{page}");
 }
+
+#[test]
+fn checking_a_session_file_as_a_certificate_says_it_is_the_session_and_how_to_issue_its_certificate() {
+    let stem = std::env::temp_dir().join(format!("accelcal-seal-{}-session", std::process::id()));
+    session(1, 0.5, 0.004).save(&stem).unwrap();
+    let path = stem.with_extension("json");
+    let error = seal::check(&path).unwrap_err();
+    assert!(matches!(error, SealError::ASession { .. }), "{error}");
+    assert!(error.to_string().contains("accelcal certificate issue"), "{error}");
+    let _ = std::fs::remove_file(&path);
+    let _ = std::fs::remove_file(stem.with_extension("csv"));
+}
