@@ -11,7 +11,9 @@ use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use accelcal::limits::LISTEN_FIRST;
-use accelcal::link::{ask, find_board, is_worth_asking, open_port, Answer, LinkError, SerialPortEntry};
+use accelcal::link::{
+    ask, find_board, is_worth_asking, open_listening, open_port, Answer, LinkError, PortOpened, SerialPortEntry,
+};
 use accelcal::sim::replay::Replay;
 use accelcal::sim::sketch::Sketch;
 use common::SimPty;
@@ -72,6 +74,8 @@ fn a_silent_port_that_is_no_board_is_greeted_only_after_it_was_listened_to() {
     let asked_at = Instant::now();
     let answer = ask(&path);
     assert!(matches!(answer, Answer::NoBoard(LinkError::Silent { .. })), "a silent port is no board");
+    let Answer::NoBoard(error) = answer else { unreachable!() };
+    assert!(error.to_string().ends_with("run accelcal again once it prints"), "{error}");
     let first = first_byte_at.lock().unwrap().expect("the silent port was greeted");
     let listened = first - asked_at;
     assert!(listened >= LISTEN_FIRST, "written to after {listened:?}, before listening {LISTEN_FIRST:?}");
@@ -99,4 +103,37 @@ fn several_boards_and_none_are_refused_naming_the_way_out() {
     let several = find_board(&[ours("/dev/ttyACM0"), ours("/dev/ttyACM1")], &mut |_| panic!("nothing is asked"));
     let message = several.err().unwrap().to_string();
     assert!(message.contains("/dev/ttyACM0, /dev/ttyACM1") && message.contains("--port"), "{message}");
+}
+
+/// A sketch that begins to print only once something reaches the port: an Arduino that the port's
+/// opening resets boots for 1-2 s, longer than accelcal listens, so its first line follows the hello.
+fn sketch_printing_after_the_first_byte() -> String {
+    use std::io::Write;
+    let (mut master, slave) = serialport::TTYPort::pair().unwrap();
+    let path = serialport::SerialPort::name(&slave).unwrap();
+    std::thread::spawn(move || {
+        let _slave = slave;
+        let _ = serialport::SerialPort::set_timeout(&mut master, Duration::from_secs(30));
+        let mut buffer = [0u8; 64];
+        while !matches!(master.read(&mut buffer), Ok(n) if n > 0) {}
+        for millis in (0..).step_by(10) {
+            if master.write_all(format!("{millis},631,-106,15393,-158,108,59\r\n").as_bytes()).is_err() {
+                return;
+            }
+            std::thread::sleep(Duration::from_millis(10));
+        }
+    });
+    path
+}
+
+#[test]
+fn a_sketch_that_starts_printing_after_the_hello_is_taken_as_talking_and_said_so() {
+    let path = sketch_printing_after_the_first_byte();
+    let Ok(PortOpened::Talking(talking)) = open_listening(&path, 115_200) else { panic!("not taken as talking") };
+    assert!(talking.greeted, "the hello went before its first line");
+    let heard = String::from_utf8_lossy(&talking.heard).into_owned();
+    assert!(heard.contains(",631,-106,15393,-158,108,59\r\n"), "{heard:?}");
+    let refused = open_port(&sketch_printing_after_the_first_byte(), 115_200).err().expect("no board there");
+    assert!(matches!(refused, LinkError::TalksOnItsOwn { greeted: true, .. }), "{refused}");
+    assert!(refused.to_string().contains("though it began only after accelcal's hello"), "{refused}");
 }

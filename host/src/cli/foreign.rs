@@ -31,8 +31,12 @@ pub(super) fn calibrate_from_stream(args: &CalibrateArgs, talking: TalkingPort) 
     let log = kept.source.log.clone();
     let unwritable = |source| Error::WriteFile { path: log.clone(), source };
     let file = std::fs::OpenOptions::new().create(true).append(true).open(&log).map_err(unwritable)?;
+    let late = match talking.greeted {
+        true => ", begun only after accelcal's hello (a board the port's opening reset, or a slow sketch); accelcal writes nothing more to it",
+        false => ": accelcal writes nothing to it",
+    };
     eprintln!(
-        "{} prints its own stream: accelcal writes nothing to it and keeps what it prints in {} (the session in {})",
+        "{} prints its own stream{late} and keeps what it prints in {} (the session in {})",
         talking.path,
         log.display(),
         kept.json().display()

@@ -27,8 +27,16 @@ pub struct Client<P: Port> {
 
 impl<P: Port> Client<P> {
     /// Opens a session: says hello and checks the protocol version.
-    pub fn connect(mut port: P) -> Result<(Self, DeviceInfo), LinkError> {
-        port.set_read_timeout(READ_SLICE).map_err(LinkError::Timeout)?;
+    pub fn connect(port: P) -> Result<(Self, DeviceInfo), LinkError> {
+        Self::connect_keeping(port).map_err(|(error, _)| error)
+    }
+
+    /// Opens a session as [`Client::connect`] does; when that fails, the port comes back with the
+    /// error, for a caller that goes on reading what the device prints.
+    pub fn connect_keeping(mut port: P) -> Result<(Self, DeviceInfo), (LinkError, P)> {
+        if let Err(error) = port.set_read_timeout(READ_SLICE) {
+            return Err((LinkError::Timeout(error), port));
+        }
         let mut client = Client {
             port,
             accumulator: FrameAccumulator::new(),
@@ -37,9 +45,11 @@ impl<P: Port> Client<P> {
             interrupt: None,
         };
         // A leading delimiter ends any half frame left in the device's buffer by an earlier session.
-        client.port.write_all(&[0]).map_err(LinkError::disconnected)?;
-        let info = client.hello()?;
-        Ok((client, info))
+        let said = client.port.write_all(&[0]).map_err(LinkError::disconnected);
+        match said.and_then(|()| client.hello()) {
+            Ok(info) => Ok((client, info)),
+            Err(error) => Err((error, client.port)),
+        }
     }
 
     /// Once `flag` is set (by Ctrl-C), the running capture or stream is cancelled on the device and

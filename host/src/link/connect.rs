@@ -38,6 +38,9 @@ pub struct TalkingPort {
     pub port: Box<dyn Port>,
     /// What it said while accelcal listened.
     pub heard: Vec<u8>,
+    /// It began to talk only after accelcal's hello was written to it (a board the port's opening
+    /// reset, a sketch slow to start).
+    pub greeted: bool,
 }
 
 /// What is behind a port.
@@ -53,10 +56,26 @@ pub fn open_listening(path: &str, baud: u32) -> Result<Opened, LinkError> {
     let port = open_serial(path, baud).map_err(|e| LinkError::opening(path, e))?;
     let mut port: Box<dyn Port> = Box::new(port);
     let heard = listen(&mut port, LISTEN_FIRST)?;
-    if heard.is_empty() {
-        return Ok(Opened::Board(Box::new(Connection::over(port)?)));
+    if !heard.is_empty() {
+        return Ok(Opened::Talking(TalkingPort { path: path.to_owned(), port, heard, greeted: false }));
     }
-    Ok(Opened::Talking(TalkingPort { path: path.to_owned(), port, heard }))
+    match Client::connect_keeping(port) {
+        Ok((client, info)) => Ok(Opened::Board(Box::new(Connection { client, info }))),
+        Err((LinkError::NotAccelcal { seconds, seen }, port)) => started_late(path, port, seconds, seen),
+        Err((LinkError::Silent { seconds, .. }, _)) => Err(LinkError::Silent { seconds, at_open: true }),
+        Err((error, _)) => Err(error),
+    }
+}
+
+/// A port that was silent while listened to and began to print after accelcal's hello (an Arduino
+/// that the port's opening reset boots for 1-2 s): listened to again and taken as talking, unless it
+/// has fallen silent again.
+fn started_late(path: &str, mut port: Box<dyn Port>, seconds: f64, seen: String) -> Result<Opened, LinkError> {
+    let heard = listen(&mut port, LISTEN_FIRST)?;
+    if heard.is_empty() {
+        return Err(LinkError::NotAccelcal { seconds, seen });
+    }
+    Ok(Opened::Talking(TalkingPort { path: path.to_owned(), port, heard, greeted: true }))
 }
 
 /// Opens the serial port at `path` at `baud` and says hello; a port that talks on its own is refused
@@ -65,7 +84,8 @@ pub fn open_port(path: &str, baud: u32) -> Result<Connection, LinkError> {
     match open_listening(path, baud)? {
         Opened::Board(connection) => Ok(*connection),
         Opened::Talking(talking) => {
-            Err(LinkError::TalksOnItsOwn { path: talking.path, seen: describe(&talking.heard, talking.heard.len()) })
+            let seen = describe(&talking.heard, talking.heard.len());
+            Err(LinkError::TalksOnItsOwn { path: talking.path, seen, greeted: talking.greeted })
         }
     }
 }

@@ -4,6 +4,17 @@ use shared::protocol::{DeviceError, PROTOCOL_VERSION};
 
 use super::explain::explain;
 
+/// What a silence at opening adds: a board running its own sketch that printed nothing yet.
+fn silent_sketch(at_open: bool) -> String {
+    let listened_s = crate::limits::LISTEN_FIRST.as_secs_f64();
+    match at_open {
+        true => format!(
+            "; if it runs its own sketch, that printed nothing in the {listened_s} s listened to nor since: run accelcal again once it prints"
+        ),
+        false => String::new(),
+    }
+}
+
 /// A failure of the link or a refusal by the device.
 #[derive(Debug, thiserror::Error)]
 pub enum LinkError {
@@ -11,14 +22,14 @@ pub enum LinkError {
     Open { port: String, reason: String },
     #[error("{port} is in use by another program (a serial terminal, a monitor, ModemManager, another accelcal): close it and run the command again; `fuser -v {port}` or `lsof {port}` names it")]
     PortBusy { port: String },
-    #[error("no answer from the device within {seconds} s: is it an accelcal board running the firmware? (reflash it, or unplug and replug it)")]
-    Silent { seconds: f64 },
+    #[error("no answer from the device within {seconds} s: is it an accelcal board running the firmware? (reflash it, or unplug and replug it){}", silent_sketch(*at_open))]
+    Silent { seconds: f64, at_open: bool },
     #[error("the device stopped answering in the middle of the operation: it restarted or lost power; check the cable and the power, then run the command again")]
     StoppedAnswering,
     #[error("something answers on this port but it is not an accelcal board: it sent {seen} and no accelcal frame within {seconds} s; check that --port names the board (`accelcal ports` marks it)")]
     NotAccelcal { seconds: f64, seen: String },
-    #[error("{path} prints on its own ({seen}), so it is not an accelcal board (which speaks only when asked) and accelcal wrote nothing to it; if it is a sketch printing the sensor, `accelcal calibrate --port {path}` calibrates from what it prints (docs/streams.md); else check that --port names the board (`accelcal ports` marks it)")]
-    TalksOnItsOwn { path: String, seen: String },
+    #[error("{path} prints on its own ({seen}), so it is not an accelcal board (which speaks only when asked){}; if it is a sketch printing the sensor, `accelcal calibrate --port {path}` calibrates from what it prints (docs/streams.md); else check that --port names the board (`accelcal ports` marks it)", if *greeted { ", though it began only after accelcal's hello" } else { " and accelcal wrote nothing to it" })]
+    TalksOnItsOwn { path: String, seen: String, greeted: bool },
     #[error("the device went away ({reason}): it was unplugged or restarted; reconnect and run the command again")]
     Disconnected { reason: String },
     #[error("the device speaks protocol version {device}, this accelcal speaks {host}: update {}", if device < host { "the firmware (cargo run --release in firmware/)" } else { "accelcal" })]

@@ -43,7 +43,7 @@ impl Listening {
         }
         let seconds = limit.as_secs_f64();
         if self.foreign_bytes == 0 {
-            return Err(LinkError::Silent { seconds });
+            return Err(LinkError::Silent { seconds, at_open: false });
         }
         Err(LinkError::NotAccelcal { seconds, seen: describe(&self.foreign, self.foreign_bytes) })
     }
