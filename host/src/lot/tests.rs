@@ -103,3 +103,14 @@ fn a_spec_file_is_read_and_a_wrong_one_refused_with_its_reason() {
     assert!(misspelt.contains("no certificate in the lot states `o_x`"), "{misspelt}");
     std::fs::remove_file(&path).unwrap();
 }
+
+#[test]
+fn the_summary_says_no_spec_was_given_rather_than_that_no_board_is_outside_it() {
+    let one = vec![certificate(1, "B1", "2026-11-24 10:00")];
+    let without = super::text::summary(&LotSummary::of(&one, &Spec { limits: Default::default() }));
+    assert!(without.starts_with("1 board (each"), "{without}");
+    assert!(without.contains("no spec given: --spec SPEC.toml") && !without.contains("no board outside"), "{without}");
+    let wide = Spec { limits: [("o_x".to_owned(), Limits { low: Some(-1.0), high: Some(1.0) })].into() };
+    let within = super::text::summary(&LotSummary::of(&one, &wide));
+    assert!(within.contains("no board outside the spec's limits"), "{within}");
+}

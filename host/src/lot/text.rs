@@ -7,8 +7,8 @@ use crate::certificate::Certificate;
 
 /// The lot's summary as lines for the terminal.
 pub fn summary(summary: &LotSummary) -> String {
-    let mut out =
-        format!("{} boards (each by its latest certificate): {}\n", summary.boards, summary.serials.join(", "));
+    let boards = if summary.boards == 1 { "1 board".to_owned() } else { format!("{} boards", summary.boards) };
+    let mut out = format!("{boards} (each by its latest certificate): {}\n", summary.serials.join(", "));
     let _ = writeln!(
         out,
         "{:<6} {:>12} {:>12} {:>12} {:>12} {:>12} {:>7}",
@@ -17,8 +17,11 @@ pub fn summary(summary: &LotSummary) -> String {
     for distribution in &summary.parameters {
         out.push_str(&parameter_line(distribution));
     }
-    if summary.outside.is_empty() {
-        out.push_str("no board outside the spec's limits\n");
+    let has_spec = summary.parameters.iter().any(|d| d.limits.is_some());
+    match (summary.outside.is_empty(), has_spec) {
+        (true, true) => out.push_str("no board outside the spec's limits\n"),
+        (true, false) => out.push_str("no spec given: --spec SPEC.toml checks every board against its limits\n"),
+        (false, _) => {}
     }
     for (serial, names) in &summary.outside {
         let _ = writeln!(out, "board {serial} is outside the limits of {}", names.join(", "));

@@ -27,7 +27,7 @@ impl Verification {
     pub fn chip_agreement(&self) -> String {
         let (difference, noise) = (self.on_chip_difference_mg, self.on_chip_noise_mg);
         if difference <= CHIP_AGREEMENT_SIGMAS * noise {
-            format!("chip and host agree: they differ by {difference:.2} mg, within the {noise:.2} mg noise of the chip's {CHIP_SAMPLES}-sample mean")
+            format!("chip and host agree: they differ by {difference:.2} mg, within {CHIP_AGREEMENT_SIGMAS} times the {noise:.2} mg noise of the chip's {CHIP_SAMPLES}-sample mean")
         } else {
             format!("chip and host differ by {difference:.2} mg, more than {CHIP_AGREEMENT_SIGMAS} times the {noise:.2} mg noise of the chip's {CHIP_SAMPLES}-sample mean: the chip does not apply the calibration verified")
         }
@@ -242,9 +242,9 @@ mod tests {
             on_chip_noise_mg: noise_mg,
             ..Verification::of(&[])
         };
-        assert!(verification(1.13)
+        assert!(verification(1.35)
             .chip_agreement()
-            .starts_with("chip and host agree: they differ by 1.13 mg, within the 1.16 mg noise"));
+            .starts_with("chip and host agree: they differ by 1.35 mg, within 3 times the 1.16 mg noise"));
         assert!(verification(5.0).chip_agreement().contains("does not apply the calibration verified"));
     }
 
