@@ -30,8 +30,7 @@ const MOST_RV32IMC_INSTRUCTIONS: usize = 620_000;
 #[test]
 #[cfg_attr(not(on_target_runnable), ignore = "needs qemu-system-arm and the on-target binaries (tests/qemu/build.rs)")]
 fn the_chip_s_ortho9_fit_of_ten_captures_takes_at_most_35_000_instructions() {
-    let instructions = fit_instructions(&CORTEX_M4F);
-    assert!(instructions <= MOST_INSTRUCTIONS, "{instructions} instructions, more than {MOST_INSTRUCTIONS}");
+    assert_fit_within(&CORTEX_M4F, MOST_INSTRUCTIONS);
 }
 
 #[test]
@@ -40,11 +39,7 @@ fn the_chip_s_ortho9_fit_of_ten_captures_takes_at_most_35_000_instructions() {
     ignore = "needs qemu-system-arm and fit-count built for thumbv6m-none-eabi (tests/qemu/build.rs)"
 )]
 fn on_a_cortex_m0_without_fpu_the_ortho9_fit_of_ten_captures_takes_at_most_1_180_000_instructions() {
-    let instructions = fit_instructions(&CORTEX_M0);
-    assert!(
-        instructions <= MOST_CORTEX_M0_INSTRUCTIONS,
-        "{instructions} instructions, more than {MOST_CORTEX_M0_INSTRUCTIONS}"
-    );
+    assert_fit_within(&CORTEX_M0, MOST_CORTEX_M0_INSTRUCTIONS);
 }
 
 #[test]
@@ -53,11 +48,13 @@ fn on_a_cortex_m0_without_fpu_the_ortho9_fit_of_ten_captures_takes_at_most_1_180
     ignore = "needs qemu-system-riscv32 (qemu-system-misc) and fit-count built for riscv32imc (tests/qemu/build.rs)"
 )]
 fn on_an_rv32imc_without_fpu_the_ortho9_fit_of_ten_captures_takes_at_most_620_000_instructions() {
-    let instructions = fit_instructions(&RV32IMC);
-    assert!(
-        instructions <= MOST_RV32IMC_INSTRUCTIONS,
-        "{instructions} instructions, more than {MOST_RV32IMC_INSTRUCTIONS}"
-    );
+    assert_fit_within(&RV32IMC, MOST_RV32IMC_INSTRUCTIONS);
+}
+
+/// Asserts the fit on `chip` takes at most `most` instructions.
+fn assert_fit_within(chip: &Chip, most: usize) {
+    let instructions = fit_instructions(chip);
+    assert!(instructions <= most, "{instructions} instructions on {}, more than {most}", chip.target);
 }
 
 /// Runs `fit-count` on `chip` and counts the instructions between its two markers.
