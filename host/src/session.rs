@@ -121,6 +121,12 @@ pub struct Session {
 }
 
 impl Session {
+    /// Whether a JSON object is a session file: its captures as a list, and no calibration of its
+    /// own (as `calibrate --json` has).
+    pub fn is_session_json(value: &serde_json::Value) -> bool {
+        value.get("captures").is_some_and(serde_json::Value::is_array) && value.get("calibration").is_none()
+    }
+
     /// Whether a capture of this name was taken.
     pub fn has_capture(&self, name: &str) -> bool {
         self.captures.iter().any(|c| c.name == name)

@@ -3,11 +3,11 @@
 use std::path::{Path, PathBuf};
 
 fn main() {
-    let target = std::env::var("TARGET").unwrap_or_default();
+    let rust_target = std::env::var("TARGET").unwrap_or_default();
     if std::env::var("CARGO_CFG_TARGET_ARCH").as_deref() == Ok("riscv32") {
         // NOTE: riscv-rt's link.x, on the virt machine's memory map (only `fit-count` is built for it).
         board_link::link_memory("memory-riscv32.x", &["-Tlink.x"]);
-    } else if target.starts_with("thumbv6m") {
+    } else if rust_target.starts_with("thumbv6m") {
         // NOTE: cortex-m-rt's link.x on the micro:bit's memory map (only `fit-count` is built for it);
         // .cargo/config.toml adds link.x for thumbv7em alone.
         board_link::link_memory("memory-cortex-m0.x", &["--nmagic", "-Tlink.x"]);

@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use sha2::{Digest, Sha256};
 
 use super::Certificate;
+use crate::session::Session;
 
 /// Why a certificate file does not check.
 #[derive(Debug, thiserror::Error)]
@@ -42,7 +43,7 @@ pub fn check(path: &Path) -> Result<Certificate, SealError> {
     let text = std::fs::read_to_string(path).map_err(|source| SealError::Read { path: path.into(), source })?;
     let refused = |reason: String| SealError::NotACertificate { path: path.into(), reason };
     let value: serde_json::Value = serde_json::from_str(&text).map_err(|e| refused(e.to_string()))?;
-    if value.get("captures").is_some_and(serde_json::Value::is_array) {
+    if Session::is_session_json(&value) {
         return Err(SealError::ASession { path: path.into() });
     }
     let certificate: Certificate = serde_json::from_value(value.clone()).map_err(|e| refused(e.to_string()))?;

@@ -36,7 +36,7 @@ pub fn c(source: &Source) -> Export {
          static const float accelcal_gyro_matrix[3][3] = {};\nstatic const float accelcal_gyro_bias_dps[3] = {};\n\n{C_FUNCTIONS}\
          \n#endif /* ACCELCAL_CALIBRATION_H */\n",
         source.lsb_per_g(),
-        source.readings.gyro_lsb_per_dps as f32,
+        source.gyro_lsb_per_dps() as f32,
         c_matrix(&full.matrix),
         c_vector(&full.offset_g),
         c_matrix(&full.gyro_matrix),
@@ -94,7 +94,7 @@ pub fn rust(source: &Source) -> Export {
          /// G, row i = output axis i.\npub const GYRO_MATRIX: [[f32; 3]; 3] = {};\n\
          /// b, in deg/s.\npub const GYRO_BIAS_DPS: [f32; 3] = {};\n{RUST_FUNCTIONS}",
         source.lsb_per_g(),
-        source.readings.gyro_lsb_per_dps as f32,
+        source.gyro_lsb_per_dps() as f32,
         rust_matrix(&full.matrix),
         rust_vector(&full.offset_g),
         rust_matrix(&full.gyro_matrix),

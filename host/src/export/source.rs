@@ -1,11 +1,10 @@
 //! What an export starts from: a calibration record (from any JSON accelcal writes, or the board), the
 //! board it belongs to when that is known, and the noise terms for Kalibr.
 
+use clap::ValueEnum;
 use shared::linalg::{self, Vec3};
 use shared::protocol::SensorConfig;
 use shared::{AccelRange, Calibration};
-
-use clap::ValueEnum;
 
 use super::loss::Carried;
 use super::{ExportError, GYRO_LSB_PER_DPS};
@@ -86,8 +85,7 @@ impl Source {
     pub fn from_text(text: &str, from: &str) -> Result<Self, ExportError> {
         let value: serde_json::Value =
             serde_json::from_str(text).map_err(|e| ExportError::NotJson { reason: e.to_string() })?;
-        let is_session = value.get("captures").is_some_and(serde_json::Value::is_array);
-        if is_session && value.get("calibration").is_none() {
+        if Session::is_session_json(&value) {
             let session: Session =
                 serde_json::from_value(value).map_err(|e| ExportError::NotJson { reason: e.to_string() })?;
             return Self::from_session(&session, from);
