@@ -55,6 +55,10 @@ pub(super) fn calibrate_board(
     feedback: &mut dyn Feedback,
 ) -> Result<Option<CalibrateReport>, Error> {
     opened.connection.info.sensor.map_err(LinkError::from)?;
+    if args.serial.is_some() {
+        let reported = String::from_utf8_lossy(&opened.connection.info.serial.hex()).into_owned();
+        return Err(Error::SerialOfItsOwn { reported });
+    }
     opened.hand_seed = args.sim_hand_seed.unwrap_or(args.device.seed);
     let learned = adaptive::learned_model(args, &mut opened.connection.client, feedback)?;
     let mut kept = kept::start(args, &opened.connection.info, learned, feedback)?;

@@ -198,6 +198,7 @@ mod tests {
             input_unit: "counts-2g".into(),
             gyro_unit: gyro_unit.map(str::to_owned),
             rate_hz: Some(100.0),
+            serial: None,
         };
         let session = crate::certificate::tests::session(1, 0.0, 0.004);
         Session { kind: SessionKind::Stream, stream: Some(stream), board: None, ..session }

@@ -88,7 +88,7 @@ impl Board {
         let first = session.captures.first();
         let board = session.board.as_ref();
         Board {
-            serial: board.map(|b| b.serial.clone()),
+            serial: board.map(|b| b.serial.clone()).or_else(|| session.stream.as_ref()?.serial.clone()),
             firmware: board.map(|b| format!("{}.{}.{}", b.firmware.major, b.firmware.minor, b.firmware.patch)),
             part: board.and_then(|b| b.sensor.clone()),
             sensor_config: board.map(|b| {
@@ -148,5 +148,21 @@ mod tests {
             error.to_string().contains("at 100 Hz, the board is set to G2 with the Hz44 filter at 1000 Hz"),
             "{error}"
         );
+    }
+
+    #[test]
+    fn a_stream_session_s_board_is_keyed_by_the_serial_the_person_gave() {
+        let stream = |serial: Option<&str>| crate::session::StreamSource {
+            port: "/dev/ttyUSB0".into(),
+            log: "s.log".into(),
+            dialect: "csv".into(),
+            input_unit: "counts-2g".into(),
+            gyro_unit: None,
+            rate_hz: Some(100.0),
+            serial: serial.map(str::to_owned),
+        };
+        let session = |serial| Session { stream: Some(stream(serial)), ..Session::default() };
+        assert_eq!(Board::of(&session(Some("desk-3"))).serial.as_deref(), Some("desk-3"));
+        assert_eq!(Board::of(&session(None)).serial, None);
     }
 }

@@ -22,4 +22,8 @@ pub struct StreamSource {
     pub gyro_unit: Option<String>,
     /// Samples a second, when known.
     pub rate_hz: Option<f64>,
+    /// The board's serial or label as the person gave it (`--serial`), which its certificate and
+    /// the lot key it by; absent when none was given.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub serial: Option<String>,
 }
