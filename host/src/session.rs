@@ -13,6 +13,7 @@ use crate::fit::gyro::TurnSummary;
 use crate::orientation::Orientation;
 
 mod board;
+mod error;
 #[cfg(test)]
 mod fixture;
 mod kind;
@@ -22,32 +23,12 @@ mod verdict;
 mod verification;
 
 pub use board::{Board, BoardRecord};
+pub use error::SessionError;
 pub use kind::SessionKind;
 pub use outcome::{Fitted, Outcome, OutcomeError};
 pub use source::StreamSource;
 pub use verdict::TargetVerdict;
 pub use verification::{Check, TurnCheck, Verification};
-
-/// Why a session file could not be written or read.
-#[derive(Debug, thiserror::Error)]
-pub enum SessionError {
-    #[error("cannot write {path}: {source}; check that the directory exists and is writable")]
-    Write { path: PathBuf, source: std::io::Error },
-    #[error("cannot read {path}: {source}; give the path of a session written by calibrate or capture")]
-    Read { path: PathBuf, source: std::io::Error },
-    #[error("{path} is not a session file ({reason}); give the .json file written by calibrate or capture")]
-    NotASession { path: PathBuf, reason: String },
-    #[error("{path} already holds a session; continue it with `--resume {path}`, or give another --session name")]
-    Exists { path: PathBuf },
-    #[error("{path} is not a session of a board's own stream; resume it with the board it was captured on, or start a new one without --resume")]
-    NotAStream { path: PathBuf },
-    #[error("{path} records no board; only a session written by calibrate can be resumed")]
-    NoBoard { path: PathBuf },
-    #[error("{path} was captured on another board (serial {session}), this one is {board}: connect that board, or start a new calibration")]
-    OtherBoard { path: PathBuf, session: String, board: String },
-    #[error("{path} was captured at {session}, the board is set to {board}: captures at another setting do not fit together; start a new calibration")]
-    OtherSetting { path: PathBuf, session: String, board: String },
-}
 
 /// One capture of a session.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

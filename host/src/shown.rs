@@ -19,6 +19,12 @@ pub fn hz(rate_hz: f64) -> String {
     text.trim_end_matches('0').trim_end_matches('.').to_owned()
 }
 
+/// A rate in Hz to the millihertz as a number, for JSON: the rate [`hz`] shows (100, not
+/// 100.00000000000213).
+pub fn hz_value(rate_hz: f64) -> f64 {
+    (rate_hz * 1e3).round() / 1e3
+}
+
 /// Seconds since the Unix epoch as `YYYY-MM-DD HH:MM` UTC (the epoch itself for a time `time`
 /// cannot represent).
 pub fn utc_minutes(unix_time_s: f64) -> String {

@@ -23,7 +23,7 @@ use crate::procedure::Feedback;
 use crate::report::stream::{self, StreamReport};
 use crate::session::Session;
 use crate::stream::live::{LiveStream, Silence};
-use crate::stream::{Layout, LineReader, StreamLog, StreamOptions};
+use crate::stream::{read_heard, StreamLog, StreamOptions};
 
 /// How often the person is told where things stand, in seconds.
 const STATUS_EVERY: Duration = Duration::from_secs(1);
@@ -50,7 +50,7 @@ pub(super) fn calibrate_from_stream(args: &CalibrateArgs, talking: TalkingPort) 
     let mut live = LiveStream::new(talking, file, &before).map_err(unwritable)?;
     let options = args.stream.options(None);
     let why = listen_until_done(&mut live, &options, args, &kept)?;
-    let data = data_lines(&live);
+    let data = data_lines(&live, &options);
     live.finish(&data).map_err(unwritable)?;
     eprintln!("{why}: fitting the still periods of {}", log.display());
     report(args, &kept, &options)
@@ -107,11 +107,10 @@ fn unreadable(seconds: f64, baud: u32) -> String {
     )
 }
 
-/// The indices of the lines that carry samples.
-fn data_lines(live: &LiveStream) -> Vec<usize> {
-    let Ok(layout) = Layout::detect(live.lines.iter().map(|(t, _)| t.as_str())) else { return Vec::new() };
-    let mut reader = LineReader::new(layout);
-    live.lines.iter().enumerate().filter(|(_, (text, _))| reader.read(text).is_ok()).map(|(i, _)| i).collect()
+/// The indices of the lines that carry accepted samples.
+fn data_lines(live: &LiveStream, options: &StreamOptions) -> Vec<usize> {
+    let log = read_heard(&live.lines, options);
+    log.map(|log| log.samples.iter().map(|s| s.line - 1).collect()).unwrap_or_default()
 }
 
 /// The calibration and verification of the kept log, as `fit LOG` gives them; the session saved

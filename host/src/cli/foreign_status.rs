@@ -12,10 +12,9 @@ use crate::limits::MAX_CAPTURE_SECONDS;
 use crate::limits::MOVING_SCATTER_G;
 use crate::procedure::stop_rule::{Noise, StopRule};
 use crate::stream::guide::{all_rested, nearest_name, next_turn};
-use crate::stream::live::{arrival_hz, LiveStream};
+use crate::stream::live::LiveStream;
 use crate::stream::segment::{mean_std, Segment, Stillness};
-use crate::stream::timing::{Rate, RateSource};
-use crate::stream::{Dropped, LineReader, StillPeriods, StreamLog, StreamOptions};
+use crate::stream::{read_heard, StillPeriods, StreamLog, StreamOptions};
 
 /// Where the session stands between status lines.
 pub(super) struct Progress {
@@ -43,7 +42,7 @@ pub(super) fn status(
     kept: &Kept,
     progress: &mut Progress,
 ) -> Result<Option<String>, Error> {
-    let Some(log) = snapshot(live, options) else { return Ok(None) };
+    let Some(log) = read_heard(&live.lines, options) else { return Ok(None) };
     let still = StillPeriods::of(&log);
     eprintln!("{}", status_line(&log, &still, progress.want_g));
     if still.segments.len() != progress.saved_periods {
@@ -54,24 +53,6 @@ pub(super) fn status(
     let fresh = still.held_out.rows.len();
     Ok((all_rested(&trained) && fresh >= progress.verify)
         .then(|| format!("every face and corner rested and {fresh} fresh orientations held")))
-}
-
-/// The stream read so far, at the rate its lines arrived.
-fn snapshot(live: &LiveStream, options: &StreamOptions) -> Option<StreamLog> {
-    let layout = crate::stream::Layout::detect(live.lines.iter().map(|(text, _)| text.as_str())).ok()?;
-    let mut reader = LineReader::new(layout.clone());
-    let (mut samples, mut arrivals, mut dropped) = (Vec::new(), Vec::new(), Dropped::default());
-    for (index, (text, at)) in live.lines.iter().enumerate() {
-        match reader.read(text) {
-            Ok(sample) => {
-                samples.push(sample);
-                arrivals.push(*at);
-            }
-            Err(reason) => dropped.add(reason, index + 1),
-        }
-    }
-    let rate = arrival_hz(&arrivals).map(|hz| Rate { hz, source: RateSource::ArrivalTimes });
-    StreamLog::new(layout, samples, dropped, rate, options).ok()
 }
 
 /// One status line: the stream, the board's rest and tilt, the position being held, the next turn.

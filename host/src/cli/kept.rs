@@ -53,13 +53,21 @@ fn resumed(path: &Path, board: &BoardRecord, feedback: &mut dyn Feedback) -> Res
     let stem = stem_of(path);
     let json = stem_file(&stem, "json");
     let session = Session::load(&json)?;
-    let recorded = session.board.as_ref().ok_or(crate::session::SessionError::NoBoard { path: json.clone() })?;
-    recorded.check_same(board, &json)?;
+    recorded_board(&session, &json)?.check_same(board, &json)?;
     let targets = procedure::targets(session.kind == SessionKind::Quick);
     // NOTE: by name: an adaptive session's closing capture repeats its first position.
     let captured = targets.iter().filter(|t| session.has_capture(&t.name)).count();
     feedback.say(&format!("resuming {}: {captured} of {} positions captured", json.display(), targets.len()));
     Ok(Kept { session, path: Some(stem), resumed: true })
+}
+
+/// The board a session to resume on an accelcal board was captured on; a stream session (read from
+/// a board's own sketch, which no accelcal board goes on with) is named as such, with its port.
+fn recorded_board<'a>(session: &'a Session, json: &Path) -> Result<&'a BoardRecord, SessionError> {
+    if let Some(stream) = session.stream.as_ref().filter(|_| session.kind == SessionKind::Stream) {
+        return Err(SessionError::StreamOnBoard { path: json.to_owned(), port: stream.port.clone() });
+    }
+    session.board.as_ref().ok_or(SessionError::NoBoard { path: json.to_owned() })
 }
 
 /// Where a new session is kept: `--session` (a folder gets a session named by the time inside it),
@@ -79,5 +87,29 @@ pub(super) fn new_session_path(args: &CalibrateArgs) -> Result<Option<PathBuf>, 
     match path {
         Some(stem) if stem_file(&stem, "json").exists() => Err(SessionError::Exists { path: stem_file(&stem, "json") }),
         path => Ok(path),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::session::StreamSource;
+
+    #[test]
+    fn a_stream_session_resumed_on_an_accelcal_board_is_named_with_the_command_that_resumes_it() {
+        let stream = StreamSource {
+            port: "/dev/ttyUSB3".into(),
+            log: "s.log".into(),
+            dialect: "csv".into(),
+            input_unit: "counts-2g".into(),
+            gyro_unit: None,
+            rate_hz: Some(100.0),
+        };
+        let session = Session { kind: SessionKind::Stream, stream: Some(stream), ..Session::default() };
+        let error = recorded_board(&session, Path::new("s.json")).unwrap_err().to_string();
+        assert!(error.contains("s.json is a session of a board's own stream"), "{error}");
+        assert!(error.contains("accelcal calibrate --port /dev/ttyUSB3 --resume s.json"), "{error}");
+        let error = recorded_board(&Session::default(), Path::new("c.json")).unwrap_err().to_string();
+        assert!(error.contains("c.json records no board"), "{error}");
     }
 }

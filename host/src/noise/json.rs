@@ -148,7 +148,7 @@ impl NoiseJson {
     pub fn of(report: &NoiseReport) -> Self {
         NoiseJson {
             serial: report.board.clone(),
-            sample_rate_hz: Some(report.rate_hz),
+            sample_rate_hz: Some(crate::shown::hz_value(report.rate_hz)),
             samples: Some(report.samples),
             axes: AxesJson::of(report),
             units: report

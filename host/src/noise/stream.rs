@@ -25,3 +25,30 @@ pub fn longest_still(log: &StreamLog) -> Result<(Segment, RateSeries), NoiseInpu
     }
     Ok((longest, RateSeries { rate_hz: rate.hz, axes, board: None }))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fit::{FitOptions, Model, ModelChoice};
+    use crate::report::stream::{json, StreamReport};
+    use crate::sim::person::PersonSession;
+    use crate::sim::sketch::Sketch;
+    use crate::stream::StreamOptions;
+
+    #[test]
+    fn a_streams_rate_in_json_is_the_millihertz_number_the_text_shows() {
+        let session = PersonSession::new(5, Sketch::Csv.reading());
+        let text: String = Sketch::Csv.lines(&session).into_iter().map(|l| l.text).collect();
+        let log = StreamLog::parse(&text, &StreamOptions::default()).unwrap();
+        // NOTE: millis timestamps give 1 / 0.010000000000000002 s: the float's digits the JSON must not show.
+        let hz = log.rate.unwrap().hz;
+        assert!(hz != 100.0 && (hz - 100.0).abs() < 1e-9, "{hz}");
+        let (_, series) = longest_still(&log).unwrap();
+        let noise: serde_json::Value =
+            serde_json::from_str(&crate::noise::json::render(&crate::noise::analyse(&series))).unwrap();
+        assert_eq!(noise["sample_rate_hz"].as_f64(), Some(100.0), "{}", noise["sample_rate_hz"]);
+        let report = StreamReport::new(&log, ModelChoice::Only(Model::Ortho9), &FitOptions::default()).unwrap();
+        let fit: serde_json::Value = serde_json::from_str(&json(&report)).unwrap();
+        assert_eq!(fit["rate_hz"].as_f64(), Some(100.0), "{}", fit["rate_hz"]);
+    }
+}

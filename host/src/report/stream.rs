@@ -110,7 +110,7 @@ pub fn json(report: &StreamReport) -> String {
         input_unit: report.input_unit,
         gyro_unit: report.gyro_unit.map(|(unit, _)| unit),
         gyro_unit_assumed: report.gyro_unit.is_some_and(|(_, assumed)| assumed),
-        rate_hz: report.rate.map(|r| r.hz),
+        rate_hz: report.rate.map(|r| crate::shown::hz_value(r.hz)),
         rate_source: report.rate.map(|r| r.source),
         samples: report.samples,
         dropped: &report.dropped,
