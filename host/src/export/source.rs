@@ -191,15 +191,7 @@ mod tests {
     use crate::session::StreamSource;
 
     fn stream_session(gyro_unit: Option<&str>) -> Session {
-        let stream = StreamSource {
-            port: "/dev/ttyUSB0".into(),
-            log: "s.log".into(),
-            dialect: "csv".into(),
-            input_unit: "counts-2g".into(),
-            gyro_unit: gyro_unit.map(str::to_owned),
-            rate_hz: Some(100.0),
-            serial: None,
-        };
+        let stream = StreamSource::for_tests(gyro_unit, None);
         let session = crate::certificate::tests::session(1, 0.0, 0.004);
         Session { kind: SessionKind::Stream, stream: Some(stream), board: None, ..session }
     }

@@ -152,16 +152,8 @@ mod tests {
 
     #[test]
     fn a_stream_session_s_board_is_keyed_by_the_serial_the_person_gave() {
-        let stream = |serial: Option<&str>| crate::session::StreamSource {
-            port: "/dev/ttyUSB0".into(),
-            log: "s.log".into(),
-            dialect: "csv".into(),
-            input_unit: "counts-2g".into(),
-            gyro_unit: None,
-            rate_hz: Some(100.0),
-            serial: serial.map(str::to_owned),
-        };
-        let session = |serial| Session { stream: Some(stream(serial)), ..Session::default() };
+        let stream = |serial| Some(crate::session::StreamSource::for_tests(None, serial));
+        let session = |serial| Session { stream: stream(serial), ..Session::default() };
         assert_eq!(Board::of(&session(Some("desk-3"))).serial.as_deref(), Some("desk-3"));
         assert_eq!(Board::of(&session(None)).serial, None);
     }

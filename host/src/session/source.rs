@@ -27,3 +27,19 @@ pub struct StreamSource {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub serial: Option<String>,
 }
+
+#[cfg(test)]
+impl StreamSource {
+    /// A CSV stream of counts at 100 Hz read from /dev/ttyUSB0, for tests.
+    pub(crate) fn for_tests(gyro_unit: Option<&str>, serial: Option<&str>) -> Self {
+        StreamSource {
+            port: "/dev/ttyUSB0".into(),
+            log: "s.log".into(),
+            dialect: "csv".into(),
+            input_unit: "counts-2g".into(),
+            gyro_unit: gyro_unit.map(str::to_owned),
+            rate_hz: Some(100.0),
+            serial: serial.map(str::to_owned),
+        }
+    }
+}
