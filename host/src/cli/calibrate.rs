@@ -73,6 +73,11 @@ pub(super) fn calibrate_board(
     if !upload_if_confirmed(client, &fitted.chosen, feedback)? {
         return Ok(None);
     }
+    // NOTE: kept before the verification, so that a Ctrl-C or a pulled cable during it still leaves
+    // the session saying what the board holds.
+    if let Some(path) = kept.path.as_deref() {
+        Session { uploaded: Some(fitted.chosen), ..fitted.session.clone() }.save(path)?;
+    }
     // NOTE: a resumed session's first capture was taken in another run: its board time is unknown.
     let first_capture_s = first_capture_s.filter(|_| !kept.resumed);
     finish(args, &mut opened, &fitted, kept.path.as_deref(), first_capture_s, feedback).map(Some)
