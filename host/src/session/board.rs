@@ -88,7 +88,7 @@ impl Board {
         let first = session.captures.first();
         let board = session.board.as_ref();
         Board {
-            serial: board.map(|b| b.serial.clone()).or_else(|| session.stream.as_ref()?.serial.clone()),
+            serial: session.serial(),
             firmware: board.map(|b| format!("{}.{}.{}", b.firmware.major, b.firmware.minor, b.firmware.patch)),
             part: board.and_then(|b| b.sensor.clone()),
             sensor_config: board.map(|b| {
