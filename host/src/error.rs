@@ -79,6 +79,10 @@ pub enum Error {
     BoardThreadFailed,
     #[error("--json cannot ask whether to upload the calibration: add --yes to upload and save it, or leave out --json to be asked")]
     JsonCannotAsk,
+    #[error("{port} prints its own stream, which names no board the lot could key its certificate by: give the board's serial or label with --serial LABEL, or leave out --lot")]
+    StreamLotNeedsSerial { port: String },
+    #[error("--serial is for a board that prints its own stream; this board runs accelcal's firmware and reports its own serial {reported}: leave out --serial")]
+    SerialOfItsOwn { reported: String },
     #[error(transparent)]
     SelfTest(#[from] crate::selftest::SelfTestError),
     #[error(transparent)]

@@ -102,6 +102,12 @@ pub struct Session {
 }
 
 impl Session {
+    /// The board's serial: the one its firmware reported, or the label a stream session was given
+    /// (`--serial`).
+    pub fn serial(&self) -> Option<String> {
+        self.board.as_ref().map(|b| b.serial.clone()).or_else(|| self.stream.as_ref()?.serial.clone())
+    }
+
     /// Whether a JSON object is a session file: its captures as a list, and no calibration of its
     /// own (as `calibrate --json` has).
     pub fn is_session_json(value: &serde_json::Value) -> bool {

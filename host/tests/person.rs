@@ -138,6 +138,15 @@ fn ctrl_c_during_the_verification_says_the_calibration_is_already_uploaded_and_s
     assert!(last.contains(&format!("accelcal verify --port {}", sim.path)), "{last}");
     let (active, stored) = calibrations(&sim);
     assert_eq!(active, stored, "what is active is what is saved");
+    let kept: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(session.with_extension("json")).unwrap()).unwrap();
+    let active: serde_json::Value = serde_json::from_str(&active).unwrap();
+    let offsets = |v: &serde_json::Value| v.as_array().map(|a| a.iter().filter_map(|x| x.as_f64()).collect::<Vec<_>>());
+    let (kept, active) =
+        (offsets(&kept["uploaded"]["offset_g"]).unwrap_or_default(), offsets(&active["offset"]).unwrap());
+    assert_eq!(kept.len(), 3, "the session does not say what the board holds");
+    // NOTE: the board holds f32; the session keeps the same f32 values.
+    assert!(kept.iter().zip(&active).all(|(k, a)| (k - a).abs() < 1e-7), "{kept:?} against {active:?}");
 }
 
 /// A known calibration uploaded to the board and saved (kept in a file named after `name`).

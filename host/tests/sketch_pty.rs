@@ -35,8 +35,9 @@ struct Run {
 
 /// `calibrate --port` on the replay, keeping the session at `stem` (its log `stem.log`), then `fit`
 /// on the log and `report` on the session.
-fn calibrate_and_refit(sketch: Sketch, path: &str, stem: &str) -> Run {
-    let args = ["calibrate", "--port", path, "--yes", "--json", "--session", stem];
+fn calibrate_and_refit(sketch: Sketch, path: &str, stem: &str, lot: &str) -> Run {
+    let label = format!("{sketch:?}");
+    let args = ["calibrate", "--port", path, "--yes", "--json", "--session", stem, "--serial", &label, "--lot", lot];
     let (live, _) = accelcal_within(&args, LIMIT);
     assert!(live.status.success(), "{sketch:?}: {}", String::from_utf8_lossy(&live.stderr));
     let log = format!("{stem}.log");
@@ -82,7 +83,8 @@ fn every_sketchs_stream_is_calibrated_live_with_no_flag_and_no_byte_written() {
         .map(|(sketch, replay)| {
             let (sketch, path) = (*sketch, replay.path.clone());
             let stem = dir.join(format!("{sketch:?}")).display().to_string();
-            std::thread::spawn(move || (sketch, calibrate_and_refit(sketch, &path, &stem)))
+            let lot = dir.join("lot.sqlite").display().to_string();
+            std::thread::spawn(move || (sketch, calibrate_and_refit(sketch, &path, &stem, &lot)))
         })
         .collect();
     for run in runs {
@@ -115,5 +117,11 @@ fn every_sketchs_stream_is_calibrated_live_with_no_flag_and_no_byte_written() {
             "{sketch:?}: `report` takes the session"
         );
         assert!(report["verdict"]["line"].as_str().is_some_and(|l| l.contains("fresh orientations")), "{report}");
+        let certificate = dir.join(format!("{sketch:?}.certificate.json"));
+        let certificate = std::fs::read_to_string(&certificate).unwrap_or_else(|e| panic!("{sketch:?}: {e}"));
+        let serial = json(certificate.as_bytes())["board"]["serial"].clone();
+        assert_eq!(serial.as_str(), Some(format!("{sketch:?}").as_str()), "the certificate keyed by --serial");
     }
+    let (lot, _) = accelcal_within(&["lot", "show", dir.join("lot.sqlite").to_str().unwrap(), "--json"], LIMIT);
+    assert_eq!(json(&lot.stdout)["boards"].as_u64(), Some(Sketch::ALL.len() as u64), "every board in the lot");
 }

@@ -8,7 +8,7 @@ use std::path::Path;
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
-use common::{wait_or_kill, SimPty};
+use common::{accelcal_within, wait_or_kill, SimPty};
 
 /// Longer than a few still periods of the CSV sketch (one every 8-11 s).
 const LIMIT: Duration = Duration::from_secs(120);
@@ -74,5 +74,24 @@ fn ctrl_c_and_a_pulled_cable_lose_no_still_period_and_resume_goes_on_in_the_same
     assert!(captures(&json) >= kept, "the pulled cable lost still periods: {} of {kept}", captures(&json));
     let after = std::fs::read_to_string(&log).unwrap();
     assert!(after.starts_with(&before) && after.len() > before.len(), "the resumed run appends to the same log");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_lot_needs_the_serial_a_stream_cannot_name_and_a_board_of_our_own_takes_none() {
+    let dir = std::env::temp_dir().join(format!("accelcal-sketch-serial-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (stem, lot) = (dir.join("unnamed"), dir.join("lot.sqlite"));
+    let sim = SimPty::with_seed("4", &["--sketch", "csv"]);
+    let args = ["calibrate", "--port", &sim.path, "--lot", lot.to_str().unwrap(), "--session", stem.to_str().unwrap()];
+    let (refused, _) = accelcal_within(&args, LIMIT);
+    let said = String::from_utf8_lossy(&refused.stderr);
+    assert!(!refused.status.success() && said.contains("--serial LABEL"), "{said}");
+    for path in [lot, stem.with_extension("json"), stem.with_extension("log")] {
+        assert!(!path.exists(), "{} was written before the refusal", path.display());
+    }
+    let (refused, _) = accelcal_within(&["calibrate", "--sim", "--quick", "--yes", "--serial", "B1"], LIMIT);
+    let said = String::from_utf8_lossy(&refused.stderr);
+    assert!(!refused.status.success() && said.contains("reports its own serial"), "{said}");
     let _ = std::fs::remove_dir_all(&dir);
 }

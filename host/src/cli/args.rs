@@ -109,6 +109,10 @@ pub struct CalibrateArgs {
     /// Add the board's certificate to this lot database (one SQLite file, created when new).
     #[arg(long, value_name = "LOT")]
     pub lot: Option<PathBuf>,
+    /// On a board that prints its own stream: its serial or label, which its certificate and the
+    /// lot key it by (a board running accelcal's firmware reports its own).
+    #[arg(long, value_name = "LABEL", value_parser = clap::builder::NonEmptyStringValueParser::new())]
+    pub serial: Option<String>,
     /// With --sim: how many degrees off the tool places the board, as a hand would (0-8).
     #[arg(long, default_value_t = 3.0, value_parser = placement_deg)]
     pub sim_placement_deg: f64,

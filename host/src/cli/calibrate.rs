@@ -55,6 +55,10 @@ pub(super) fn calibrate_board(
     feedback: &mut dyn Feedback,
 ) -> Result<Option<CalibrateReport>, Error> {
     opened.connection.info.sensor.map_err(LinkError::from)?;
+    if args.serial.is_some() {
+        let reported = String::from_utf8_lossy(&opened.connection.info.serial.hex()).into_owned();
+        return Err(Error::SerialOfItsOwn { reported });
+    }
     opened.hand_seed = args.sim_hand_seed.unwrap_or(args.device.seed);
     let learned = adaptive::learned_model(args, &mut opened.connection.client, feedback)?;
     let mut kept = kept::start(args, &opened.connection.info, learned, feedback)?;
@@ -68,6 +72,11 @@ pub(super) fn calibrate_board(
     }
     if !upload_if_confirmed(client, &fitted.chosen, feedback)? {
         return Ok(None);
+    }
+    // NOTE: kept before the verification, so that a Ctrl-C or a pulled cable during it still leaves
+    // the session saying what the board holds.
+    if let Some(path) = kept.path.as_deref() {
+        Session { uploaded: Some(fitted.chosen), ..fitted.session.clone() }.save(path)?;
     }
     // NOTE: a resumed session's first capture was taken in another run: its board time is unknown.
     let first_capture_s = first_capture_s.filter(|_| !kept.resumed);

@@ -89,6 +89,16 @@ pub(super) fn unless_failed(
         feedback.say("no certificate: the calibration missed its target by more than its noise (see the verdict)");
         return Ok(None);
     }
+    unless_contradicted(verified, path, feedback)
+}
+
+/// The certificate, or none, said why, when the session's verification contradicts the
+/// certificate's predicted | |a| - g |.
+pub(super) fn unless_contradicted(
+    verified: &Session,
+    path: &Path,
+    feedback: &mut dyn Feedback,
+) -> Result<Option<Certificate>, Error> {
     match issue(verified, path) {
         Ok(certificate) => Ok(Some(certificate)),
         Err(contradicted @ Error::Contradicted { .. }) => {

@@ -14,11 +14,14 @@ use super::args::CalibrateArgs;
 use super::calibrate::interrupt_on_ctrl_c;
 use super::foreign_session::Kept;
 use super::foreign_status::{status, Progress};
+use super::terminal::Terminal;
 use crate::error::Error;
 use crate::fit::{FitOptions, Model, ModelChoice};
 use crate::limits::LIVE_DETECTION_LINES;
 use crate::link::TalkingPort;
+use crate::procedure::Feedback;
 use crate::report::stream::{self, StreamReport};
+use crate::session::Session;
 use crate::stream::live::{LiveStream, Silence};
 use crate::stream::{read_heard, StreamLog, StreamOptions};
 
@@ -28,6 +31,9 @@ const STATUS_EVERY: Duration = Duration::from_secs(1);
 /// Calibrates from the stream of `talking`.
 pub(super) fn calibrate_from_stream(args: &CalibrateArgs, talking: TalkingPort) -> Result<(), Error> {
     let (kept, before) = Kept::begin(args, &talking.path)?;
+    if args.lot.is_some() && kept.source.serial.is_none() {
+        return Err(Error::StreamLotNeedsSerial { port: talking.path });
+    }
     let log = kept.source.log.clone();
     let unwritable = |source| Error::WriteFile { path: log.clone(), source };
     let file = std::fs::OpenOptions::new().create(true).append(true).open(&log).map_err(unwritable)?;
@@ -124,7 +130,8 @@ fn report(args: &CalibrateArgs, kept: &Kept, options: &StreamOptions) -> Result<
             );
             Error::StreamFit { path: path.clone(), source }
         })?;
-    kept.save(&log, report.verification.clone())?;
+    let session = kept.save(&log, report.verification.clone())?;
+    certify(args, kept, &session)?;
     if args.json {
         println!("{}", stream::json(&report));
         return Ok(());
@@ -139,6 +146,23 @@ fn report(args: &CalibrateArgs, kept: &Kept, options: &StreamOptions) -> Result<
         session.display(),
         session.display()
     );
+    Ok(())
+}
+
+/// Issues the stream session's certificate beside it, and adds it to the lot when one was given,
+/// unless its verification contradicts the certificate's prediction (said why).
+// NOTE: unlike a board's session, a stream's does not fail on a missed --target-mg (the sketch's
+// rate and digits bound what it reaches), so only that contradiction withholds the certificate.
+fn certify(args: &CalibrateArgs, kept: &Kept, session: &Session) -> Result<(), Error> {
+    let mut feedback = Terminal::new(true);
+    let Some(certificate) = super::certificate::unless_contradicted(session, &kept.json(), &mut feedback)? else {
+        return Ok(());
+    };
+    let (json, _) = super::certificate::written(&certificate, &kept.json())?;
+    feedback.say(&format!("certificate: {}", json.display()));
+    if let Some(lot) = &args.lot {
+        feedback.say(&super::lot::add_issued(lot, &certificate)?);
+    }
     Ok(())
 }
 

@@ -30,7 +30,7 @@ impl Kept {
     /// A new session, or the one `--resume` names with the lines its log already holds.
     pub fn begin(args: &CalibrateArgs, port: &str) -> Result<(Kept, String), Error> {
         if let Some(path) = &args.resume {
-            return resume(path, port);
+            return resume(path, port, args.serial.as_deref());
         }
         let stem = new_session_path(args)?
             .unwrap_or_else(|| PathBuf::from(format!("accelcal-session-{}", unix_time_s() as u64)));
@@ -42,6 +42,7 @@ impl Kept {
             input_unit: String::new(),
             gyro_unit: None,
             rate_hz: None,
+            serial: args.serial.clone(),
         };
         Ok((Kept { stem, source, began_unix_s: unix_time_s() }, String::new()))
     }
@@ -52,8 +53,8 @@ impl Kept {
     }
 
     /// Saves the session of `log` so far: its training still periods as captures, and the
-    /// verification once made.
-    pub fn save(&self, log: &StreamLog, verification: Option<Verification>) -> Result<(), SessionError> {
+    /// verification once made; the session saved.
+    pub fn save(&self, log: &StreamLog, verification: Option<Verification>) -> Result<Session, SessionError> {
         let still = StillPeriods::of(log);
         let source = StreamSource {
             dialect: log.layout.dialect.name().to_owned(),
@@ -67,7 +68,8 @@ impl Kept {
         let captures = still.dataset.rows.iter().map(|row| self.capture(row, log)).collect();
         let session =
             Session { kind: SessionKind::Stream, captures, verification, stream: Some(source), ..Session::default() };
-        session.save(&self.stem)
+        session.save(&self.stem)?;
+        Ok(session)
     }
 
     /// A still period as a capture, in g.
@@ -92,8 +94,9 @@ impl Kept {
     }
 }
 
-/// The stream session at `path` and the lines its log holds, to go on with on `port`.
-fn resume(path: &Path, port: &str) -> Result<(Kept, String), Error> {
+/// The stream session at `path` and the lines its log holds, to go on with on `port`, with the
+/// serial it records or, where it records none, `serial`.
+fn resume(path: &Path, port: &str, serial: Option<&str>) -> Result<(Kept, String), Error> {
     let stem = stem_of(path);
     let session = Session::load(&stem_file(&stem, "json"))?;
     let Some(source) = session.stream.filter(|_| session.kind == SessionKind::Stream) else {
@@ -101,6 +104,12 @@ fn resume(path: &Path, port: &str) -> Result<(Kept, String), Error> {
     };
     let log = source.log.clone();
     let before = crate::stream::read_text(&log).map_err(|source| Error::ReadFile { path: log, source })?;
-    let source = StreamSource { port: port.to_owned(), ..source };
+    let serial = match (source.serial.clone(), serial) {
+        (Some(kept), Some(given)) if kept != given => {
+            return Err(SessionError::OtherBoard { path: path.to_owned(), session: kept, board: given.into() }.into())
+        }
+        (kept, given) => kept.or(given.map(str::to_owned)),
+    };
+    let source = StreamSource { port: port.to_owned(), serial, ..source };
     Ok((Kept { stem, source, began_unix_s: unix_time_s() }, before))
 }

@@ -97,14 +97,7 @@ mod tests {
 
     #[test]
     fn a_stream_session_resumed_on_an_accelcal_board_is_named_with_the_command_that_resumes_it() {
-        let stream = StreamSource {
-            port: "/dev/ttyUSB3".into(),
-            log: "s.log".into(),
-            dialect: "csv".into(),
-            input_unit: "counts-2g".into(),
-            gyro_unit: None,
-            rate_hz: Some(100.0),
-        };
+        let stream = StreamSource { port: "/dev/ttyUSB3".into(), ..StreamSource::for_tests(None, None) };
         let session = Session { kind: SessionKind::Stream, stream: Some(stream), ..Session::default() };
         let error = recorded_board(&session, Path::new("s.json")).unwrap_err().to_string();
         assert!(error.contains("s.json is a session of a board's own stream"), "{error}");

@@ -9,7 +9,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 
 use crate::certificate::{self, Certificate};
 use crate::error::Error;
-use crate::lot::{self, Added, Lot, LotSummary, Spec};
+use crate::lot::{self, Added, Lot, LotError, LotSummary, Spec};
 
 /// `accelcal lot`.
 #[derive(Args)]
@@ -70,9 +70,10 @@ pub(super) fn lot(args: &LotArgs) -> Result<(), Error> {
     }
 }
 
-/// Adds certificate files, each checked against its hash first, one transaction each.
+/// Adds certificate files, one transaction each, once every one is checked against its hash and
+/// names the serial the lot keys it by: a bad file among many adds none of them.
 fn add_files(path: &Path, files: &[PathBuf]) -> Result<(), Error> {
-    let checked: Vec<Certificate> = files.iter().map(|file| certificate::check(file)).collect::<Result<_, _>>()?;
+    let checked: Vec<Certificate> = files.iter().map(|file| checked_for_lot(file)).collect::<Result<_, _>>()?;
     let mut lot = open_for_writing(path)?;
     let bar = ProgressBar::new(checked.len() as u64).with_style(
         ProgressStyle::with_template("adding certificates {bar:30} {pos}/{len}")
@@ -86,6 +87,15 @@ fn add_files(path: &Path, files: &[PathBuf]) -> Result<(), Error> {
     bar.finish_and_clear();
     println!("{} added to {} ({already} already there)", checked.len() - already, path.display());
     Ok(())
+}
+
+/// A certificate file checked against its hash and for the board serial the lot keys it by.
+fn checked_for_lot(file: &Path) -> Result<Certificate, Error> {
+    let certificate = certificate::check(file)?;
+    match certificate.board.serial {
+        Some(_) => Ok(certificate),
+        None => Err(LotError::NoSerialIn { file: file.into() }.into()),
+    }
 }
 
 /// Opens the lot for writing, with the test pause when its variable is set.
@@ -120,4 +130,30 @@ fn show(path: &Path, spec_path: Option<&Path>, json: bool) -> Result<(), Error> 
         false => print!("{}", lot::text::summary(&summary)),
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::certificate::tests::session;
+
+    #[test]
+    fn a_certificate_without_a_serial_among_others_adds_none_of_them_and_is_named() {
+        let dir = std::env::temp_dir().join(format!("accelcal-cli-lot-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let (keyed, unkeyed, lot) = (dir.join("b1.json"), dir.join("stream.json"), dir.join("lot.sqlite"));
+        let mut certificate = Certificate::issue(&session(1, 1.0, 2.8e-3)).unwrap();
+        std::fs::write(&unkeyed, certificate.to_json()).unwrap();
+        certificate.board.serial = Some("B1".into());
+        std::fs::write(&keyed, certificate.resealed().to_json()).unwrap();
+        let refused = add_files(&lot, &[keyed.clone(), unkeyed.clone()]).unwrap_err().to_string();
+        assert!(
+            refused.contains(&*unkeyed.to_string_lossy()) && refused.contains("no certificate was added"),
+            "{refused}"
+        );
+        assert!(!lot.exists(), "the lot was written before every certificate was checked");
+        add_files(&lot, &[keyed]).unwrap();
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }

@@ -79,9 +79,20 @@ pub fn ardupilot(source: &Source) -> Export {
     );
     let mut params = per_axis(&values.per_axis, ["INS_ACCOFFS_#", "INS_ACCSCAL_#", "INS_GYROFFS_#"]);
     if let Some(model) = &source.calibration.temperature {
-        params.extend(ardupilot_tcal(model));
+        params.extend(ardupilot_tcal(model, tcal_span_c(source)));
     }
     text(lines(source, &said, &loss), &HASH, &name_value_lines(&params), loss)
+}
+
+/// The die temperatures an autopilot applies the model between (TMIN, TMAX): those it was learned
+/// over where what it came from records them, else the sensor's operating range (with ArduPilot's
+/// TMAX limit of 80 degC).
+// NOTE: outside them both autopilots hold the correction at the nearer edge (ArduPilot
+// AP_InertialSensor_tempcal.cpp, TCal::correct_sensor; PX4 TemperatureCompensation::
+// calc_thermal_offsets_3D), so a drift learned over a degree or two is not carried further.
+pub fn tcal_span_c(source: &Source) -> (f32, f32) {
+    let (low, high) = source.readings.drift_span_c.map_or(limits::OPERATING_TEMP_C, |(l, h)| (l as f32, h as f32));
+    (low, high.min(80.0))
 }
 
 /// The parameters as NAME,VALUE lines (names and numbers need no quoting).
@@ -91,13 +102,12 @@ fn name_value_lines(params: &[(String, String)]) -> String {
 
 /// INS_TCAL1_*: the model's offset and gyro-bias polynomials re-expanded about ArduPilot's 35 degC, with
 /// the calibration temperature T_ref (where o(T_ref) = o).
-fn ardupilot_tcal(model: &TemperatureModel) -> Vec<(String, String)> {
-    let (low, high) = limits::OPERATING_TEMP_C;
+fn ardupilot_tcal(model: &TemperatureModel, (low, high): (f32, f32)) -> Vec<(String, String)> {
     let t_ref = f64::from(model.ref_temp_c);
     let mut params = vec![
         ("INS_TCAL1_ENABLE".to_owned(), "1".to_owned()),
         ("INS_TCAL1_TMIN".to_owned(), low.to_string()),
-        ("INS_TCAL1_TMAX".to_owned(), high.min(80.0).to_string()),
+        ("INS_TCAL1_TMAX".to_owned(), high.to_string()),
         ("INS_ACC1_CALTEMP".to_owned(), model.ref_temp_c.to_string()),
         ("INS_GYR1_CALTEMP".to_owned(), model.ref_temp_c.to_string()),
     ];
@@ -146,7 +156,7 @@ pub fn px4(source: &Source) -> Export {
     let names = ["CAL_ACC0_#OFF", "CAL_ACC0_#SCALE", "CAL_GYRO0_#OFF"];
     let mut params: Vec<_> = per_axis(&values.per_axis, names).into_iter().map(|(n, v)| (n, v, REAL32)).collect();
     if let Some(model) = &source.calibration.temperature {
-        params.extend(px4_thermal(model));
+        params.extend(px4_thermal(model, tcal_span_c(source)));
     }
     let mut body = "# Vehicle-Id\tComponent-Id\tName\tValue\tType\n".to_owned();
     body.extend(params.iter().map(|(name, value, kind)| format!("1\t1\t{name}\t{value}\t{kind}\n")));
@@ -158,8 +168,7 @@ const REAL32: u8 = 9;
 const INT32: u8 = 6;
 
 /// TC_A_ENABLE, TC_A0_* and TC_G_ENABLE, TC_G0_*: the model about its own T_ref.
-fn px4_thermal(model: &TemperatureModel) -> Vec<(String, String, u8)> {
-    let (low, high) = limits::OPERATING_TEMP_C;
+fn px4_thermal(model: &TemperatureModel, (low, high): (f32, f32)) -> Vec<(String, String, u8)> {
     let mut params = Vec::new();
     for (sensor, coefficients, factor) in
         [("A", &model.offset_g, STANDARD_GRAVITY), ("G", &model.gyro_bias_dps, RAD_PER_DEG)]
@@ -177,4 +186,46 @@ fn px4_thermal(model: &TemperatureModel) -> Vec<(String, String, u8)> {
         }
     }
     params
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::export::{export, Target};
+
+    /// The value of `name` in an exported parameter file (NAME,VALUE or QGroundControl's tab form).
+    fn value_of(text: &str, name: &str) -> Option<f32> {
+        let line = text.lines().find(|l| l.split([',', '\t']).any(|field| field == name))?;
+        line.split([',', '\t']).skip_while(|field| *field != name).nth(1)?.parse().ok()
+    }
+
+    #[test]
+    fn the_autopilots_apply_a_session_s_drift_only_over_the_temperatures_it_was_learned_over() {
+        let session = crate::certificate::tests::session(1, 1.4, 2.8e-3);
+        let temps: Vec<f32> = session.captures.iter().map(|c| c.stats.temp_c).collect();
+        let (low, high) = temps.iter().fold((f32::MAX, f32::MIN), |(l, h), t| (l.min(*t), h.max(*t)));
+        let source = Source::from_session(&session, "s.json").unwrap();
+        assert!(source.calibration.temperature.is_some(), "the warming session fitted no drift");
+        let text = |target| String::from_utf8(export(&source, target).unwrap().bytes).unwrap();
+        let (ardupilot, px4) = (text(Target::Ardupilot), text(Target::Px4));
+        for (file, name) in [(&ardupilot, "INS_TCAL1_TMIN"), (&px4, "TC_A0_TMIN"), (&px4, "TC_G0_TMIN")] {
+            assert!((value_of(file, name).unwrap() - low).abs() < 1e-3, "{name} against {low}: {file}");
+        }
+        for (file, name) in [(&ardupilot, "INS_TCAL1_TMAX"), (&px4, "TC_A0_TMAX"), (&px4, "TC_G0_TMAX")] {
+            assert!((value_of(file, name).unwrap() - high).abs() < 1e-3, "{name} against {high}: {file}");
+        }
+        assert!(ardupilot.contains(&format!("learned over: {low:.1} to {high:.1} degC")), "{ardupilot}");
+    }
+
+    #[test]
+    fn a_model_whose_span_is_not_recorded_is_applied_over_the_operating_range_and_says_so() {
+        let session = crate::certificate::tests::session(1, 1.4, 2.8e-3);
+        let mut source = Source::from_session(&session, "s.json").unwrap();
+        source.readings.drift_span_c = None;
+        let ardupilot = String::from_utf8(export(&source, Target::Ardupilot).unwrap().bytes).unwrap();
+        let (low, high) = limits::OPERATING_TEMP_C;
+        assert_eq!(value_of(&ardupilot, "INS_TCAL1_TMIN"), Some(low));
+        assert_eq!(value_of(&ardupilot, "INS_TCAL1_TMAX"), Some(high.min(80.0)));
+        assert!(ardupilot.contains("learned over: not recorded"), "{ardupilot}");
+    }
 }

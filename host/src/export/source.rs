@@ -9,6 +9,7 @@ use shared::{AccelRange, Calibration};
 use super::loss::Carried;
 use super::{ExportError, GYRO_LSB_PER_DPS};
 use crate::calibration::{self, CalibrationJson};
+use crate::fit::drift;
 use crate::noise;
 use crate::session::{OutcomeError, Session, SessionKind};
 use crate::stream::units::{AccelUnit, GyroUnit};
@@ -42,12 +43,21 @@ pub struct Readings {
     /// A board's own stream's units (`accelerometer counts-2g, gyro counts-250dps`), when the
     /// calibration came from one.
     pub stream_units: Option<String>,
+    /// The die temperatures the temperature model was learned over, degC, when what it was read
+    /// from records them (a session's own drift: its captures' span).
+    pub drift_span_c: Option<(f64, f64)>,
 }
 
 impl Readings {
     /// Our firmware's readings: its gyro at +-1000 deg/s.
     pub fn board(sensor: Option<String>, made_at_c: f32) -> Self {
-        Readings { sensor, gyro_lsb_per_dps: GYRO_LSB_PER_DPS, made_at_c: Some(made_at_c), stream_units: None }
+        Readings {
+            sensor,
+            gyro_lsb_per_dps: GYRO_LSB_PER_DPS,
+            made_at_c: Some(made_at_c),
+            stream_units: None,
+            drift_span_c: None,
+        }
     }
 
     /// A board's own stream's, its units by the names `fit --json` and a session give them: the
@@ -61,6 +71,7 @@ impl Readings {
             gyro_lsb_per_dps: gyro.and_then(GyroUnit::counts_per_dps).unwrap_or(GYRO_LSB_PER_DPS),
             made_at_c: None,
             stream_units: Some(units),
+            drift_span_c: None,
         }
     }
 }
@@ -121,17 +132,21 @@ impl Source {
     /// needs the moves between positions, is not in a session file).
     pub fn from_session(session: &Session, from: &str) -> Result<Self, ExportError> {
         let config = session.board.as_ref().map_or_else(SensorConfig::default, |b| b.config);
-        let calibration = match session.outcome(config) {
-            Ok(outcome) => outcome.calibration,
+        let outcome = match session.outcome(config) {
+            Ok(outcome) => outcome,
             Err(OutcomeError::Fit(e)) => return Err(ExportError::Fit(e)),
             Err(OutcomeError::Calibration(e)) => return Err(e.into()),
         };
-        let serial = session.board.as_ref().map(|b| b.serial.clone());
-        let readings = match (&session.stream, session.kind) {
+        let calibration = outcome.calibration;
+        let mut readings = match (&session.stream, session.kind) {
             (Some(stream), SessionKind::Stream) => Readings::stream(&stream.input_unit, stream.gyro_unit.as_deref()),
             _ => Readings::board(session.board.as_ref().and_then(|b| b.sensor.clone()), calibration.mean_temp_c),
         };
-        Ok(Source { calibration, serial, from: from.to_owned(), noise: None, readings })
+        // NOTE: a learned model (`accelcal thermal`) was learned over a sweep the session does not record.
+        if outcome.fitted.drift.is_some() {
+            readings.drift_span_c = drift::temp_span_c(&outcome.fitted.captures);
+        }
+        Ok(Source { calibration, serial: session.serial(), from: from.to_owned(), noise: None, readings })
     }
 
     /// The full calibration in f64 (the record's f32 values widened), as the loss's reference.
@@ -191,14 +206,7 @@ mod tests {
     use crate::session::StreamSource;
 
     fn stream_session(gyro_unit: Option<&str>) -> Session {
-        let stream = StreamSource {
-            port: "/dev/ttyUSB0".into(),
-            log: "s.log".into(),
-            dialect: "csv".into(),
-            input_unit: "counts-2g".into(),
-            gyro_unit: gyro_unit.map(str::to_owned),
-            rate_hz: Some(100.0),
-        };
+        let stream = StreamSource::for_tests(gyro_unit, None);
         let session = crate::certificate::tests::session(1, 0.0, 0.004);
         Session { kind: SessionKind::Stream, stream: Some(stream), board: None, ..session }
     }

@@ -30,6 +30,9 @@ pub fn lines(source: &Source, said: &Said, loss: &Loss) -> Vec<String> {
         format!("temperature model: {}", temperature_model(source.calibration.temperature.as_ref())),
         format!("temperature model in this file: {}", said.temperature),
     ];
+    if source.calibration.temperature.is_some() {
+        lines.insert(lines.len() - 1, learned_over(source));
+    }
     lines.extend(said.convention.iter().map(|line| format!("convention: {line}")));
     lines.push(format!("g: {STANDARD_GRAVITY} m/s^2 per g (standard gravity) wherever a value is in m/s^2"));
     lines.push(format!("carries: {}", said.carries));
@@ -75,6 +78,18 @@ fn made_at(source: &Source) -> String {
     match source.readings.made_at_c {
         Some(c) => format!("made at: {c:.1} degC die temperature (the mean of the captures it was fitted to)"),
         None => "made at: die temperature not measured (a board's own stream carries none)".to_owned(),
+    }
+}
+
+/// The die temperatures the temperature model was learned over, or that they are not recorded.
+fn learned_over(source: &Source) -> String {
+    match source.readings.drift_span_c {
+        Some((low, high)) => {
+            format!("temperature model learned over: {low:.1} to {high:.1} degC die temperature (the captures' span)")
+        }
+        None => "temperature model learned over: not recorded in what this was exported from (a model `accelcal \
+                 thermal` learned, or one read from the board)"
+            .to_owned(),
     }
 }
 

@@ -138,6 +138,13 @@ pub fn mean_temp_c(captures: &Dataset) -> f64 {
     captures.rows.iter().map(temp_of).sum::<f64>() / n
 }
 
+/// The lowest and highest die temperature of the captures, degC, when they carry any: the span a
+/// drift fitted to them was learned over.
+pub fn temp_span_c(captures: &Dataset) -> Option<(f64, f64)> {
+    let temps = captures.rows.iter().filter_map(|r| r.temp_c);
+    temps.fold(None, |span, t| Some(span.map_or((t, t), |(low, high): (f64, f64)| (low.min(t), high.max(t)))))
+}
+
 /// Whether any capture carries a die temperature (a board's own stream carries none).
 pub fn carries_temperature(captures: &Dataset) -> bool {
     captures.rows.iter().any(|r| r.temp_c.is_some())

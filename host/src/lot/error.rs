@@ -19,6 +19,8 @@ pub enum LotError {
     Unreadable { path: PathBuf, reason: String },
     #[error("the certificate names no board serial, so the lot cannot key it: issue it from a session that recorded its board (calibrate or capture on the board)")]
     NoSerial,
+    #[error("{} names no board serial, so the lot cannot key it, and no certificate was added: leave it out, or issue it from a session that recorded its board (calibrate or capture on the board; a board's own stream with --serial)", .file.display())]
+    NoSerialIn { file: PathBuf },
     #[error("the lot {} holds no board with serial {serial}; `accelcal lot show {}` lists its boards", .path.display(), .path.display())]
     UnknownBoard { path: PathBuf, serial: String },
     #[error("cannot read the spec file {}: {reason}; write it as TOML, one `[limits.NAME]` table per parameter with `low` and/or `high` in the certificate's units (docs/production.md)", .path.display())]

@@ -88,7 +88,7 @@ impl Board {
         let first = session.captures.first();
         let board = session.board.as_ref();
         Board {
-            serial: board.map(|b| b.serial.clone()),
+            serial: session.serial(),
             firmware: board.map(|b| format!("{}.{}.{}", b.firmware.major, b.firmware.minor, b.firmware.patch)),
             part: board.and_then(|b| b.sensor.clone()),
             sensor_config: board.map(|b| {
@@ -148,5 +148,13 @@ mod tests {
             error.to_string().contains("at 100 Hz, the board is set to G2 with the Hz44 filter at 1000 Hz"),
             "{error}"
         );
+    }
+
+    #[test]
+    fn a_stream_session_s_board_is_keyed_by_the_serial_the_person_gave() {
+        let stream = |serial| Some(crate::session::StreamSource::for_tests(None, serial));
+        let session = |serial| Session { stream: stream(serial), ..Session::default() };
+        assert_eq!(Board::of(&session(Some("desk-3"))).serial.as_deref(), Some("desk-3"));
+        assert_eq!(Board::of(&session(None)).serial, None);
     }
 }

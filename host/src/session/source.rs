@@ -22,4 +22,24 @@ pub struct StreamSource {
     pub gyro_unit: Option<String>,
     /// Samples a second, when known.
     pub rate_hz: Option<f64>,
+    /// The board's serial or label as the person gave it (`--serial`), which its certificate and
+    /// the lot key it by; absent when none was given.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub serial: Option<String>,
+}
+
+#[cfg(test)]
+impl StreamSource {
+    /// A CSV stream of counts at 100 Hz read from /dev/ttyUSB0, for tests.
+    pub(crate) fn for_tests(gyro_unit: Option<&str>, serial: Option<&str>) -> Self {
+        StreamSource {
+            port: "/dev/ttyUSB0".into(),
+            log: "s.log".into(),
+            dialect: "csv".into(),
+            input_unit: "counts-2g".into(),
+            gyro_unit: gyro_unit.map(str::to_owned),
+            rate_hz: Some(100.0),
+            serial: serial.map(str::to_owned),
+        }
+    }
 }
