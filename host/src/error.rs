@@ -36,8 +36,8 @@ pub enum Error {
     Fit(#[from] FitError),
     #[error("{}: read as a sensor's stream: {source}", .path.display())]
     Stream { path: PathBuf, source: crate::stream::StreamError },
-    #[error("{}: read as a sensor's stream, its still periods cannot be fitted: {source}; rest the board at 9 or more orientations for a few seconds each", .path.display())]
-    StreamFit { path: PathBuf, source: FitError },
+    #[error("{}: read as a sensor's stream, its still periods cannot be fitted: {source}", .path.display())]
+    StreamFit { path: PathBuf, source: crate::report::stream::StreamFitError },
     #[error("cannot fit the temperature model: {0}; learn over a wider span and run again")]
     ThermalFit(#[from] crate::fit::thermal::ThermalFitError),
     #[error("{}: cannot report this session: {source}", .path.display())]

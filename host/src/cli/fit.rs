@@ -40,7 +40,7 @@ fn fit_dataset(args: &FitArgs, dataset: &Dataset) -> Result<(), Error> {
 /// Why a file was neither fitted as a data file nor as a stream.
 enum StreamRefusal {
     Read(StreamError),
-    Fit(crate::fit::FitError),
+    Fit(crate::report::stream::StreamFitError),
 }
 
 fn fit_stream(args: &FitArgs, text: &str) -> Result<(), StreamRefusal> {

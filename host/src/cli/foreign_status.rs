@@ -13,8 +13,9 @@ use crate::limits::MOVING_SCATTER_G;
 use crate::procedure::stop_rule::{Noise, StopRule};
 use crate::stream::guide::{all_rested, nearest_name, next_turn};
 use crate::stream::live::LiveStream;
+use crate::stream::plausible::gyro_doubt;
 use crate::stream::segment::{mean_std, Segment, Stillness};
-use crate::stream::{read_heard, StillPeriods, StreamLog, StreamOptions};
+use crate::stream::{read_heard, StillPeriods, StreamError, StreamLog, StreamOptions};
 
 /// Where the session stands between status lines.
 pub(super) struct Progress {
@@ -42,8 +43,17 @@ pub(super) fn status(
     kept: &Kept,
     progress: &mut Progress,
 ) -> Result<Option<String>, Error> {
-    let Some(log) = read_heard(&live.lines, options) else { return Ok(None) };
+    let log = match read_heard(&live.lines, options) {
+        Ok(log) => log,
+        Err(unit @ (StreamError::OtherAccelUnit { .. } | StreamError::BeyondReach { .. })) => {
+            return Ok(Some(unit.to_string()))
+        }
+        Err(_) => return Ok(None),
+    };
     let still = StillPeriods::of(&log);
+    if let Some(doubt) = gyro_doubt(&log).filter(|_| still.segments.is_empty()) {
+        return Ok(Some(doubt));
+    }
     eprintln!("{}", status_line(&log, &still, progress.want_g));
     if still.segments.len() != progress.saved_periods {
         progress.saved_periods = still.segments.len();

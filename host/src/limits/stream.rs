@@ -103,3 +103,29 @@ pub const MIN_TURN_RATE_HZ: f64 = 40.0;
 /// NOTE: the ranges' ratios are 2x apart; 10 % is far inside that and above a gyro's own scale
 /// error (+-3 %, Product Specification 6.1).
 pub const GYRO_RANGE_TOLERANCE: f64 = 0.1;
+
+/// Largest gyro mean a resting board can read, in deg/s: more, and the gyro's values are not in the
+/// unit they are read in (counts read as deg/s rest at hundreds).
+///
+/// NOTE: the MPU-6050's zero-rate output is within +-20 deg/s at 25 degC (Product Specification 6.1,
+/// "Initial ZRO Tolerance"; +-5 on the MPU-6500 and ICM-20948); 2.5 times that is no chip's bias.
+pub const GYRO_REST_MAX_DPS: f64 = 50.0;
+
+/// Largest median distance of a resting board's gyro from its bias, in deg/s: more, and its values
+/// are not in the unit they are read in.
+///
+/// NOTE: the MPU-6050's total noise is 0.05 deg/s rms at 100 Hz bandwidth (Product Specification
+/// 6.1), about 0.1 with the low-pass open, and a board held still in a hand shakes by a few deg/s at
+/// most; counts of +-250 deg/s read as deg/s scatter by 10-20 (131 counts a deg/s).
+pub const GYRO_REST_SCATTER_MAX_DPS: f64 = 10.0;
+
+/// Turns whose gravity moves this far, in degrees, say how far the gyro's values turn the board.
+pub const UNIT_TURN_MIN_DEG: f64 = 45.0;
+
+/// The gyro integrated over the turns may turn the board this many times as far as (or this many
+/// times less than) gravity's direction moved and be in the unit it is read in.
+///
+/// NOTE: a hand's turn from face to face adds a twist about the vertical that gravity does not see,
+/// up to about as much again (1.4x); the units the gyro may be in differ by 2x (ranges) to 131x
+/// (counts as deg/s), and the range a factor 2 leaves open the turns' G fit names (`GYRO_RANGE_TOLERANCE`).
+pub const UNIT_TURN_RATIO: f64 = 2.0;

@@ -12,11 +12,23 @@ use crate::fit::gyro::GyroFit;
 use crate::fit::{FitError, FitOptions, ModelChoice};
 use crate::session::Verification;
 use crate::stream::cost::{costs, Cost};
+use crate::stream::plausible::gyro_doubt;
 use crate::stream::timing::Rate;
 use crate::stream::turns::{self, TurnsFit};
 use crate::stream::{AccelUnit, Dialect, Dropped, GyroUnit, SegmentLines, StillPeriods, StreamLog};
 
 mod verify;
+
+/// Why a stream's still periods were not fitted.
+#[derive(Debug, thiserror::Error)]
+pub enum StreamFitError {
+    /// The gyro's values are not in the unit they are read in (so no period rests by it).
+    #[error("{0}")]
+    GyroUnit(String),
+    /// The periods found do not fit.
+    #[error("{0}; rest the board at 9 or more orientations for a few seconds each")]
+    Periods(FitError),
+}
 
 /// A stream's fit and everything its renderers show.
 #[derive(Debug, Clone)]
@@ -49,14 +61,20 @@ pub struct StreamReport {
 
 impl StreamReport {
     /// Finds the still periods of `log` and fits `choice` to their means.
-    pub fn new(log: &StreamLog, choice: ModelChoice, options: &FitOptions) -> Result<Self, FitError> {
+    /// A gyro whose values are not in the unit they are read in is named before the periods are.
+    pub fn new(log: &StreamLog, choice: ModelChoice, options: &FitOptions) -> Result<Self, StreamFitError> {
         let still = StillPeriods::of(log);
         let options = FitOptions { g: 1.0, ..options.clone() };
-        let fit = FitReport::new(&still.dataset, choice, &options)?;
+        let doubt = gyro_doubt(log);
+        let fit = FitReport::new(&still.dataset, choice, &options).map_err(|fit| match doubt.clone() {
+            Some(doubt) => StreamFitError::GyroUnit(doubt),
+            None => StreamFitError::Periods(fit),
+        })?;
         let verification = verify::verification(&fit.fit, &still.held_out.rows, log.accel_unit.per_g());
-        let gyro_turns = log
-            .gyro_unit
-            .map(|(unit, assumed)| turns::fit(turns::turns(log, &still.segments, &fit.fit), unit, assumed));
+        let gyro_turns = log.gyro_unit.map(|(unit, assumed)| match doubt {
+            Some(doubt) => TurnsFit { fit: Err(doubt), range: None },
+            None => turns::fit(turns::turns(log, &still.segments, &fit.fit), unit, assumed),
+        });
         Ok(StreamReport {
             gyro_turns,
             verification,

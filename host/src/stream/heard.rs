@@ -5,12 +5,12 @@
 use super::live::arrival_hz;
 use super::log::{LineReader, StreamLog, StreamOptions};
 use super::timing::{settle, Rate, RateSource};
-use super::{Dropped, Layout};
+use super::{Dropped, Layout, StreamError};
 
-/// The stream of `lines` (each line's text and its arrival, seconds), read with `options`; none
-/// while its dialect or enough samples are still to come.
-pub fn read_heard(lines: &[(String, f64)], options: &StreamOptions) -> Option<StreamLog> {
-    let layout = Layout::detect(lines.iter().map(|(text, _)| text.as_str())).ok()?;
+/// The stream of `lines` (each line's text and its arrival, seconds), read with `options`, or why
+/// not yet (its dialect or enough samples still to come) or not at all (a unit its values do not fit).
+pub fn read_heard(lines: &[(String, f64)], options: &StreamOptions) -> Result<StreamLog, StreamError> {
+    let layout = Layout::detect(lines.iter().map(|(text, _)| text.as_str()))?;
     let mut reader = LineReader::new(layout.clone());
     let (mut samples, mut dropped) = (Vec::new(), Dropped::default());
     for (index, (text, _)) in lines.iter().enumerate() {
@@ -19,12 +19,13 @@ pub fn read_heard(lines: &[(String, f64)], options: &StreamOptions) -> Option<St
             Err(reason) => dropped.add(reason, index + 1),
         }
     }
-    let mut log = StreamLog::new(layout, samples, dropped, None, options).ok()?;
+    let mut log = StreamLog::new(layout, samples, dropped, None, options)?;
     // NOTE: after StreamLog::new, whose samples are those it accepted: lines are 1-based.
     let arrivals: Vec<f64> = log.samples.iter().map(|s| lines[s.line - 1].1).collect();
     let arrived = arrival_hz(&arrivals).map(|hz| Rate { hz, source: RateSource::ArrivalTimes });
-    log.rate = settle(arrived, options.rate_hz).ok()?;
-    Some(log)
+    // NOTE: a rate from arrival times never disagrees with --rate: it gives way to it.
+    log.rate = settle(arrived, options.rate_hz).unwrap_or(log.rate);
+    Ok(log)
 }
 
 #[cfg(test)]

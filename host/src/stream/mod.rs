@@ -13,6 +13,7 @@ mod heard;
 mod line;
 pub mod live;
 mod log;
+pub mod plausible;
 pub mod segment;
 mod still;
 pub mod timing;
@@ -45,6 +46,18 @@ pub enum StreamError {
          or the counts of a range: give --input-unit (g, mg, m/s2, counts-2g, counts-4g, counts-8g, counts-16g)"
     )]
     UnclearUnit { median_norm: f64 },
+    #[error(
+        "with --input-unit {} the accelerometer's values have a median size of {median_norm:.4}, that is {:.3} g, \
+         where a board at rest reads 1 g: they are {} ({} a g), not {}; give --input-unit {}, or leave it out (the \
+         size of gravity names the unit)",
+        given.name(), median_norm / given.per_g(), likely.name(), likely.per_g(), given.name(), likely.name()
+    )]
+    OtherAccelUnit { given: AccelUnit, likely: AccelUnit, median_norm: f64 },
+    #[error(
+        "{beyond} of the {read} samples hold a value beyond what the sensor can read in {units}: the values are not \
+         in that unit; give {flag} as the sketch prints them"
+    )]
+    BeyondReach { beyond: usize, read: usize, units: String, flag: &'static str },
     #[error("--rate {given_hz} differs from the {shown_hz:.3} Hz the stream's timestamps show; leave --rate out")]
     RateDiffers { given_hz: f64, shown_hz: f64 },
     #[error("only {samples} samples were read: a calibration needs a few seconds at each of 9 or more positions")]

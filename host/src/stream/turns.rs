@@ -7,11 +7,12 @@
 use shared::linalg::{mul_vec, norm, scale, sub};
 
 use super::log::StreamLog;
+use super::plausible::not_in_unit;
 use super::segment::Segment;
 use super::units::GyroUnit;
 use crate::fit::gyro::{fit_gyro, GyroFit, GyroFitError, Turn};
 use crate::fit::Fit;
-use crate::limits::{GYRO_RANGE_TOLERANCE, MIN_TURN_RATE_HZ};
+use crate::limits::{GYRO_RANGE_TOLERANCE, MIN_TURN_RATE_HZ, UNIT_TURN_MIN_DEG, UNIT_TURN_RATIO};
 
 /// The MPU-6050's gyro ranges in counts (register map 4.4, FS_SEL 0-3).
 const COUNT_RANGES: [GyroUnit; 4] =
@@ -54,9 +55,41 @@ pub struct TurnsFit {
 
 /// Fits G to `turns` of a gyro read as `unit` (`assumed` when the stream did not say it).
 pub fn fit(turns: Result<Vec<Turn>, String>, unit: GyroUnit, assumed: bool) -> TurnsFit {
+    let turns = turns.and_then(|t| scale_doubt(&t, unit, assumed).map_or(Ok(t), Err));
     let fit = turns.and_then(|t| fit_gyro(&t).map_err(|e: GyroFitError| e.to_string()));
     let range = fit.as_ref().ok().and_then(|g| range_check(g, unit, assumed));
     TurnsFit { fit, range }
+}
+
+/// Why the gyro's values are not in `unit`, when the turns say so: integrated as `unit`, the gyro
+/// turns the board many times further (or less far) than gravity's direction moved, before G is
+/// fitted (or its failure blamed on the turns); the unit whose scale that implies.
+fn scale_doubt(turns: &[Turn], unit: GyroUnit, assumed: bool) -> Option<String> {
+    let mut ratios: Vec<f64> = turns.iter().filter_map(path_per_gravity_turn).collect();
+    ratios.sort_by(f64::total_cmp);
+    let ratio = *ratios.get(ratios.len() / 2)?;
+    if (1.0 / UNIT_TURN_RATIO..=UNIT_TURN_RATIO).contains(&ratio) {
+        return None;
+    }
+    let evidence = format!(
+        "the gyro turns the board {ratio:.3} times as far as gravity's direction moved (the median of {} turns of \
+         {UNIT_TURN_MIN_DEG:.0} degrees or more)",
+        ratios.len()
+    );
+    Some(format!("the turns say {}", not_in_unit(unit, assumed, &evidence, GyroUnit::nearest(unit.per_dps() * ratio))))
+}
+
+/// How far the gyro turned the board along its path over `turn`, per degree gravity's direction
+/// moved, for a turn that moved it [`UNIT_TURN_MIN_DEG`] or more.
+///
+/// NOTE: the path (the sum of each step's angle) rather than the net rotation: a gyro read 100 times
+/// too fast turns the board round many times, which a net angle folds back below 180 degrees.
+fn path_per_gravity_turn(turn: &Turn) -> Option<f64> {
+    let gravity_deg =
+        turn.up_before.iter().zip(&turn.up_after).map(|(a, b)| a * b).sum::<f64>().clamp(-1.0, 1.0).acos().to_degrees();
+    let bias = [0, 1, 2].map(|k| (turn.bias_before_dps[k] + turn.bias_after_dps[k]) / 2.0);
+    let path_deg: f64 = turn.rates_dps.iter().map(|r| norm(sub(*r, bias)) * turn.interval_s).sum();
+    (gravity_deg >= UNIT_TURN_MIN_DEG).then(|| path_deg / gravity_deg)
 }
 
 /// The range whose counts per deg/s G's mean scale implies, in words, when the gyro is in counts.

@@ -70,6 +70,16 @@ const ACCEL_UNITS: [AccelUnit; 7] = [
     AccelUnit::Counts16g,
 ];
 
+/// The units a gyro's values may be in, by their scale (MotionCal's counts come with its dialect).
+const GYRO_UNITS: [GyroUnit; 6] = [
+    GyroUnit::DegPerS,
+    GyroUnit::RadPerS,
+    GyroUnit::Counts250,
+    GyroUnit::Counts500,
+    GyroUnit::Counts1000,
+    GyroUnit::Counts2000,
+];
+
 impl AccelUnit {
     /// How many of the unit make a g.
     pub fn per_g(self) -> f64 {
@@ -128,8 +138,23 @@ impl AccelUnit {
             Dialect::Motioncal => return Ok(AccelUnit::MotionCal),
             _ => {}
         }
-        let near = |unit: &&AccelUnit| (median_norm / unit.per_g() - 1.0).abs() <= UNIT_TOLERANCE;
-        ACCEL_UNITS.iter().find(near).copied().ok_or(StreamError::UnclearUnit { median_norm })
+        ACCEL_UNITS.iter().find(|unit| unit.fits(median_norm)).copied().ok_or(StreamError::UnclearUnit { median_norm })
+    }
+
+    /// Whether gravity's size `median_norm` (the median |a|, in this unit) is 1 g in this unit.
+    fn fits(self, median_norm: f64) -> bool {
+        (median_norm / self.per_g() - 1.0).abs() <= UNIT_TOLERANCE
+    }
+
+    /// This unit, given by `--input-unit`, unless gravity's size is not 1 g in it and is in another
+    /// (counts given as g: 16384 "g" at rest): that one named, before any period or position is judged.
+    pub fn given(self, dialect: Dialect, median_norm: f64) -> Result<AccelUnit, StreamError> {
+        match AccelUnit::infer(dialect, median_norm) {
+            Ok(likely) if likely != self && !self.fits(median_norm) => {
+                Err(StreamError::OtherAccelUnit { given: self, likely, median_norm })
+            }
+            _ => Ok(self),
+        }
     }
 }
 
@@ -145,6 +170,13 @@ impl GyroUnit {
             GyroUnit::Counts2000 => 16.4,
             GyroUnit::MotionCal => MOTIONCAL_COUNTS_PER_DPS,
         }
+    }
+
+    /// The unit whose scale is within 1.5 times `per_dps` (units per deg/s), when one is: the
+    /// units' scales are 2 times apart or more.
+    pub fn nearest(per_dps: f64) -> Option<GyroUnit> {
+        let distance = |u: &GyroUnit| (u.per_dps() / per_dps).ln().abs();
+        GYRO_UNITS.into_iter().filter(|u| distance(u) <= 1.5f64.ln()).min_by(|a, b| distance(a).total_cmp(&distance(b)))
     }
 
     /// Whether the unit is a range's raw counts (what int16 readings are).
