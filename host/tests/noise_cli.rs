@@ -66,6 +66,17 @@ fn noise_json_has_every_axis_in_its_named_units_and_finds_the_white_noise() {
     // Kalibr's continuous-time density is SI, m/s^2/sqrt(Hz), and two-sided: the datasheet's / sqrt(2).
     let kalibr = &json["kalibr"]["continuous_time"]["accelerometer_noise_density"];
     assert!(close(kalibr, ACCEL_DENSITY_G * 9.80665 / 2f64.sqrt(), 0.05), "{kalibr}");
+    // White noise resolves no random walk: Kalibr gets the largest the curve allows, sigma sqrt(3 / tau)
+    // at the longest tau (68 % upper end), in m/s^3/sqrt(Hz) from the curve's ug.
+    assert_eq!(json["kalibr"]["accelerometer_random_walk_resolved"], false, "{}", json["kalibr"]);
+    let bound = |axis: &str| {
+        let (tau, high) = (&json[axis]["tau_s"], &json[axis]["adev_high"]);
+        let last = tau.as_array().unwrap().len() - 1;
+        high[last].as_f64().unwrap() * (3.0 / tau[last].as_f64().unwrap()).sqrt() * 1e-6 * 9.80665
+    };
+    let largest = ["accel_x", "accel_y", "accel_z"].map(bound).into_iter().fold(0.0, f64::max);
+    let given = json["kalibr"]["continuous_time"]["accelerometer_random_walk"].as_f64().unwrap();
+    assert!((given / largest - 1.0).abs() < 1e-9, "{given} against the bound {largest}");
     // White noise keeps falling: the capture limit is only a lower bound, the longest tau analysed.
     assert_eq!(json["calibration"]["capture_limit_is_lower_bound"], true, "{}", json["calibration"]);
     // The one schema reads back what it wrote, every number where the untyped object has it.

@@ -2,6 +2,7 @@
 //! Kalibr takes no calibration matrix here: the calibration is stated for the data it is given.
 
 use super::loss::{diagonal, loss, Carried};
+use super::source::Noise;
 use super::statement::{lines, Said};
 use super::{text, Export, ExportError, Source, HASH};
 
@@ -20,7 +21,15 @@ const KALIBR_SAID: Said = Said {
 
 /// The imu.yaml.
 pub fn kalibr(source: &Source) -> Result<Export, ExportError> {
-    let noise = source.noise.ok_or(ExportError::NeedsNoise)?;
+    let noise = source.noise.as_ref().ok_or(ExportError::NeedsNoise)?;
+    if let (Some(calibrated), Some(recorded)) = (&source.serial, &noise.serial) {
+        if calibrated != recorded {
+            return Err(ExportError::NoiseOfAnotherBoard {
+                calibrated: calibrated.clone(),
+                recorded: recorded.clone(),
+            });
+        }
+    }
     let full = source.full();
     let nothing = Carried {
         matrix: diagonal([1.0; 3]),
@@ -38,5 +47,59 @@ pub fn kalibr(source: &Source) -> Result<Export, ExportError> {
         noise.gyro_random_walk,
         noise.rate_hz
     );
-    Ok(text(lines(source, &KALIBR_SAID, &loss), &HASH, &body, loss))
+    let mut lines = lines(source, &KALIBR_SAID, &loss);
+    lines.extend(unresolved(noise));
+    Ok(text(lines, &HASH, &body, loss))
+}
+
+/// A line for each random walk the recording did not resolve: its number is a bound, not a measure.
+fn unresolved(noise: &Noise) -> Vec<String> {
+    let sensors = ["accelerometer", "gyroscope"].into_iter().zip(noise.random_walks_resolved);
+    sensors
+        .filter(|(_, resolved)| !resolved)
+        .map(|(sensor, _)| {
+            format!(
+                "{sensor}_random_walk: not resolved by the recording: the largest its longest averaging time allows \
+                 (sigma(tau) sqrt(3 / tau)); record for hours, still, to measure it"
+            )
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn with_noise(resolved: [bool; 2], calibrated: Option<&str>, recorded: Option<&str>) -> Source {
+        let session = crate::certificate::tests::session(1, 0.0, 0.004);
+        let mut source = Source::from_session(&session, "s.json").unwrap();
+        source.serial = calibrated.map(str::to_owned);
+        source.noise = Some(Noise {
+            accel_noise_density: 1.5e-3,
+            accel_random_walk: 2e-4,
+            gyro_noise_density: 8e-5,
+            gyro_random_walk: 3e-6,
+            rate_hz: 1000.0,
+            random_walks_resolved: resolved,
+            serial: recorded.map(str::to_owned),
+        });
+        source
+    }
+
+    #[test]
+    fn a_random_walk_the_recording_did_not_resolve_is_stated_as_a_bound() {
+        let text = |resolved| String::from_utf8(kalibr(&with_noise(resolved, None, None)).unwrap().bytes).unwrap();
+        let accel_only = text([false, true]);
+        assert!(accel_only.contains("accelerometer_random_walk: not resolved by the recording"), "{accel_only}");
+        assert!(!accel_only.contains("gyroscope_random_walk: not resolved"), "{accel_only}");
+        assert!(!text([true, true]).contains("not resolved"));
+    }
+
+    #[test]
+    fn another_board_s_noise_report_is_refused() {
+        let refused = kalibr(&with_noise([true; 2], Some("B1"), Some("B2"))).unwrap_err().to_string();
+        assert!(refused.contains("recorded on board B2") && refused.contains("board B1's"), "{refused}");
+        assert!(kalibr(&with_noise([true; 2], Some("B1"), Some("B1"))).is_ok());
+        assert!(kalibr(&with_noise([true; 2], Some("B1"), None)).is_ok(), "a report that names no board is taken");
+    }
 }

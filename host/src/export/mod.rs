@@ -85,6 +85,8 @@ pub enum ExportError {
     NoiseFile { reason: String },
     #[error("kalibr's imu.yaml is noise terms: give --noise NOISE.json (from `accelcal noise RECORDING --json`)")]
     NeedsNoise,
+    #[error("the noise report was recorded on board {recorded}, the calibration is board {calibrated}'s: every board's noise differs; record this board (`accelcal record --port P` then `accelcal noise RECORDING --json`)")]
+    NoiseOfAnotherBoard { calibrated: String, recorded: String },
     #[error("{target} is a binary file: give -o FILE")]
     BinaryNeedsFile { target: String },
     #[error("the fixed-point form would overflow int32 ({reason}); use --to c")]

@@ -77,7 +77,7 @@ impl Readings {
 }
 
 /// Kalibr's four continuous-time noise terms and the sample rate, from `accelcal noise --json`.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Noise {
     /// Accelerometer white noise, m/s^2/sqrt(Hz) (two-sided, Kalibr's convention).
     pub accel_noise_density: f64,
@@ -89,6 +89,10 @@ pub struct Noise {
     pub gyro_random_walk: f64,
     /// The recording's sample rate, Hz.
     pub rate_hz: f64,
+    /// Whether the recording resolved each random walk (else the number is the bound it allows).
+    pub random_walks_resolved: [bool; 2],
+    /// The serial of the board recorded, when the report names it.
+    pub serial: Option<String>,
 }
 
 impl Source {
@@ -189,13 +193,16 @@ impl Noise {
         let lacks = |name: &str| ExportError::NoiseFile {
             reason: format!("no {name}: give the output of `accelcal noise RECORDING --json`"),
         };
-        let terms = report.kalibr.ok_or_else(|| lacks("kalibr"))?.continuous_time;
+        let kalibr = report.kalibr.ok_or_else(|| lacks("kalibr"))?;
+        let terms = kalibr.continuous_time;
         Ok(Noise {
             accel_noise_density: terms.accelerometer_noise_density,
             accel_random_walk: terms.accelerometer_random_walk,
             gyro_noise_density: terms.gyroscope_noise_density,
             gyro_random_walk: terms.gyroscope_random_walk,
             rate_hz: report.sample_rate_hz.ok_or_else(|| lacks("sample_rate_hz"))?,
+            random_walks_resolved: [kalibr.accelerometer_random_walk_resolved, kalibr.gyroscope_random_walk_resolved],
+            serial: report.serial,
         })
     }
 }

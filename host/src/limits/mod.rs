@@ -220,6 +220,11 @@ pub const TOOLFACE_UNDEFINED_ABOVE_DEG: f64 = 89.0;
 /// B read there is their sum rather than a flicker floor.
 pub const RESOLVED_FLICKER_SHARE: f64 = 0.5;
 
+/// Share of the Allan variance at the longest averaging time the random walk must hold to count as
+/// resolved. NOTE: below half, the curve's end is still mostly white noise or flicker, and a K read
+/// there is what the fit left (often zero), which would tell Kalibr the bias never moves.
+pub const RESOLVED_RANDOM_WALK_SHARE: f64 = 0.5;
+
 /// How far a given rate may be from the one a file's time stamps show, as a fraction.
 // NOTE: time stamps are printed to the microsecond; at 100 Hz that is 1e-4 of a sample interval.
 pub const RATE_AGREEMENT: f64 = 0.01;

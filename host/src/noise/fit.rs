@@ -12,7 +12,7 @@
 use nalgebra::{Matrix3, Vector3};
 
 use super::allan::AllanPoint;
-use crate::limits::RESOLVED_FLICKER_SHARE;
+use crate::limits::{RESOLVED_FLICKER_SHARE, RESOLVED_RANDOM_WALK_SHARE};
 
 /// The flicker floor of the Allan deviation is this times the bias instability: sqrt(2 ln 2 / pi).
 // NOTE: python3 -c "import math; print(math.sqrt(2 * math.log(2) / math.pi))" (was 0.664_282_433_7, wrong
@@ -51,6 +51,15 @@ impl NoiseTerms {
         let shares = model_terms(tau_s).component_mul(&self.variances());
         let total = shares.sum();
         tau_s < longest_tau_s && total > 0.0 && shares.y >= RESOLVED_FLICKER_SHARE * total
+    }
+
+    /// Whether a curve reaching `longest_tau_s` resolves the random walk: there the K^2 tau / 3 term
+    /// is at least [`RESOLVED_RANDOM_WALK_SHARE`] of the fitted variance.
+    /// Otherwise K is what the other terms and a short record leave in the fit, often zero.
+    pub fn random_walk_resolved(&self, longest_tau_s: f64) -> bool {
+        let shares = model_terms(longest_tau_s).component_mul(&self.variances());
+        let total = shares.sum();
+        total > 0.0 && shares.z >= RESOLVED_RANDOM_WALK_SHARE * total
     }
 
     fn variances(&self) -> Vector3<f64> {
@@ -155,6 +164,29 @@ mod tests {
         let faint = NoiseTerms { bias_instability: 4e-6, random_walk: 1e-6, ..truth };
         let fitted = fit(&exact_curve(&faint)).expect("fits");
         assert!(!fitted.bias_instability_resolved(1e9), "{fitted:?}");
+    }
+
+    #[test]
+    fn random_walk_is_resolved_only_where_it_holds_the_curve_s_end_and_else_bounded_from_above() {
+        // NOTE: at the long curve's end (750 s) K holds 58 % of the variance; at 2.4 s under 1 %.
+        let truth =
+            NoiseTerms { white_noise_n: 4e-4, bias_instability: 2e-4, bias_instability_tau_s: 0.0, random_walk: 1e-5 };
+        let long = exact_curve(&truth);
+        let axis = |curve: &[AllanPoint]| crate::noise::AxisNoise {
+            name: "accel_x",
+            curve: curve.to_vec(),
+            terms: fit(curve),
+        };
+        let resolved = axis(&long);
+        assert!(resolved.random_walk_resolved(), "{:?}", resolved.terms);
+        assert_eq!(resolved.random_walk_or_bound(), resolved.terms.map(|t| t.random_walk));
+        let short = axis(&long[..20]);
+        assert!(!short.random_walk_resolved(), "{:?}", short.terms);
+        let bound = short.random_walk_or_bound().unwrap();
+        let end = long[19];
+        assert!((bound - end.adev * (3.0 / end.tau_s).sqrt()).abs() < 1e-15, "{bound}");
+        // The bound holds the truth, as K^2 tau / 3 <= AVAR(tau) must.
+        assert!(bound >= truth.random_walk, "{bound}");
     }
 
     #[test]

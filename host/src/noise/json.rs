@@ -41,6 +41,10 @@ pub struct AxisJson {
     pub bias_instability_resolved: bool,
     /// Random walk.
     pub random_walk: Option<f64>,
+    /// Whether the curve resolves the random walk (else it is only what the fit left at the curve's
+    /// end; reports before the flag do not say: taken as resolved).
+    #[serde(default = "resolved_unless_said")]
+    pub random_walk_resolved: bool,
 }
 
 fn resolved_unless_said() -> bool {
@@ -93,6 +97,13 @@ pub struct KalibrJson {
     /// Per sample at `sample_rate_hz` (a reader may leave it out).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub discrete_time: Option<KalibrNumbers>,
+    /// Whether the recording resolves the accelerometer's random walk on every axis; where it does
+    /// not, the number is the bound the curve allows (reports before the flag: taken as resolved).
+    #[serde(default = "resolved_unless_said")]
+    pub accelerometer_random_walk_resolved: bool,
+    /// The same for the gyro.
+    #[serde(default = "resolved_unless_said")]
+    pub gyroscope_random_walk_resolved: bool,
 }
 
 /// accelerometer_noise_density, accelerometer_random_walk, gyroscope_noise_density, gyroscope_random_walk.
@@ -234,6 +245,7 @@ fn axis_json(axis: &AxisNoise) -> AxisJson {
         bias_instability_tau_s: axis.terms.map(|t| t.bias_instability_tau_s),
         bias_instability_resolved: axis.bias_instability_resolved(),
         random_walk: axis.terms.map(|t| t.random_walk * scale),
+        random_walk_resolved: axis.random_walk_resolved(),
     }
 }
 
@@ -253,18 +265,24 @@ fn calibration_json(report: &NoiseReport) -> CaptureAdviceJson {
 }
 
 fn kalibr_json(report: &NoiseReport) -> Option<KalibrJson> {
-    let largest = |accel: bool, pick: fn(&super::NoiseTerms) -> f64| {
-        report.axes.iter().filter(|a| a.is_accel() == accel).filter_map(|a| a.terms.as_ref().map(pick)).reduce(f64::max)
-    };
+    let axes = |accel: bool| report.axes.iter().filter(move |a| a.is_accel() == accel);
+    let largest = |accel: bool, pick: fn(&AxisNoise) -> Option<f64>| axes(accel).filter_map(pick).reduce(f64::max);
+    let white = |a: &AxisNoise| a.terms.map(|t| t.white_noise_n);
     let to_rad = std::f64::consts::PI / 180.0;
     let continuous = KalibrNumbers {
-        accelerometer_noise_density: largest(true, |t| t.white_noise_n)? * STANDARD_GRAVITY,
-        accelerometer_random_walk: largest(true, |t| t.random_walk)? * STANDARD_GRAVITY,
-        gyroscope_noise_density: largest(false, |t| t.white_noise_n)? * to_rad,
-        gyroscope_random_walk: largest(false, |t| t.random_walk)? * to_rad,
+        accelerometer_noise_density: largest(true, white)? * STANDARD_GRAVITY,
+        accelerometer_random_walk: largest(true, AxisNoise::random_walk_or_bound)? * STANDARD_GRAVITY,
+        gyroscope_noise_density: largest(false, white)? * to_rad,
+        gyroscope_random_walk: largest(false, AxisNoise::random_walk_or_bound)? * to_rad,
     };
     let discrete = discrete_time(&continuous, report.rate_hz);
-    Some(KalibrJson { note: KALIBR_NOTE, continuous_time: continuous, discrete_time: Some(discrete) })
+    Some(KalibrJson {
+        note: KALIBR_NOTE,
+        continuous_time: continuous,
+        discrete_time: Some(discrete),
+        accelerometer_random_walk_resolved: axes(true).all(AxisNoise::random_walk_resolved),
+        gyroscope_random_walk_resolved: axes(false).all(AxisNoise::random_walk_resolved),
+    })
 }
 
 /// See the NOTE in [`super::fit`].
@@ -273,7 +291,9 @@ density * sqrt(bandwidth)); IEEE 952's N, the Allan deviation at 1 s, and kalibr
 white_noise_density / sqrt(2)";
 
 const KALIBR_NOTE: &str = "continuous_time: what Kalibr's imu.yaml takes (two-sided, the Allan deviation at 1 s) (m/s^2/sqrt(Hz), m/s^3/sqrt(Hz), \
-rad/s/sqrt(Hz), rad/s^2/sqrt(Hz)); discrete_time: per sample at sample_rate_hz (noise density * sqrt(rate): \
+rad/s/sqrt(Hz), rad/s^2/sqrt(Hz)); a random walk the recording does not resolve (*_random_walk_resolved false) is \
+the largest the curve allows, sigma(tau) sqrt(3 / tau) at its longest averaging time (68 % upper end): Kalibr is \
+better told too much noise than a bias that never moves; discrete_time: per sample at sample_rate_hz (noise density * sqrt(rate): \
 m/s^2, rad/s; random walk / sqrt(rate): m/s^2, rad/s), what a filter stepping at that rate adds each step";
 
 /// Kalibr's discrete-time forms: sigma_d = sigma * sqrt(rate), sigma_bd = sigma_b / sqrt(rate).

@@ -47,6 +47,28 @@ impl AxisNoise {
         self.name.starts_with("accel")
     }
 
+    /// Whether the curve resolves the fitted random walk (see [`NoiseTerms::random_walk_resolved`]).
+    pub fn random_walk_resolved(&self) -> bool {
+        match (self.terms, self.curve.last()) {
+            (Some(terms), Some(last)) => terms.random_walk_resolved(last.tau_s),
+            _ => false,
+        }
+    }
+
+    /// The largest random walk the curve allows: K^2 tau / 3 cannot exceed the Allan variance, so
+    /// K <= sigma(tau) sqrt(3 / tau) at the longest averaging time (its 68 % upper end).
+    pub fn random_walk_bound(&self) -> Option<f64> {
+        self.curve.last().map(|last| last.adev_high * (3.0 / last.tau_s).sqrt())
+    }
+
+    /// The random walk to rely on: the fitted one where the curve resolves it, else the bound.
+    pub fn random_walk_or_bound(&self) -> Option<f64> {
+        match self.random_walk_resolved() {
+            true => self.terms.map(|t| t.random_walk),
+            false => self.random_walk_bound(),
+        }
+    }
+
     /// Whether the curve resolves the fitted bias instability (see [`NoiseTerms::bias_instability_resolved`]).
     pub fn bias_instability_resolved(&self) -> bool {
         match (self.terms, self.curve.last()) {

@@ -55,6 +55,9 @@ pub fn render(report: &NoiseReport) -> String {
     if report.axes.iter().any(|a| a.terms.is_some() && !a.bias_instability_resolved()) {
         out.push_str("(bias instability not resolved: the deviation had not levelled off by the longest averaging time; record longer)\n");
     }
+    if report.axes.iter().any(|a| a.terms.is_some() && !a.random_walk_resolved()) {
+        out.push_str("(random walk not resolved: the deviation had not begun to rise; < is the largest its longest averaging time allows; record for hours)\n");
+    }
     write_gyro_per_hour(&mut out, report);
     write_calibration(&mut out, report);
     out
@@ -70,7 +73,11 @@ fn axis_line(axis: &AxisNoise) -> String {
         true => format!("{:>16.4e} {:>9.1}s", t.bias_instability * s, t.bias_instability_tau_s),
         false => format!("{:>16} {:>10}", "not resolved", "-"),
     };
-    format!("{:<8} {:>16.4e} {bias} {:>18.4e}", axis.name, t.white_noise_density() * s, t.random_walk * s)
+    let walk = match (axis.random_walk_resolved(), axis.random_walk_bound()) {
+        (false, Some(bound)) => format!("< {:.4e}", bound * s),
+        _ => format!("{:.4e}", t.random_walk * s),
+    };
+    format!("{:<8} {:>16.4e} {bias} {walk:>18}", axis.name, t.white_noise_density() * s)
 }
 
 fn write_gyro_per_hour(out: &mut String, report: &NoiseReport) {

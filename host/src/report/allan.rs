@@ -42,6 +42,8 @@ pub struct AllanAxis {
     pub bias_instability_resolved: bool,
     /// Random walk (ug/s/sqrt(Hz), deg/s/s/sqrt(Hz)).
     pub random_walk: Option<f64>,
+    /// Whether the curve resolves the random walk (older noise reports do not say: taken as so).
+    pub random_walk_resolved: bool,
 }
 
 impl AllanSection {
@@ -70,6 +72,7 @@ impl AllanAxis {
             bias_instability_tau_s: axis.bias_instability_tau_s,
             bias_instability_resolved: axis.bias_instability_resolved,
             random_walk: axis.random_walk,
+            random_walk_resolved: axis.random_walk_resolved,
         }
     }
 }

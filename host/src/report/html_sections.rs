@@ -103,7 +103,9 @@ fn allan_table(out: &mut String, a: &AllanSection) {
         let note = if axis.bias_instability_resolved { "</td>" } else { " (not resolved)</td>" };
         out.push_str(&cell(&pointer("bias_instability"), axis.bias_instability, 4).replace("</td>", note));
         out.push_str(&cell(&pointer("bias_instability_tau_s"), axis.bias_instability_tau_s, 1));
-        let _ = write!(out, "{}</tr>", cell(&pointer("random_walk"), axis.random_walk, 4));
+        let note = if axis.random_walk_resolved { "</td>" } else { " (not resolved)</td>" };
+        let walk = cell(&pointer("random_walk"), axis.random_walk, 4).replace("</td>", note);
+        let _ = write!(out, "{walk}</tr>");
     }
     out.push_str("</table></div>");
 }
@@ -120,6 +122,7 @@ mod tests {
             bias_instability_tau_s: Some(2.5),
             bias_instability_resolved: resolved,
             random_walk: Some(0.0),
+            random_walk_resolved: resolved,
         };
         AllanSection {
             sample_rate_hz: 100.0,
@@ -140,6 +143,8 @@ mod tests {
         let (mut unresolved, mut resolved) = (String::new(), String::new());
         allan_table(&mut unresolved, &section(true, false));
         allan_table(&mut resolved, &section(true, true));
-        assert!(unresolved.contains("(not resolved)") && !resolved.contains("not resolved"), "{unresolved}");
+        // The bias instability's and the random walk's.
+        assert_eq!(unresolved.matches("(not resolved)").count(), 2, "{unresolved}");
+        assert!(!resolved.contains("not resolved"), "{resolved}");
     }
 }
