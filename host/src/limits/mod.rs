@@ -159,6 +159,10 @@ pub const GYRO_CLIPPED_FRACTION: f64 = 0.995;
 /// angle between the two rests is the reference (400 ug noise per sample at 100 Hz averages to
 /// 0.02 degrees over a second at each end).
 pub const TURN_CHECK_REST_SECONDS: f64 = 1.0;
+/// Quarter turns asked for before the gyro's verification is given up: a person who turned about
+/// the vertical, or did not rest, is told why and asked again; a third miss says more of the same
+/// would not help (each turn takes a few seconds).
+pub const TURN_CHECK_ATTEMPTS: usize = 3;
 
 /// Most fresh orientations a verification asks for.
 ///

@@ -29,3 +29,20 @@ impl Feedback for Silent {
         self.yes
     }
 }
+
+/// Keeps what the person is told, for tests; questions get the answer `yes`.
+#[cfg(test)]
+pub(crate) struct Told(pub Vec<String>);
+
+#[cfg(test)]
+impl Feedback for Told {
+    fn say(&mut self, line: &str) {
+        self.0.push(line.to_owned());
+    }
+    fn live(&mut self, _: &str) {}
+    fn progress(&mut self, _: u32, _: u32) {}
+    fn progress_done(&mut self) {}
+    fn confirm(&mut self, _: &str) -> bool {
+        true
+    }
+}

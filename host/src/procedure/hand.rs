@@ -69,21 +69,7 @@ mod tests {
     use super::*;
     use crate::orientation::Orientation;
     use crate::procedure::drift::closing;
-
-    /// Keeps what the person is told.
-    struct Told(Vec<String>);
-
-    impl Feedback for Told {
-        fn say(&mut self, line: &str) {
-            self.0.push(line.to_owned());
-        }
-        fn live(&mut self, _: &str) {}
-        fn progress(&mut self, _: u32, _: u32) {}
-        fn progress_done(&mut self) {}
-        fn confirm(&mut self, _: &str) -> bool {
-            true
-        }
-    }
+    use crate::procedure::feedback::Told;
 
     #[test]
     fn the_closing_capture_of_a_face_is_described_as_that_face_not_as_a_corner() {
