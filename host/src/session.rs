@@ -19,6 +19,7 @@ mod fixture;
 mod kind;
 mod outcome;
 mod source;
+mod unmeasured;
 mod verdict;
 mod verification;
 
@@ -143,7 +144,10 @@ impl Session {
     /// Writes `PATH.json` and `PATH.csv` for a path without extension.
     pub fn save(&self, stem: &Path) -> Result<(), SessionError> {
         // NOTE: serialising plain numbers, strings and options cannot fail.
-        let json = serde_json::to_string_pretty(self).unwrap_or_default();
+        let json = match self.kind {
+            SessionKind::Stream => unmeasured::stream_json(self),
+            _ => serde_json::to_string_pretty(self).unwrap_or_default(),
+        };
         write_atomically(&stem_file(stem, "json"), json.as_bytes())?;
         write_atomically(&stem_file(stem, "csv"), self.csv().as_bytes())
     }
@@ -151,7 +155,7 @@ impl Session {
     /// Reads a session written by [`Session::save`] (the JSON file).
     pub fn load(path: &Path) -> Result<Self, SessionError> {
         let text = std::fs::read_to_string(path).map_err(|source| SessionError::Read { path: path.into(), source })?;
-        let session: Session = serde_json::from_str(&text)
+        let session = unmeasured::parse(&text)
             .map_err(|e| SessionError::NotASession { path: path.into(), reason: e.to_string() })?;
         Ok(session.with_closing_marked())
     }

@@ -129,3 +129,10 @@ pub const UNIT_TURN_MIN_DEG: f64 = 45.0;
 /// up to about as much again (1.4x); the units the gyro may be in differ by 2x (ranges) to 131x
 /// (counts as deg/s), and the range a factor 2 leaves open the turns' G fit names (`GYRO_RANGE_TOLERANCE`).
 pub const UNIT_TURN_RATIO: f64 = 2.0;
+
+/// Longest run of garbled timestamps passed over when the clock comes back in step after it, in lines.
+///
+/// NOTE: a garbled timestamp is a line corrupted on its way (a UART's noise burst, two tasks of a
+/// sketch printing at once): a line or a few. A clock that leaves its sequence for longer and comes
+/// back exactly in step is no clock that jumped; one that jumps and stays is a gap, counted.
+pub const MAX_GLITCH_RUN: usize = 8;

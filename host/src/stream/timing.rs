@@ -1,7 +1,7 @@
 //! A stream's clock: the unit of its time column (by its name, else by the rate it would give) and
 //! the sample rate, from the timestamps, else from when the lines arrived, else as given.
 
-use crate::limits::{PLAUSIBLE_HZ, RATE_AGREEMENT};
+use crate::limits::{MAX_GLITCH_RUN, PLAUSIBLE_HZ, RATE_AGREEMENT};
 use serde::Serialize;
 
 /// Where a stream's rate comes from.
@@ -81,26 +81,53 @@ pub fn settle(shown: Option<Rate>, given_hz: Option<f64>) -> Result<Option<Rate>
     }
 }
 
-/// Samples lost in gaps of the clock: each step longer than 1.5 periods hides round(step / period) - 1.
-/// A single time out of sequence (garbled on its line) is passed over, not taken for a gap.
+/// Samples lost in gaps of the clock: a step between two times in sequence longer than the samples
+/// between them by over half a period hides round(step / period) less those samples. A short run of
+/// times out of sequence (garbled on their lines) is passed over, not taken for a gap.
 pub fn lost_in_gaps(times: &[f64], rate: Rate) -> usize {
     let period = 1.0 / rate.hz;
-    let hidden = |step: f64| if step > 1.5 * period { (step / period).round() as usize - 1 } else { 0 };
-    in_sequence(times).windows(2).map(|w| hidden(w[1] - w[0])).sum()
+    let hidden = |(i, a): (usize, f64), (j, b): (usize, f64)| {
+        let (steps, between) = ((b - a) / period, (j - i) as f64);
+        if steps > between + 0.5 {
+            (steps.round() - between) as usize
+        } else {
+            0
+        }
+    };
+    in_sequence(times, period).windows(2).map(|w| hidden(w[0], w[1])).sum()
 }
 
-/// The times without those out of sequence on their own: a time outside the step from the one before
-/// to the one after, when those two are in order, is one garbled line (a clock that jumps stays jumped).
-fn in_sequence(times: &[f64]) -> Vec<f64> {
-    let mut kept: Vec<f64> = Vec::with_capacity(times.len());
-    for (i, &time) in times.iter().enumerate() {
-        let after = times.get(i + 1).copied().unwrap_or(f64::INFINITY);
-        let glitch = kept.last().is_some_and(|&before| before < after && !(before < time && time <= after));
-        if !glitch {
-            kept.push(time);
+/// The times (with their indices) without those out of sequence on their own lines: a run of up to
+/// [`MAX_GLITCH_RUN`] times outside the step from the one before to the one after it (one time out
+/// of sequence is such a run). A clock that jumps stays jumped.
+fn in_sequence(times: &[f64], period: f64) -> Vec<(usize, f64)> {
+    let mut kept: Vec<(usize, f64)> = Vec::with_capacity(times.len());
+    let mut i = 0;
+    while i < times.len() {
+        match kept.last().and_then(|&last| glitched_run(times, i, last, period)) {
+            Some(run) => i += run,
+            None => {
+                kept.push((i, times[i]));
+                i += 1;
+            }
         }
     }
     kept
+}
+
+/// How many times from index `i` on are garbled, the last time kept being `before` at index `at`;
+/// none when the time at `i` is in step with it, or is where the clock jumped to and stays.
+fn glitched_run(times: &[f64], i: usize, (at, before): (usize, f64), period: f64) -> Option<usize> {
+    // NOTE: in step: later than `before`, by no more than the samples between and half a period.
+    let in_step = |j: usize| before < times[j] && times[j] - before <= ((j - at) as f64 + 0.5) * period;
+    if in_step(i) {
+        return None;
+    }
+    // NOTE: the run ends where the clock goes on past `before` with every time of the run outside
+    // the step to there (a clock that jumped and stays has its jump inside it), or back in step.
+    let outside = |j: usize| times[i..j].iter().all(|&t| t <= before || t > times[j]);
+    let back = |j: usize| in_step(j) || (before < times[j] && outside(j));
+    (i + 1..times.len().min(i + 1 + MAX_GLITCH_RUN)).find(|&j| back(j)).map(|j| j - i)
 }
 
 #[cfg(test)]
@@ -137,11 +164,30 @@ mod tests {
         let back = [90.10, 90.11, 3.0, 90.12, 90.13];
         let ahead = [90.10, 90.11, 99999.0, 90.12, 90.13, 90.16];
         assert_eq!((lost_in_gaps(&back, rate), lost_in_gaps(&ahead, rate)), (0, 2));
-        assert_eq!(in_sequence(&ahead), vec![90.10, 90.11, 90.12, 90.13, 90.16]);
+        let kept = |times: &[f64]| in_sequence(times, 0.01).into_iter().map(|(_, t)| t).collect::<Vec<_>>();
+        assert_eq!(kept(&ahead), vec![90.10, 90.11, 90.12, 90.13, 90.16]);
         // A board reset: millis start again, and stay started.
         assert_eq!(lost_in_gaps(&[50.0, 50.01, 0.0, 0.01, 0.02], rate), 0);
-        assert_eq!(in_sequence(&[50.0, 50.01, 0.0, 0.01, 0.02]).len(), 5);
+        assert_eq!(kept(&[50.0, 50.01, 0.0, 0.01, 0.02]).len(), 5);
         // A real gap that the clock keeps: 4 lost.
         assert_eq!(lost_in_gaps(&[1.0, 1.01, 1.06, 1.07], rate), 4);
+    }
+
+    #[test]
+    fn a_short_run_of_garbled_times_invents_no_loss_and_a_clock_that_jumps_and_stays_still_counts() {
+        let rate = Rate { hz: 100.0, source: RateSource::Timestamps };
+        // Two garbled lines in a row, added between samples or in place of two samples' times.
+        assert_eq!(lost_in_gaps(&[90.10, 90.11, 3.0, 4.0, 90.12, 90.13], rate), 0);
+        assert_eq!(lost_in_gaps(&[90.10, 90.11, 3.0, 4.0, 90.14, 90.15], rate), 0);
+        assert_eq!(lost_in_gaps(&[90.10, 90.11, 99999.0, 99999.01, 99999.02, 90.12, 90.13], rate), 0);
+        // A sample late by 0.6 of a period, the next on time: none lost.
+        assert_eq!(lost_in_gaps(&[1.0, 1.01, 1.026, 1.03, 1.04], rate), 0);
+        // A real gap, kept by the clock: the samples hidden in it are lost, also after a glitch (whose
+        // two lines are samples, their times garbled: 2 of the 4 the gap spans).
+        assert_eq!(lost_in_gaps(&[1.0, 1.01, 1.06, 1.07, 1.08], rate), 4);
+        assert_eq!(lost_in_gaps(&[1.0, 1.01, 3.0, 4.0, 1.06, 1.07, 1.08], rate), 2);
+        // A clock that jumps far ahead and stays there: every step of the jump is lost.
+        let jumped = lost_in_gaps(&[90.10, 90.11, 190.11, 190.12, 190.13, 190.14], rate);
+        assert_eq!(jumped, 9_999);
     }
 }
