@@ -127,6 +127,7 @@ pub fn figure(noise: &NoiseJson, plot: AllanPlot) -> Result<Figure, String> {
         y_label: format!("Allan deviation ({unit})"),
         equal_axes: false,
         log_axes: true,
+        index_x: false,
         series,
     })
 }

@@ -30,6 +30,9 @@ pub struct Figure {
     pub equal_axes: bool,
     /// Whether both axes are logarithmic (an Allan deviation); the points stay in their units.
     pub log_axes: bool,
+    /// Whether the horizontal axis counts things (positions, turns): labelled at whole numbers only.
+    #[serde(skip)]
+    pub index_x: bool,
     /// The series, drawn in order.
     pub series: Vec<Series>,
 }
@@ -110,6 +113,7 @@ pub fn sphere_view(positions: &[PositionResult], fit: &Fit, axes: [usize; 2]) ->
         y_label: format!("{} (g)", name(axes[1])),
         equal_axes: true,
         log_axes: false,
+        index_x: false,
         series: vec![
             Series::new(
                 "1 g sphere",
@@ -178,7 +182,7 @@ fn numbered(id: &'static str, title: &str, x_label: &str, role: Role, values: &[
         series.push(Series::new("noise floor (+-)", Role::Reference, SeriesStyle::Line, band));
     }
     let (x_label, y_label) = (x_label.to_owned(), "mg".to_owned());
-    Figure { id, title: title.to_owned(), x_label, y_label, equal_axes: false, log_axes: false, series }
+    Figure { id, title: title.to_owned(), x_label, y_label, equal_axes: false, log_axes: false, index_x: true, series }
 }
 
 /// The unit circle in the plane of `axes` (a great circle of the 1 g sphere).

@@ -100,7 +100,8 @@ pub fn text(gyro: &GyroJson, check: Option<&TurnCheck>) -> String {
 }
 
 /// The session report's gyro figure: each turn's angle by the gyro minus the accelerometer's, raw
-/// and calibrated, against the turn's number.
+/// and calibrated, against the turn's number; raw alone, said so, when no G was fitted (the
+/// "calibrated" angles are then the raw ones).
 pub fn turns_figure(turns: &[TurnSummary]) -> Figure {
     let series = |name: &str, role, angle: fn(&TurnSummary) -> f64| Series {
         name: name.to_owned(),
@@ -115,10 +116,14 @@ pub fn turns_figure(turns: &[TurnSummary]) -> Figure {
         y_label: "gyro - accelerometer (degrees)".to_owned(),
         equal_axes: false,
         log_axes: false,
-        series: vec![
-            series("raw gyro", Role::Raw, |t| t.raw_deg),
-            series("calibrated gyro", Role::Calibrated, |t| t.calibrated_deg),
-        ],
+        index_x: true,
+        series: match turns.iter().any(|t| t.calibrated_deg != t.raw_deg) {
+            true => vec![
+                series("raw gyro", Role::Raw, |t| t.raw_deg),
+                series("calibrated gyro", Role::Calibrated, |t| t.calibrated_deg),
+            ],
+            false => vec![series("raw gyro (no G was fitted)", Role::Raw, |t| t.raw_deg)],
+        },
     }
 }
 
@@ -135,4 +140,29 @@ pub fn turns_line(turns: &[TurnSummary]) -> String {
         rms(|t| t.residual_raw_deg),
         rms(|t| t.residual_calibrated_deg)
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn turn(raw_deg: f64, calibrated_deg: f64) -> TurnSummary {
+        TurnSummary {
+            from: "+Z".into(),
+            to: "+X".into(),
+            expected_deg: 90.0,
+            raw_deg,
+            calibrated_deg,
+            residual_raw_deg: 0.0,
+            residual_calibrated_deg: 0.0,
+        }
+    }
+
+    #[test]
+    fn turns_without_a_fitted_g_show_no_calibrated_series() {
+        let names =
+            |turns: &[TurnSummary]| turns_figure(turns).series.iter().map(|s| s.name.clone()).collect::<Vec<_>>();
+        assert_eq!(names(&[turn(91.2, 90.01), turn(88.9, 89.98)]), ["raw gyro", "calibrated gyro"]);
+        assert_eq!(names(&[turn(91.2, 91.2), turn(88.9, 88.9)]), ["raw gyro (no G was fitted)"]);
+    }
 }

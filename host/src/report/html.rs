@@ -107,9 +107,9 @@ fn parameters(out: &mut String, report: &SessionReport) {
             out,
             "<tr><td>{}</td>{}",
             escape(p.name),
-            cell(&format!("/fit/parameters/{i}/value"), Some(p.value), 6)
+            fixed_cell(&format!("/fit/parameters/{i}/value"), Some(p.value), 6)
         );
-        let _ = write!(out, "{}</tr>", cell(&format!("/fit/parameters/{i}/std_error"), p.std_error, 6));
+        let _ = write!(out, "{}</tr>", scientific_cell(&format!("/fit/parameters/{i}/std_error"), p.std_error, 3));
     }
     out.push_str("</table></div>");
     for warning in &fit.warnings {
@@ -249,6 +249,25 @@ pub(super) fn cell(pointer: &str, value: Option<f64>, digits: usize) -> String {
     match value {
         Some(value) => format!("<td class=\"num\">{}</td>", span(pointer, value, digits)),
         None => format!("<td class=\"num\" data-json=\"{pointer}\" data-value=\"null\">&ndash;</td>"),
+    }
+}
+
+/// A cell of a column whose numbers are read together (a matrix, parameter values): always
+/// `digits` decimals, so that 0.000254 stands beside 1.001101 rather than as 2.54e-4.
+pub(super) fn fixed_cell(pointer: &str, value: Option<f64>, digits: usize) -> String {
+    match value {
+        Some(value) => format!("<td class=\"num\">{}</td>", fixed_span(pointer, value, digits)),
+        None => cell(pointer, None, digits),
+    }
+}
+
+/// A cell of standard errors: always scientific, with `significant` digits (an uncertainty's
+/// first digits are all it says).
+pub(super) fn scientific_cell(pointer: &str, value: Option<f64>, significant: usize) -> String {
+    let decimals = significant.saturating_sub(1);
+    match value {
+        Some(value) => format!("<td class=\"num\">{}</td>", tagged(pointer, value, &format!("{value:.decimals$e}"))),
+        None => cell(pointer, None, 0),
     }
 }
 

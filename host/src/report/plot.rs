@@ -73,8 +73,12 @@ fn draw(figure: &Figure, area: DrawingArea<SVGBackend, Shift>) -> Result<(), Str
     let drawn = if figure.log_axes { in_log10(figure) } else { figure.clone() };
     let figure = &drawn;
     let (x, y) = ranges(figure);
-    let (x_label, y_label) =
-        (tick_label(figure.log_axes, x.end - x.start), tick_label(figure.log_axes, y.end - y.start));
+    let (x_ticks, y_ticks) = match (figure.log_axes, figure.index_x) {
+        (true, _) => (Ticks::Log, Ticks::Log),
+        (false, true) => (Ticks::Whole, Ticks::Linear),
+        (false, false) => (Ticks::Linear, Ticks::Linear),
+    };
+    let (x_label, y_label) = (tick_label(x_ticks, x.end - x.start), tick_label(y_ticks, y.end - y.start));
     let mut chart = ChartBuilder::on(&area)
         .margin(12)
         .x_label_area_size(52)
@@ -138,14 +142,29 @@ fn ranges(figure: &Figure) -> (std::ops::Range<f64>, std::ops::Range<f64>) {
     (padded(x.0, x.1), padded(y.0, y.1))
 }
 
-/// The tick labels of an axis spanning `span`: on a log axis the whole decades; else [`short`],
-/// with a tick within a billionth of the span of zero read as 0 (the ticks' own arithmetic left
-/// -2.78e-17 where 0 was meant).
-fn tick_label(log_axes: bool, span: f64) -> Box<dyn Fn(&f64) -> String> {
-    if log_axes {
-        return Box::new(power_of_ten);
+/// How an axis is labelled.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Ticks {
+    /// Values drawn in log10, labelled at whole decades.
+    Log,
+    /// Any value.
+    Linear,
+    /// A count (position 1, 2, 3): whole numbers only, no "1.5th position".
+    Whole,
+}
+
+/// The tick labels of an axis spanning `span`: on a log axis the whole decades; on a count's the
+/// whole numbers; else [`short`], with a tick within a billionth of the span of zero read as 0 (the
+/// ticks' own arithmetic left -2.78e-17 where 0 was meant).
+fn tick_label(ticks: Ticks, span: f64) -> Box<dyn Fn(&f64) -> String> {
+    match ticks {
+        Ticks::Log => Box::new(power_of_ten),
+        Ticks::Whole => Box::new(|value: &f64| match (value - value.round()).abs() < 1e-9 {
+            true => short(&value.round()),
+            false => String::new(),
+        }),
+        Ticks::Linear => Box::new(move |value: &f64| short(&if value.abs() < span * 1e-9 { 0.0 } else { *value })),
     }
-    Box::new(move |value: &f64| short(&if value.abs() < span * 1e-9 { 0.0 } else { *value }))
 }
 
 /// A tick label: the shortest form that reads back as the tick (2, 0.5, -60), in scientific
@@ -201,8 +220,11 @@ mod tests {
         assert_eq!(short(&0.5), "0.5");
         assert_eq!(short(&-60.0), "-60");
         // A zero tick off by the ticks' rounding reads 0; a tick of a 1e-13-wide axis keeps its digits.
-        assert_eq!(tick_label(false, 0.4)(&-2.78e-17), "0");
-        assert_eq!(tick_label(false, 4e-13)(&1e-13), "1e-13");
+        assert_eq!(tick_label(Ticks::Linear, 0.4)(&-2.78e-17), "0");
+        assert_eq!(tick_label(Ticks::Linear, 4e-13)(&1e-13), "1e-13");
+        // A count's axis (positions, turns) is labelled at whole numbers only.
+        let (whole, linear) = (tick_label(Ticks::Whole, 3.0), tick_label(Ticks::Linear, 3.0));
+        assert_eq!((whole(&1.5), whole(&2.0), linear(&1.5)), (String::new(), "2".to_owned(), "1.5".to_owned()));
         assert_eq!(power_of_ten(&-2.0), "0.01");
         assert_eq!(power_of_ten(&3.0), "1000");
         assert_eq!(power_of_ten(&0.5), "");

@@ -109,6 +109,7 @@ fn offset_axes(series: Vec<Series>) -> Figure {
         y_label: "offset - static offset (mg)".into(),
         equal_axes: false,
         log_axes: false,
+        index_x: false,
         series,
     }
 }

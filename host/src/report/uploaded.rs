@@ -6,7 +6,7 @@ use std::fmt::Write;
 use serde::Serialize;
 use shared::{linalg, Calibration};
 
-use super::html::cell;
+use super::html::fixed_cell;
 use super::session::SessionReport;
 use crate::calibration::{self, CalibrationJson};
 use crate::session::Session;
@@ -49,12 +49,12 @@ pub fn html_section(out: &mut String, report: &SessionReport) {
         let _ = write!(out, "<tr><td>{i}</td>");
         let record = &uploaded.record;
         for (j, value) in record.matrix[i].iter().enumerate() {
-            out.push_str(&cell(&format!("/uploaded/record/matrix/{i}/{j}"), Some(*value), 6));
+            out.push_str(&fixed_cell(&format!("/uploaded/record/matrix/{i}/{j}"), Some(*value), 6));
         }
-        out.push_str(&cell(&format!("/uploaded/record/offset/{i}"), Some(record.offset[i]), 6));
+        out.push_str(&fixed_cell(&format!("/uploaded/record/offset/{i}"), Some(record.offset[i]), 6));
         for j in 0..3 {
             let g = record.gyro_matrix.map(|g| g[i][j]);
-            out.push_str(&cell(&format!("/uploaded/record/gyro_matrix/{i}/{j}"), g, 6));
+            out.push_str(&fixed_cell(&format!("/uploaded/record/gyro_matrix/{i}/{j}"), g, 6));
         }
         out.push_str("</tr>");
     }

@@ -16,3 +16,12 @@ fn a_position_s_components_are_shown_to_four_decimals_near_zero_too() {
     assert_eq!(row.matches(">0.0000</span>").count(), 3, "{row}");
     assert!(row.contains(">1.0000</span></td>"), "{row}");
 }
+
+#[test]
+fn a_column_read_together_keeps_its_decimals_and_standard_errors_stay_scientific() {
+    // A cross-axis term of 2.5e-4 beside a scale of 1.001: both to six decimals.
+    let (small, near_one) = (fixed_cell("/m/0/1", Some(2.544355e-4), 6), fixed_cell("/m/0/0", Some(1.001101), 6));
+    assert!(small.contains(">0.000254</span>") && near_one.contains(">1.001101</span>"), "{small} {near_one}");
+    let (tiny, large) = (scientific_cell("/e/0", Some(2.633774e-4), 3), scientific_cell("/e/1", Some(0.0123), 3));
+    assert!(tiny.contains(">2.63e-4</span>") && large.contains(">1.23e-2</span>"), "{tiny} {large}");
+}
