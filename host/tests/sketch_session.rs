@@ -95,3 +95,26 @@ fn a_lot_needs_the_serial_a_stream_cannot_name_and_a_board_of_our_own_takes_none
     assert!(!refused.status.success() && said.contains("reports its own serial"), "{said}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_live_stream_read_in_the_wrong_unit_ends_early_naming_the_unit_its_values_fit() {
+    let dir = std::env::temp_dir().join(format!("accelcal-sketch-unit-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    // NOTE: the simulated person's session lasts three minutes; a run that waited for its end would
+    // be killed at the limit, so ending within it shows the unit ended the session.
+    let limit = Duration::from_secs(60);
+    let cases = [
+        ("--input-unit", "g", "give --input-unit counts-2g"),
+        ("--gyro-unit", "deg/s", "give --gyro-unit counts-250dps"),
+    ];
+    for (flag, unit, named) in cases {
+        let sim = SimPty::with_seed("5", &["--sketch", "csv"]);
+        let stem = dir.join(flag.trim_start_matches('-'));
+        let args = ["calibrate", "--port", &sim.path, flag, unit, "--session", stem.to_str().unwrap()];
+        let (ended, _) = accelcal_within(&args, limit);
+        let said = String::from_utf8_lossy(&ended.stderr);
+        assert!(!ended.status.success() && said.contains(named), "{flag} {unit}: {said}");
+        assert!(!said.contains("orientations") && !said.contains("moved"), "{flag} {unit}: {said}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
