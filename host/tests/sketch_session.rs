@@ -50,13 +50,18 @@ fn ctrl_c_and_a_pulled_cable_lose_no_still_period_and_resume_goes_on_in_the_same
     std::fs::create_dir_all(&dir).unwrap();
     let (stem, json, log) = (dir.join("stream"), dir.join("stream.json"), dir.join("stream.log"));
     let sim = SimPty::with_seed("3", &["--sketch", "csv"]);
-    let mut first = calibrate(&["--port", &sim.path, "--session", stem.to_str().unwrap()]);
+    let lot = dir.join("lot.sqlite");
+    let (lot_arg, stem_arg) = (lot.to_str().unwrap(), stem.to_str().unwrap());
+    let mut first = calibrate(&["--port", &sim.path, "--session", stem_arg, "--serial", "desk-1", "--lot", lot_arg]);
     wait_for_captures(&json, 2);
     let kept = captures(&json);
     Command::new("kill").args(["-INT", &first.id().to_string()]).status().unwrap();
     wait_or_kill(&mut first, Duration::from_secs(30));
     let said = stderr_of(first);
     assert!(said.contains("stopped by Ctrl-C") && said.contains("--resume"), "{said}");
+    // Cut short, the session is not certified, and the way on names its lot.
+    assert!(said.contains(&format!("--resume {} --lot {lot_arg}", json.display())), "{said}");
+    assert!(!stem.with_extension("certificate.json").exists() && !lot.exists(), "a cut-short session was certified");
     // Each position is held until its mean is known to what the target needs, then the person turns on.
     assert!(said.contains("+Z taken (its mean known to "), "{said}");
     assert!(captures(&json) >= kept, "Ctrl-C lost still periods: {} of {kept}", captures(&json));
@@ -64,13 +69,16 @@ fn ctrl_c_and_a_pulled_cable_lose_no_still_period_and_resume_goes_on_in_the_same
     let before = std::fs::read_to_string(&log).unwrap();
     assert!(before.contains("millis,ax,ay,az,gx,gy,gz"), "the log keeps what the port printed");
 
-    let mut second = calibrate(&["--port", &sim.path, "--resume", json.to_str().unwrap()]);
-    wait_for_captures(&json, captures(&json));
+    let mut second = calibrate(&["--port", &sim.path, "--resume", json.to_str().unwrap(), "--lot", lot_arg]);
+    // Enough still periods to fit (9), not yet every face, corner and fresh orientation.
+    wait_for_captures(&json, 9);
     let kept = captures(&json);
     drop(sim);
     wait_or_kill(&mut second, Duration::from_secs(30));
     let said = stderr_of(second);
     assert!(said.contains("the port went away"), "{said}");
+    assert!(said.contains("no certificate: the session ended before"), "{said}");
+    assert!(!stem.with_extension("certificate.json").exists() && !lot.exists(), "a cut-short session was certified");
     assert!(captures(&json) >= kept, "the pulled cable lost still periods: {} of {kept}", captures(&json));
     let after = std::fs::read_to_string(&log).unwrap();
     assert!(after.starts_with(&before) && after.len() > before.len(), "the resumed run appends to the same log");

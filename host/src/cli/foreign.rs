@@ -49,11 +49,30 @@ pub(super) fn calibrate_from_stream(args: &CalibrateArgs, talking: TalkingPort) 
     );
     let mut live = LiveStream::new(talking, file, &before).map_err(unwritable)?;
     let options = args.stream.options(None);
-    let why = listen_until_done(&mut live, &options, args, &kept)?;
+    let ended = listen_until_done(&mut live, &options, args, &kept)?;
     let data = data_lines(&live, &options);
     live.finish(&data).map_err(unwritable)?;
-    eprintln!("{why}: fitting the still periods of {}", log.display());
-    report(args, &kept, &options)
+    eprintln!("{}: fitting the still periods of {}", ended.why, log.display());
+    report(args, &kept, &options, ended.complete)
+}
+
+/// Why listening ended, and whether the session is complete (every face and corner rested and
+/// enough fresh orientations held) rather than cut short.
+struct Ended {
+    why: String,
+    complete: bool,
+}
+
+impl Ended {
+    fn short(why: impl Into<String>) -> Self {
+        Ended { why: why.into(), complete: false }
+    }
+}
+
+/// The command that goes on with the session, with the lot it was to go into.
+fn resume_command(args: &CalibrateArgs, kept: &Kept) -> String {
+    let lot = args.lot.as_ref().map(|lot| format!(" --lot {}", lot.display())).unwrap_or_default();
+    format!("accelcal calibrate --port {} --resume {}{lot}", kept.source.port, kept.json().display())
 }
 
 /// Reads the stream, telling the person where things stand and keeping the session, until every
@@ -64,25 +83,25 @@ fn listen_until_done(
     options: &StreamOptions,
     args: &CalibrateArgs,
     kept: &Kept,
-) -> Result<String, Error> {
+) -> Result<Ended, Error> {
     let interrupt = interrupt_on_ctrl_c();
     let mut last_status = Instant::now();
     let mut progress = Progress::new(args);
     let mut warned = false;
     loop {
         if let Err(e) = live.poll(Duration::from_millis(200)) {
-            return Ok(format!("the port went away ({e})"));
+            return Ok(Ended::short(format!("the port went away ({e})")));
         }
         if interrupt.load(Ordering::SeqCst) {
-            return Ok("stopped by Ctrl-C".to_owned());
+            return Ok(Ended::short("stopped by Ctrl-C"));
         }
         match live.silence() {
-            Silence::Stopped => return Ok("the stream stopped".to_owned()),
+            Silence::Stopped => return Ok(Ended::short("the stream stopped")),
             Silence::Unreadable { seconds, ended } if ended || !warned => {
                 warned = true;
                 let words = unreadable(seconds, args.device.baud);
                 match ended {
-                    true => return Ok(words),
+                    true => return Ok(Ended::short(words)),
                     false => eprintln!("{words}"),
                 }
             }
@@ -94,7 +113,7 @@ fn listen_until_done(
         }
         last_status = Instant::now();
         if let Some(done) = status(live, options, kept, &mut progress)? {
-            return Ok(done);
+            return Ok(Ended { why: done, complete: true });
         }
     }
 }
@@ -115,23 +134,28 @@ fn data_lines(live: &LiveStream, options: &StreamOptions) -> Vec<usize> {
 
 /// The calibration and verification of the kept log, as `fit LOG` gives them; the session saved
 /// with them (and before, so that a log too short to fit still leaves its session to resume).
-fn report(args: &CalibrateArgs, kept: &Kept, options: &StreamOptions) -> Result<(), Error> {
+fn report(args: &CalibrateArgs, kept: &Kept, options: &StreamOptions, complete: bool) -> Result<(), Error> {
     let path = &kept.source.log;
     let log = read_log(path, options)?;
     kept.save(&log, None)?;
     let report =
         StreamReport::new(&log, ModelChoice::Only(Model::Ortho9), &FitOptions::default()).map_err(|source| {
-            let json = kept.json();
             eprintln!(
-                "the session is kept in {}: `accelcal calibrate --port {} --resume {}` goes on with it",
-                json.display(),
-                kept.source.port,
-                json.display()
+                "the session is kept in {}: `{}` goes on with it",
+                kept.json().display(),
+                resume_command(args, kept)
             );
             Error::StreamFit { path: path.clone(), source }
         })?;
     let session = kept.save(&log, report.verification.clone())?;
-    certify(args, kept, &session)?;
+    match complete {
+        true => certify(args, kept, &session)?,
+        false => eprintln!(
+            "no certificate: the session ended before every face and corner was rested and the fresh orientations \
+             held; `{}` goes on with it",
+            resume_command(args, kept)
+        ),
+    }
     if args.json {
         println!("{}", stream::json(&report));
         return Ok(());

@@ -132,8 +132,9 @@ impl Source {
         Ok(Source { calibration, serial: None, from: from.to_owned(), noise: None, readings })
     }
 
-    /// The calibration a session's captures give, fitted as `calibrate` fitted it (the gyro's G, which
-    /// needs the moves between positions, is not in a session file).
+    /// The calibration a session's captures give, fitted as `calibrate` fitted it; the gyro's G
+    /// (fitted to the moves between positions, which a session file does not keep) from the record
+    /// uploaded to the board, where the session kept one.
     pub fn from_session(session: &Session, from: &str) -> Result<Self, ExportError> {
         let config = session.board.as_ref().map_or_else(SensorConfig::default, |b| b.config);
         let outcome = match session.outcome(config) {
@@ -141,7 +142,10 @@ impl Source {
             Err(OutcomeError::Fit(e)) => return Err(ExportError::Fit(e)),
             Err(OutcomeError::Calibration(e)) => return Err(e.into()),
         };
-        let calibration = outcome.calibration;
+        let mut calibration = outcome.calibration;
+        if let Some(uploaded) = &session.uploaded {
+            calibration.gyro.matrix = uploaded.gyro.matrix;
+        }
         let mut readings = match (&session.stream, session.kind) {
             (Some(stream), SessionKind::Stream) => Readings::stream(&stream.input_unit, stream.gyro_unit.as_deref()),
             _ => Readings::board(session.board.as_ref().and_then(|b| b.sensor.clone()), calibration.mean_temp_c),
@@ -228,6 +232,19 @@ mod tests {
         assert!(text.contains("#define ACCELCAL_GYRO_LSB_PER_DPS 131.0f"), "{text}");
         assert!(text.contains("made at: die temperature not measured"), "{text}");
         assert!(text.contains("its stream printed accelerometer counts-2g, gyro counts-250dps"), "{text}");
+    }
+
+    #[test]
+    fn a_session_s_export_carries_the_gyro_g_it_uploaded() {
+        let session = crate::certificate::tests::session(1, 0.0, 0.004);
+        let refit = Source::from_session(&session, "s.json").unwrap();
+        assert!(!refit.has_gyro_matrix(), "a session without its upload has no moves to fit G to");
+        let mut uploaded = refit.calibration;
+        uploaded.gyro.matrix = [[1.02, 0.001, 0.0], [0.0, 0.98, -0.002], [0.0, 0.0, 1.01]];
+        let session = Session { uploaded: Some(uploaded), ..session };
+        let source = Source::from_session(&session, "s.json").unwrap();
+        assert_eq!(source.calibration.gyro.matrix, uploaded.gyro.matrix);
+        assert_eq!(source.calibration.matrix, refit.calibration.matrix, "the accelerometer stays the refit's");
     }
 
     #[test]
