@@ -7,6 +7,7 @@ pub mod allan;
 pub mod fit;
 pub mod input;
 pub mod json;
+pub mod kalibr;
 pub mod stream;
 pub mod text;
 

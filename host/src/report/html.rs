@@ -11,6 +11,11 @@ use super::Comparison;
 use crate::session::{Board, Verification};
 use crate::shown::escape;
 
+mod cells;
+use cells::fixed_span;
+pub use cells::shown;
+pub(super) use cells::{cell, fixed_cell, scientific_cell, span};
+
 /// Said where a section's data is not in the session.
 pub const ABSENT: &str = "not part of this session";
 const STYLE: &str = include_str!("report.css");
@@ -241,60 +246,6 @@ fn style_class(style: SeriesStyle) -> &'static str {
         SeriesStyle::Points => "dot",
         SeriesStyle::Line => "bar",
         SeriesStyle::Band => "band",
-    }
-}
-
-/// A table cell holding `value` rounded to `digits`, or a dash.
-pub(super) fn cell(pointer: &str, value: Option<f64>, digits: usize) -> String {
-    match value {
-        Some(value) => format!("<td class=\"num\">{}</td>", span(pointer, value, digits)),
-        None => format!("<td class=\"num\" data-json=\"{pointer}\" data-value=\"null\">&ndash;</td>"),
-    }
-}
-
-/// A cell of a column whose numbers are read together (a matrix, parameter values): always
-/// `digits` decimals, so that 0.000254 stands beside 1.001101 rather than as 2.54e-4.
-pub(super) fn fixed_cell(pointer: &str, value: Option<f64>, digits: usize) -> String {
-    match value {
-        Some(value) => format!("<td class=\"num\">{}</td>", fixed_span(pointer, value, digits)),
-        None => cell(pointer, None, digits),
-    }
-}
-
-/// A cell of standard errors: always scientific, with `significant` digits (an uncertainty's
-/// first digits are all it says).
-pub(super) fn scientific_cell(pointer: &str, value: Option<f64>, significant: usize) -> String {
-    let decimals = significant.saturating_sub(1);
-    match value {
-        Some(value) => format!("<td class=\"num\">{}</td>", tagged(pointer, value, &format!("{value:.decimals$e}"))),
-        None => cell(pointer, None, 0),
-    }
-}
-
-/// `value` shown with `digits` decimals, tagged with its JSON pointer and full value.
-pub(super) fn span(pointer: &str, value: f64, digits: usize) -> String {
-    tagged(pointer, value, &shown(value, digits))
-}
-
-/// A value in a column of vector components: always `digits` decimals (a component near zero next
-/// to one near 1 g reads 0.0000, not in scientific notation), never a negative zero.
-fn fixed_span(pointer: &str, value: f64, digits: usize) -> String {
-    let text = format!("{value:.digits$}");
-    let text = if text.trim_start_matches(['-', '0', '.']).is_empty() { format!("{:.digits$}", 0.0) } else { text };
-    tagged(pointer, value, &text)
-}
-
-/// `text` showing `value`, tagged with where the JSON holds it and its full value.
-fn tagged(pointer: &str, value: f64, text: &str) -> String {
-    format!("<span data-json=\"{pointer}\" data-value=\"{value:e}\">{text}</span>")
-}
-
-/// `digits` decimals, or as many significant digits in scientific notation for small values.
-pub fn shown(value: f64, digits: usize) -> String {
-    if value != 0.0 && value.abs() < 1e-3 {
-        format!("{value:.digits$e}")
-    } else {
-        format!("{value:.digits$}")
     }
 }
 
