@@ -115,6 +115,11 @@ impl Session {
         value.get("captures").is_some_and(serde_json::Value::is_array) && value.get("calibration").is_none()
     }
 
+    /// A session file's JSON, as [`Session::load`] reads it (`temp_c` null in a stream session).
+    pub fn from_json(json: serde_json::Value) -> Result<Self, serde_json::Error> {
+        unmeasured::from_value(json)
+    }
+
     /// Whether a capture of this name was taken.
     pub fn has_capture(&self, name: &str) -> bool {
         self.captures.iter().any(|c| c.name == name)

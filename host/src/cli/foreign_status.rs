@@ -51,7 +51,8 @@ pub(super) fn status(
         Err(_) => return Ok(None),
     };
     let still = StillPeriods::of(&log);
-    if let Some(doubt) = gyro_doubt(&log).filter(|_| still.segments.is_empty()) {
+    // NOTE: only while no period rests: a gyro read in the wrong unit rests nowhere.
+    if let Some(doubt) = still.segments.is_empty().then(|| gyro_doubt(&log)).flatten() {
         return Ok(Some(doubt));
     }
     eprintln!("{}", status_line(&log, &still, progress.want_g));

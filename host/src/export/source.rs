@@ -101,8 +101,7 @@ impl Source {
         let value: serde_json::Value =
             serde_json::from_str(text).map_err(|e| ExportError::NotJson { reason: e.to_string() })?;
         if Session::is_session_json(&value) {
-            let session: Session =
-                serde_json::from_value(value).map_err(|e| ExportError::NotJson { reason: e.to_string() })?;
+            let session = Session::from_json(value).map_err(|e| ExportError::NotJson { reason: e.to_string() })?;
             return Self::from_session(&session, from);
         }
         if let Some(unit) = value.get("input_unit").and_then(serde_json::Value::as_str) {
@@ -232,6 +231,14 @@ mod tests {
         assert!(text.contains("#define ACCELCAL_GYRO_LSB_PER_DPS 131.0f"), "{text}");
         assert!(text.contains("made at: die temperature not measured"), "{text}");
         assert!(text.contains("its stream printed accelerometer counts-2g, gyro counts-250dps"), "{text}");
+        // The session as its file holds it (temp_c null: not measured) exports the same.
+        let stem = std::env::temp_dir().join(format!("accelcal-export-stream-{}", std::process::id()));
+        stream_session(Some("counts-250dps")).save(&stem).unwrap();
+        let written = std::fs::read_to_string(crate::session::stem_file(&stem, "json")).unwrap();
+        let _ = ["json", "csv"].map(|e| std::fs::remove_file(crate::session::stem_file(&stem, e)));
+        assert!(written.contains("\"temp_c\": null"), "{written}");
+        let read = Source::from_text(&written, "s.json").unwrap();
+        assert_eq!((read.readings.gyro_lsb_per_dps, read.readings.made_at_c), (131.0, None));
     }
 
     #[test]

@@ -30,13 +30,19 @@ pub(super) fn stream_json(session: &Session) -> String {
     serde_json::to_string_pretty(&json).unwrap_or_default()
 }
 
-/// A session file's text read as a session: a stream session's null temperatures as the 0 its
-/// statistics hold (other sessions read as they are, their errors with line and column).
+/// A session file's text read as a session, as [`from_value`] (other sessions' errors with line
+/// and column).
 pub(super) fn parse(text: &str) -> Result<Session, serde_json::Error> {
-    let mut json: Value = serde_json::from_str(text)?;
-    if !is_stream(&json) {
-        return serde_json::from_str(text);
+    let json: Value = serde_json::from_str(text)?;
+    match is_stream(&json) {
+        true => from_value(json),
+        false => serde_json::from_str(text),
     }
+}
+
+/// A session file's JSON read as a session: a stream session's null temperatures as the 0 its
+/// statistics hold.
+pub(super) fn from_value(mut json: Value) -> Result<Session, serde_json::Error> {
     each_temperature(&mut json, |temp_c| {
         if temp_c.is_null() {
             *temp_c = Value::from(0.0);
@@ -87,6 +93,7 @@ mod tests {
         let temps: Vec<&Value> = json["captures"].as_array().unwrap().iter().map(|c| &c["stats"]["temp_c"]).collect();
         assert_eq!(temps, [&Value::Null, &Value::Null], "{text}");
         assert_eq!(Session::load(&path).unwrap(), stream);
+        assert_eq!(Session::from_json(json).unwrap(), stream, "as the exports read it");
         // Written before: 0.0 in a stream session, which meant the same.
         std::fs::write(&path, text.replace("\"temp_c\": null", "\"temp_c\": 0.0")).unwrap();
         assert_eq!(Session::load(&path).unwrap(), stream);
