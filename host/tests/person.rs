@@ -198,3 +198,26 @@ fn a_verification_capture_the_board_moved_during_waits_for_a_fresh_orientation_a
     assert!(status.success(), "{stderr}");
     assert!(stdout.contains("| |a| - 1 g | rms"), "{stdout}");
 }
+
+#[test]
+fn a_session_resumed_after_ctrl_c_in_its_verification_keeps_the_gyro_g_it_uploaded() {
+    let mut sim = board_on_the_desk("17");
+    let session = temp_stem("resumed-g");
+    let json = session.with_extension("json");
+    let quick = ["--quick", "--seconds", "5", "--verify", "2", "--yes"];
+    let first = [&quick[..], &["--session", session.to_str().unwrap()]].concat();
+    let mut run = Run::start(&sim.path.clone(), &first, Moves::Turn);
+    assert!(run.follow(&mut sim, "uploaded and saved; now checking").is_some(), "{:?}", run.seen);
+    run.interrupt();
+    let _ = run.finish(&mut sim);
+    let g_of = |text: &str| serde_json::from_str::<serde_json::Value>(text).unwrap()["gyro_matrix"].clone();
+    let fitted = g_of(&calibrations(&sim).0);
+    assert!(fitted[0][0].as_f64().is_some_and(|s| s != 1.0), "the first run fitted no G: {fitted}");
+
+    let again = [&quick[..], &["--resume", json.to_str().unwrap()]].concat();
+    let (_, _, stderr) = Run::start(&sim.path.clone(), &again, Moves::Turn).finish(&mut sim);
+    assert!(stderr.contains("G kept from the calibration this session uploaded"), "{stderr}");
+    assert_eq!(g_of(&calibrations(&sim).0), fitted, "the resumed run dropped the board's G");
+    let kept: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert!(kept["gyro_turns"].as_array().is_some_and(|t| !t.is_empty()), "the session lost its turns");
+}

@@ -37,7 +37,9 @@ pub(super) fn fit_with_gyro(
     let mut fitted = choose(&mut opened.connection.client, kept, config, feedback)?;
     let (chosen, gyro) = super::gyro::fit(moves, kept.resumed, &fitted.session, &fitted.chosen, feedback);
     fitted.chosen = chosen;
-    fitted.session.gyro_turns = super::gyro::summaries(moves, &fitted.session, &chosen, &gyro);
+    // NOTE: a resumed run that turned nothing keeps the turns the session recorded before.
+    let turns = super::gyro::summaries(moves, &fitted.session, &chosen, &gyro);
+    fitted.session.gyro_turns = turns.or(fitted.session.gyro_turns.take());
     fitted.gyro = gyro;
     Ok(fitted)
 }

@@ -30,6 +30,14 @@ pub(super) fn fit(
             outcome.fit = Some(fit);
             (calibration, outcome)
         }
+        Err(_) if resumed && earlier_g(session).is_some() => {
+            let matrix = earlier_g(session).unwrap_or(chosen.gyro.matrix);
+            feedback.say(
+                "gyro: G kept from the calibration this session uploaded before it was cut short (the moves it was \
+                 fitted to are not kept to fit again)",
+            );
+            (Calibration { gyro: shared::calibration::GyroCalibration { matrix, ..chosen.gyro }, ..*chosen }, outcome)
+        }
         Err(why) => {
             // NOTE: the moves are recorded in memory only; a session's file keeps their summaries.
             let why = match resumed {
@@ -44,6 +52,12 @@ pub(super) fn fit(
             (*chosen, outcome)
         }
     }
+}
+
+/// The gyro's G the session uploaded in an earlier run, when it fitted one.
+fn earlier_g(session: &Session) -> Option<shared::linalg::Mat3<f32>> {
+    let matrix = session.uploaded.as_ref()?.gyro.matrix;
+    (matrix != shared::linalg::identity::<f32>()).then_some(matrix)
 }
 
 /// The recorded turns as the session keeps them for its report, calibrated with the fitted G (the
