@@ -51,7 +51,7 @@ fn serial(source: &Source) -> String {
 fn sensor(source: &Source) -> String {
     let (calibration, readings) = (&source.calibration, &source.readings);
     let counts = format!(
-        "the functions below take raw counts at {} LSB per g and {} LSB per deg/s",
+        "what follows takes raw counts at {} LSB per g and {} LSB per deg/s",
         calibration.range.lsb_per_g(),
         readings.gyro_lsb_per_dps
     );
@@ -88,7 +88,8 @@ fn learned_over(source: &Source) -> String {
             format!("temperature model learned over: {low:.1} to {high:.1} degC die temperature (the captures' span)")
         }
         None => "temperature model learned over: not recorded in what this was exported from (a model `accelcal \
-                 thermal` learned, or one read from the board)"
+                 thermal` learned, or one read from the board): a file that bounds the model takes the operating \
+                 range; export the session file instead, which records the span its own drift was learned over"
             .to_owned(),
     }
 }

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 /// Why a session file could not be written or read.
 #[derive(Debug, thiserror::Error)]
 pub enum SessionError {
-    #[error("cannot write {path}: {source}; check that the directory exists and is writable")]
+    #[error("cannot write {path}: {source}; give the path of a file (not a directory) in a directory that exists and is writable")]
     Write { path: PathBuf, source: std::io::Error },
     #[error("cannot read {path}: {source}; give the path of a session written by calibrate or capture")]
     Read { path: PathBuf, source: std::io::Error },

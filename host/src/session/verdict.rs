@@ -13,6 +13,9 @@ const WHY_UNTRUSTED: &str = "the calibration leaves an error the verification re
     up, rest it firmly and calibrate again";
 const WHY_NOISY: &str = "the captures' own noise is too large for this target: rest the board on something \
     firmer and quieter, or aim at a larger --target-mg";
+const WHY_SHIFTED: &str = "the captures' noise is below the target, so the error is the calibration's, within 3 \
+    noise floors: the board most likely warmed between the captures and the check; let it warm up for a few \
+    minutes (or keep a learned temperature model, `accelcal thermal`) and calibrate again";
 
 /// A verification judged against the target asked for.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -55,9 +58,19 @@ impl Verification {
         let line = match (reached, missed) {
             (true, _) => format!("{head}: reached"),
             (false, false) => format!("{head}: above the target by less than its noise explains"),
-            (false, true) => format!("{head}: missed; {}", if trusted { WHY_NOISY } else { WHY_UNTRUSTED }),
+            (false, true) => format!("{head}: missed; {}", why_missed(trusted, floor > target_mg)),
         };
         TargetVerdict { target_mg: Some(target_mg), reached, trusted, missed, line }
+    }
+}
+
+/// Why a target was missed: an error the verification resolves, captures whose noise alone exceeds
+/// the target, or, the noise below it, an error of the calibration's own.
+fn why_missed(trusted: bool, noise_above_target: bool) -> &'static str {
+    match (trusted, noise_above_target) {
+        (false, _) => WHY_UNTRUSTED,
+        (true, true) => WHY_NOISY,
+        (true, false) => WHY_SHIFTED,
     }
 }
 
@@ -102,6 +115,10 @@ mod tests {
         assert!(person.missed && !person.trusted, "{person:?}");
         let noisy = verified(1.2, 0.5).against(Some(0.2));
         assert!(noisy.missed && noisy.trusted && noisy.line.contains("own noise is too large"), "{noisy:?}");
+        // A resumed session over sim --pty: 0.436 mg, floor 0.187 mg (0.394 mg without it), below the
+        // target: not the noise's doing.
+        let shifted = verified(0.436, 0.187).against(Some(0.2));
+        assert!(shifted.missed && shifted.trusted && shifted.line.contains("most likely warmed"), "{shifted:?}");
         // 1.06 mg after a 0.2 mg target with a 0.1 mg floor: missed, and not trusted.
         let missed = verified(1.06, 0.1).against(Some(0.2));
         assert!(missed.missed && !missed.trusted, "{missed:?}");
