@@ -1,6 +1,7 @@
 //! The gyro's part of `accelcal calibrate`: G fitted to the moves recorded between the positions
 //! and put into the calibration to upload, and after the upload the verification turn.
 
+use shared::calibration::GyroCalibration;
 use shared::Calibration;
 
 use crate::calibration;
@@ -30,28 +31,38 @@ pub(super) fn fit(
             outcome.fit = Some(fit);
             (calibration, outcome)
         }
-        Err(_) if resumed && earlier_g(session).is_some() => {
-            let matrix = earlier_g(session).unwrap_or(chosen.gyro.matrix);
-            feedback.say(
-                "gyro: G kept from the calibration this session uploaded before it was cut short (the moves it was \
-                 fitted to are not kept to fit again)",
-            );
-            (Calibration { gyro: shared::calibration::GyroCalibration { matrix, ..chosen.gyro }, ..*chosen }, outcome)
-        }
-        Err(why) => {
-            // NOTE: the moves are recorded in memory only; a session's file keeps their summaries.
-            let why = match resumed {
-                true => format!(
-                    "{why}; a resumed session has only the turns of this run (those of earlier runs are not \
-                     kept): calibrate anew to fit the gyro"
-                ),
-                false => why,
-            };
-            feedback.say(&format!("gyro: scale and misalignment not calibrated: {why}"));
-            outcome.not_fitted = Some(why);
-            (*chosen, outcome)
-        }
+        Err(why) => without_fit(why, resumed, session, chosen, outcome, feedback),
     }
+}
+
+/// `chosen` when no G could be fitted to this run's moves: with the G this session uploaded in an
+/// earlier run, when it was resumed after one; else as it is, said why.
+fn without_fit(
+    why: String,
+    resumed: bool,
+    session: &Session,
+    chosen: &Calibration,
+    mut outcome: GyroOutcome,
+    feedback: &mut dyn Feedback,
+) -> (Calibration, GyroOutcome) {
+    if let (true, Some(matrix)) = (resumed, earlier_g(session)) {
+        feedback.say(
+            "gyro: G kept from the calibration this session uploaded before it was cut short (the moves it was \
+             fitted to are not kept to fit again)",
+        );
+        return (Calibration { gyro: GyroCalibration { matrix, ..chosen.gyro }, ..*chosen }, outcome);
+    }
+    // NOTE: the moves are recorded in memory only; a session's file keeps their summaries.
+    let why = match resumed {
+        true => format!(
+            "{why}; a resumed session has only the turns of this run (those of earlier runs are not kept): \
+             calibrate anew to fit the gyro"
+        ),
+        false => why,
+    };
+    feedback.say(&format!("gyro: scale and misalignment not calibrated: {why}"));
+    outcome.not_fitted = Some(why);
+    (*chosen, outcome)
 }
 
 /// The gyro's G the session uploaded in an earlier run, when it fitted one.
