@@ -427,8 +427,8 @@ fn a_resumed_session_goes_on_as_it_was_begun_and_says_which_flags_it_does_not_us
     assert!(stderr.contains("begun adaptive") && stderr.contains("--seconds 5 is not used"), "{stderr}");
     // Thirteen positions and +Z again: the closing capture is no fourteenth position.
     assert!(stderr.contains("13 of 14 positions captured") && stderr.contains("13 positions predict"), "{stderr}");
-    // Its moves were recorded in the first run only: the gyro advice says so, not "use a full calibration".
-    assert!(stderr.contains("a resumed session has only the turns of this run"), "{stderr}");
+    // Its moves were recorded in the first run only: the G that run fitted and uploaded is kept.
+    assert!(stderr.contains("G kept from the calibration this session uploaded in an earlier run"), "{stderr}");
     let output = accelcal(&again);
     let (stdout, stderr) = (String::from_utf8_lossy(&output.stdout), String::from_utf8_lossy(&output.stderr));
     assert!(output.status.success() && !stderr.contains("is not used"), "{stderr}");

@@ -216,7 +216,7 @@ fn a_session_resumed_after_ctrl_c_in_its_verification_keeps_the_gyro_g_it_upload
 
     let again = [&quick[..], &["--resume", json.to_str().unwrap()]].concat();
     let (_, _, stderr) = Run::start(&sim.path.clone(), &again, Moves::Turn).finish(&mut sim);
-    assert!(stderr.contains("G kept from the calibration this session uploaded"), "{stderr}");
+    assert!(stderr.contains("G kept from the calibration this session uploaded in an earlier run"), "{stderr}");
     assert_eq!(g_of(&calibrations(&sim).0), fitted, "the resumed run dropped the board's G");
     let kept: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     assert!(kept["gyro_turns"].as_array().is_some_and(|t| !t.is_empty()), "the session lost its turns");

@@ -47,8 +47,8 @@ fn without_fit(
 ) -> (Calibration, GyroOutcome) {
     if let (true, Some(matrix)) = (resumed, earlier_g(session)) {
         feedback.say(
-            "gyro: G kept from the calibration this session uploaded before it was cut short (the moves it was \
-             fitted to are not kept to fit again)",
+            "gyro: G kept from the calibration this session uploaded in an earlier run (the moves it was fitted \
+             to are not kept to fit again)",
         );
         return (Calibration { gyro: GyroCalibration { matrix, ..chosen.gyro }, ..*chosen }, outcome);
     }
@@ -98,4 +98,30 @@ pub(super) fn check<P: Port>(
         feedback.say(why);
     }
     Ok(result.ok())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::procedure::Told;
+
+    #[test]
+    fn a_resumed_run_without_turns_keeps_an_earlier_upload_s_g_or_says_why_it_has_none() {
+        let session = crate::certificate::tests::session(1, 0.0, 0.004);
+        let chosen = crate::export::Source::from_session(&session, "s.json").unwrap().calibration;
+        let why = || "only 0 usable turns".to_owned();
+        let mut told = Told(Vec::new());
+        let (none, outcome) = without_fit(why(), true, &session, &chosen, GyroOutcome::default(), &mut told);
+        assert_eq!(none.gyro.matrix, chosen.gyro.matrix);
+        assert!(outcome.not_fitted.is_some_and(|w| w.contains("a resumed session has only the turns")), "{:?}", told.0);
+        let mut uploaded = chosen;
+        uploaded.gyro.matrix = [[1.02, 0.0, 0.0], [0.0, 0.98, 0.0], [0.0, 0.0, 1.01]];
+        let session = Session { uploaded: Some(uploaded), ..session };
+        let (kept, outcome) = without_fit(why(), true, &session, &chosen, GyroOutcome::default(), &mut told);
+        assert_eq!(kept.gyro.matrix, uploaded.gyro.matrix);
+        assert!(outcome.not_fitted.is_none() && told.0.last().is_some_and(|l| l.contains("G kept")), "{:?}", told.0);
+        // A first run has no earlier upload to keep: it says why there is no G.
+        let (first, _) = without_fit(why(), false, &session, &chosen, GyroOutcome::default(), &mut told);
+        assert_eq!(first.gyro.matrix, chosen.gyro.matrix);
+    }
 }

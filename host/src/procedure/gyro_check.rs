@@ -238,7 +238,7 @@ mod tests {
         let (mut connection, board) = SimBoard::in_process(3, SimSensor::Realistic).unwrap();
         let hand = crate::procedure::SimulatedHand::new(board.controls(), 0.0, 3);
         let mut hand = SlipsOnce { hand, controls: board.controls(), slipped: false };
-        let mut told = crate::procedure::feedback::Told(Vec::new());
+        let mut told = crate::procedure::Told(Vec::new());
         let rate_hz = connection.info.config.sample_rate_hz;
         let check = check_turn(&mut connection.client, &mut hand, rate_hz, None, &mut told).unwrap();
         let check = check.unwrap_or_else(|why| panic!("{why}; told {:?}", told.0));

@@ -69,7 +69,7 @@ mod tests {
     use super::*;
     use crate::orientation::Orientation;
     use crate::procedure::drift::closing;
-    use crate::procedure::feedback::Told;
+    use crate::procedure::Told;
 
     #[test]
     fn the_closing_capture_of_a_face_is_described_as_that_face_not_as_a_corner() {

@@ -24,6 +24,8 @@ pub use crate::orientation::{corners, faces, quick_set, Orientation};
 pub use crate::session::{TargetVerdict, TurnCheck};
 pub use adaptive::{collect_adaptive, AdaptiveOptions, BoardClock, Collected};
 pub use collect::{collect, collect_into};
+#[cfg(test)]
+pub(crate) use feedback::Told;
 pub use feedback::{Feedback, Silent};
 pub use fixture::{Fixture, FixtureHand, Pull, Seat, SimulatedMember};
 pub use gyro_check::check_turn;
