@@ -19,7 +19,7 @@ const LAB_G: f64 = 9.8061;
 const RELATIVE_TOLERANCE: f64 = 1e-6;
 
 fn lab_dataset() -> Dataset {
-    Dataset::from_path(&data_path("ivanov-lab-32.csv"), LAB_G).expect("lab data reads")
+    accelcal::data::read_file(&data_path("ivanov-lab-32.csv"), LAB_G).expect("lab data reads")
 }
 
 /// The data set with every reading mapped m -> s m + t.
@@ -97,7 +97,8 @@ fn the_phone_set_in_raw_counts_near_32768_fits_like_the_original() {
     // six known orientations and, as in the file, without (faces then found from the readings).
     let scale = 4000.0 / PHONE_G;
     let shift = [32768.0, 32790.0, 32741.0];
-    let without_references = Dataset::from_path(&data_path("huawei-phone-13.csv"), PHONE_G).expect("phone data reads");
+    let without_references =
+        accelcal::data::read_file(&data_path("huawei-phone-13.csv"), PHONE_G).expect("phone data reads");
     for dataset in [phone_dataset(), without_references] {
         let raw = converted(&dataset, scale, shift);
         assert!(raw.rows.iter().all(|r| r.reading.iter().all(|&v| v > 28000.0)), "every count is positive");

@@ -6,6 +6,7 @@ use std::time::Duration;
 
 use accelcal::link::{open_serial, pipe, Client, LinkError, Port};
 use accelcal::procedure::{self, CollectOptions, Feedback, Hand, Orientation, ProcedureError, Silent, SimulatedHand};
+use accelcal::session::SessionFiles;
 use accelcal::sim::{SimBoard, SimCommand};
 use firmware::sim::physics::Motion;
 use firmware::sim::SimFlash;

@@ -71,10 +71,10 @@ fn check_choice(name: &str, dataset: &Dataset, g: f64) {
 
 #[test]
 fn auto_chooses_the_smallest_leave_one_out_error_on_the_published_sets() {
-    let phone_file = Dataset::from_path(&data_path("huawei-phone-13.csv"), PHONE_G).expect("phone data reads");
+    let phone_file = accelcal::data::read_file(&data_path("huawei-phone-13.csv"), PHONE_G).expect("phone data reads");
     check_choice("phone file", &phone_file, PHONE_G);
     check_choice("phone with six known orientations", &phone_dataset(), PHONE_G);
-    let lab = Dataset::from_path(&data_path("ivanov-lab-32.csv"), LAB_G).expect("lab data reads");
+    let lab = accelcal::data::read_file(&data_path("ivanov-lab-32.csv"), LAB_G).expect("lab data reads");
     check_choice("lab", &lab, LAB_G);
 }
 
@@ -91,7 +91,7 @@ fn leave_one_out_from_each_rows_influence_agrees_with_refits_on_sixty_rows() {
 fn where_nothing_fits_auto_names_the_closest_model_and_what_to_add() {
     // Five readings, no orientation: diag6 and six-position are each one position short, diag6 the
     // richer; the others need two or more.
-    let mut dataset = Dataset::from_path(&data_path("huawei-phone-13.csv"), PHONE_G).expect("phone data reads");
+    let mut dataset = accelcal::data::read_file(&data_path("huawei-phone-13.csv"), PHONE_G).expect("phone data reads");
     dataset.rows.truncate(5);
     let options = FitOptions { g: PHONE_G, ..FitOptions::default() };
     let error = fit::fit(&dataset, ModelChoice::Auto, &options).unwrap_err();

@@ -2,7 +2,6 @@
 //! docs/guide.md promises: the numbers (needed, found, how many to add), the axis and direction missing,
 //! the parameter the Jacobian cannot see; and a poorly conditioned fit is fitted with a warning.
 
-use accelcal::data::Dataset;
 use accelcal::fit::Model;
 use accelcal::fit::{self, FitError, FitOptions, ModelChoice};
 use accelcal_tests::data_path;
@@ -171,7 +170,7 @@ fn the_published_lab_fit_warns_of_the_condition_number_the_readme_quotes() {
     // docs/measurements.md, "Results on the published data": "The fit warns of a condition number of 1.2e4: the 20
     // training rows never point z down."
     let g = 9.8061;
-    let dataset = Dataset::from_path(&data_path("ivanov-lab-32.csv"), g).unwrap();
+    let dataset = accelcal::data::read_file(&data_path("ivanov-lab-32.csv"), g).unwrap();
     let options = FitOptions {
         g,
         training_rows: Some((1..=20).collect()),

@@ -11,7 +11,7 @@ use nalgebra::{Matrix3, Vector3};
 const LAB_G: f64 = 9.8061;
 
 fn lab() -> (Dataset, FitOptions) {
-    let dataset = Dataset::from_path(&data_path("ivanov-lab-32.csv"), LAB_G).expect("lab data reads");
+    let dataset = accelcal::data::read_file(&data_path("ivanov-lab-32.csv"), LAB_G).expect("lab data reads");
     let options = FitOptions {
         g: LAB_G,
         training_rows: Some((1..=20).collect()),

@@ -1,6 +1,5 @@
 //! The six-position and linear12 fits on the published phone readings (Georgieva and Hofreither).
 
-use accelcal::data::Dataset;
 use accelcal::fit::Model;
 use accelcal::fit::{self, FitOptions, ModelChoice};
 use accelcal_tests::{data_path, phone_dataset, PHONE_G};
@@ -110,7 +109,7 @@ fn six_position_calibration_improves_every_published_figure_of_merit() {
 
 #[test]
 fn six_position_finds_the_six_faces_by_detection_without_references() {
-    let dataset = Dataset::from_path(&data_path("huawei-phone-13.csv"), PHONE_G).unwrap();
+    let dataset = accelcal::data::read_file(&data_path("huawei-phone-13.csv"), PHONE_G).unwrap();
     let detected = fit::fit(&dataset, ModelChoice::Only(Model::SixPosition), &options()).unwrap();
     let referenced = fit::fit(&phone_dataset(), ModelChoice::Only(Model::SixPosition), &options()).unwrap();
     assert_eq!(detected.model, Model::SixPosition);

@@ -12,8 +12,8 @@
 
 use accelcal::data::Dataset;
 use accelcal::fit::{self, Fit, FitOptions, Model, ModelChoice};
-use accelcal::noise::input::NoiseInputError;
 use accelcal::noise::stream::longest_still;
+use accelcal::noise::stream::StillRecordError;
 use accelcal::report::stream::StreamReport;
 use accelcal::sim::person::PersonSession;
 use accelcal::sim::sketch::Sketch;
@@ -194,9 +194,9 @@ fn a_file_of_single_samples_is_recognised_and_segmented_never_fitted_row_by_row(
 #[test]
 fn a_stream_without_timestamps_gives_no_noise_figures_without_a_rate() {
     let (_, text, log) = session_log(Sketch::I2cdevlib, 4);
-    assert!(matches!(longest_still(&log), Err(NoiseInputError::NoStreamRate)));
+    assert!(matches!(longest_still(&log), Err(StillRecordError::NoStreamRate)));
     let given = StreamLog::parse(&text, &StreamOptions { rate_hz: Some(9.0), ..StreamOptions::default() }).unwrap();
-    assert!(matches!(longest_still(&given), Err(NoiseInputError::TooShort { .. })), "9 Hz rests are < 100 samples");
+    assert!(matches!(longest_still(&given), Err(StillRecordError::TooShort { .. })), "9 Hz rests are < 100 samples");
     let (_, _, csv) = session_log(Sketch::Csv, 4);
     let (segment, series) = longest_still(&csv).unwrap();
     assert_eq!((series.rate_hz.round(), series.axes[0].len()), (100.0, segment.samples));

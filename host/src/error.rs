@@ -182,4 +182,12 @@ mod tests {
             ("1 capture".into(), "2 captures".into(), "0 captures".into())
         );
     }
+
+    #[test]
+    fn a_missed_target_exits_2_and_other_errors_1() {
+        let missed = accelcal_core::session::Verification::example(1.06, 0.1).against(Some(0.2));
+        assert!(missed.missed, "{missed:?}");
+        assert_eq!(Error::TargetMissed { line: missed.line }.exit_code(), 2);
+        assert_eq!(Error::FixtureNeedsYes.exit_code(), 1);
+    }
 }

@@ -16,29 +16,23 @@
 //! - [`report`]: what a fit or a calibration reports, computed once, rendered as text or JSON;
 //! - [`cli`]: the command line; the `accelcal` binary only calls [`cli::main`].
 
-pub mod calibration;
 pub mod certificate;
 pub mod cli;
 pub mod data;
 pub mod error;
-pub mod export;
 pub mod files;
-pub mod fit;
-pub mod limits;
 pub mod link;
 pub mod lot;
 pub mod noise;
-pub mod orientation;
 pub mod part;
 pub mod procedure;
 pub mod recording;
 pub mod repeat;
-pub mod report;
 pub mod selftest;
 pub mod session;
-pub mod shown;
 pub mod sim;
 pub mod still;
 pub mod stream;
 
+pub use accelcal_core::{calibration, export, fit, limits, orientation, report, shown};
 pub use error::Error;

@@ -10,7 +10,24 @@ import subprocess
 import sys
 import time
 
-SRC = pathlib.Path(__file__).resolve().parent.parent / "src"
+ROOT = pathlib.Path(__file__).resolve().parent.parent.parent
+# The crates whose lines are broken: the I/O-free core, then the host (a file lives in one of them).
+CRATES = [("accelcal-core", ROOT / "core" / "src"), ("accelcal", ROOT / "host" / "src")]
+
+
+def source_file(rel):
+    """The crate source file `rel` names (core first, then host)."""
+    return next((src / rel for _, src in CRATES if (src / rel).exists()), CRATES[-1][1] / rel)
+
+
+def crate_of(test):
+    """The crate whose unit tests hold `test`: the one with a file for the test's module."""
+    parts = test.split("::")[:-2]
+    for name, src in CRATES:
+        base = src.joinpath(*parts)
+        if base.with_suffix(".rs").exists() or (base / "mod.rs").exists():
+            return name
+    return CRATES[-1][0]
 
 # (what the change does to a user, file, the line as it is, the line broken, the tests that must fail)
 CHANGES = [
@@ -73,7 +90,7 @@ CHANGES = [
 
 def caught(name, rel, line, broken, test):
     """Whether `test` fails with `line` broken; None when the line is not in the code once."""
-    path = SRC / rel
+    path = source_file(rel)
     text = path.read_text()
     if text.count(line) != 1:
         print(f"NOT FOUND  {name}: {rel} holds the line {text.count(line)} times", flush=True)
@@ -81,7 +98,7 @@ def caught(name, rel, line, broken, test):
     path.write_text(text.replace(line, broken))
     try:
         started = time.monotonic()
-        run = subprocess.run(["cargo", "test", "-q", "-p", "accelcal", "--lib", "--", "--exact", test],
+        run = subprocess.run(["cargo", "test", "-q", "-p", crate_of(test), "--lib", "--", "--exact", test],
                              capture_output=True, text=True)
         output = run.stdout + run.stderr
         if "error[" in output or "running 1 test" not in output:

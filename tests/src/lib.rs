@@ -24,7 +24,7 @@ pub fn data_path(name: &str) -> PathBuf {
 
 /// The 13 published phone rows, the first six with their known orientation (m/s^2).
 pub fn phone_dataset() -> Dataset {
-    let mut dataset = Dataset::from_path(&data_path("huawei-phone-13.csv"), PHONE_G).expect("phone data reads");
+    let mut dataset = accelcal::data::read_file(&data_path("huawei-phone-13.csv"), PHONE_G).expect("phone data reads");
     for (row, direction) in dataset.rows.iter_mut().zip(PHONE_REFERENCE_DIRECTIONS) {
         row.reference = Some(direction.map(|v| v * PHONE_G));
     }

@@ -56,10 +56,10 @@ pub struct FitArgs {
 #[derive(Args, Debug, Clone, Default)]
 pub struct SketchStreamArgs {
     /// The unit of the stream's accelerometer values, when the stream leaves it unclear.
-    #[arg(long, value_enum)]
+    #[arg(long, value_parser = super::named::named::<crate::stream::AccelUnit>())]
     pub input_unit: Option<crate::stream::AccelUnit>,
     /// The unit of the stream's gyro values (counts of a range cannot be told from a resting gyro).
-    #[arg(long, value_enum)]
+    #[arg(long, value_parser = super::named::named::<crate::stream::GyroUnit>())]
     pub gyro_unit: Option<crate::stream::GyroUnit>,
 }
 
@@ -279,7 +279,7 @@ pub enum Command {
         pty: bool,
         /// Instead of an accelcal board, a board running this sketch: a simulated person's
         /// three-minute session as it prints it (with --pty at its own pace, else all at once on stdout).
-        #[arg(long, value_enum)]
+        #[arg(long, value_parser = super::named::named::<crate::sim::sketch::Sketch>())]
         sketch: Option<crate::sim::sketch::Sketch>,
         /// Seed of the simulated sensor's noise.
         #[arg(long, default_value_t = 1)]

@@ -1,6 +1,7 @@
 //! `accelcal calibrate`: captures (kept in a session after each one, resumable), fit, upload, save,
 //! verification.
 
+use crate::session::SessionFiles;
 use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;

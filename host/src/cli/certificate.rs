@@ -1,6 +1,7 @@
 //! `accelcal certificate`: issue a session's certificate (JSON and a printable page), or check that a
 //! certificate file is as it was issued.
 
+use crate::session::SessionFiles;
 use std::path::{Path, PathBuf};
 
 use clap::{Args, Subcommand};
@@ -127,7 +128,7 @@ mod tests {
     #[test]
     fn no_certificate_is_issued_where_the_session_s_verification_contradicts_its_prediction() {
         let path = Path::new("s1.json");
-        let session = crate::certificate::tests::session(1, 0.5, 0.004);
+        let session = crate::sim::sessions::adaptive(1, 0.5, 0.004);
         let predicted_mg = issue(&session, path).unwrap().predicted.norm_error_mg.expanded;
         let verified = |error_mg: f64| {
             let floor_mg = 0.15;
@@ -147,7 +148,7 @@ mod tests {
         let path = Path::new("s1.json");
         let verification = Verification::example(0.40, 0.15);
         let session =
-            Session { verification: Some(verification.clone()), ..crate::certificate::tests::session(1, 0.5, 0.004) };
+            Session { verification: Some(verification.clone()), ..crate::sim::sessions::adaptive(1, 0.5, 0.004) };
         let mut feedback = crate::procedure::Silent { yes: true };
         // 0.37 mg without its noise: within 0.5 mg and 0.3 mg + its noise; beyond 0.2 mg + its noise.
         for (target_mg, certified) in [(0.5, true), (0.3, true), (0.2, false)] {

@@ -18,7 +18,7 @@ pub struct ExportArgs {
     #[arg(required_unless_present_any = ["port", "sim"], conflicts_with_all = ["port", "sim"])]
     pub calibration: Option<PathBuf>,
     /// The format (each says what of the calibration it carries).
-    #[arg(long, value_enum)]
+    #[arg(long, value_parser = super::named::named::<Target>())]
     pub to: Target,
     /// The file to write (default: stdout; the binary adafruit-eeprom needs a file).
     #[arg(short, long)]
@@ -86,6 +86,5 @@ fn export_is_binary(target: Target) -> bool {
 
 /// The name `--to` takes for `target`.
 fn target_name(target: Target) -> String {
-    use clap::ValueEnum;
-    target.to_possible_value().map_or_else(String::new, |v| v.get_name().to_owned())
+    <&'static str>::from(target).to_owned()
 }

@@ -108,7 +108,7 @@ fn listen_until_done(
             Silence::Unreadable { .. } => {}
             Silence::Talking => warned = false,
         }
-        if live.lines.len() < LIVE_DETECTION_LINES || last_status.elapsed() < STATUS_EVERY {
+        if live.lines().len() < LIVE_DETECTION_LINES || last_status.elapsed() < STATUS_EVERY {
             continue;
         }
         last_status = Instant::now();
@@ -128,7 +128,7 @@ fn unreadable(seconds: f64, baud: u32) -> String {
 
 /// The indices of the lines that carry accepted samples.
 fn data_lines(live: &LiveStream, options: &StreamOptions) -> Vec<usize> {
-    let log = read_heard(&live.lines, options);
+    let log = read_heard(live.lines(), options);
     log.map(|log| log.samples.iter().map(|s| s.line - 1).collect()).unwrap_or_default()
 }
 

@@ -3,6 +3,7 @@
 //! captures in g, the verification once made), and going on with one (`--resume`: its log is
 //! read again and appended to, so the session's every line stays in one log).
 
+use crate::session::SessionFiles;
 use std::path::{Path, PathBuf};
 
 use shared::protocol::CaptureStats;

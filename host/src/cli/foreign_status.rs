@@ -43,7 +43,7 @@ pub(super) fn status(
     kept: &Kept,
     progress: &mut Progress,
 ) -> Result<Option<String>, Error> {
-    let log = match read_heard(&live.lines, options) {
+    let log = match read_heard(live.lines(), options) {
         Ok(log) => log,
         Err(unit @ (StreamError::OtherAccelUnit { .. } | StreamError::BeyondReach { .. })) => {
             return Ok(Some(unit.to_string()))

@@ -107,7 +107,7 @@ mod tests {
 
     #[test]
     fn a_resumed_run_without_turns_keeps_an_earlier_upload_s_g_or_says_why_it_has_none() {
-        let session = crate::certificate::tests::session(1, 0.0, 0.004);
+        let session = crate::sim::sessions::adaptive(1, 0.0, 0.004);
         let chosen = crate::export::Source::from_session(&session, "s.json").unwrap().calibration;
         let why = || "only 0 usable turns".to_owned();
         let mut told = Told(Vec::new());

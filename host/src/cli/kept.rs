@@ -1,6 +1,7 @@
 //! The session a calibration run keeps: a new one, written before the first capture, or one begun in
 //! an earlier run on the same board at the same setting (`--resume`).
 
+use crate::session::SessionFiles;
 use std::path::{Path, PathBuf};
 
 use shared::protocol::DeviceInfo;

@@ -135,7 +135,7 @@ fn show(path: &Path, spec_path: Option<&Path>, json: bool) -> Result<(), Error> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::certificate::tests::session;
+    use crate::sim::sessions::adaptive as session;
 
     #[test]
     fn a_certificate_without_a_serial_among_others_adds_none_of_them_and_is_named() {

@@ -19,6 +19,7 @@ mod gyro;
 mod kept;
 mod length;
 mod lot;
+mod named;
 mod noise;
 mod procedure;
 mod record;

@@ -38,7 +38,7 @@ fn stream_series(args: &NoiseArgs) -> Result<RateSeries, Error> {
         crate::stream::read_text(&args.file).map_err(|source| Error::ReadFile { path: args.file.clone(), source })?;
     let options = StreamOptions { rate_hz: args.rate, ..StreamOptions::default() };
     let log = StreamLog::parse(&text, &options).map_err(|source| Error::Stream { path: args.file.clone(), source })?;
-    let (longest, series) = noise::stream::longest_still(&log)?;
+    let (longest, series) = noise::stream::longest_still(&log).map_err(NoiseInputError::from)?;
     eprintln!(
         "{} stream: the longest still period, lines {}-{}, {} samples at {:.1} Hz",
         log.layout.dialect.name(),

@@ -9,7 +9,8 @@ use crate::error::Error;
 use crate::link::LinkError;
 use crate::orientation::Orientation;
 use crate::procedure::{self, Feedback};
-use crate::session::{stem_of, CaptureRecord, Session};
+use crate::session::SessionFiles;
+use crate::session::{stem_of, Session};
 
 /// How far off, in degrees, the tool's hand places the simulated board for `verify --sim`.
 const VERIFY_PLACEMENT_DEG: f64 = 3.0;
@@ -30,7 +31,7 @@ pub(super) fn capture(args: &CaptureArgs) -> Result<(), Error> {
     let result = opened.connection.client.capture(args.seconds, |p| feedback.progress(p.samples, p.total_samples));
     feedback.progress_done();
     let (stats, face) = result?;
-    session.captures.push(CaptureRecord::now(&args.name, target, face, stats));
+    session.captures.push(crate::session::capture_now(&args.name, target, face, stats));
     session.save(&stem)?;
     let [x, y, z] = stats.mean_g;
     println!(

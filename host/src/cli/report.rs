@@ -1,6 +1,7 @@
 //! `accelcal report SESSION`: a session's report as an HTML page, text or JSON; and the page
 //! `calibrate --session` writes beside its session.
 
+use crate::session::SessionFiles;
 use std::path::{Path, PathBuf};
 
 use clap::Args;

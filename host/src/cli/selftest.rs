@@ -90,7 +90,7 @@ pub(super) fn selftest(args: &SelftestArgs) -> Result<(), Error> {
     let shown = Shown { test: &test, result: &result, previous: previous.as_ref(), check: check.as_ref() };
     shown.print(args.json, history.as_ref().map(|h| h.path().to_path_buf()));
     if let Some(history) = &history {
-        history.append(HistoryEntry::now(&result))?;
+        history.append(HistoryEntry::at(&result, crate::files::unix_time_s()))?;
     }
     let stored = StoredSelfTest { unix_time_s: crate::session::unix_time_s() as u32, raw: test.raw };
     connection.client.store_self_test(&stored)?;

@@ -1,5 +1,5 @@
 use super::*;
-use crate::certificate::tests::session;
+use crate::sim::sessions::adaptive as session;
 
 /// A sealed certificate of a made-up adaptive session (`seed`), as board `serial` calibrated on `date`.
 fn certificate(seed: u64, serial: &str, date: &str) -> Certificate {

@@ -33,12 +33,8 @@ pub enum NoiseInputError {
     TooShort { samples: usize },
     #[error(transparent)]
     Recording(#[from] RecordingError),
-    #[error("the stream has no timestamps, so its rate is unknown and every noise term would scale with a guess: give --rate (samples per second)")]
-    NoStreamRate,
-    #[error(
-        "the stream has no gyro; the noise analysis takes both sensors (a recording of accelcal's own stream has them)"
-    )]
-    NoStreamGyro,
+    #[error(transparent)]
+    Stream(#[from] super::stream::StillRecordError),
     #[error("--rate must be a positive number of samples per second, got {rate_hz}")]
     BadRate { rate_hz: f64 },
     #[error(

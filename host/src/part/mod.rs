@@ -7,42 +7,10 @@ mod check_text;
 pub mod offsets;
 
 use firmware::sensor::registers::FIFO_R_W;
-use shared::part::{Family, Part};
-use shared::protocol::SensorIdentity;
 
 use crate::link::{Client, LinkError, Port};
 
-/// The part's name, or "unknown" (what `info --json` and `selftest --json` print as `part`).
-pub fn part_name(identity: &SensorIdentity) -> &'static str {
-    identity.identification().part.name()
-}
-
-/// One line for a person: "MPU-6500 at 0x68", "unknown 0x72, not an InvenSense part, at 0x68
-/// (behaves as the MPU-6500 family)", or the contradiction.
-pub fn describe(identity: &SensorIdentity) -> String {
-    let id = identity.identification();
-    let at = format!("at 0x{:02x}", identity.address);
-    let family = family_name(id.family);
-    match id.part {
-        Part::Unknown(value) => {
-            format!("unknown 0x{value:02x}, not an InvenSense part, {at} (behaves as the {family} family)")
-        }
-        part if id.contradicts_who_am_i() => format!(
-            "answers WHO_AM_I 0x{:02x} ({}) {at} but behaves as the {family} family: not the part it claims to be; run as the {family} family",
-            identity.who_am_i,
-            part.name()
-        ),
-        part => format!("{} {at} ({family} family)", part.name()),
-    }
-}
-
-/// The family by its first part's name.
-pub fn family_name(family: Family) -> &'static str {
-    match family {
-        Family::Mpu6050 => "MPU-6050",
-        Family::Mpu6500 => "MPU-6500",
-    }
-}
+pub use accelcal_core::part::{describe, family_name, part_name};
 
 /// Registers in the map of every family: 0x00-0x7F.
 const REGISTER_COUNT: u8 = 0x80;
@@ -69,6 +37,8 @@ pub fn format_dump(heading: &str, registers: &[Option<u8>]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use shared::part::Family;
+    use shared::protocol::SensorIdentity;
 
     fn identity(who_am_i: u8, family: Family) -> SensorIdentity {
         SensorIdentity { address: 0x68, who_am_i, family }

@@ -12,7 +12,7 @@ use super::wait::{wait_for_target, Rest};
 use super::{Feedback, Orientation, ProcedureError, Turning};
 use crate::limits::{CAPTURE_ATTEMPTS, MAX_CAPTURE_SECONDS, MIN_ADAPTIVE_POSITIONS};
 use crate::link::{Client, Port};
-use crate::session::{CaptureRecord, Session, SessionError, SessionKind};
+use crate::session::{Session, SessionError, SessionKind};
 
 /// A reader of the board's clock, in seconds (the simulated board's own time).
 pub type BoardClock = Arc<dyn Fn() -> f64 + Send + Sync>;
@@ -146,7 +146,7 @@ fn take<P: Port>(
         collected.first_capture_s = collected.first_capture_s.or(started);
         if let Some((stats, face)) = capture_at(client, target, length, feedback)? {
             feedback.say(&format!("{}: {}", target.name, options.rule.why_stopped(&stats)));
-            session.captures.push(CaptureRecord::now(&target.name, Some(target.clone()), face, stats));
+            session.captures.push(crate::session::capture_now(&target.name, Some(target.clone()), face, stats));
             turning.moves.captured(session);
             return Ok(());
         }
@@ -173,7 +173,7 @@ mod tests {
             clipped: 0,
             range: AccelRange::G2,
         };
-        CaptureRecord::now(name, None, None, stats)
+        crate::session::capture_now(name, None, None, stats)
     }
 
     #[test]

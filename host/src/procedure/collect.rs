@@ -9,7 +9,7 @@ use super::wait::{wait_for_target, Rest};
 use super::{CollectOptions, Feedback, Hand, Moves, Orientation, ProcedureError, Turning};
 use crate::limits::{CAPTURE_ATTEMPTS, SETTLE_SECONDS};
 use crate::link::{explain, Client, LinkError, Port};
-use crate::session::{CaptureRecord, Session, SessionError};
+use crate::session::{Session, SessionError};
 
 /// Captures every target, in whatever order the board arrives at them.
 pub fn collect<P: Port>(
@@ -56,7 +56,7 @@ pub fn collect_into<P: Port>(
         };
         moved_in_a_row = 0;
         let target = remaining.remove(index);
-        session.captures.push(CaptureRecord::now(&target.name, Some(target.clone()), face, stats));
+        session.captures.push(crate::session::capture_now(&target.name, Some(target.clone()), face, stats));
         turning.moves.captured(session);
         keep(session)?;
         done.push(target);

@@ -4,7 +4,7 @@
 
 mod adaptive;
 mod collect;
-pub mod drift;
+pub use accelcal_core::run::drift;
 mod feedback;
 mod fixture;
 mod gyro_check;

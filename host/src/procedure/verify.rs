@@ -11,28 +11,13 @@ use super::stop_rule::CaptureLength;
 use super::wait::{wait_for_fresh, Rest, LIVE_WINDOW};
 use super::{Feedback, Hand, ProcedureError};
 use crate::limits::CAPTURE_ATTEMPTS;
-use crate::limits::CHIP_AGREEMENT_SIGMAS;
 use crate::link::{explain, Client, LinkError, Port, StreamRequest};
 use crate::session::Check;
 pub use crate::session::Verification;
+use crate::session::CHIP_SAMPLES;
 
 /// Length of each verification capture, in seconds.
 pub const VERIFY_SECONDS: u8 = 5;
-/// Corrected samples averaged to compare the chip with the host.
-const CHIP_SAMPLES: u32 = 20;
-
-impl Verification {
-    /// Whether the chip's corrected samples agree with the host's correction, judged against the
-    /// noise of the chip's 20-sample mean, in words.
-    pub fn chip_agreement(&self) -> String {
-        let (difference, noise) = (self.on_chip_difference_mg, self.on_chip_noise_mg);
-        if difference <= CHIP_AGREEMENT_SIGMAS * noise {
-            format!("chip and host agree: they differ by {difference:.2} mg, within {CHIP_AGREEMENT_SIGMAS} times the {noise:.2} mg noise of the chip's {CHIP_SAMPLES}-sample mean")
-        } else {
-            format!("chip and host differ by {difference:.2} mg, more than {CHIP_AGREEMENT_SIGMAS} times the {noise:.2} mg noise of the chip's {CHIP_SAMPLES}-sample mean: the chip does not apply the calibration verified")
-        }
-    }
-}
 
 /// Checks the active calibration at `positions` fresh orientations.
 pub fn verify<P: Port>(

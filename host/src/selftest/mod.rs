@@ -11,11 +11,11 @@
 
 pub mod history;
 mod phase;
-pub mod report;
+pub use accelcal_core::selftest::{report, SelfTest};
 
 use shared::part::Family;
-use shared::protocol::{DeviceInfo, LowPassFilter, SensorConfig, SensorIdentity};
-use shared::selftest::{self, AxisVerdict, SelfTestRaw};
+use shared::protocol::{DeviceInfo, LowPassFilter, SensorConfig};
+use shared::selftest::{self, SelfTestRaw};
 
 use firmware::sensor::registers::ACCEL_CONFIG;
 
@@ -37,24 +37,6 @@ const SELF_TEST_FILTER: LowPassFilter = LowPassFilter::Hz94;
 /// compared after.
 const CONFIGURATION_FIRST: u8 = 0x19;
 const CONFIGURATION_COUNT: u8 = 5;
-
-/// A self-test's outcome: the sensor, what was measured and each axis's verdict.
-#[derive(Debug, Clone)]
-pub struct SelfTest {
-    /// The sensor it ran on.
-    pub identity: SensorIdentity,
-    /// The trim codes and the mean outputs, in LSB at the self-test ranges.
-    pub raw: SelfTestRaw,
-    /// Accelerometer x, y, z then gyro x, y, z.
-    pub verdicts: [AxisVerdict; 6],
-}
-
-impl SelfTest {
-    /// Whether every axis passed accelcal's band.
-    pub fn passed(&self) -> bool {
-        selftest::passed(&self.verdicts)
-    }
-}
 
 /// Why the self-test could not give a verdict.
 #[derive(Debug, thiserror::Error)]

@@ -18,7 +18,7 @@ use super::clock::Pace;
 use super::serve::serve;
 use super::Port;
 use crate::link::{pipe, Connection, LinkError};
-use crate::report::{DriftJson, TruthJson};
+use crate::report::TruthJson;
 
 /// Orientations [`SimBoard::true_error_mg`] averages over.
 pub const TRUE_ERROR_ORIENTATIONS: usize = 200;
@@ -212,11 +212,11 @@ impl SimBoard {
         let reading_offset_c = Physics::new(0).environment.reading_offset_c;
         let drift = match self.kind {
             SimSensor::Realistic | SimSensor::Drawn => {
-                Some(DriftJson::new(&self.truth, &self.drift, TRUTH_REF_TEMP_C, reading_offset_c))
+                Some(super::truth::drift_json(&self.truth, &self.drift, TRUTH_REF_TEMP_C, reading_offset_c))
             }
             SimSensor::Settled => None,
         };
-        TruthJson::new(reading_c, &self.truth_at(reading_c), drift)
+        super::truth::truth_json(reading_c, &self.truth_at(reading_c), drift)
     }
 
     /// The surroundings, in degC, in which the settled sensor reports `reading_c`.

@@ -13,14 +13,13 @@ mod hand;
 pub mod noise;
 mod outgoing;
 mod parts;
-pub mod person;
 mod pty;
-pub mod random;
 pub mod replay;
 mod serve;
-pub mod sketch;
-pub mod synthetic;
+mod truth;
 pub mod turn;
+
+pub use accelcal_core::sim::{person, random, sessions, sketch, synthetic};
 
 pub use board::{PowerOn, SensorChoice, SimBoard, SimCommand, SimSensor};
 pub use clock::Pace;

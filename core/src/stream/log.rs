@@ -1,0 +1,254 @@
+//! Reading a stream line by line once its layout is known, and a whole saved log at once: samples
+//! in the stream's own units with their line numbers, and every other line counted by reason.
+
+use super::dialect::{Layout, SIDE_RECORDS};
+use super::dropped::{DropReason, Dropped};
+use super::line::{fields, Words};
+use super::timing::{self, Rate, RateSource};
+use super::units::{AccelUnit, GyroUnit};
+use super::StreamError;
+use crate::limits::{NOT_TEXT_SHARE, STREAM_MIN_SAMPLES};
+
+/// What the command line may settle about a stream.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct StreamOptions {
+    /// `--input-unit`: the accelerometer's unit.
+    pub accel_unit: Option<AccelUnit>,
+    /// `--gyro-unit`: the gyro's unit.
+    pub gyro_unit: Option<GyroUnit>,
+    /// `--rate`: the sample rate, for a stream without timestamps.
+    pub rate_hz: Option<f64>,
+}
+
+/// One sample as the stream printed it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StreamSample {
+    /// The line it was on (1-based).
+    pub line: usize,
+    /// Its time, in the time column's unit (a saved log scales it to seconds).
+    pub time: Option<f64>,
+    /// The accelerometer's values, in the stream's unit.
+    pub accel: [f64; 3],
+    /// The gyro's values, in the stream's unit, when it has a gyro.
+    pub gyro: Option<[f64; 3]>,
+}
+
+/// Takes lines of a stream of known layout, one at a time.
+#[derive(Debug, Clone)]
+pub struct LineReader {
+    layout: Layout,
+    line: usize,
+}
+
+impl LineReader {
+    /// A reader for lines laid out as `layout`, the next being line 1.
+    pub fn new(layout: Layout) -> Self {
+        LineReader { layout, line: 0 }
+    }
+
+    /// The sample on the next line, or why it has none.
+    pub fn read(&mut self, text: &str) -> Result<StreamSample, DropReason> {
+        self.line += 1;
+        if Some(self.line) == self.layout.header_line {
+            return Err(DropReason::Header);
+        }
+        if text.contains(char::REPLACEMENT_CHARACTER) {
+            return Err(DropReason::NotText);
+        }
+        let parsed = match fields(text) {
+            Ok(parsed) => parsed,
+            Err(_) if text.trim().is_empty() => return Err(DropReason::Empty),
+            Err(Words::Header(_) | Words::Text) => return Err(DropReason::Text),
+        };
+        if parsed.prefix.as_deref().is_some_and(|p| SIDE_RECORDS.contains(&p)) {
+            return Err(DropReason::SideRecord);
+        }
+        if !self.layout.shape.fits(&parsed) {
+            return Err(DropReason::OtherShape);
+        }
+        let columns = &self.layout.columns;
+        let pick = |axes: [usize; 3]| axes.map(|i| parsed.values[i]);
+        Ok(StreamSample {
+            line: self.line,
+            time: columns.time.as_ref().map(|(i, _)| parsed.values[*i]),
+            accel: pick(columns.accel),
+            gyro: columns.gyro.map(pick),
+        })
+    }
+
+    /// The layout being read.
+    pub fn layout(&self) -> &Layout {
+        &self.layout
+    }
+}
+
+/// The text of a saved log: bytes that are not UTF-8 (an ESP32's boot noise) become U+FFFD, so that
+/// their lines are dropped as [`DropReason::NotText`] and the rest is read; a file mostly of such
+/// bytes (a program, a recording, a stream read at the wrong baud rate) is refused as not text.
+pub fn checked_text(bytes: &[u8]) -> std::io::Result<String> {
+    let text = text_of(bytes);
+    let not_text = text.chars().filter(|&c| c == char::REPLACEMENT_CHARACTER || is_binary_control(c)).count();
+    if not_text as f64 > NOT_TEXT_SHARE * text.chars().count() as f64 {
+        let words =
+            "over a quarter of it is bytes that are not text: a binary file, or a stream saved at the wrong --baud";
+        return Err(std::io::Error::new(std::io::ErrorKind::InvalidData, words));
+    }
+    Ok(text)
+}
+
+/// A control character no text log holds (a line's own tab, carriage return and newline aside).
+fn is_binary_control(c: char) -> bool {
+    c.is_control() && !matches!(c, '\t' | '\r' | '\n')
+}
+
+/// Bytes from a port or a file as text, those that are not UTF-8 replaced by U+FFFD.
+pub fn text_of(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+/// A whole stream, read.
+#[derive(Debug, Clone)]
+pub struct StreamLog {
+    /// Dialect and columns.
+    pub layout: Layout,
+    /// The samples, times in seconds.
+    pub samples: Vec<StreamSample>,
+    /// The lines that were not samples.
+    pub dropped: Dropped,
+    /// The accelerometer's unit.
+    pub accel_unit: AccelUnit,
+    /// The gyro's unit, and whether it was assumed rather than fixed by the dialect or a flag.
+    pub gyro_unit: Option<(GyroUnit, bool)>,
+    /// The sample rate, when the stream or the command line gives it.
+    pub rate: Option<Rate>,
+}
+
+impl StreamLog {
+    /// Reads a saved log.
+    pub fn parse(text: &str, options: &StreamOptions) -> Result<StreamLog, StreamError> {
+        let layout = Layout::detect(text.lines())?;
+        let mut reader = LineReader::new(layout.clone());
+        let mut samples = Vec::new();
+        let mut dropped = Dropped::default();
+        for line in text.lines() {
+            match reader.read(line) {
+                Ok(sample) => samples.push(sample),
+                Err(reason) => dropped.add(reason, reader.line),
+            }
+        }
+        let time_unit = time_unit(&layout, &samples);
+        samples.iter_mut().for_each(|s| s.time = s.time.zip(time_unit).map(|(t, unit)| t * unit));
+        let times: Vec<f64> = samples.iter().filter_map(|s| s.time).collect();
+        let arrival = super::arrival::arrival_rate(text).map(|hz| Rate { hz, source: RateSource::ArrivalTimes });
+        let rate = timing::rate_of(&times, RateSource::Timestamps).or(arrival);
+        StreamLog::new(layout, samples, dropped, rate, options)
+    }
+
+    /// A stream read line by line (from a port), its rate from the timestamps or as measured.
+    pub fn new(
+        layout: Layout,
+        samples: Vec<StreamSample>,
+        dropped: Dropped,
+        rate: Option<Rate>,
+        options: &StreamOptions,
+    ) -> Result<StreamLog, StreamError> {
+        if samples.len() < STREAM_MIN_SAMPLES {
+            return Err(StreamError::TooFewSamples { samples: samples.len() });
+        }
+        let rate = timing::settle(rate, options.rate_hz)
+            .map_err(|(given_hz, shown_hz)| StreamError::RateDiffers { given_hz, shown_hz })?;
+        let (accel_unit, gyro_unit) = units(&layout, &samples, options)?;
+        let read = samples.len();
+        let (mut samples, mut dropped) = (samples, dropped);
+        let beyond = drop_beyond_range(&mut samples, &mut dropped, accel_unit, gyro_unit.map(|(unit, _)| unit));
+        if samples.len() < STREAM_MIN_SAMPLES {
+            return Err(beyond_reach(beyond, read, accel_unit, gyro_unit.map(|(unit, _)| unit))
+                .unwrap_or(StreamError::TooFewSamples { samples: samples.len() }));
+        }
+        Ok(StreamLog { layout, samples, dropped, accel_unit, gyro_unit, rate })
+    }
+
+    /// The accelerometer's samples in g.
+    pub fn accel_g(&self) -> Vec<[f64; 3]> {
+        let per_g = self.accel_unit.per_g();
+        self.samples.iter().map(|s| s.accel.map(|v| v / per_g)).collect()
+    }
+
+    /// The gyro's samples in deg/s, when the stream has a gyro.
+    pub fn gyro_dps(&self) -> Option<Vec<[f64; 3]>> {
+        let per_dps = self.gyro_unit?.0.per_dps();
+        self.samples.iter().map(|s| s.gyro.map(|g| g.map(|v| v / per_dps))).collect()
+    }
+}
+
+/// The accelerometer's unit (given, checked against gravity's size, or found from it) and the
+/// gyro's, with whether it was assumed.
+fn units(
+    layout: &Layout,
+    samples: &[StreamSample],
+    options: &StreamOptions,
+) -> Result<(AccelUnit, Option<(GyroUnit, bool)>), StreamError> {
+    let accel_unit = match options.accel_unit {
+        Some(unit) => unit.given(layout.dialect, median_norm(samples))?,
+        None => AccelUnit::infer(layout.dialect, median_norm(samples))?,
+    };
+    let gyro_unit = layout.columns.gyro.map(|_| match options.gyro_unit {
+        Some(unit) => (unit, false),
+        None => GyroUnit::infer(layout.dialect, accel_unit),
+    });
+    Ok((accel_unit, gyro_unit.map(|(unit, fixed)| (unit, !fixed && options.gyro_unit.is_none()))))
+}
+
+/// Moves the samples holding a value the sensor cannot read (a garbled line) to the dropped lines;
+/// how many were beyond reach in the accelerometer's unit and in the gyro's.
+fn drop_beyond_range(
+    samples: &mut Vec<StreamSample>,
+    dropped: &mut Dropped,
+    accel: AccelUnit,
+    gyro: Option<GyroUnit>,
+) -> [usize; 2] {
+    let beyond = |values: [f64; 3], max: f64| values.iter().any(|v| v.abs() > max);
+    let mut counts = [0; 2];
+    samples.retain(|sample| {
+        let gyro_beyond = sample.gyro.zip(gyro).is_some_and(|(values, unit)| beyond(values, unit.readable_max()));
+        let each = [beyond(sample.accel, accel.readable_max()), gyro_beyond];
+        counts.iter_mut().zip(each).for_each(|(count, out)| *count += usize::from(out));
+        if each.contains(&true) {
+            dropped.add(DropReason::BeyondRange, sample.line);
+        }
+        !each.contains(&true)
+    });
+    counts
+}
+
+/// A stream left too short because most of its `read` samples were beyond the sensor's reach
+/// (`beyond`: in the accelerometer's unit, in the gyro's): no garbling does that, a wrong unit does.
+fn beyond_reach(beyond: [usize; 2], read: usize, accel: AccelUnit, gyro: Option<GyroUnit>) -> Option<StreamError> {
+    let gyro_name = gyro.map_or("", GyroUnit::name);
+    let (count, units, flag) = match beyond.map(|n| 2 * n > read) {
+        [true, true] => {
+            (beyond[0].max(beyond[1]), format!("{} and {gyro_name}", accel.name()), "--input-unit and --gyro-unit")
+        }
+        [true, false] => (beyond[0], accel.name().to_owned(), "--input-unit"),
+        [false, true] => (beyond[1], gyro_name.to_owned(), "--gyro-unit"),
+        [false, false] => return None,
+    };
+    Some(StreamError::BeyondReach { beyond: count, read, units, flag })
+}
+
+/// Seconds per unit of the time column: by its name, else by the rate its steps would give.
+fn time_unit(layout: &Layout, samples: &[StreamSample]) -> Option<f64> {
+    let (_, name) = layout.columns.time.as_ref()?;
+    let times: Vec<f64> = samples.iter().filter_map(|s| s.time).collect();
+    timing::unit_by_name(name).or_else(|| timing::unit_by_steps(&times))
+}
+
+/// The median |a| over the samples, in the stream's unit: gravity's size when the board mostly rests.
+fn median_norm(samples: &[StreamSample]) -> f64 {
+    let mut norms: Vec<f64> = samples.iter().map(|s| shared::linalg::norm(s.accel)).collect();
+    norms.sort_by(f64::total_cmp);
+    norms[norms.len() / 2]
+}
+
+#[cfg(test)]
+mod tests;
