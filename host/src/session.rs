@@ -160,7 +160,7 @@ impl Session {
     /// Reads a session written by [`Session::save`] (the JSON file).
     pub fn load(path: &Path) -> Result<Self, SessionError> {
         let text = std::fs::read_to_string(path).map_err(|source| SessionError::Read { path: path.into(), source })?;
-        let session = unmeasured::parse(&text)
+        let session = unmeasured::parse::<Session>(&text)
             .map_err(|e| SessionError::NotASession { path: path.into(), reason: e.to_string() })?;
         Ok(session.with_closing_marked())
     }

@@ -137,7 +137,7 @@ fn checking_a_session_file_as_a_certificate_says_it_is_the_session_and_how_to_is
     let stem = std::env::temp_dir().join(format!("accelcal-seal-{}-session", std::process::id()));
     session(1, 0.5, 0.004).save(&stem).unwrap();
     let path = stem.with_extension("json");
-    let error = seal::check(&path).unwrap_err();
+    let error = check(&path).unwrap_err();
     assert!(matches!(error, SealError::ASession { .. }), "{error}");
     assert!(error.to_string().contains("accelcal certificate issue"), "{error}");
     let _ = std::fs::remove_file(&path);

@@ -9,13 +9,7 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use shared::protocol::SensorIdentity;
-use shared::selftest::{self, StoredSelfTest};
-
-use super::report::SelfTestJson;
-use super::SelfTest;
-use crate::files::{unix_time_s, write_atomically};
-use crate::shown::utc_minutes;
+use crate::files::write_atomically;
 
 /// One earlier self-test.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
@@ -27,21 +21,6 @@ pub struct HistoryEntry {
 }
 
 impl HistoryEntry {
-    /// The entry of a self-test run now.
-    pub fn now(result: &SelfTestJson) -> Self {
-        let date_utc = utc_minutes(unix_time_s());
-        HistoryEntry { date_utc, result: serde_json::to_value(result).unwrap_or_default() }
-    }
-
-    /// The entry of the self-test a board keeps in flash (`record`), run on the sensor `identity`;
-    /// `None` when the record is not one.
-    pub fn of_board(identity: SensorIdentity, record: &[u8]) -> Option<Self> {
-        let stored = StoredSelfTest::from_record(record)?;
-        let test = SelfTest { identity, raw: stored.raw, verdicts: selftest::evaluate(&stored.raw) };
-        let date_utc = utc_minutes(f64::from(stored.unix_time_s));
-        Some(HistoryEntry { date_utc, result: serde_json::to_value(SelfTestJson::of(&test)).unwrap_or_default() })
-    }
-
     /// The deviation of axis `axis` (0-5) in percent; `None` when it had no factory trim.
     pub fn deviation_percent(&self, axis: usize) -> Option<f32> {
         self.result["axes"][axis]["deviation_percent"].as_f64().map(|v| v as f32)

@@ -18,14 +18,16 @@ mod pty;
 pub mod random;
 pub mod replay;
 mod serve;
+mod sim_command;
 pub mod sketch;
 pub mod synthetic;
 pub mod turn;
 
-pub use board::{PowerOn, SensorChoice, SimBoard, SimCommand, SimSensor};
+pub use board::{PowerOn, SensorChoice, SimBoard, SimSensor};
 pub use clock::Pace;
 pub use emulated::{serve_emulated, EmulatorError};
 pub use parts::{FaultyAxis, SimPartChoice};
 pub use pty::{serve_pty, SimError};
+pub use sim_command::SimCommand;
 
 use crate::link::Port;

@@ -5,12 +5,9 @@
 use std::io::{ErrorKind, Read, Write};
 use std::time::{Duration, Instant};
 
+use super::log::{text_of, ARRIVAL_RATE_TAG};
 use crate::limits::{STREAM_QUIET_S, STREAM_UNREADABLE_S};
 use crate::link::{Port, TalkingPort};
-
-/// The line a live session adds at the end of its log: the rate it measured from the lines'
-/// arrival, for a stream without timestamps (`StreamLog::parse` reads it back).
-pub const ARRIVAL_RATE_TAG: &str = "# accelcal: lines arrived at";
 
 /// A live stream and its log.
 pub struct LiveStream {
@@ -88,7 +85,7 @@ impl LiveStream {
         }
         for &byte in bytes {
             if byte == b'\n' {
-                let text = super::text_of(&self.pending).trim_end_matches('\r').to_owned();
+                let text = text_of(&self.pending).trim_end_matches('\r').to_owned();
                 if holds_numbers(&text) {
                     self.last_readable_s = now;
                 }
@@ -135,12 +132,6 @@ pub fn arrival_hz(times: &[f64]) -> Option<f64> {
         (Some(first), Some(last)) if last > first => Some((timed.len() - 1) as f64 / (last - first)),
         _ => None,
     }
-}
-
-/// The rate a live session's log recorded from the lines' arrival.
-pub fn arrival_rate(text: &str) -> Option<f64> {
-    let line = text.lines().rev().find(|l| l.starts_with(ARRIVAL_RATE_TAG))?;
-    line[ARRIVAL_RATE_TAG.len()..].trim().trim_end_matches("Hz").trim().parse().ok()
 }
 
 #[cfg(test)]

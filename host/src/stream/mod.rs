@@ -5,6 +5,7 @@
 //! port that talks on its own go through the same reader.
 
 mod columns;
+mod conventions;
 pub mod cost;
 pub mod dialect;
 mod dropped;
@@ -21,7 +22,8 @@ pub mod turns;
 pub mod units;
 
 pub use columns::Columns;
-pub use dialect::{Dialect, Layout};
+pub use conventions::Dialect;
+pub use dialect::Layout;
 pub use dropped::{DropReason, Dropped};
 pub use heard::read_heard;
 pub use log::{read_text, text_of, LineReader, StreamLog, StreamOptions, StreamSample};
