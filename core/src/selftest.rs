@@ -6,10 +6,7 @@ pub mod report;
 
 use serde::{Deserialize, Serialize};
 use shared::protocol::SensorIdentity;
-use shared::selftest::{self, AxisVerdict, SelfTestRaw, StoredSelfTest};
-
-use crate::shown::utc_minutes;
-use report::SelfTestJson;
+use shared::selftest::{self, AxisVerdict, SelfTestRaw};
 
 /// A self-test's outcome: the sensor, what was measured and each axis's verdict.
 #[derive(Debug, Clone)]
@@ -39,21 +36,6 @@ pub struct HistoryEntry {
 }
 
 impl HistoryEntry {
-    /// The entry of a self-test run at `unix_time_s` (seconds since 1970, UTC).
-    pub fn at(result: &SelfTestJson, unix_time_s: f64) -> Self {
-        let date_utc = utc_minutes(unix_time_s);
-        HistoryEntry { date_utc, result: serde_json::to_value(result).unwrap_or_default() }
-    }
-
-    /// The entry of the self-test a board keeps in flash (`record`), run on the sensor `identity`;
-    /// `None` when the record is not one.
-    pub fn of_board(identity: SensorIdentity, record: &[u8]) -> Option<Self> {
-        let stored = StoredSelfTest::from_record(record)?;
-        let test = SelfTest { identity, raw: stored.raw, verdicts: selftest::evaluate(&stored.raw) };
-        let date_utc = utc_minutes(f64::from(stored.unix_time_s));
-        Some(HistoryEntry { date_utc, result: serde_json::to_value(SelfTestJson::of(&test)).unwrap_or_default() })
-    }
-
     /// The deviation of axis `axis` (0-5) in percent; `None` when it had no factory trim.
     pub fn deviation_percent(&self, axis: usize) -> Option<f32> {
         self.result["axes"][axis]["deviation_percent"].as_f64().map(|v| v as f32)

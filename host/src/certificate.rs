@@ -8,5 +8,5 @@ pub use accelcal_core::certificate::*;
 /// Reads a certificate file and checks its hash; the certificate when it is as issued.
 pub fn check(path: &Path) -> Result<Certificate, SealError> {
     let text = std::fs::read_to_string(path).map_err(|source| SealError::Read { path: path.into(), source })?;
-    check_text(path, &text)
+    check_text::<Certificate>(path, &text)
 }

@@ -4,16 +4,25 @@
 //! - [`sim`]: the host side of the simulation (the simulated board served over a port);
 //! - [`procedure`]: the guided procedure (wanted orientations, the person's and the simulated hand,
 //!   collecting captures, verification);
-//! - [`part`]: the sensor part named for a person;
+//! - [`still`]: the mean of a raw stream from a board that must rest, or why it counts as moved;
+//! - [`part`]: the sensor part named for a person, and its family confirmed by its offset registers;
+//! - [`selftest`]: the datasheet self-test run from the host, and each board's self-test history;
 //! - [`orientation`]: the one type for a wanted orientation; [`limits`]: the host's thresholds;
-//! - [`session`]: the captures of a calibration, kept as files;
+//! - [`session`]: the captures of a calibration, kept as files, and what they yield;
+//! - [`files`]: files written so that a crash leaves the old or the new one, and the clock they carry;
 //! - [`data`]: calibration data files;
+//! - [`recording`]: long raw sample series in a NumPy `.npy` file;
 //! - [`fit`]: least-squares fits;
 //! - [`stream`]: a board's own stream as its sketch prints it (dialects, units, still periods);
 //! - [`noise`]: noise characterisation of a still recording by Allan deviation;
 //! - [`calibration`]: the device's calibration record on the host (its JSON form, from a fit);
 //! - [`export`]: the calibration in other programs' formats, with what each loses;
-//! - [`report`]: what a fit or a calibration reports, computed once, rendered as text or JSON;
+//! - [`certificate`]: a board's calibration certificate, its uncertainty budget and its seal;
+//! - [`lot`]: every board's certificates in one SQLite file, and the lot's summary;
+//! - [`repeat`]: N calibrations of one simulated board, the spread beside the predicted errors;
+//! - [`report`]: what a fit or a calibration reports, computed once, rendered as text, JSON or HTML;
+//! - [`shown`]: how a number, a date or a text is shown to a person;
+//! - [`error`]: the library's top error, wrapping each layer's own;
 //! - [`cli`]: the command line; the `accelcal` binary only calls [`cli::main`].
 
 pub mod certificate;

@@ -14,6 +14,6 @@ pub mod real;
 pub mod selftest;
 pub mod six_position;
 
-pub use calibration::{AccelRange, Calibration, CalibrationError};
-pub use orientation::{Orientation, Position, PositionError, PositionMap};
+pub use calibration::{AccelRange, Calibration, CalibrationError, GyroRange, STANDARD_GRAVITY};
+pub use orientation::{Position, PositionError, PositionMap};
 pub use six_position::{SixPositionError, SixPositionFit};

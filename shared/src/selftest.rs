@@ -9,16 +9,14 @@
 use serde::{Deserialize, Serialize};
 
 use crate::part::Family;
-use crate::AccelRange;
+use crate::{AccelRange, GyroRange};
 
 /// The six axes, accelerometer first, in the order of every array here.
 pub const AXIS_NAMES: [&str; 6] = ["accel_x", "accel_y", "accel_z", "gyro_x", "gyro_y", "gyro_z"];
 
-/// Gyro sensitivity at +-250 deg/s, the range every family's gyro trim assumes, in LSB per deg/s
-/// (PS-MPU-6000A 6.1; PS-MPU-6500A 3.1).
-pub const GYRO_LSB_PER_DPS_AT_250: f32 = 131.0;
-/// GYRO_CONFIG FS_SEL for +-250 deg/s.
-pub const GYRO_FS_SEL_250: u8 = 0;
+/// The gyro range every family's gyro trim assumes: +-250 deg/s, 131 LSB per deg/s (PS-MPU-6000A
+/// 6.1; PS-MPU-6500A 3.1).
+pub const SELF_TEST_GYRO_RANGE: GyroRange = GyroRange::Dps250;
 
 /// What the board measured: the trim codes and the mean outputs, in LSB at [`Family::self_test_range`]
 /// and +-250 deg/s.
@@ -171,7 +169,7 @@ fn lsb_per_unit(family: Family, axis: usize) -> f32 {
     if axis < 3 {
         family.self_test_range().lsb_per_g()
     } else {
-        GYRO_LSB_PER_DPS_AT_250
+        SELF_TEST_GYRO_RANGE.lsb_per_dps() as f32
     }
 }
 

@@ -3,9 +3,10 @@
 
 use std::path::{Path, PathBuf};
 
+use serde::de::DeserializeOwned;
+use serde::Serialize;
 use sha2::{Digest, Sha256};
 
-use super::Certificate;
 use crate::session::Session;
 
 /// Why a certificate file does not check.
@@ -22,7 +23,7 @@ pub enum SealError {
 }
 
 /// The hash of a certificate's content (its `sha256` field left out).
-pub(super) fn digest(certificate: &Certificate) -> String {
+pub(super) fn digest(certificate: &impl Serialize) -> String {
     // NOTE: serialising numbers, strings, maps and options cannot fail.
     let value = serde_json::to_value(certificate).unwrap_or_default();
     digest_of(value)
@@ -38,18 +39,19 @@ fn digest_of(mut value: serde_json::Value) -> String {
     Sha256::digest(&bytes).iter().map(|b| format!("{b:02x}")).collect()
 }
 
-/// Checks the hash of a certificate file's `text` (read from `path`, which messages name); the
-/// certificate when it is as issued.
-pub fn check_text(path: &Path, text: &str) -> Result<Certificate, SealError> {
+/// Checks the hash (its `sha256` field) of a sealed file's `text` (read from `path`, which messages
+/// name); its content when it is as issued.
+pub fn check_text<Sealed: DeserializeOwned>(path: &Path, text: &str) -> Result<Sealed, SealError> {
     let refused = |reason: String| SealError::NotACertificate { path: path.into(), reason };
     let value: serde_json::Value = serde_json::from_str(text).map_err(|e| refused(e.to_string()))?;
     if Session::is_session_json(&value) {
         return Err(SealError::ASession { path: path.into() });
     }
-    let certificate: Certificate = serde_json::from_value(value.clone()).map_err(|e| refused(e.to_string()))?;
+    let sealed: Sealed = serde_json::from_value(value.clone()).map_err(|e| refused(e.to_string()))?;
+    let stated = value["sha256"].as_str().unwrap_or_default().to_owned();
     let found = digest_of(value);
-    if found != certificate.sha256 {
-        return Err(SealError::Changed { path: path.into(), stated: certificate.sha256, found });
+    if found != stated {
+        return Err(SealError::Changed { path: path.into(), stated, found });
     }
-    Ok(certificate)
+    Ok(sealed)
 }

@@ -6,11 +6,15 @@ use crate::sim::sessions::adaptive as session;
 fn a_changed_copy_of_a_certificate_is_detected() {
     let certificate = Certificate::issue(&session(1, 1.0, 2.8e-3)).unwrap();
     let path = std::path::Path::new("board.certificate.json");
-    assert_eq!(check_text(path, &certificate.to_json()).unwrap(), certificate);
+    assert_eq!(check_text::<Certificate>(path, &certificate.to_json()).unwrap(), certificate);
     let value = certificate.parameters["o_x"].value;
     let changed = certificate.to_json().replacen(&format!("{value}"), &format!("{}", value + 1e-6), 1);
     assert_ne!(changed, certificate.to_json());
-    assert!(matches!(check_text(path, &changed), Err(SealError::Changed { .. })), "{:?}", check_text(path, &changed));
+    assert!(
+        matches!(check_text::<Certificate>(path, &changed), Err(SealError::Changed { .. })),
+        "{:?}",
+        check_text::<Certificate>(path, &changed)
+    );
 }
 
 #[test]
@@ -69,7 +73,7 @@ fn the_certificate_quotes_the_self_test_the_board_kept_and_has_none_without_one(
     assert_eq!(quoted["date_utc"], "2026-11-24 18:00");
     assert_eq!(quoted["result"]["axes"][0]["deviation_percent"], 2.5);
     let path = std::path::Path::new("board.certificate.json");
-    assert_eq!(check_text(path, &certificate.to_json()).unwrap(), certificate, "sealed with it");
+    assert_eq!(check_text::<Certificate>(path, &certificate.to_json()).unwrap(), certificate, "sealed with it");
 }
 
 #[test]
@@ -97,7 +101,7 @@ fn a_certificate_states_the_captures_temperatures_and_none_where_a_stream_carrie
 #[test]
 fn checking_a_session_file_as_a_certificate_says_it_is_the_session_and_how_to_issue_its_certificate() {
     let path = std::path::Path::new("board-session.json");
-    let error = seal::check_text(path, &session(1, 0.5, 0.004).json_text()).unwrap_err();
+    let error = seal::check_text::<Certificate>(path, &session(1, 0.5, 0.004).json_text()).unwrap_err();
     assert!(matches!(error, SealError::ASession { .. }), "{error}");
     assert!(error.to_string().contains("accelcal certificate issue"), "{error}");
 }

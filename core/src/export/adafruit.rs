@@ -2,9 +2,11 @@
 //! sends), both offsets only: the library subtracts accel_zerog (m/s^2) and gyro_zerorate (rad/s) from
 //! Adafruit_Sensor events (Adafruit_Sensor_Calibration.cpp, calibrate()).
 
+use shared::STANDARD_GRAVITY;
+
 use super::loss::{diagonal, loss, Carried, Loss};
 use super::statement::{lines, Said};
-use super::{Export, Source, STANDARD_GRAVITY};
+use super::{Export, Source};
 
 /// Radians per degree.
 const RAD_PER_DEG: f64 = std::f64::consts::PI / 180.0;

@@ -2,10 +2,11 @@
 //! raw counts, carrying the whole calibration.
 
 use shared::linalg::{Mat3, Vec3};
+use shared::STANDARD_GRAVITY;
 
 use super::loss::loss;
 use super::statement::{lines, Said};
-use super::{float, text, Export, Source, C_BLOCK, SLASHES, STANDARD_GRAVITY};
+use super::{float, text, Export, Source, C_BLOCK, SLASHES};
 
 /// What both float code targets state.
 const CONVENTION: &[&str] = &[

@@ -4,10 +4,11 @@
 
 use shared::calibration::{limits, TempCoefficients, TemperatureModel};
 use shared::linalg::Vec3;
+use shared::STANDARD_GRAVITY;
 
 use super::loss::{best_diagonal, diagonal, loss, Carried};
 use super::statement::{lines, Said};
-use super::{text, Export, Source, HASH, STANDARD_GRAVITY};
+use super::{text, Export, Source, HASH};
 
 /// Radians per degree.
 const RAD_PER_DEG: f64 = std::f64::consts::PI / 180.0;

@@ -3,14 +3,16 @@
 //! the gyro's in +-1000 deg/s counts (32.8 per deg/s) (InvenSense, MPU Hardware Offset Registers
 //! Application Note); so the export adds to what the chip holds. Offsets only.
 
-use shared::linalg;
+use shared::{linalg, AccelRange, GyroRange};
 
 use super::loss::{diagonal, loss, spread, Carried};
 use super::statement::{lines, Said};
-use super::{text, Export, Source, GYRO_LSB_PER_DPS, SLASHES};
+use super::{text, Export, Source, SLASHES};
 
 /// Counts per g of the accelerometer offset registers (+-16 g format).
-const ACCEL_OFFSET_LSB_PER_G: f64 = 2048.0;
+const ACCEL_OFFSET_LSB_PER_G: f64 = AccelRange::G16.lsb_per_g() as f64;
+/// Counts per deg/s of the gyro offset registers (+-1000 deg/s format).
+const GYRO_OFFSET_LSB_PER_DPS: f64 = GyroRange::Dps1000.lsb_per_dps();
 
 const CONVENTION: &[&str] = &[
     "the MPU-6050 adds its offset registers to every reading: reading = raw + register (in the register's units)",
@@ -31,12 +33,12 @@ const I2CDEVLIB_SAID: Said = Said {
 pub fn i2cdevlib(source: &Source) -> Export {
     let full = source.full();
     let accel = full.offset_g.map(|v| -(v * ACCEL_OFFSET_LSB_PER_G).round() as i32);
-    let gyro = source.gyro_bias_dps().map(|v| -(v * GYRO_LSB_PER_DPS).round() as i32);
+    let gyro = source.gyro_bias_dps().map(|v| -(v * GYRO_OFFSET_LSB_PER_DPS).round() as i32);
     let carried = Carried {
         matrix: diagonal([1.0; 3]),
         offset_g: accel.map(|v| -f64::from(v) / ACCEL_OFFSET_LSB_PER_G),
         gyro_matrix: diagonal([1.0; 3]),
-        gyro_bias_dps: Some(gyro.map(|v| -f64::from(v) / GYRO_LSB_PER_DPS)),
+        gyro_bias_dps: Some(gyro.map(|v| -f64::from(v) / GYRO_OFFSET_LSB_PER_DPS)),
     };
     let loss = loss(&full, &carried);
     let mut body = "\n// MPU6050 mpu; ... mpu.initialize(); then:\n".to_owned();

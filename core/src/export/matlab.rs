@@ -3,10 +3,11 @@
 //! Also c0 = -b * A for the form C = D * A + c0. Carries everything.
 
 use shared::linalg::{self, Mat3, Vec3};
+use shared::STANDARD_GRAVITY;
 
 use super::loss::loss;
 use super::statement::{lines, Said};
-use super::{float, text, Comment, Export, Source, STANDARD_GRAVITY};
+use super::{float, text, Comment, Export, Source};
 
 /// `% ...`.
 const PERCENT: Comment = Comment { open: "", line: "% ", close: "" };

@@ -14,19 +14,12 @@ mod matlab;
 mod multiwii;
 pub mod source;
 pub mod statement;
+mod written;
 
 pub use loss::{Carried, Loss};
 pub use source::{Noise, Readings, Source};
-
-use crate::calibration::CalibrationRecordError;
-use crate::fit::FitError;
-
-/// Standard gravity, m/s^2 per g: the g every m/s^2 value of an export is converted with
-/// (CGPM 1901; the value ArduPilot's GRAVITY_MSS, PX4's CONSTANTS_ONE_G and Adafruit's
-/// SENSORS_GRAVITY_STANDARD use).
-pub const STANDARD_GRAVITY: f64 = 9.80665;
-/// Gyro sensitivity at the +-1000 deg/s the firmware sets, LSB per deg/s (Product Specification 6.1).
-pub const GYRO_LSB_PER_DPS: f64 = 32.8;
+use written::{float, text, Comment, C_BLOCK, HASH, SLASHES};
+pub use written::{Export, ExportError};
 
 /// The formats `--to` takes.
 #[derive(
@@ -62,40 +55,6 @@ pub enum Target {
     Kalibr,
 }
 
-/// An exported file.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Export {
-    /// The file's bytes.
-    pub bytes: Vec<u8>,
-    /// Whether the file is binary (no comment syntax: the statement goes to the terminal instead).
-    pub binary: bool,
-    /// What the file states, as plain lines (for a binary file, shown beside it).
-    pub statement: Vec<String>,
-    /// What the target loses on this unit.
-    pub loss: Loss,
-}
-
-/// Why an export could not be made.
-#[derive(Debug, thiserror::Error)]
-pub enum ExportError {
-    #[error("not JSON: {reason}; give the output of calibrate --json, fit --json, download, or a session file")]
-    NotJson { reason: String },
-    #[error(transparent)]
-    Record(#[from] CalibrationRecordError),
-    #[error("the session cannot be fitted: {0}; capture the positions it lacks (calibrate --resume SESSION)")]
-    Fit(FitError),
-    #[error("not a noise report: {reason}")]
-    NoiseFile { reason: String },
-    #[error("kalibr's imu.yaml is noise terms: give --noise NOISE.json (from `accelcal noise RECORDING --json`)")]
-    NeedsNoise,
-    #[error("the noise report was recorded on board {recorded}, the calibration is board {calibrated}'s: every board's noise differs; record this board (`accelcal record --port P` then `accelcal noise RECORDING --json`)")]
-    NoiseOfAnotherBoard { calibrated: String, recorded: String },
-    #[error("{target} is a binary file: give -o FILE")]
-    BinaryNeedsFile { target: String },
-    #[error("the fixed-point form would overflow int32 ({reason}); use --to c")]
-    FixedPointOverflow { reason: String },
-}
-
 /// The export of `source` to `target`.
 pub fn export(source: &Source, target: Target) -> Result<Export, ExportError> {
     match target {
@@ -113,35 +72,4 @@ pub fn export(source: &Source, target: Target) -> Result<Export, ExportError> {
         Target::I2cdevlib => Ok(i2cdevlib::i2cdevlib(source)),
         Target::Kalibr => kalibr::kalibr(source),
     }
-}
-
-/// A comment syntax: an opening line, a prefix for each line, a closing line.
-struct Comment {
-    open: &'static str,
-    line: &'static str,
-    close: &'static str,
-}
-
-/// `// ...` (C++, Rust).
-const SLASHES: Comment = Comment { open: "", line: "// ", close: "" };
-/// `# ...` (parameter files, YAML).
-const HASH: Comment = Comment { open: "", line: "# ", close: "" };
-/// `/* ... */` (C).
-const C_BLOCK: Comment = Comment { open: "/*\n", line: " * ", close: " */\n" };
-
-/// A text export: the statement in the file's comment syntax, then the body.
-fn text(statement: Vec<String>, comment: &Comment, body: &str, loss: Loss) -> Export {
-    let mut out = comment.open.to_owned();
-    for line in &statement {
-        out.push_str(format!("{}{line}", comment.line).trim_end());
-        out.push('\n');
-    }
-    out.push_str(comment.close);
-    out.push_str(body);
-    Export { bytes: out.into_bytes(), binary: false, statement, loss }
-}
-
-/// An f32 value as the shortest decimal that reads back to the same f32 (valid C, Rust, MATLAB).
-fn float(value: f64) -> String {
-    format!("{:e}", value as f32)
 }

@@ -6,7 +6,9 @@ use shared::protocol::SensorConfig;
 use shared::{AccelRange, Calibration};
 
 use super::loss::Carried;
-use super::{ExportError, GYRO_LSB_PER_DPS};
+use shared::protocol::GYRO_RANGE;
+
+use super::ExportError;
 use crate::calibration::{self, CalibrationJson};
 use crate::fit::drift;
 use crate::noise;
@@ -52,7 +54,7 @@ impl Readings {
     pub fn board(sensor: Option<String>, made_at_c: f32) -> Self {
         Readings {
             sensor,
-            gyro_lsb_per_dps: GYRO_LSB_PER_DPS,
+            gyro_lsb_per_dps: GYRO_RANGE.lsb_per_dps(),
             made_at_c: Some(made_at_c),
             stream_units: None,
             drift_span_c: None,
@@ -67,7 +69,7 @@ impl Readings {
         let units = format!("accelerometer {accel_unit}, gyro {}", gyro_unit.unwrap_or("not recorded"));
         Readings {
             sensor: None,
-            gyro_lsb_per_dps: gyro.and_then(GyroUnit::counts_per_dps).unwrap_or(GYRO_LSB_PER_DPS),
+            gyro_lsb_per_dps: gyro.and_then(GyroUnit::counts_per_dps).unwrap_or(GYRO_RANGE.lsb_per_dps()),
             made_at_c: None,
             stream_units: Some(units),
             drift_span_c: None,
@@ -254,7 +256,10 @@ mod tests {
     #[test]
     fn a_stream_printing_its_gyro_in_deg_per_s_leaves_the_functions_at_the_firmware_s_counts() {
         let source = Source::from_session(&stream_session(Some("deg/s")), "s.json").unwrap();
-        assert_eq!(source.readings.gyro_lsb_per_dps, GYRO_LSB_PER_DPS);
+        assert_eq!(
+            source.readings.gyro_lsb_per_dps, 32.8,
+            "+-1000 deg/s: 32.8 LSB per deg/s (Product Specification 6.1)"
+        );
         let board = Source::from_session(&crate::sim::sessions::adaptive(1, 0.0, 0.004), "b.json").unwrap();
         assert_eq!(board.readings.made_at_c, Some(board.calibration.mean_temp_c));
     }

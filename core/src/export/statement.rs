@@ -3,9 +3,10 @@
 //! model, the convention the target applies, what it carries, and what it loses on this unit.
 
 use shared::calibration::{TempCoefficients, TemperatureModel};
+use shared::STANDARD_GRAVITY;
 
 use super::loss::{Loss, SPHERE_POINTS};
-use super::{Source, STANDARD_GRAVITY};
+use super::Source;
 
 /// What one target says of itself.
 pub struct Said<'a> {

@@ -5,8 +5,9 @@
 
 use nalgebra::{Matrix3, SMatrix, Vector3};
 
+use super::linearised::Observation;
 use super::linearised::{Gram, Linearised, RowsAt, RowsTransposed};
-use super::nonlinear::{Observation, Solution};
+use super::nonlinear::Solution;
 use super::normalization::Normalization;
 use super::shape::Shape;
 use super::{statistics, uncertainty};

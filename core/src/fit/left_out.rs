@@ -8,8 +8,9 @@ use shared::linalg;
 
 use super::influence::Influence;
 use super::linear::{self, Pair, MIN_REFERENCES};
+use super::linearised::Observation;
 use super::models::{self, Solved};
-use super::nonlinear::{Observation, Problem};
+use super::nonlinear::Problem;
 use super::normalization::Normalization;
 use super::observability::{independent_pair, reading_points_along};
 use super::shape::Shape;

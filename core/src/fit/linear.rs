@@ -6,8 +6,9 @@ use shared::linalg::{self, Mat3, Vec3};
 use shared::{Position, PositionMap, SixPositionError};
 
 use super::faces::{face_force, rows_at_faces};
+use super::fitted::full_parameters;
 use super::prediction;
-use super::{full_parameters, uncertainty, Fit, FitError, FitOptions, Model};
+use super::{uncertainty, Fit, FitError, FitOptions, Model};
 use crate::data::Dataset;
 
 /// Known-orientation rows needed to determine 12 parameters (each row gives three equations, but the

@@ -4,8 +4,18 @@
 
 use nalgebra::{Const, Matrix3, SMatrix, Storage, Vector, Vector3};
 
-use super::nonlinear::Observation;
 use super::shape::Shape;
+
+/// One averaged reading as the solver sees it.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Observation {
+    /// Normalised reading m' = (m - c) / r.
+    pub reading: Vector3<f64>,
+    /// Known specific force in g, for a reference row; `None` for a row where only |a| = g is known.
+    pub reference: Option<Vector3<f64>>,
+    /// Factor on this row's residuals: the square root of its weight (1 for rows weighed alike).
+    pub weight: f64,
+}
 
 /// The most parameters a least-squares model has (`reference-norm12`).
 pub(super) const MAX_PARAMETERS: usize = 12;

@@ -4,6 +4,15 @@
 use serde::{Deserialize, Serialize};
 use shared::calibration::{ModelTag, Origin, Procedure};
 
+/// Every model, richest first: the order in which models are listed, and in which `auto` falls back
+/// to the first that fits when none can be tested on left-out rows.
+///
+/// NOTE: `reference-norm12` uses every row (known orientations and |a| = g), `linear12` only the
+/// rows of known orientation; `ortho9` needs no orientation; the six-position closed form uses only
+/// six readings, so it comes after the fits over all positions.
+pub const RICHEST_FIRST: [Model; 5] =
+    [Model::ReferenceNorm12, Model::Linear12, Model::Ortho9, Model::Diag6, Model::SixPosition];
+
 /// The fitting model that produced a calibration (see DESIGN.md for the shape of M in each).
 #[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Model {

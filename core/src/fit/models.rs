@@ -4,16 +4,26 @@
 use nalgebra::{DVector, Matrix3, SVector, Vector3};
 
 use super::covariance::{self, Accumulated, Square};
+use super::linearised::Observation;
 use super::linearised::MAX_PARAMETERS;
-use super::nonlinear::{solve, Observation, Solution};
+use super::nonlinear::{solve, Solution};
 use super::normalization::Normalization;
 use super::observability::{check_conditioning, check_normal, check_positions};
 use super::ortho9;
 use super::prediction::{self, Prediction};
-use super::shape::Shape;
+use super::shape::{parameter_name, Shape};
 use super::{statistics, uncertainty, verdict, Fit, FitError, FitOptions, Model, NoiseTest, Parameter};
 use crate::data::{Dataset, Row};
 use shared::linalg::{Mat3, Vec3};
+
+/// Fits one model to the training rows: the closed forms in `linear`, the rest by least squares.
+pub(super) fn fit_model(training: &Dataset, model: Model, options: &FitOptions) -> Result<Fit, FitError> {
+    match model {
+        Model::SixPosition => super::linear::six_position(training, options),
+        Model::Linear12 => super::linear::linear12(training, options),
+        Model::ReferenceNorm12 | Model::Ortho9 | Model::Diag6 => least_squares(training, model, options),
+    }
+}
 
 /// The shape of M in a least-squares model.
 pub(super) fn shape_of(model: Model) -> Shape {
@@ -173,11 +183,6 @@ fn calibration_of(shape: Shape, parameters: &[Parameter]) -> (Mat3<f64>, Vec3<f6
     let matrix = shape.matrix(&values[..shape.len()]);
     let offset = [0, 1, 2].map(|k| values[shape.len() + k]);
     ([0, 1, 2].map(|i| [0, 1, 2].map(|j| matrix[(i, j)])), offset)
-}
-
-/// The name of parameter `index` of the model of `shape`: the shape's matrix parameters, then o.
-pub(super) fn parameter_name(shape: Shape, index: usize) -> &'static str {
-    shape.names().get(index).copied().unwrap_or_else(|| ["o_x", "o_y", "o_z"][index - shape.len()])
 }
 
 /// The parameters in the file's units: M = g M' diag(1/r), o = c + r o'; `errors` the scatter- and

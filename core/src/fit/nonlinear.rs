@@ -6,22 +6,11 @@
 //! every parameter is of order one. The result is mapped back: M = g M' diag(1/r), o = c + r o'.
 
 use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt};
-use nalgebra::{DMatrix, DVector, Dyn, Owned, Vector3};
+use nalgebra::{DMatrix, DVector, Dyn, Owned};
 
-use super::linearised::{Linearised, RowsAt, RowsTransposed, MAX_PARAMETERS};
+use super::linearised::{Linearised, Observation, RowsAt, RowsTransposed, MAX_PARAMETERS};
 use super::shape::Shape;
 use super::FitError;
-
-/// One averaged reading as the solver sees it.
-#[derive(Debug, Clone, Copy)]
-pub(super) struct Observation {
-    /// Normalised reading m' = (m - c) / r.
-    pub reading: Vector3<f64>,
-    /// Known specific force in g, for a reference row; `None` for a row where only |a| = g is known.
-    pub reference: Option<Vector3<f64>>,
-    /// Factor on this row's residuals: the square root of its weight (1 for rows weighed alike).
-    pub weight: f64,
-}
 
 /// The least-squares problem handed to the solver. Parameters: the shape's matrix parameters, then o'.
 #[derive(Debug, Clone)]
@@ -120,6 +109,8 @@ pub(super) fn solve(shape: Shape, observations: &[Observation], start: DVector<f
 
 #[cfg(test)]
 mod tests {
+    use nalgebra::Vector3;
+
     use super::*;
 
     #[test]

@@ -6,10 +6,10 @@ use nalgebra::allocator::Allocator;
 use nalgebra::{Const, DefaultAllocator, DimDiff, DimSub, Matrix3, SMatrix, Vector3, U1};
 
 use super::covariance::inverse_factor;
+use super::linearised::Observation;
 use super::linearised::{Gram, Linearised, RowsTransposed};
-use super::models::parameter_name;
-use super::nonlinear::Observation;
 use super::normalization::Normalization;
+use super::shape::parameter_name;
 use super::shape::Shape;
 use super::{FitError, Model};
 use crate::data::Dataset;

@@ -4,7 +4,8 @@
 use nalgebra::DVector;
 
 use super::covariance::Square;
-use super::nonlinear::{Observation, Solution};
+use super::linearised::Observation;
+use super::nonlinear::Solution;
 use super::shape::Shape;
 use super::FitError;
 use shared::ortho9::{self, Ortho9Error};
@@ -44,7 +45,7 @@ impl From<Ortho9Error> for FitError {
             }
             Ortho9Error::IllConditioned(k) => FitError::Unobservable {
                 model,
-                parameter: super::models::parameter_name(Shape::TriangularTimesDiagonal, k.into()).to_owned(),
+                parameter: super::shape::parameter_name(Shape::TriangularTimesDiagonal, k.into()).to_owned(),
             },
             Ortho9Error::NotConverged => FitError::NotConverged {
                 reason: format!("no negligible step in {} iterations", ortho9::MAX_ITERATIONS),

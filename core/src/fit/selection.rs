@@ -1,21 +1,9 @@
 //! `auto`: the model that best predicts rows it did not see (leave-one-out), with every model's
 //! figure; and, where no model runs, the one the data came closest to supporting.
 
-use serde::Serialize;
-
 use super::left_out::leave_one_out_rms;
-use super::{fit_model, Fit, FitError, FitOptions, Model, RICHEST_FIRST};
+use super::{fit_model, Fit, FitError, FitOptions, Model, Selection, RICHEST_FIRST};
 use crate::data::Dataset;
-
-/// Why `auto` chose its model, with every model's leave-one-out figure.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Selection {
-    /// One sentence: the model chosen and the evidence.
-    pub reason: String,
-    /// Every model, richest first, with the RMS of | |a| - g | at each row left out of its fit, in
-    /// output units; `None` where the model cannot be fitted with a row left out.
-    pub leave_one_out: Vec<(&'static str, Option<f64>)>,
-}
 
 /// Fits every model and keeps the one with the smallest leave-one-out error; the richest that fits
 /// when none can be judged that way; the closest refusal when none fits.

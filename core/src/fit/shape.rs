@@ -92,6 +92,11 @@ impl Shape {
     }
 }
 
+/// The name of parameter `index` of the model of `shape`: the shape's matrix parameters, then o.
+pub(super) fn parameter_name(shape: Shape, index: usize) -> &'static str {
+    shape.names().get(index).copied().unwrap_or_else(|| ["o_x", "o_y", "o_z"][index - shape.len()])
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

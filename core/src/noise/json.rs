@@ -10,13 +10,10 @@ use std::collections::BTreeMap;
 use serde::{Deserialize, Serialize};
 
 pub use super::kalibr::{KalibrJson, KalibrNumbers};
-use super::{AxisNoise, NoiseReport, AXES};
-use crate::noise::text::{capture_limit_is_lower_bound, capture_limit_s, CAPTURE_SECONDS_SHOWN};
-
-/// Micro-g per g.
-pub const UG_PER_G: f64 = 1e6;
-/// Standard gravity in m/s^2 per g (Kalibr takes SI units).
-pub const STANDARD_GRAVITY: f64 = 9.80665;
+use super::{
+    capture_limit_is_lower_bound, capture_limit_s, resolved_unless_said, usual_scale, AxisNoise, NoiseReport, AXES,
+    CAPTURE_SECONDS_SHOWN, UG_PER_G,
+};
 
 /// One axis in the usual units (ug for the accelerometer, deg/s for the gyro; `units` names them).
 #[derive(Debug, Clone, Default, Serialize, Deserialize)]
@@ -46,10 +43,6 @@ pub struct AxisJson {
     /// end; reports before the flag do not say: taken as resolved).
     #[serde(default = "resolved_unless_said")]
     pub random_walk_resolved: bool,
-}
-
-pub(super) fn resolved_unless_said() -> bool {
-    true
 }
 
 /// The unit of each number of one axis.
@@ -193,15 +186,6 @@ pub fn render(report: &NoiseReport) -> String {
 /// A noise report as `accelcal noise --json` wrote it; the reason when the text is not one.
 pub fn read(text: &str) -> Result<NoiseJson, String> {
     serde_json::from_str(text).map_err(|e| format!("{e}; give the output of `accelcal noise RECORDING --json`"))
-}
-
-/// The factor from the axis's own unit to the usual one: g to ug, deg/s unchanged.
-pub fn usual_scale(axis: &AxisNoise) -> f64 {
-    if axis.is_accel() {
-        UG_PER_G
-    } else {
-        1.0
-    }
 }
 
 fn axis_json(axis: &AxisNoise) -> AxisJson {

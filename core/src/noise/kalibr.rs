@@ -3,7 +3,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::json::{resolved_unless_said, STANDARD_GRAVITY};
+use shared::STANDARD_GRAVITY;
+
+use super::resolved_unless_said;
 use super::{AxisNoise, NoiseReport};
 
 /// Kalibr's IMU noise numbers: the largest of the three axes of each sensor, in SI units.

@@ -112,3 +112,42 @@ impl NoiseReport {
         NoiseReport { rate_hz: series.rate_hz, samples: series.axes[0].len(), axes, board: series.board.clone() }
     }
 }
+
+/// Micro-g per g.
+pub const UG_PER_G: f64 = 1e6;
+
+/// The factor from the axis's own unit to the usual one: g to ug, deg/s unchanged.
+pub fn usual_scale(axis: &AxisNoise) -> f64 {
+    if axis.is_accel() {
+        UG_PER_G
+    } else {
+        1.0
+    }
+}
+
+/// Capture lengths in seconds whose reachable accuracy the report shows.
+pub const CAPTURE_SECONDS_SHOWN: [f64; 6] = [1.0, 2.0, 5.0, 10.0, 30.0, 60.0];
+
+/// Averaging time in seconds beyond which no accelerometer axis improves with a longer capture: the
+/// largest of their bias-instability averaging times.
+pub fn capture_limit_s(report: &NoiseReport) -> Option<f64> {
+    accel_axes(report).filter_map(|a| a.terms.map(|t| t.bias_instability_tau_s)).reduce(f64::max)
+}
+
+/// Whether an accelerometer axis's deviation was still falling at the longest averaging time analysed,
+/// so [`capture_limit_s`] is only a lower bound: longer captures help at least up to there.
+pub fn capture_limit_is_lower_bound(report: &NoiseReport) -> bool {
+    accel_axes(report).any(|a| match (a.terms, a.curve.last()) {
+        (Some(t), Some(last)) => t.bias_instability_tau_s >= last.tau_s,
+        _ => false,
+    })
+}
+
+pub(super) fn accel_axes(report: &NoiseReport) -> impl Iterator<Item = &AxisNoise> {
+    report.axes.iter().filter(|a| a.is_accel())
+}
+
+/// Reports written before a `..._resolved` flag do not say: taken as resolved.
+pub(super) fn resolved_unless_said() -> bool {
+    true
+}

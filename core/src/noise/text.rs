@@ -2,33 +2,13 @@
 
 use std::fmt::Write;
 
-use super::json::{usual_scale, UG_PER_G};
-use super::{AxisNoise, NoiseReport};
-
-/// Capture lengths in seconds whose reachable accuracy the report shows.
-pub const CAPTURE_SECONDS_SHOWN: [f64; 6] = [1.0, 2.0, 5.0, 10.0, 30.0, 60.0];
+use super::{
+    accel_axes, capture_limit_is_lower_bound, capture_limit_s, usual_scale, AxisNoise, NoiseReport,
+    CAPTURE_SECONDS_SHOWN, UG_PER_G,
+};
 
 /// Seconds of deg/s per deg/h.
 const SECONDS_PER_HOUR: f64 = 3600.0;
-
-/// Averaging time in seconds beyond which no accelerometer axis improves with a longer capture: the
-/// largest of their bias-instability averaging times.
-pub fn capture_limit_s(report: &NoiseReport) -> Option<f64> {
-    accel_axes(report).filter_map(|a| a.terms.map(|t| t.bias_instability_tau_s)).reduce(f64::max)
-}
-
-/// Whether an accelerometer axis's deviation was still falling at the longest averaging time analysed,
-/// so [`capture_limit_s`] is only a lower bound: longer captures help at least up to there.
-pub fn capture_limit_is_lower_bound(report: &NoiseReport) -> bool {
-    accel_axes(report).any(|a| match (a.terms, a.curve.last()) {
-        (Some(t), Some(last)) => t.bias_instability_tau_s >= last.tau_s,
-        _ => false,
-    })
-}
-
-fn accel_axes(report: &NoiseReport) -> impl Iterator<Item = &AxisNoise> {
-    report.axes.iter().filter(|a| a.is_accel())
-}
 
 /// The report as text.
 pub fn render(report: &NoiseReport) -> String {

@@ -5,8 +5,8 @@ use serde::Serialize;
 use shared::linalg::{self, Mat3, Vec3};
 
 #[cfg(test)]
-use super::session::residual_mg;
-use super::session::PositionResult;
+use super::position::residual_mg;
+use super::position::PositionResult;
 use crate::fit::Fit;
 use crate::session::Verification;
 

@@ -4,9 +4,10 @@
 
 use std::fmt::Write;
 
-use super::figure::{Figure, SeriesStyle};
-use super::plot::{self, PlotError};
-use super::session::{PositionResult, SessionReport, NOT_RECORDED};
+use super::figure::Figure;
+use super::plot::PlotError;
+use super::position::PositionResult;
+use super::session::{SessionReport, NOT_RECORDED};
 use super::Comparison;
 use crate::session::{Board, Verification};
 use crate::shown::escape;
@@ -15,9 +16,10 @@ mod cells;
 use cells::fixed_span;
 pub use cells::shown;
 pub(super) use cells::{cell, fixed_cell, scientific_cell, span};
+pub(super) mod parts;
+pub use parts::ABSENT;
+use parts::{absent, figure};
 
-/// Said where a section's data is not in the session.
-pub const ABSENT: &str = "not part of this session";
 const STYLE: &str = include_str!("report.css");
 
 /// The report as an HTML page.
@@ -25,7 +27,7 @@ pub fn page(report: &SessionReport) -> Result<String, PlotError> {
     let mut out = head(report);
     board(&mut out, &report.board);
     sphere(&mut out, report)?;
-    super::uploaded::html_section(&mut out, report);
+    super::uploaded::html_section(&mut out, report.uploaded.as_ref());
     parameters(&mut out, report);
     if let Some(comparison) = &report.comparison {
         models(&mut out, comparison);
@@ -223,34 +225,6 @@ fn pair(out: &mut String, figures: &[Figure; 2]) -> Result<(), PlotError> {
     figure(out, &figures[1])?;
     out.push_str("</div>");
     Ok(())
-}
-
-pub(super) fn figure(out: &mut String, figure: &Figure) -> Result<(), PlotError> {
-    let _ = write!(out, "<figure id=\"{}\">{}<figcaption>{}", figure.id, plot::svg(figure)?, escape(&figure.title));
-    for series in &figure.series {
-        let _ = write!(
-            out,
-            "<span class=\"key\"><span class=\"swatch {}\" style=\"background:{}\"></span>{}</span>",
-            style_class(series.style),
-            plot::colour(series.role),
-            escape(&series.name)
-        );
-    }
-    out.push_str("</figcaption></figure>");
-    Ok(())
-}
-
-/// The legend swatch's shape: a dot for markers, a bar for a line, a pale square for a band.
-fn style_class(style: SeriesStyle) -> &'static str {
-    match style {
-        SeriesStyle::Points => "dot",
-        SeriesStyle::Line => "bar",
-        SeriesStyle::Band => "band",
-    }
-}
-
-pub(super) fn absent(what: &str) -> String {
-    format!("<p class=\"absent\">{what}</p>")
 }
 
 #[cfg(test)]

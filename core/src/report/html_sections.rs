@@ -5,7 +5,8 @@
 use std::fmt::Write;
 
 use super::allan::AllanSection;
-use super::html::{absent, cell, figure, span, ABSENT};
+use super::html::parts::{absent, figure, ABSENT};
+use super::html::{cell, span};
 use super::plot::PlotError;
 use super::session::SessionReport;
 use super::temperature::TemperatureSection;

@@ -14,6 +14,7 @@ pub mod html;
 mod html_sections;
 pub mod json;
 mod plot;
+mod position;
 mod session;
 pub mod stream;
 pub mod temperature;
@@ -25,7 +26,8 @@ pub use calibrate::{CalibrateReport, ChosenJson, DriftJson, HostFitSummary, Trut
 pub use comparison::{ComparedModel, Comparison};
 pub use figure::{axis_role, Figure, Role, Series, SeriesStyle};
 pub use plot::PlotError;
-pub use session::{Figures, FitSummary, PositionResult, SessionReport, Verdict, NOT_RECORDED};
+pub use position::PositionResult;
+pub use session::{Figures, FitSummary, SessionReport, Verdict, NOT_RECORDED};
 
 use crate::data::Dataset;
 use crate::fit::{self, Evaluation, Fit, FitError, FitOptions, ModelChoice};

@@ -7,6 +7,7 @@ use shared::linalg;
 
 use super::allan::AllanSection;
 use super::figure::{self, Figure};
+use super::position::{residual_mg, PositionResult};
 use super::temperature::TemperatureSection;
 use super::uploaded::Uploaded;
 use super::{Comparison, FitReport};
@@ -53,21 +54,6 @@ pub struct Verdict {
     pub trusted: bool,
     /// The verdict for a person.
     pub line: String,
-}
-
-/// One captured position, in g, and its residual | |v| - 1 g | in mg (signed).
-#[derive(Debug, Clone, Serialize)]
-pub struct PositionResult {
-    /// The capture's name.
-    pub name: String,
-    /// The raw mean reading, in g.
-    pub raw_g: [f64; 3],
-    /// The calibrated reading, in g.
-    pub calibrated_g: [f64; 3],
-    /// |raw| - 1 g, in mg.
-    pub residual_before_mg: f64,
-    /// |calibrated| - 1 g, in mg.
-    pub residual_after_mg: f64,
 }
 
 /// The fit chosen.
@@ -168,11 +154,6 @@ fn positions(session: &Session, fitted: &Dataset, report: &FitReport) -> Vec<Pos
             }
         })
         .collect()
-}
-
-/// |v| - 1 g, in mg, for v in g.
-pub fn residual_mg(v: [f64; 3]) -> f64 {
-    (linalg::norm(v) - 1.0) * 1000.0
 }
 
 fn summary(report: &FitReport, positions: &[PositionResult]) -> FitSummary {

@@ -7,7 +7,6 @@ use serde::Serialize;
 use shared::{linalg, Calibration};
 
 use super::html::fixed_cell;
-use super::session::SessionReport;
 use crate::calibration::{self, CalibrationJson};
 use crate::session::Session;
 
@@ -38,8 +37,8 @@ pub fn calibrated_by(record: &Calibration, session: &Session) -> Vec<[f64; 3]> {
 
 /// The uploaded record's section of the HTML page: its line, then M, o and G row by row, each number
 /// with its JSON pointer.
-pub fn html_section(out: &mut String, report: &SessionReport) {
-    let Some(uploaded) = &report.uploaded else {
+pub fn html_section(out: &mut String, uploaded: Option<&Uploaded>) {
+    let Some(uploaded) = uploaded else {
         return;
     };
     let _ = write!(out, "<section><h2>Uploaded to the board</h2><p>{}</p>", crate::shown::escape(&uploaded.line));

@@ -2,11 +2,13 @@
 
 use serde::Serialize;
 use shared::part::Family;
-use shared::selftest::{AxisVerdict, ACCELCAL_BAND_PERCENT};
+use shared::protocol::SensorIdentity;
+use shared::selftest::{self, AxisVerdict, StoredSelfTest, ACCELCAL_BAND_PERCENT};
 
 use super::HistoryEntry;
 use super::SelfTest;
 use crate::part::{describe, family_name, part_name};
+use crate::shown::utc_minutes;
 
 /// What `accelcal selftest --json` prints (and the history keeps).
 #[derive(Debug, Clone, Serialize)]
@@ -62,6 +64,24 @@ fn datasheet_band(family: Family) -> &'static str {
     match family {
         Family::Mpu6050 => "+-14 %, PS-MPU-6000A",
         Family::Mpu6500 => "accel +-50 %, gyro from -50 %, AN-MPU-6500A",
+    }
+}
+
+/// A history entry keeps a self-test as its JSON report, made here.
+impl HistoryEntry {
+    /// The entry of a self-test run at `unix_time_s` (seconds since 1970, UTC).
+    pub fn at(result: &SelfTestJson, unix_time_s: f64) -> Self {
+        let date_utc = utc_minutes(unix_time_s);
+        HistoryEntry { date_utc, result: serde_json::to_value(result).unwrap_or_default() }
+    }
+
+    /// The entry of the self-test a board keeps in flash (`record`), run on the sensor `identity`;
+    /// `None` when the record is not one.
+    pub fn of_board(identity: SensorIdentity, record: &[u8]) -> Option<Self> {
+        let stored = StoredSelfTest::from_record(record)?;
+        let test = SelfTest { identity, raw: stored.raw, verdicts: selftest::evaluate(&stored.raw) };
+        let date_utc = utc_minutes(f64::from(stored.unix_time_s));
+        Some(HistoryEntry { date_utc, result: serde_json::to_value(SelfTestJson::of(&test)).unwrap_or_default() })
     }
 }
 

@@ -31,16 +31,6 @@ impl SessionKind {
             (false, false) => SessionKind::Fixed,
         }
     }
-
-    /// The kind in words, as "this session was begun as ...".
-    pub fn described(self) -> &'static str {
-        match self {
-            SessionKind::Quick => "a quick calibration",
-            SessionKind::Fixed => "a full calibration of fixed-length captures",
-            SessionKind::Adaptive => "an adaptive calibration (each position captured until its mean is known)",
-            SessionKind::Stream => "a calibration from a board's own stream",
-        }
-    }
 }
 
 /// The kind as a session file holds it (flattened into the session): `"kind": "adaptive"`, or in

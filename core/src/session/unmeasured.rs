@@ -3,9 +3,9 @@
 //! and the session's kind says the temperature is not measured (`Session::dataset` leaves it out);
 //! files written before, with 0.0 in a stream session, read the same.
 
+use serde::de::DeserializeOwned;
+use serde::Serialize;
 use serde_json::Value;
-
-use super::Session;
 
 /// Whether a session's JSON is a stream session's.
 fn is_stream(json: &Value) -> bool {
@@ -24,7 +24,7 @@ fn each_temperature(json: &mut Value, change: impl Fn(&mut Value)) {
 /// A stream session's JSON as written, its temperatures null (not measured).
 ///
 /// NOTE: through a JSON value, whose keys come out in alphabetical order; a reader finds them by name.
-pub(super) fn stream_json(session: &Session) -> String {
+pub(super) fn stream_json(session: &impl Serialize) -> String {
     let mut json = serde_json::to_value(session).unwrap_or_default();
     each_temperature(&mut json, |temp_c| *temp_c = Value::Null);
     serde_json::to_string_pretty(&json).unwrap_or_default()
@@ -32,7 +32,7 @@ pub(super) fn stream_json(session: &Session) -> String {
 
 /// A session file's text read as a session, as [`from_value`] (other sessions' errors with line
 /// and column).
-pub(super) fn parse(text: &str) -> Result<Session, serde_json::Error> {
+pub(super) fn parse<S: DeserializeOwned>(text: &str) -> Result<S, serde_json::Error> {
     let json: Value = serde_json::from_str(text)?;
     match is_stream(&json) {
         true => from_value(json),
@@ -42,7 +42,7 @@ pub(super) fn parse(text: &str) -> Result<Session, serde_json::Error> {
 
 /// A session file's JSON read as a session: a stream session's null temperatures as the 0 its
 /// statistics hold.
-pub(super) fn from_value(mut json: Value) -> Result<Session, serde_json::Error> {
+pub(super) fn from_value<S: DeserializeOwned>(mut json: Value) -> Result<S, serde_json::Error> {
     each_temperature(&mut json, |temp_c| {
         if temp_c.is_null() {
             *temp_c = Value::from(0.0);
@@ -54,7 +54,7 @@ pub(super) fn from_value(mut json: Value) -> Result<Session, serde_json::Error> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::session::{CaptureRecord, SessionKind, StreamSource};
+    use crate::session::{CaptureRecord, Session, SessionKind, StreamSource};
     use shared::protocol::CaptureStats;
     use shared::AccelRange;
 

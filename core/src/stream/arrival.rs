@@ -4,10 +4,6 @@
 
 use crate::limits::{STREAM_QUIET_S, STREAM_UNREADABLE_S};
 
-/// The line a live session adds at the end of its log: the rate it measured from the lines'
-/// arrival, for a stream without timestamps (`StreamLog::parse` reads it back).
-pub const ARRIVAL_RATE_TAG: &str = "# accelcal: lines arrived at";
-
 /// Lines assembled from the bytes a stream sent, each with its arrival.
 #[derive(Debug, Clone, Default)]
 pub struct Arrivals {
@@ -111,12 +107,6 @@ pub fn arrival_hz(times: &[f64]) -> Option<f64> {
         (Some(first), Some(last)) if last > first => Some((timed.len() - 1) as f64 / (last - first)),
         _ => None,
     }
-}
-
-/// The rate a live session's log recorded from the lines' arrival.
-pub fn arrival_rate(text: &str) -> Option<f64> {
-    let line = text.lines().rev().find(|l| l.starts_with(ARRIVAL_RATE_TAG))?;
-    line[ARRIVAL_RATE_TAG.len()..].trim().trim_end_matches("Hz").trim().parse().ok()
 }
 
 #[cfg(test)]

@@ -2,7 +2,7 @@
 //! labels give them, else by how many values a line has (accelerometer before gyro, as every sketch
 //! accelcal knows prints them; a first column that only grows is a clock).
 
-use super::dialect::Dialect;
+use super::conventions::Dialect;
 use super::line::Fields;
 use super::StreamError;
 

@@ -2,50 +2,11 @@
 //! the shape most of them share (record prefix, labels, how many values, the separator), the
 //! header line before them, and the column names in it.
 
-use serde::Serialize;
-
 use super::columns::{name_columns, Columns};
+use super::conventions::Dialect;
 use super::line::{fields, Fields, Words};
 use super::StreamError;
 use crate::limits::DETECTION_LINES;
-
-/// The printing conventions accelcal reads.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Dialect {
-    /// i2cdevlib's MPU6050_raw example: `a/g:` and six counts, tab-separated.
-    I2cdevlib,
-    /// Adafruit's calibration sketch for MotionCal: `Raw:` and nine counts, `Uni:`/`Cal1:`/`Cal2:` between.
-    Motioncal,
-    /// Adafruit_MPU6050's plotter example: `AccelX:0.61,...,GyroZ:0.00` in m/s^2 and rad/s.
-    AdafruitPlotter,
-    /// The Arduino Serial Plotter's `label:value` pairs, any labels.
-    SerialPlotter,
-    /// Comma-separated values, with or without a header line.
-    Csv,
-    /// Numbers separated by spaces or tabs.
-    Whitespace,
-    /// A MicroPython tuple printed per line: `(0.06, -0.05, 0.93)`.
-    Micropython,
-    /// Kalibr's IMU CSV: `timestamp,omega_x,omega_y,omega_z,alpha_x,alpha_y,alpha_z` (ns, rad/s, m/s^2).
-    Kalibr,
-}
-
-impl Dialect {
-    /// The name `--json` prints and the report shows.
-    pub fn name(self) -> &'static str {
-        match self {
-            Dialect::I2cdevlib => "i2cdevlib",
-            Dialect::Motioncal => "motioncal",
-            Dialect::AdafruitPlotter => "adafruit-plotter",
-            Dialect::SerialPlotter => "serial-plotter",
-            Dialect::Csv => "csv",
-            Dialect::Whitespace => "whitespace",
-            Dialect::Micropython => "micropython",
-            Dialect::Kalibr => "kalibr",
-        }
-    }
-}
 
 /// The shape of a data line: lines of one stream share it.
 #[derive(Debug, Clone, PartialEq)]

@@ -106,6 +106,16 @@ pub fn text_of(bytes: &[u8]) -> String {
     String::from_utf8_lossy(bytes).into_owned()
 }
 
+/// The line a live session adds at the end of its log: the rate it measured from the lines'
+/// arrival, for a stream without timestamps (`StreamLog::parse` reads it back).
+pub const ARRIVAL_RATE_TAG: &str = "# accelcal: lines arrived at";
+
+/// The rate a live session's log recorded from the lines' arrival.
+pub fn arrival_rate(text: &str) -> Option<f64> {
+    let line = text.lines().rev().find(|l| l.starts_with(ARRIVAL_RATE_TAG))?;
+    line[ARRIVAL_RATE_TAG.len()..].trim().trim_end_matches("Hz").trim().parse().ok()
+}
+
 /// A whole stream, read.
 #[derive(Debug, Clone)]
 pub struct StreamLog {
@@ -139,7 +149,7 @@ impl StreamLog {
         let time_unit = time_unit(&layout, &samples);
         samples.iter_mut().for_each(|s| s.time = s.time.zip(time_unit).map(|(t, unit)| t * unit));
         let times: Vec<f64> = samples.iter().filter_map(|s| s.time).collect();
-        let arrival = super::arrival::arrival_rate(text).map(|hz| Rate { hz, source: RateSource::ArrivalTimes });
+        let arrival = arrival_rate(text).map(|hz| Rate { hz, source: RateSource::ArrivalTimes });
         let rate = timing::rate_of(&times, RateSource::Timestamps).or(arrival);
         StreamLog::new(layout, samples, dropped, rate, options)
     }

@@ -6,6 +6,7 @@
 
 pub mod arrival;
 mod columns;
+mod conventions;
 pub mod cost;
 pub mod dialect;
 mod dropped;
@@ -21,10 +22,11 @@ pub mod turns;
 pub mod units;
 
 pub use columns::Columns;
-pub use dialect::{Dialect, Layout};
+pub use conventions::Dialect;
+pub use dialect::Layout;
 pub use dropped::{DropReason, Dropped};
 pub use heard::read_heard;
-pub use log::{checked_text, text_of, LineReader, StreamLog, StreamOptions, StreamSample};
+pub use log::{checked_text, text_of, LineReader, StreamLog, StreamOptions, StreamSample, ARRIVAL_RATE_TAG};
 pub use segment::{segment, Segment, Stillness};
 pub use still::{SegmentLines, StillPeriods};
 pub use units::{AccelUnit, GyroUnit};

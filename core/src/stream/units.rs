@@ -3,14 +3,12 @@
 //! whatever unit), and the gyro's follows the accelerometer's convention unless a flag says better.
 
 use serde::Serialize;
-use shared::AccelRange;
+use shared::{AccelRange, GyroRange, STANDARD_GRAVITY};
 
-use super::dialect::Dialect;
+use super::conventions::Dialect;
 use super::StreamError;
 use crate::limits::{COUNTS_SPAN, READABLE_MARGIN, UNIT_TOLERANCE, WIDEST_RANGE_DPS, WIDEST_RANGE_G};
 
-/// Standard gravity, in m/s^2 (the unit's definition, CGPM 1901).
-pub const STANDARD_GRAVITY: f64 = 9.80665;
 /// MotionCal's sketch prints acceleration as m/s^2 * 8192 / 9.8 (Adafruit's `calibration` example).
 const MOTIONCAL_COUNTS_PER_MS2: f64 = 8192.0 / 9.8;
 /// MotionCal's sketch prints the gyro as deg/s * 16.
@@ -93,10 +91,10 @@ impl AccelUnit {
             AccelUnit::G => 1.0,
             AccelUnit::MilliG => 1000.0,
             AccelUnit::MetersPerSecond2 => STANDARD_GRAVITY,
-            AccelUnit::Counts2g => 16384.0,
-            AccelUnit::Counts4g => 8192.0,
-            AccelUnit::Counts8g => 4096.0,
-            AccelUnit::Counts16g => 2048.0,
+            AccelUnit::Counts2g => f64::from(AccelRange::G2.lsb_per_g()),
+            AccelUnit::Counts4g => f64::from(AccelRange::G4.lsb_per_g()),
+            AccelUnit::Counts8g => f64::from(AccelRange::G8.lsb_per_g()),
+            AccelUnit::Counts16g => f64::from(AccelRange::G16.lsb_per_g()),
             AccelUnit::MotionCal => MOTIONCAL_COUNTS_PER_MS2 * STANDARD_GRAVITY,
         }
     }
@@ -170,10 +168,10 @@ impl GyroUnit {
         match self {
             GyroUnit::DegPerS => 1.0,
             GyroUnit::RadPerS => 1f64.to_radians(),
-            GyroUnit::Counts250 => 131.0,
-            GyroUnit::Counts500 => 65.5,
-            GyroUnit::Counts1000 => 32.8,
-            GyroUnit::Counts2000 => 16.4,
+            GyroUnit::Counts250 => GyroRange::Dps250.lsb_per_dps(),
+            GyroUnit::Counts500 => GyroRange::Dps500.lsb_per_dps(),
+            GyroUnit::Counts1000 => GyroRange::Dps1000.lsb_per_dps(),
+            GyroUnit::Counts2000 => GyroRange::Dps2000.lsb_per_dps(),
             GyroUnit::MotionCal => MOTIONCAL_COUNTS_PER_DPS,
         }
     }

@@ -2,7 +2,7 @@
 
 use embedded_hal_async::i2c::I2c;
 use shared::part::Family;
-use shared::protocol::{LowPassFilter, SensorConfig};
+use shared::protocol::{LowPassFilter, SensorConfig, GYRO_RANGE};
 use shared::AccelRange;
 
 use super::access::write_each;
@@ -20,7 +20,7 @@ impl Sensor {
         let writes = [
             (reg::PWR_MGMT_1, reg::PWR_MGMT_1_AWAKE_PLL_X),
             (reg::ACCEL_CONFIG, afs_sel(config.range) << reg::FULL_SCALE_SHIFT),
-            (reg::GYRO_CONFIG, reg::FS_SEL_1000_DPS << reg::FULL_SCALE_SHIFT),
+            (reg::GYRO_CONFIG, GYRO_RANGE.fs_sel() << reg::FULL_SCALE_SHIFT),
             (reg::CONFIG, dlpf_cfg(config.filter)),
             (reg::SMPLRT_DIV, divider),
             (reg::INT_ENABLE, reg::FIFO_OFLOW),

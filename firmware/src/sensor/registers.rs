@@ -54,8 +54,6 @@ pub const USER_CTRL_FIFO_RESET: u8 = 1 << 2;
 pub const SELF_TEST_BITS: u8 = 0b1110_0000;
 /// Bit position of the full-scale field in GYRO_CONFIG and ACCEL_CONFIG (sections 4.4, 4.5).
 pub const FULL_SCALE_SHIFT: u8 = 3;
-/// GYRO_CONFIG's FS_SEL for +-1000 deg/s (section 4.4); see [`GYRO_LSB_PER_DPS`] for why.
-pub const FS_SEL_1000_DPS: u8 = 2;
 /// PWR_MGMT_1: SLEEP bit, set at power-up (section 4.30).
 pub const PWR_MGMT_1_SLEEP: u8 = 1 << 6;
 /// PWR_MGMT_1: DEVICE_RESET bit, self-clearing (section 4.30).
@@ -70,15 +68,9 @@ pub const FIFO_SAMPLE_LEN: usize = 14;
 pub const FIFO_LEN: usize = 1024;
 /// Gyro output rate with the digital low-pass filter on, in Hz (section 4.2).
 pub const GYRO_OUTPUT_RATE_HZ: u32 = 1000;
-/// Gyro sensitivity by FS_SEL (+-250, 500, 1000, 2000 deg/s), LSB per deg/s (Product Specification
-/// section 6.1; the table's own rounded figures, not 131 halved).
-pub const GYRO_LSB_PER_DPS_BY_FS_SEL: [f32; 4] = [131.0, 65.5, 32.8, 16.4];
-/// Gyro sensitivity at +-1000 deg/s (FS_SEL = 2), LSB per deg/s (Product Specification section 6.1).
-///
-/// NOTE: +-1000 deg/s, because a hand turning the board between positions reaches several hundred
-/// deg/s and a clipped sample corrupts the turn's integral; the 0.03 deg/s step stays below the
-/// rate noise at any sample rate the tool uses (0.035 deg/s at 100 Hz).
-pub const GYRO_LSB_PER_DPS: f32 = GYRO_LSB_PER_DPS_BY_FS_SEL[2];
+/// Gyro sensitivity of the range the firmware sets ([`shared::protocol::GYRO_RANGE`], which says
+/// why), LSB per deg/s, as the f32 every conversion on the chip divides by.
+pub const GYRO_LSB_PER_DPS: f32 = shared::protocol::GYRO_RANGE.lsb_per_dps() as f32;
 /// Temperature: degC = raw / 340 + 36.53 (section 4.18); the driver hands every part's temperature
 /// on in this encoding.
 pub const TEMP_LSB_PER_C: f32 = shared::part::TemperatureFormula::MPU6050.lsb_per_c;

@@ -16,6 +16,7 @@ pub mod thermal;
 
 use heapless::Deque;
 use shared::linalg::{self, Vec3};
+use shared::GyroRange;
 
 use crate::sensor::registers as reg;
 pub use board::{sim_serial_number, SimFlash, SIM_FLASH_RANGE};
@@ -199,8 +200,8 @@ impl SimMpu6050 {
         self.part.apply_self_test(self.register(reg::ACCEL_CONFIG), self.register(reg::GYRO_CONFIG), &mut sample);
         self.part.apply_offsets(&self.registers, &mut sample);
         let accel_lsb = f32::from(16384u16 >> ((self.register(reg::ACCEL_CONFIG) >> reg::FULL_SCALE_SHIFT) & 0x03));
-        let gyro_lsb = reg::GYRO_LSB_PER_DPS_BY_FS_SEL
-            [usize::from((self.register(reg::GYRO_CONFIG) >> reg::FULL_SCALE_SHIFT) & 0x03)];
+        let gyro_range = GyroRange::from_fs_sel(self.register(reg::GYRO_CONFIG) >> reg::FULL_SCALE_SHIFT);
+        let gyro_lsb = gyro_range.lsb_per_dps() as f32;
         let words = [
             quantise(sample.accel_g[0] * accel_lsb),
             quantise(sample.accel_g[1] * accel_lsb),

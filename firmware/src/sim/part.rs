@@ -3,7 +3,7 @@
 //! trim codes and the self-test response), and a faulty axis to inject.
 
 use shared::part::{accel_offset_g, Family, Part, TemperatureFormula};
-use shared::selftest::{self, GYRO_LSB_PER_DPS_AT_250};
+use shared::selftest::{self, SELF_TEST_GYRO_RANGE};
 
 use super::physics::PhysicalSample;
 use crate::sensor::registers as reg;
@@ -117,7 +117,11 @@ impl SimPart {
     /// The self-test response of `axis` (0-5): accelerometer in g, gyro in deg/s.
     pub fn self_test_response(&self, axis: usize) -> f32 {
         let trim_lsb = selftest::factory_trim_lsb(self.family, axis, self.codes[axis]).unwrap_or(0.0);
-        let per_unit = if axis < 3 { self.family.self_test_range().lsb_per_g() } else { GYRO_LSB_PER_DPS_AT_250 };
+        let per_unit = if axis < 3 {
+            self.family.self_test_range().lsb_per_g()
+        } else {
+            SELF_TEST_GYRO_RANGE.lsb_per_dps() as f32
+        };
         trim_lsb / per_unit * self.response_ratio[axis]
     }
 

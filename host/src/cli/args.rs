@@ -5,14 +5,16 @@ use std::path::PathBuf;
 use clap::{Args, Parser, Subcommand};
 use shared::protocol::DEFAULT_CAPTURE_SECONDS;
 
-pub use super::device::Device;
-pub use super::export::ExportArgs;
-pub use super::record::RecordArgs;
-pub use super::report::ReportArgs;
-use super::values::{placement_deg, rate_help, seconds, seconds_help, stream_rate, target_span_c};
+use super::values::{
+    baud, placement_deg, pull, rate_help, seconds, seconds_help, stream_rate, target_mg, target_span_c, turn_on_bias_mg,
+};
 use crate::data::RowList;
+use crate::export::Target;
 use crate::fit::ModelChoice;
-use crate::limits::{FACE_TOLERANCE_DEG, MAX_VERIFY_POSITIONS};
+use crate::limits::{DEFAULT_TARGET_MG, FACE_TOLERANCE_DEG, MAX_BOARDS, MAX_RECORD_SECONDS, MAX_VERIFY_POSITIONS};
+use crate::link::port::DEFAULT_BAUD;
+use crate::procedure::Pull;
+use crate::sim::{FaultyAxis, SimPartChoice, SimSensor};
 
 /// Calibrates the accelerometer of an MPU-6050.
 #[derive(Parser)]
@@ -92,7 +94,7 @@ pub struct CalibrateArgs {
     #[arg(long, value_parser = clap::value_parser!(u8).range(1..=MAX_VERIFY_POSITIONS))]
     pub verify: Option<u8>,
     #[command(flatten)]
-    pub length: super::length::LengthArgs,
+    pub length: LengthArgs,
     /// Upload and save without asking.
     #[arg(long)]
     pub yes: bool,
@@ -121,7 +123,7 @@ pub struct CalibrateArgs {
     #[arg(long)]
     pub sim_hand_seed: Option<u64>,
     #[command(flatten)]
-    pub fixture: super::fixture::FixtureArgs,
+    pub fixture: FixtureArgs,
 }
 
 /// `accelcal thermal`.
@@ -211,7 +213,7 @@ pub enum Command {
         registers: bool,
     },
     /// The datasheet self-test of the sensor: each axis's response against its factory trim, beside the board's previous one.
-    Selftest(super::selftest::SelftestArgs),
+    Selftest(SelftestArgs),
     /// The guided calibration: positions, captures, fit, upload, save, verification.
     Calibrate(CalibrateArgs),
     /// Writes a session's report: one self-contained HTML page with plots (and text or JSON on stdout).
@@ -219,12 +221,12 @@ pub enum Command {
     /// Captures one position into a session file.
     Capture(CaptureArgs),
     /// A session's calibration certificate (uncertainties at k = 2, hashed), or the check of one.
-    Certificate(super::certificate::CertificateArgs),
+    Certificate(CertificateArgs),
     /// The lot database: every board's certificates in one SQLite file, the lot's distributions and Cpk.
-    Lot(super::lot::LotArgs),
+    Lot(LotArgs),
     /// N calibrations of one simulated board with a power cycle between them: each parameter's spread
     /// beside the standard error the sessions predicted.
-    Repeat(super::repeat::RepeatArgs),
+    Repeat(RepeatArgs),
     /// Uploads a calibration (from `download`, `calibrate --json`, or `fit --json` on data in g) and makes it active.
     Upload {
         #[command(flatten)]
@@ -294,4 +296,216 @@ pub enum Command {
         #[arg(long, value_name = "UF2", conflicts_with_all = ["sketch", "fast"])]
         pico: Option<std::path::PathBuf>,
     },
+}
+
+/// `accelcal certificate`.
+#[derive(Args)]
+pub struct CertificateArgs {
+    #[command(subcommand)]
+    pub action: CertificateAction,
+}
+
+/// What to do with a certificate.
+#[derive(Subcommand)]
+pub enum CertificateAction {
+    /// Issues the certificate of a session (PATH.certificate.json and PATH.certificate.html beside it).
+    Issue {
+        /// The session file (PATH.json written by calibrate --session).
+        session: PathBuf,
+        /// Print the certificate as JSON too.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Checks that a certificate file is unchanged since it was issued (its SHA-256).
+    Verify {
+        /// The certificate's .json file.
+        file: PathBuf,
+    },
+}
+
+/// Which device to talk to.
+#[derive(Args, Clone)]
+pub struct Device {
+    /// Serial port of the board (see `accelcal ports`), or of `accelcal sim --pty`; or the board's
+    /// serial number as `accelcal ports` shows it. Without --port or --sim: the one accelcal board
+    /// plugged in (by its USB ids, or by its handshake on a USB port of another identity).
+    #[arg(long, conflicts_with = "sim")]
+    pub port: Option<String>,
+    /// With --port: the baud rate of a UART bridge (the sketch's `Serial.begin`); USB serial ignores it.
+    #[arg(long, default_value_t = DEFAULT_BAUD, value_parser = baud, conflicts_with = "sim")]
+    pub baud: u32,
+    /// A simulated board in this process (its flash lasts as long as the command).
+    #[arg(long)]
+    pub sim: bool,
+    /// With --sim: seed of the simulated sensor's noise and of the hand's placement.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// With --sim: the simulated sensor, realistic (warming and drifting; the default for one board),
+    /// settled (one temperature) or drawn (realistic, a part drawn by the seed from the datasheet's
+    /// spreads; the default for `calibrate --boards N`).
+    #[arg(long, value_enum)]
+    pub sim_sensor: Option<SimSensor>,
+    /// With --sim: the simulated part (its register map, temperature formula and self-test).
+    #[arg(long, value_enum, default_value_t = SimPartChoice::Mpu6050)]
+    pub sim_part: SimPartChoice,
+    /// With --sim: this axis' self-test response is 20 % off its factory trim.
+    #[arg(long, value_enum)]
+    pub sim_faulty_axis: Option<FaultyAxis>,
+}
+
+/// `accelcal export`.
+#[derive(Args)]
+pub struct ExportArgs {
+    /// The calibration: what `calibrate --json`, `fit --json` (in g), `download` or a session (SESSION.json) wrote; leave it out with --port or --sim for the board's active calibration.
+    #[arg(required_unless_present_any = ["port", "sim"], conflicts_with_all = ["port", "sim"])]
+    pub calibration: Option<PathBuf>,
+    /// The format (each says what of the calibration it carries).
+    #[arg(long, value_enum)]
+    pub to: Target,
+    /// The file to write (default: stdout; the binary adafruit-eeprom needs a file).
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+    /// The noise report (`accelcal noise RECORDING --json`) whose terms go into the kalibr imu.yaml.
+    #[arg(long, value_name = "NOISE.json")]
+    pub noise: Option<PathBuf>,
+    #[command(flatten)]
+    pub device: Device,
+}
+
+/// `calibrate`'s boards on one fixture.
+#[derive(Args, Clone, Debug)]
+pub struct FixtureArgs {
+    /// With --sim: how many simulated boards one fixture holds, calibrated together by one hand, each
+    /// its own part (seeds --seed, --seed + 1, ...; --sim-sensor drawn unless given).
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u16).range(1..=MAX_BOARDS), requires = "sim")]
+    pub boards: u16,
+    /// Several boards on one fixture, calibrated together: their ports (or serial numbers), comma-separated.
+    #[arg(long, value_delimiter = ',', num_args = 1.., conflicts_with_all = ["sim", "port"])]
+    pub ports: Vec<String>,
+    /// Every accelcal board plugged in, calibrated together on one fixture.
+    #[arg(long, conflicts_with_all = ["sim", "port", "ports"])]
+    pub all_boards: bool,
+    /// With --sim --boards: board K's cable is pulled right after the fixture's N-th turn (K:N, from 1),
+    /// to see a board fail while the others go on.
+    #[arg(long, value_name = "K:N", value_parser = pull, requires = "boards")]
+    pub sim_pull: Option<Pull>,
+}
+
+/// `calibrate`'s target and noise.
+#[derive(Args, Clone, Debug)]
+pub struct LengthArgs {
+    /// The | |a| - 1 g | error wanted at a fresh orientation, in mg (0.05-10): positions stop
+    /// when their mean is known well enough for it, the session when the fit predicts it.
+    #[arg(long, default_value_t = DEFAULT_TARGET_MG, value_parser = target_mg)]
+    pub target_mg: f64,
+    /// A noise report (`accelcal noise RECORDING --json`): each capture's length from its white
+    /// noise instead of from the scatter the board measures during the capture.
+    #[arg(long, value_name = "NOISE.json")]
+    pub noise_report: Option<PathBuf>,
+}
+
+/// `accelcal lot`.
+#[derive(Args)]
+pub struct LotArgs {
+    #[command(subcommand)]
+    pub action: LotAction,
+}
+
+/// What to do with a lot database.
+#[derive(Subcommand)]
+pub enum LotAction {
+    /// Adds certificates (each checked against its hash) to the lot, creating the file when new.
+    Add {
+        /// The lot database (one SQLite file).
+        lot: PathBuf,
+        /// Certificate files (PATH.certificate.json written by calibrate --session).
+        #[arg(required = true)]
+        certificates: Vec<PathBuf>,
+    },
+    /// Each parameter's distribution over the lot (each board's latest certificate), Cpk against the
+    /// spec's limits and the boards outside them.
+    Show {
+        lot: PathBuf,
+        /// The spec file: TOML, `[limits.NAME]` with `low` and/or `high` in the certificate's units.
+        #[arg(long)]
+        spec: Option<PathBuf>,
+        /// Print one JSON object.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Every calibration of one board, by its serial.
+    Board {
+        lot: PathBuf,
+        serial: String,
+        /// Print the certificates as a JSON array.
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+/// `accelcal record`.
+#[derive(Args)]
+pub struct RecordArgs {
+    #[command(flatten)]
+    pub device: Device,
+    /// The recording to write (NumPy .npy; `np.load(FILE)` in Python).
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// How long to record, in seconds.
+    #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u32).range(1..=MAX_RECORD_SECONDS))]
+    pub seconds: u32,
+    /// The sensor's sample rate, every sample recorded (must divide 1000 Hz).
+    #[arg(long, default_value_t = 1000, value_parser = clap::value_parser!(u16).range(1..=1000))]
+    pub rate: u16,
+}
+
+/// `accelcal repeat`.
+#[derive(Args)]
+pub struct RepeatArgs {
+    /// Calibrations of the board (2-1000), each after a power cycle.
+    #[arg(value_parser = clap::value_parser!(u16).range(2..=1000))]
+    pub sessions: u16,
+    #[command(flatten)]
+    pub device: Device,
+    /// With --sim: the turn-on bias repeatability to inject, the standard deviation of each axis'
+    /// offset from one power-on to the next, in mg (0-50).
+    #[arg(long, default_value_t = 0.0, value_parser = turn_on_bias_mg)]
+    pub sim_turn_on_bias_mg: f64,
+    /// Print one JSON object.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// `accelcal report`.
+#[derive(Args)]
+pub struct ReportArgs {
+    /// The session file (PATH.json written by calibrate --session or capture).
+    pub session: PathBuf,
+    /// Where to write the HTML page (default: beside the session, PATH.html).
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+    /// Print the report as one JSON object instead of text (the page is written only with -o).
+    #[arg(long)]
+    pub json: bool,
+    /// Add the board's temperature model and its bins (the output of `accelcal thermal --json`).
+    #[arg(long, value_name = "THERMAL.json")]
+    pub thermal: Option<PathBuf>,
+    /// Add the board's Allan deviation (the output of `accelcal noise --json`, or a recording).
+    #[arg(long, value_name = "NOISE.json")]
+    pub noise: Option<PathBuf>,
+}
+
+/// `accelcal selftest`.
+#[derive(Args)]
+pub struct SelftestArgs {
+    #[command(flatten)]
+    pub device: Device,
+    /// Print one JSON object.
+    #[arg(long)]
+    pub json: bool,
+    /// The folder that keeps each board's self-tests (`selftest-SERIAL.json`); a real board's go to
+    /// $XDG_DATA_HOME/accelcal (~/.local/share/accelcal) unless given; a simulated board's are kept
+    /// only when given.
+    #[arg(long)]
+    pub history: Option<PathBuf>,
 }

@@ -9,8 +9,7 @@ use shared::Calibration;
 use super::args::{Device, StreamArgs};
 use crate::calibration::{describe, CalibrationJson};
 use crate::error::Error;
-use crate::limits::LISTEN_FIRST;
-use crate::link::{ask, explain, is_worth_asking, serial_ports, Answer, LinkError, SerialPortEntry, StreamRequest};
+use crate::link::{ask, explain, is_worth_asking, serial_ports, Answer, LinkError, StreamRequest};
 use crate::link::{Client, Port};
 use crate::part::check::{check_family, FamilyCheck, FamilyCheckJson};
 use crate::part::{describe as describe_part, format_dump, part_name, register_dump};
@@ -29,7 +28,7 @@ pub(super) fn ports() -> Result<(), Error> {
         let behind = if port.is_accelcal {
             "  <- accelcal board".to_owned()
         } else if is_worth_asking(&port) {
-            asking(&port);
+            super::device::asking(&port);
             answered(ask(&port.path))
         } else {
             String::new()
@@ -37,16 +36,6 @@ pub(super) fn ports() -> Result<(), Error> {
         println!("{}{serial}{behind}", port.path);
     }
     Ok(())
-}
-
-/// The progress line before a port is asked (which takes over a second).
-pub(super) fn asking(port: &SerialPortEntry) {
-    let (vendor, product) = port.usb_ids.unwrap_or_default();
-    eprintln!(
-        "asking {} (USB {vendor:04x}:{product:04x}, not accelcal's ids): listening {:.1} s first, then accelcal's hello",
-        port.path,
-        LISTEN_FIRST.as_secs_f64()
-    );
 }
 
 /// What `ports` shows after a port of another USB identity: the board found by its handshake, or
@@ -110,7 +99,7 @@ pub(super) fn info(device: &Device, json: bool, registers: bool) -> Result<(), E
     let stored = client.calibration(CalibrationSlot::Stored)?;
     let dump = if registers { Some(register_dump(client)?) } else { None };
     let info = &opened.connection.info;
-    client.interrupt_on(super::calibrate::interrupt_on_ctrl_c());
+    client.interrupt_on(super::terminal::interrupt_on_ctrl_c());
     let family = family_check_for_info(client, info)?;
     if json {
         let output = InfoJson { registers: dump, ..info_json(info, active.as_ref(), stored.as_ref(), family) };

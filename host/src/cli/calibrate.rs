@@ -13,7 +13,6 @@ use super::args::CalibrateArgs;
 use super::choice::{fit_with_gyro, show_choice, Fitted};
 use super::device::Opened;
 use super::kept::{self, Kept};
-use super::terminal::feedback;
 use crate::calibration;
 use crate::certificate::Certificate;
 use crate::error::Error;
@@ -21,31 +20,6 @@ use crate::link::{Client, LinkError, Port};
 use crate::procedure::{self, CollectOptions, Feedback, Moves, ProcedureError, TurnCheck, Turning, Verification};
 use crate::report::{self, CalibrateReport};
 use crate::session::{stem_file, Session, SessionError, SessionKind, TargetVerdict};
-
-/// `accelcal calibrate`: captures, fit, upload, save, verification; several boards on one fixture
-/// together.
-pub(super) fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
-    // NOTE: refused before anything happens: a run that could only end without the upload it was
-    // asked for must not start (the simulated board, turned by the tool itself, needs no answer).
-    if args.json && !args.yes && !args.device.sim {
-        return Err(Error::JsonCannotAsk);
-    }
-    if super::fixture::holds_several(args) {
-        return super::fixture::calibrate_together(args);
-    }
-    let opened = match args.device.open_or_talking()? {
-        Ok(opened) => opened,
-        Err(talking) => return super::foreign::calibrate_from_stream(args, *talking),
-    };
-    // NOTE: with --json only the simulated board (turned by the tool) is silent: a person at a real
-    // board still needs the instructions, which go to stderr, leaving stdout to the JSON.
-    let simulated = opened.sim.is_some();
-    let mut feedback = feedback(args.json && simulated, args.yes || (args.json && simulated));
-    match calibrate_board(args, opened, interrupt_on_ctrl_c(), feedback.as_mut())? {
-        Some(report) => show(&report, args.json),
-        None => Ok(()),
-    }
-}
 
 /// One board's session, from its first capture to its verified report (`None`: the upload was
 /// declined); the same for a board alone and for each board on a fixture.
@@ -232,17 +206,6 @@ fn keep_with_report(
     };
     feedback.say(&format!("session kept in {}; report written to {}{certificate}", json.display(), page.display()));
     Ok(())
-}
-
-/// A flag that Ctrl-C sets (instead of ending the process), so that the capture is cancelled on
-/// the board and the session stays as written.
-pub(super) fn interrupt_on_ctrl_c() -> Arc<AtomicBool> {
-    let flag = Arc::new(AtomicBool::new(false));
-    let set = flag.clone();
-    // NOTE: fails only when a handler is already set; without one, Ctrl-C ends the process and the
-    // session still holds every capture written so far.
-    let _ = ctrlc::set_handler(move || set.store(true, Ordering::SeqCst));
-    flag
 }
 
 /// The device flags that reach the same board again, for the resume hint.

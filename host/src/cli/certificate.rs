@@ -4,37 +4,11 @@
 use crate::session::SessionFiles;
 use std::path::{Path, PathBuf};
 
-use clap::{Args, Subcommand};
-
+use super::args::{CertificateAction, CertificateArgs};
 use crate::certificate::{self, Certificate};
 use crate::error::Error;
 use crate::procedure::Feedback;
 use crate::session::{stem_file, stem_of, write_atomically, Session, TargetVerdict};
-
-/// `accelcal certificate`.
-#[derive(Args)]
-pub struct CertificateArgs {
-    #[command(subcommand)]
-    pub action: CertificateAction,
-}
-
-/// What to do with a certificate.
-#[derive(Subcommand)]
-pub enum CertificateAction {
-    /// Issues the certificate of a session (PATH.certificate.json and PATH.certificate.html beside it).
-    Issue {
-        /// The session file (PATH.json written by calibrate --session).
-        session: PathBuf,
-        /// Print the certificate as JSON too.
-        #[arg(long)]
-        json: bool,
-    },
-    /// Checks that a certificate file is unchanged since it was issued (its SHA-256).
-    Verify {
-        /// The certificate's .json file.
-        file: PathBuf,
-    },
-}
 
 /// Runs `accelcal certificate`.
 pub(super) fn certificate(args: &CertificateArgs) -> Result<(), Error> {

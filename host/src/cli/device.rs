@@ -4,62 +4,15 @@
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use clap::Args;
-
+use super::args::Device;
 use crate::error::Error;
-use crate::limits::{BAUD_RANGE, SIM_WAIT_LIMIT};
-use crate::link::port::DEFAULT_BAUD;
+use crate::limits::{LISTEN_FIRST, SIM_WAIT_LIMIT};
 use crate::link::{
-    find_board, open_listening, open_port, resolve_port, serial_ports, Connection, PortOpened, TalkingPort,
+    find_board, open_listening, open_port, resolve_port, serial_ports, Connection, PortOpened, SerialPortEntry,
+    TalkingPort,
 };
 use crate::procedure::{BoardClock, Fixture, Hand, PersonHand, Seat, SimulatedHand, SimulatedMember};
-use crate::sim::{FaultyAxis, SimBoard, SimPartChoice, SimSensor};
-
-/// Which device to talk to.
-#[derive(Args, Clone)]
-pub struct Device {
-    /// Serial port of the board (see `accelcal ports`), or of `accelcal sim --pty`; or the board's
-    /// serial number as `accelcal ports` shows it. Without --port or --sim: the one accelcal board
-    /// plugged in (by its USB ids, or by its handshake on a USB port of another identity).
-    #[arg(long, conflicts_with = "sim")]
-    pub port: Option<String>,
-    /// With --port: the baud rate of a UART bridge (the sketch's `Serial.begin`); USB serial ignores it.
-    #[arg(long, default_value_t = DEFAULT_BAUD, value_parser = baud, conflicts_with = "sim")]
-    pub baud: u32,
-    /// A simulated board in this process (its flash lasts as long as the command).
-    #[arg(long)]
-    pub sim: bool,
-    /// With --sim: seed of the simulated sensor's noise and of the hand's placement.
-    #[arg(long, default_value_t = 1)]
-    pub seed: u64,
-    /// With --sim: the simulated sensor, realistic (warming and drifting; the default for one board),
-    /// settled (one temperature) or drawn (realistic, a part drawn by the seed from the datasheet's
-    /// spreads; the default for `calibrate --boards N`).
-    #[arg(long, value_enum)]
-    pub sim_sensor: Option<SimSensor>,
-    /// With --sim: the simulated part (its register map, temperature formula and self-test).
-    #[arg(long, value_enum, default_value_t = SimPartChoice::Mpu6050)]
-    pub sim_part: SimPartChoice,
-    /// With --sim: this axis' self-test response is 20 % off its factory trim.
-    #[arg(long, value_enum)]
-    pub sim_faulty_axis: Option<FaultyAxis>,
-}
-
-/// A baud rate within [`BAUD_RANGE`]; the cause when not.
-fn baud(text: &str) -> Result<u32, String> {
-    let baud: u32 =
-        text.parse().map_err(|_| format!("{text:?} is not a baud rate: give a whole number such as 115200"))?;
-    if BAUD_RANGE.contains(&baud) {
-        Ok(baud)
-    } else {
-        Err(format!(
-            "{baud} Bd is not in {}-{} Bd: below it no sketch prints a sensor, above it no USB UART bridge goes; \
-             give the number in the sketch's Serial.begin",
-            BAUD_RANGE.start(),
-            BAUD_RANGE.end()
-        ))
-    }
-}
+use crate::sim::SimBoard;
 
 /// An open device, and the simulated board behind it when there is one.
 pub(super) struct Opened {
@@ -101,7 +54,7 @@ impl Device {
                 Ok(Opened::new(connection, Some(board), self.seed))
             }
             (None, false) => {
-                let connection = find_board(&serial_ports()?, &mut super::board::asking)?;
+                let connection = find_board(&serial_ports()?, &mut asking)?;
                 Ok(Opened::new(connection, None, self.seed))
             }
         }
@@ -145,6 +98,16 @@ impl Opened {
     }
 }
 
+/// The progress line before a port is asked (which takes over a second).
+pub(super) fn asking(port: &SerialPortEntry) {
+    let (vendor, product) = port.usb_ids.unwrap_or_default();
+    eprintln!(
+        "asking {} (USB {vendor:04x}:{product:04x}, not accelcal's ids): listening {:.1} s first, then accelcal's hello",
+        port.path,
+        LISTEN_FIRST.as_secs_f64()
+    );
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -159,15 +122,5 @@ mod tests {
         let (first, second) = (opened.clock(), opened.clock());
         assert!(first() >= 5.0 && second() >= 5.0, "{} s and {} s since it was opened 5 s ago", first(), second());
         assert!((second() - first()).abs() < 0.5);
-    }
-
-    #[test]
-    fn a_baud_rate_is_taken_within_what_bridges_go_and_a_nonsense_one_refused_with_its_cause() {
-        assert_eq!(baud("38400"), Ok(38_400));
-        assert_eq!(baud("300"), Ok(300));
-        let zero = baud("0").unwrap_err();
-        assert!(zero.contains("0 Bd is not in 300-6000000 Bd") && zero.contains("Serial.begin"), "{zero}");
-        assert!(baud("9000000").unwrap_err().contains("no USB UART bridge"));
-        assert!(baud("fast").unwrap_err().contains("\"fast\" is not a baud rate"));
     }
 }

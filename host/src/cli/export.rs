@@ -1,34 +1,14 @@
 //! `accelcal export`: the calibration in the format of another program (host/src/export).
 
 use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use clap::Args;
 use shared::protocol::CalibrationSlot;
 
-use super::args::Device;
+use super::args::{Device, ExportArgs};
 use crate::error::Error;
 use crate::export::{self, Noise, Readings, Source, Target};
 use crate::session::{write_atomically, BoardRecord};
-
-/// `accelcal export`.
-#[derive(Args)]
-pub struct ExportArgs {
-    /// The calibration: what `calibrate --json`, `fit --json` (in g), `download` or a session (SESSION.json) wrote; leave it out with --port or --sim for the board's active calibration.
-    #[arg(required_unless_present_any = ["port", "sim"], conflicts_with_all = ["port", "sim"])]
-    pub calibration: Option<PathBuf>,
-    /// The format (each says what of the calibration it carries).
-    #[arg(long, value_parser = super::named::named::<Target>())]
-    pub to: Target,
-    /// The file to write (default: stdout; the binary adafruit-eeprom needs a file).
-    #[arg(short, long)]
-    pub output: Option<PathBuf>,
-    /// The noise report (`accelcal noise RECORDING --json`) whose terms go into the kalibr imu.yaml.
-    #[arg(long, value_name = "NOISE.json")]
-    pub noise: Option<PathBuf>,
-    #[command(flatten)]
-    pub device: Device,
-}
 
 /// Reads the calibration, exports it, writes the file (or stdout) and says what it carries.
 pub(super) fn export(args: &ExportArgs) -> Result<(), Error> {

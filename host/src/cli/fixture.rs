@@ -6,39 +6,18 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
 
-use clap::Args;
 use serde::Serialize;
 
 use super::args::CalibrateArgs;
-use super::calibrate::{calibrate_board, interrupt_on_ctrl_c};
+use super::calibrate::calibrate_board;
 use super::device::Opened;
-use super::values::pull;
+use super::terminal::interrupt_on_ctrl_c;
 use crate::error::Error;
-use crate::limits::MAX_BOARDS;
 use crate::link::{find_boards, serial_ports};
-use crate::procedure::{Feedback, Fixture, Pull};
+use crate::procedure::{Feedback, Fixture};
 use crate::report::{self, CalibrateReport};
 use crate::session::{unix_time_s, BoardRecord, SessionError};
 use crate::sim::SimSensor;
-
-/// `calibrate`'s boards on one fixture.
-#[derive(Args, Clone, Debug)]
-pub struct FixtureArgs {
-    /// With --sim: how many simulated boards one fixture holds, calibrated together by one hand, each
-    /// its own part (seeds --seed, --seed + 1, ...; --sim-sensor drawn unless given).
-    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u16).range(1..=MAX_BOARDS), requires = "sim")]
-    pub boards: u16,
-    /// Several boards on one fixture, calibrated together: their ports (or serial numbers), comma-separated.
-    #[arg(long, value_delimiter = ',', num_args = 1.., conflicts_with_all = ["sim", "port"])]
-    pub ports: Vec<String>,
-    /// Every accelcal board plugged in, calibrated together on one fixture.
-    #[arg(long, conflicts_with_all = ["sim", "port", "ports"])]
-    pub all_boards: bool,
-    /// With --sim --boards: board K's cable is pulled right after the fixture's N-th turn (K:N, from 1),
-    /// to see a board fail while the others go on.
-    #[arg(long, value_name = "K:N", value_parser = pull, requires = "boards")]
-    pub sim_pull: Option<Pull>,
-}
 
 /// Whether `calibrate` was given a fixture (several boards, or a list of ports) rather than one board.
 pub(super) fn holds_several(args: &CalibrateArgs) -> bool {
@@ -140,7 +119,7 @@ fn ports_of(args: &CalibrateArgs) -> Result<Vec<String>, Error> {
     if !args.fixture.all_boards {
         return Ok(args.fixture.ports.clone());
     }
-    Ok(find_boards(&serial_ports()?, &mut super::board::asking)?)
+    Ok(find_boards(&serial_ports()?, &mut super::device::asking)?)
 }
 
 /// Whether `--session` names a folder (it exists as one, or ends with a separator).

@@ -11,9 +11,9 @@ use std::sync::atomic::Ordering;
 use std::time::{Duration, Instant};
 
 use super::args::CalibrateArgs;
-use super::calibrate::interrupt_on_ctrl_c;
 use super::foreign_session::Kept;
 use super::foreign_status::{status, Progress};
+use super::terminal::interrupt_on_ctrl_c;
 use super::terminal::Terminal;
 use crate::error::Error;
 use crate::fit::{FitOptions, Model, ModelChoice};

@@ -4,51 +4,12 @@
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
-use clap::{Args, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 
+use super::args::{LotAction, LotArgs};
 use crate::certificate::{self, Certificate};
 use crate::error::Error;
 use crate::lot::{self, Added, Lot, LotError, LotSummary, Spec};
-
-/// `accelcal lot`.
-#[derive(Args)]
-pub struct LotArgs {
-    #[command(subcommand)]
-    pub action: LotAction,
-}
-
-/// What to do with a lot database.
-#[derive(Subcommand)]
-pub enum LotAction {
-    /// Adds certificates (each checked against its hash) to the lot, creating the file when new.
-    Add {
-        /// The lot database (one SQLite file).
-        lot: PathBuf,
-        /// Certificate files (PATH.certificate.json written by calibrate --session).
-        #[arg(required = true)]
-        certificates: Vec<PathBuf>,
-    },
-    /// Each parameter's distribution over the lot (each board's latest certificate), Cpk against the
-    /// spec's limits and the boards outside them.
-    Show {
-        lot: PathBuf,
-        /// The spec file: TOML, `[limits.NAME]` with `low` and/or `high` in the certificate's units.
-        #[arg(long)]
-        spec: Option<PathBuf>,
-        /// Print one JSON object.
-        #[arg(long)]
-        json: bool,
-    },
-    /// Every calibration of one board, by its serial.
-    Board {
-        lot: PathBuf,
-        serial: String,
-        /// Print the certificates as a JSON array.
-        #[arg(long)]
-        json: bool,
-    },
-}
 
 /// The environment variable that makes every write pause inside its transaction (seconds): only
 /// for the tests that kill a writer, or read beside one, mid-transaction.

@@ -28,7 +28,6 @@ mod report;
 mod selftest;
 mod terminal;
 mod thermal;
-mod thermal_person;
 mod transfer;
 mod values;
 
@@ -37,7 +36,7 @@ use std::process::ExitCode;
 use clap::Parser;
 
 use crate::error::Error;
-use args::{Cli, Command};
+use args::{CalibrateArgs, Cli, Command};
 
 pub use terminal::Terminal;
 
@@ -82,7 +81,7 @@ pub fn run(cli: Cli) -> Result<(), Error> {
         Command::Fit(args) => fit::fit(&args),
         Command::Ports => board::ports(),
         Command::Info { device, json, registers } => board::info(&device, json, registers),
-        Command::Calibrate(args) => calibrate::calibrate(&args),
+        Command::Calibrate(args) => calibrate(&args),
         Command::Capture(args) => procedure::capture(&args),
         Command::Report(args) => report::report(&args),
         Command::Certificate(args) => certificate::certificate(&args),
@@ -107,6 +106,31 @@ pub fn run(cli: Cli) -> Result<(), Error> {
             let pace = if fast { crate::sim::Pace::Fast } else { crate::sim::Pace::RealTime };
             Ok(crate::sim::serve_pty(seed, pace)?)
         }
+    }
+}
+
+/// `accelcal calibrate`: captures, fit, upload, save, verification; several boards on one fixture
+/// together.
+fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
+    // NOTE: refused before anything happens: a run that could only end without the upload it was
+    // asked for must not start (the simulated board, turned by the tool itself, needs no answer).
+    if args.json && !args.yes && !args.device.sim {
+        return Err(Error::JsonCannotAsk);
+    }
+    if fixture::holds_several(args) {
+        return fixture::calibrate_together(args);
+    }
+    let opened = match args.device.open_or_talking()? {
+        Ok(opened) => opened,
+        Err(talking) => return foreign::calibrate_from_stream(args, *talking),
+    };
+    // NOTE: with --json only the simulated board (turned by the tool) is silent: a person at a real
+    // board still needs the instructions, which go to stderr, leaving stdout to the JSON.
+    let simulated = opened.sim.is_some();
+    let mut feedback = terminal::feedback(args.json && simulated, args.yes || (args.json && simulated));
+    match calibrate::calibrate_board(args, opened, terminal::interrupt_on_ctrl_c(), feedback.as_mut())? {
+        Some(report) => calibrate::show(&report, args.json),
+        None => Ok(()),
     }
 }
 

@@ -2,8 +2,8 @@
 //! `calibrate`, is in [`super::calibrate`]).
 
 use super::args::{CaptureArgs, Device};
-use super::calibrate::interrupt_on_ctrl_c;
 use super::device::Opened;
+use super::terminal::interrupt_on_ctrl_c;
 use super::terminal::Terminal;
 use crate::error::Error;
 use crate::link::LinkError;

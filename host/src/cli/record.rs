@@ -1,35 +1,15 @@
 //! `accelcal record`: raw samples at the sensor's rate into a `.npy` recording, written as they
 //! arrive; lost samples are counted and fail the command, Ctrl-C ends it with the file readable.
 
-use std::path::PathBuf;
-
-use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use shared::protocol::{SensorConfig, StreamKind};
 
-use super::args::Device;
-use super::calibrate::interrupt_on_ctrl_c;
+use super::args::RecordArgs;
+use super::terminal::interrupt_on_ctrl_c;
 use crate::error::Error;
-use crate::limits::MAX_RECORD_SECONDS;
 use crate::link::{Client, LinkError, Port, StreamRequest, Tally};
 use crate::recording::{Recorder, RecordingError};
 use crate::session::BoardRecord;
-
-/// `accelcal record`.
-#[derive(Args)]
-pub struct RecordArgs {
-    #[command(flatten)]
-    pub device: Device,
-    /// The recording to write (NumPy .npy; `np.load(FILE)` in Python).
-    #[arg(short, long)]
-    pub output: PathBuf,
-    /// How long to record, in seconds.
-    #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u32).range(1..=MAX_RECORD_SECONDS))]
-    pub seconds: u32,
-    /// The sensor's sample rate, every sample recorded (must divide 1000 Hz).
-    #[arg(long, default_value_t = 1000, value_parser = clap::value_parser!(u16).range(1..=1000))]
-    pub rate: u16,
-}
 
 /// `accelcal record (--port P | --sim) -o FILE [--seconds S] [--rate HZ]`.
 pub(super) fn record(args: &RecordArgs) -> Result<(), Error> {

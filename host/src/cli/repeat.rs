@@ -1,31 +1,13 @@
 //! `accelcal repeat N`: N calibrations of one simulated board with a power cycle between them, and
 //! each parameter's spread beside the standard error the sessions predicted.
 
-use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 
-use super::device::Device;
+use super::args::RepeatArgs;
 use crate::error::Error;
 use crate::limits::DEFAULT_TARGET_MG;
 use crate::procedure::SimulatedSession;
 use crate::repeat::{self, RepeatOptions, RepeatReport};
-
-/// `accelcal repeat`.
-#[derive(Args)]
-pub struct RepeatArgs {
-    /// Calibrations of the board (2-1000), each after a power cycle.
-    #[arg(value_parser = clap::value_parser!(u16).range(2..=1000))]
-    pub sessions: u16,
-    #[command(flatten)]
-    pub device: Device,
-    /// With --sim: the turn-on bias repeatability to inject, the standard deviation of each axis'
-    /// offset from one power-on to the next, in mg (0-50).
-    #[arg(long, default_value_t = 0.0, value_parser = turn_on_bias_mg)]
-    pub sim_turn_on_bias_mg: f64,
-    /// Print one JSON object.
-    #[arg(long)]
-    pub json: bool,
-}
 
 /// Runs `accelcal repeat`.
 pub(super) fn repeat(args: &RepeatArgs) -> Result<(), Error> {
@@ -55,15 +37,6 @@ pub(super) fn repeat(args: &RepeatArgs) -> Result<(), Error> {
         false => print!("{}", text(&report)),
     }
     Ok(())
-}
-
-/// A turn-on bias within 0-50 mg.
-fn turn_on_bias_mg(text: &str) -> Result<f64, String> {
-    let mg: f64 = text.parse().map_err(|_| format!("{text:?} is not a number of mg"))?;
-    match (0.0..=50.0).contains(&mg) {
-        true => Ok(mg),
-        false => Err(format!("{mg} mg is not in 0-50 mg (a part's offset tolerance is +-50 mg on x and y)")),
-    }
 }
 
 /// The report as a table: per parameter mean, spread, predicted spread, their ratio and the excess.

@@ -4,8 +4,7 @@
 use crate::session::SessionFiles;
 use std::path::{Path, PathBuf};
 
-use clap::Args;
-
+use super::args::ReportArgs;
 use crate::error::Error;
 use crate::noise;
 use crate::report::allan::AllanSection;
@@ -13,25 +12,6 @@ use crate::report::temperature::TemperatureSection;
 use crate::report::thermal::ThermalReport;
 use crate::report::{self, SessionReport};
 use crate::session::{write_atomically, Session};
-
-/// `accelcal report`.
-#[derive(Args)]
-pub struct ReportArgs {
-    /// The session file (PATH.json written by calibrate --session or capture).
-    pub session: PathBuf,
-    /// Where to write the HTML page (default: beside the session, PATH.html).
-    #[arg(short, long)]
-    pub output: Option<PathBuf>,
-    /// Print the report as one JSON object instead of text (the page is written only with -o).
-    #[arg(long)]
-    pub json: bool,
-    /// Add the board's temperature model and its bins (the output of `accelcal thermal --json`).
-    #[arg(long, value_name = "THERMAL.json")]
-    pub thermal: Option<PathBuf>,
-    /// Add the board's Allan deviation (the output of `accelcal noise --json`, or a recording).
-    #[arg(long, value_name = "NOISE.json")]
-    pub noise: Option<PathBuf>,
-}
 
 /// Reads the session, builds its report, writes the page and prints the text (or the JSON).
 pub(super) fn report(args: &ReportArgs) -> Result<(), Error> {

@@ -3,11 +3,10 @@
 use std::io::Write;
 use std::path::PathBuf;
 
-use clap::Args;
 use serde::Serialize;
 use shared::selftest::StoredSelfTest;
 
-use super::args::Device;
+use super::args::SelftestArgs;
 use super::board::family_check;
 
 use crate::error::Error;
@@ -16,21 +15,6 @@ use crate::selftest::history::{self, History, HistoryEntry};
 use crate::selftest::report::{text, SelfTestJson};
 use crate::selftest::{run, PhaseName, SelfTest, Watcher};
 use crate::session::BoardRecord;
-
-/// `accelcal selftest`.
-#[derive(Args)]
-pub struct SelftestArgs {
-    #[command(flatten)]
-    pub device: Device,
-    /// Print one JSON object.
-    #[arg(long)]
-    pub json: bool,
-    /// The folder that keeps each board's self-tests (`selftest-SERIAL.json`); a real board's go to
-    /// $XDG_DATA_HOME/accelcal (~/.local/share/accelcal) unless given; a simulated board's are kept
-    /// only when given.
-    #[arg(long)]
-    pub history: Option<PathBuf>,
-}
 
 /// What `selftest --json` prints: the result's fields, the board's previous self-test and where
 /// they are kept.
@@ -83,7 +67,7 @@ pub(super) fn selftest(args: &SelftestArgs) -> Result<(), Error> {
         eprintln!("rest the board on a table and keep your hands off it (about 3 s)");
     }
     let connection = &mut opened.connection;
-    connection.client.interrupt_on(super::calibrate::interrupt_on_ctrl_c());
+    connection.client.interrupt_on(super::terminal::interrupt_on_ctrl_c());
     let check = family_check(&mut connection.client, &connection.info)?;
     let test = run(&mut connection.client, &connection.info, &mut Lines { quiet: args.json })?;
     let result = SelfTestJson::of(&test);

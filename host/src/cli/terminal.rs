@@ -1,6 +1,8 @@
 //! Feedback for a person at a terminal: progress bars, a live line, and questions.
 
 use std::io::{BufRead, IsTerminal, Write};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 
@@ -106,4 +108,15 @@ pub(super) fn working(message: String) -> ProgressBar {
     spinner.set_message(message);
     spinner.enable_steady_tick(std::time::Duration::from_millis(100));
     spinner
+}
+
+/// A flag that Ctrl-C sets (instead of ending the process), so that the capture is cancelled on
+/// the board and the session stays as written.
+pub(super) fn interrupt_on_ctrl_c() -> Arc<AtomicBool> {
+    let flag = Arc::new(AtomicBool::new(false));
+    let set = flag.clone();
+    // NOTE: fails only when a handler is already set; without one, Ctrl-C ends the process and the
+    // session still holds every capture written so far.
+    let _ = ctrlc::set_handler(move || set.store(true, Ordering::SeqCst));
+    flag
 }

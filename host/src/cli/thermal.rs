@@ -2,16 +2,26 @@
 //! around the static calibration and makes it active on the chip. With `--sim` it runs the whole
 //! simulated story: a static calibration at 25 degC, learning while the board warms from 13 to 47
 //! degC, and verification at fresh orientations at 15, 25, 35 and 45 degC against the truth.
+//!
+//! `accelcal thermal --port`: a person's board rests in one orientation while its temperature
+//! changes. The learned bins are kept on disk after every capture and a later run goes on from them
+//! (`--bins`); Ctrl-C ends the learning and fits what it learned.
 
 use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::Sender;
+use std::sync::Arc;
+use std::time::{Duration, Instant};
 
 use rand_xoshiro::rand_core::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
 use shared::linalg::{self, Vec3};
+use shared::protocol::CalibrationSlot;
 use shared::Calibration;
 
 use super::args::ThermalArgs;
+use super::terminal::interrupt_on_ctrl_c;
 use crate::calibration::{self as record, CalibrationJson};
 use crate::error::Error;
 use crate::fit::hysteresis::{self, Hysteresis};
@@ -20,7 +30,7 @@ use crate::link::{Connection, LinkError};
 use crate::procedure::thermal::{capture_now, learn, LearnEnd, LearnOptions, LearnStatus, ThermalBins, ThermalBoard};
 use crate::procedure::{corners, faces, ProcedureError};
 use crate::report::thermal::{ThermalFitJson, ThermalReport, ThermalRow};
-use crate::session::BoardRecord;
+use crate::session::{unix_time_s, BoardRecord};
 use crate::sim::{random, SimBoard, SimCommand};
 
 /// The reported temperatures the simulated story verifies at, in degC.
@@ -46,7 +56,7 @@ pub(super) fn thermal(args: &ThermalArgs) -> Result<(), Error> {
     opened.connection.info.sensor.map_err(LinkError::from)?;
     let report = match opened.sim.take() {
         Some(board) => sim_story(&mut opened.connection, &board, args)?,
-        None => super::thermal_person::person_run(&mut opened.connection, args)?,
+        None => person_run(&mut opened.connection, args)?,
     };
     if args.json {
         println!("{}", report.json());
@@ -124,12 +134,12 @@ fn six_faces_on_chip(connection: &mut Connection, sim: &mut SimThermal) -> Resul
     Ok(connection.client.fit_six_position()?)
 }
 
-pub(super) fn learn_options(faces: Vec<Vec3<f64>>, target_span_c: f64, rest_seconds: f64) -> LearnOptions {
+fn learn_options(faces: Vec<Vec3<f64>>, target_span_c: f64, rest_seconds: f64) -> LearnOptions {
     LearnOptions { faces, capture_seconds: CAPTURE_S, rest_seconds, target_span_c, max_rounds: 10_000 }
 }
 
 /// What one learning run gathered.
-pub(super) struct Learned {
+struct Learned {
     bins: ThermalBins,
     /// Why it stopped.
     stopped: String,
@@ -139,7 +149,7 @@ pub(super) struct Learned {
 
 /// Learns into `bins` with the live line on a terminal, giving the bins to `keep` after every
 /// capture; an interrupted run keeps its bins when they span enough.
-pub(super) fn learn_bins(
+fn learn_bins(
     connection: &mut Connection,
     board: &mut dyn ThermalBoard,
     options: &LearnOptions,
@@ -170,7 +180,7 @@ pub(super) fn learn_bins(
 }
 
 /// Fits the bins of one or two runs and makes the combined calibration active.
-pub(super) fn fit_and_activate(
+fn fit_and_activate(
     connection: &mut Connection,
     static_calibration: &Calibration,
     first: &Learned,
@@ -265,4 +275,71 @@ fn truth_row(board: &SimBoard, calibration: &Calibration, temp_c: f32) -> Therma
         gyro_bias_error_dps: gyro_error,
         positions: 0,
     }
+}
+
+/// Rest between rounds of captures on a person's board, in seconds.
+const REST_S: f64 = 30.0;
+/// How often a resting board looks for Ctrl-C, so that it ends at once.
+const INTERRUPT_POLL: Duration = Duration::from_millis(100);
+
+/// A person's board: it rests where it is while real time passes, until Ctrl-C.
+struct RestingBoard {
+    interrupt: Arc<AtomicBool>,
+}
+
+impl ThermalBoard for RestingBoard {
+    fn place(&mut self, _force_g: Vec3<f64>) -> Result<(), ProcedureError> {
+        Ok(())
+    }
+
+    fn rest(&mut self, seconds: f64) -> Result<(), ProcedureError> {
+        let until = Instant::now() + Duration::from_secs_f64(seconds);
+        while Instant::now() < until {
+            if self.interrupt.load(Ordering::SeqCst) {
+                return Err(LinkError::Interrupted.into());
+            }
+            std::thread::sleep(INTERRUPT_POLL);
+        }
+        Ok(())
+    }
+}
+
+/// Learns around the calibration active on the board, keeping the bins in `--bins` (or a file
+/// named by the time), and makes the fitted temperature model active.
+fn person_run(connection: &mut Connection, args: &ThermalArgs) -> Result<ThermalReport, Error> {
+    let active = connection.client.calibration(CalibrationSlot::Active)?.ok_or(ProcedureError::NoActiveCalibration)?;
+    let serial = BoardRecord::of(&connection.info).serial;
+    let path =
+        args.bins.clone().unwrap_or_else(|| PathBuf::from(format!("accelcal-thermal-{}.json", unix_time_s() as u64)));
+    let bins = kept_or_new(&path, &serial)?;
+    let interrupt = interrupt_on_ctrl_c();
+    connection.client.interrupt_on(interrupt.clone());
+    let options = learn_options(vec![[0.0, 0.0, 1.0]], args.target_span_c, REST_S);
+    let mut keep = |bins: &ThermalBins| bins.save(&path, &serial).map_err(ProcedureError::from);
+    let mut board = RestingBoard { interrupt: interrupt.clone() };
+    let learned = learn_bins(connection, &mut board, &options, args.json, bins, &mut keep);
+    // NOTE: Ctrl-C ended the learning; the fit is still made active on the board.
+    interrupt.store(false, Ordering::SeqCst);
+    let fitted = learned.and_then(|learned| fit_and_activate(connection, &active, &learned, None));
+    let (calibration, fit) = fitted.map_err(|source| Error::ThermalStopped {
+        source: Box::new(source),
+        span_c: ThermalBins::load(&path, &serial).map_or(0.0, |bins| bins.span_c()),
+        path: path.clone(),
+        device: args.device.port.clone().unwrap_or_default(),
+    })?;
+    eprintln!("the learned bins are kept in {}", path.display());
+    let (serial, calibration) = (Some(serial), CalibrationJson::from_device(&calibration));
+    Ok(ThermalReport { serial, calibration, fit, verification: Vec::new() })
+}
+
+/// The bins an earlier run kept at `path` on this board, or none when there is no such file.
+fn kept_or_new(path: &Path, serial: &str) -> Result<ThermalBins, Error> {
+    if !path.exists() {
+        eprintln!("the learned bins are kept in {} as they are learned", path.display());
+        return Ok(ThermalBins::default());
+    }
+    let bins = ThermalBins::load(path, serial)?;
+    let (low, high) = bins.range_c().unwrap_or_default();
+    eprintln!("going on from the {} bins ({low:.1} to {high:.1} degC) kept in {}", bins.len(), path.display());
+    Ok(bins)
 }

@@ -2,7 +2,7 @@
 
 use shared::protocol::{SensorConfig, MAX_CAPTURE_SECONDS, MIN_CAPTURE_SECONDS};
 
-use crate::limits::{MAX_PLACEMENT_DEG, MAX_THERMAL_SPAN_C, MIN_THERMAL_SPAN_C};
+use crate::limits::{BAUD_RANGE, MAX_PLACEMENT_DEG, MAX_THERMAL_SPAN_C, MIN_THERMAL_SPAN_C};
 use crate::procedure::Pull;
 
 /// The capture lengths the device accepts, refused when parsed.
@@ -59,4 +59,54 @@ pub(super) fn seconds_help(what: &str) -> String {
 /// Help for a stream rate, with the sample rate it must divide.
 pub(super) fn rate_help() -> String {
     format!("Samples per second (must divide the {} Hz sample rate)", SensorConfig::default().sample_rate_hz)
+}
+
+/// A baud rate within [`BAUD_RANGE`]; the cause when not.
+pub(super) fn baud(text: &str) -> Result<u32, String> {
+    let baud: u32 =
+        text.parse().map_err(|_| format!("{text:?} is not a baud rate: give a whole number such as 115200"))?;
+    if BAUD_RANGE.contains(&baud) {
+        Ok(baud)
+    } else {
+        Err(format!(
+            "{baud} Bd is not in {}-{} Bd: below it no sketch prints a sensor, above it no USB UART bridge goes; \
+             give the number in the sketch's Serial.begin",
+            BAUD_RANGE.start(),
+            BAUD_RANGE.end()
+        ))
+    }
+}
+
+/// A target within 0.05-10 mg.
+pub(super) fn target_mg(text: &str) -> Result<f64, String> {
+    let mg: f64 = text.parse().map_err(|_| format!("{text:?} is not a number of mg"))?;
+    if (0.05..=10.0).contains(&mg) {
+        Ok(mg)
+    } else {
+        Err(format!("{mg} mg is not in 0.05-10 mg (below 0.05 mg the sensor's drift, not its noise, sets the error)"))
+    }
+}
+
+/// A turn-on bias within 0-50 mg.
+pub(super) fn turn_on_bias_mg(text: &str) -> Result<f64, String> {
+    let mg: f64 = text.parse().map_err(|_| format!("{text:?} is not a number of mg"))?;
+    match (0.0..=50.0).contains(&mg) {
+        true => Ok(mg),
+        false => Err(format!("{mg} mg is not in 0-50 mg (a part's offset tolerance is +-50 mg on x and y)")),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_baud_rate_is_taken_within_what_bridges_go_and_a_nonsense_one_refused_with_its_cause() {
+        assert_eq!(baud("38400"), Ok(38_400));
+        assert_eq!(baud("300"), Ok(300));
+        let zero = baud("0").unwrap_err();
+        assert!(zero.contains("0 Bd is not in 300-6000000 Bd") && zero.contains("Serial.begin"), "{zero}");
+        assert!(baud("9000000").unwrap_err().contains("no USB UART bridge"));
+        assert!(baud("fast").unwrap_err().contains("\"fast\" is not a baud rate"));
+    }
 }

@@ -100,11 +100,6 @@ impl FamilyCheck {
         matches!(self.verdict, Verdict::Confirmed | Verdict::ContradictsWhoAmI { .. })
     }
 
-    /// The check in words, one line.
-    pub fn summary(&self) -> String {
-        super::check_text::summary(self)
-    }
-
     /// What confirmed the family ("offset registers"), or `None` when nothing did.
     pub fn confirmed_by(&self) -> Option<&'static str> {
         self.confirmed().then_some("offset registers")

@@ -4,8 +4,15 @@ use super::check::{FamilyCheck, Verdict};
 use super::family_name;
 use super::offsets::OffsetStep;
 
+impl FamilyCheck {
+    /// The check in words, one line.
+    pub fn summary(&self) -> String {
+        summary(self)
+    }
+}
+
 /// One line: the verdict, what each step did, and the way on when it is not a confirmation.
-pub fn summary(check: &FamilyCheck) -> String {
+fn summary(check: &FamilyCheck) -> String {
     let family = family_name(check.family);
     let steps = steps_text(&check.steps);
     match check.verdict {

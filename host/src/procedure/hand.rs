@@ -1,16 +1,7 @@
 //! Who turns the board: the trait, and a person holding the board (instructions only). The tool's
 //! own hand on the simulated board is beside it, in `simulated_hand`.
 
-use super::{Feedback, Moves, Orientation, ProcedureError};
-
-/// Who turns the board between captures, and the moves recorded meanwhile (the gyro's G is fitted
-/// to them).
-pub struct Turning<'a> {
-    /// The person, or the tool's own hand on the simulated board.
-    pub hand: &'a mut dyn Hand,
-    /// The moves between captures, recorded as the board is turned.
-    pub moves: &'a mut Moves,
-}
+use super::{Feedback, Orientation, ProcedureError};
 
 /// Who turns the board: a person, or the tool itself on the simulated board.
 pub trait Hand {

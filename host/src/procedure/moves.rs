@@ -4,7 +4,7 @@
 //! named and dropped (a lost sample corrupts the turn's integral), never the session.
 
 use shared::orientation::angle_between_deg;
-use shared::protocol::{Sample, StreamKind, GYRO_FULL_SCALE_DPS};
+use shared::protocol::{Sample, StreamKind, GYRO_RANGE};
 
 use super::{Feedback, Hand, Orientation, ProcedureError};
 use crate::limits::{
@@ -13,6 +13,15 @@ use crate::limits::{
 };
 use crate::link::{Client, Port, StreamRequest};
 use crate::session::Session;
+
+/// Who turns the board between captures, and the moves recorded meanwhile (the gyro's G is fitted
+/// to them).
+pub struct Turning<'a> {
+    /// The person, or the tool's own hand on the simulated board.
+    pub hand: &'a mut dyn Hand,
+    /// The moves between captures, recorded as the board is turned.
+    pub moves: &'a mut Moves,
+}
 
 /// One move between two captures of a session, recorded whole.
 #[derive(Debug, Clone, PartialEq)]
@@ -148,7 +157,11 @@ impl std::fmt::Display for Problem {
         match self {
             Problem::Lost(n) => write!(f, "{n} gyro samples lost on the way (a gap corrupts the turn)"),
             Problem::Clipped(n) => {
-                write!(f, "{n} gyro samples at the end of the +-{GYRO_FULL_SCALE_DPS:.0} deg/s range: turn more slowly")
+                write!(
+                    f,
+                    "{n} gyro samples at the end of the +-{} deg/s range: turn more slowly",
+                    GYRO_RANGE.full_scale_dps()
+                )
             }
             Problem::AlreadyMoving => write!(f, "the board was already turning when the recording began"),
             Problem::NeverStill => write!(f, "the board did not turn and come to rest within {MAX_MOVE_SECONDS} s"),
@@ -232,7 +245,7 @@ impl Watch {
 
     /// The recording, or why it cannot be used.
     pub(super) fn finish(self, lost: u32, target: &str) -> Result<Recording, Problem> {
-        let limit = f64::from(GYRO_FULL_SCALE_DPS) * GYRO_CLIPPED_FRACTION;
+        let limit = f64::from(GYRO_RANGE.full_scale_dps()) * GYRO_CLIPPED_FRACTION;
         let clipped = self.samples.iter().filter(|s| s.gyro_dps.iter().any(|w| f64::from(w.abs()) >= limit)).count();
         match () {
             _ if self.already_moving => Err(Problem::AlreadyMoving),

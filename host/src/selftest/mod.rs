@@ -9,6 +9,7 @@
 //! between the two off phases) spoils it, and the attempt is repeated. The board's configuration is
 //! written back at the end, whatever happened, and checked.
 
+mod error;
 pub mod history;
 mod phase;
 pub use accelcal_core::selftest::{report, SelfTest};
@@ -20,7 +21,7 @@ use shared::selftest::{self, SelfTestRaw};
 use firmware::sensor::registers::ACCEL_CONFIG;
 
 use crate::link::{Client, LinkError, Port};
-use crate::still::StillError;
+pub use error::SelfTestError;
 use phase::{Phase, PhaseMeans};
 
 use crate::limits::SELF_TEST_ATTEMPTS;
@@ -37,31 +38,6 @@ const SELF_TEST_FILTER: LowPassFilter = LowPassFilter::Hz94;
 /// compared after.
 const CONFIGURATION_FIRST: u8 = 0x19;
 const CONFIGURATION_COUNT: u8 = 5;
-
-/// Why the self-test could not give a verdict.
-#[derive(Debug, thiserror::Error)]
-pub enum SelfTestError {
-    #[error(transparent)]
-    Link(#[from] LinkError),
-    #[error("the board found no sensor ({0}): check the wiring and run again")]
-    NoSensor(String),
-    #[error("the board moved during each of {attempts} attempts, so no response could be measured: rest it on a table, keep your hands off it for 5 s, and run again")]
-    KeptMoving { attempts: u8 },
-    /// Too few samples arrived (a lost link is [`SelfTestError::Link`]).
-    #[error(transparent)]
-    Stream(StillError),
-    #[error("the sensor's configuration registers read {after:02x?} after the self-test, not {before:02x?} as before: unplug the board and plug it in again")]
-    NotRestored { before: Vec<u8>, after: Vec<u8> },
-}
-
-impl From<StillError> for SelfTestError {
-    fn from(error: StillError) -> Self {
-        match error {
-            StillError::Link(link) => SelfTestError::Link(link),
-            other => SelfTestError::Stream(other),
-        }
-    }
-}
 
 /// What the procedure tells whoever runs it (and where a test moves the simulated board).
 pub trait Watcher {

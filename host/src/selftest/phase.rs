@@ -2,7 +2,7 @@
 
 use firmware::sensor::registers::{ACCEL_CONFIG, FULL_SCALE_SHIFT, GYRO_CONFIG, GYRO_LSB_PER_DPS, SELF_TEST_BITS};
 use shared::part::Family;
-use shared::selftest::{GYRO_FS_SEL_250, GYRO_LSB_PER_DPS_AT_250};
+use shared::selftest::SELF_TEST_GYRO_RANGE;
 
 use super::SelfTestError;
 use crate::link::{Client, Port};
@@ -69,7 +69,7 @@ impl Phase {
         client.write_register(GYRO_CONFIG, gyro_config)?;
         client.write_register(ACCEL_CONFIG, accel_config)?;
         // NOTE: the board's gyro figures are four times the +-250 deg/s rates (it converts at +-1000).
-        let gyro_dps_per_reported = f64::from(GYRO_LSB_PER_DPS / GYRO_LSB_PER_DPS_AT_250);
+        let gyro_dps_per_reported = f64::from(GYRO_LSB_PER_DPS / SELF_TEST_GYRO_RANGE.lsb_per_dps() as f32);
         let phase = StillPhase {
             label: self.name.label(),
             rate_hz: self.rate_hz,
@@ -83,7 +83,7 @@ impl Phase {
     /// GYRO_CONFIG and ACCEL_CONFIG for this phase: the trim's ranges, self-test bits on or off.
     fn registers(&self) -> (u8, u8) {
         let bits = if self.name == PhaseName::On { SELF_TEST_BITS } else { 0 };
-        (bits | GYRO_FS_SEL_250 << FULL_SCALE_SHIFT, bits | (self.accel_config & !SELF_TEST_BITS))
+        (bits | SELF_TEST_GYRO_RANGE.fs_sel() << FULL_SCALE_SHIFT, bits | (self.accel_config & !SELF_TEST_BITS))
     }
 
     /// A mean in g and deg/s as the board converts them, back to LSB at the self-test ranges.

@@ -4,7 +4,7 @@
 
 use firmware::sim::SimMpu6050;
 
-use super::board::SimCommand;
+use super::sim_command::SimCommand;
 use super::turn::{tip, turn_between};
 
 /// The hand on the simulated sensor: what it was told, and when a timed motion ends.

@@ -16,15 +16,17 @@ mod parts;
 mod pty;
 pub mod replay;
 mod serve;
+mod sim_command;
 mod truth;
 pub mod turn;
 
 pub use accelcal_core::sim::{person, random, sessions, sketch, synthetic};
 
-pub use board::{PowerOn, SensorChoice, SimBoard, SimCommand, SimSensor};
+pub use board::{PowerOn, SensorChoice, SimBoard, SimSensor};
 pub use clock::Pace;
 pub use emulated::{serve_emulated, EmulatorError};
 pub use parts::{FaultyAxis, SimPartChoice};
 pub use pty::{serve_pty, SimError};
+pub use sim_command::SimCommand;
 
 use crate::link::Port;

@@ -5,9 +5,10 @@ use std::sync::mpsc::Sender;
 
 use firmware::sim::SimFlash;
 
-use super::board::{SimBoard, SimCommand, SimSensor};
+use super::board::{SimBoard, SimSensor};
 use super::clock::Pace;
 use super::commands::{help, parse, Line};
+use super::sim_command::SimCommand;
 
 /// Why the pseudo-terminal server could not start.
 #[derive(Debug, thiserror::Error)]

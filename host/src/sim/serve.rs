@@ -15,10 +15,10 @@ use firmware::device::Device;
 use firmware::server::Server;
 use firmware::sim::{SimFlash, SimMpu6050, SIM_FLASH_RANGE};
 
-use super::board::SimCommand;
 use super::clock::{Clock, Pace};
 use super::hand::Hand;
 use super::outgoing::Outgoing;
+use super::sim_command::SimCommand;
 use super::Port;
 
 type SimServer = Server<SimMpu6050, SimFlash>;

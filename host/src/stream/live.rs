@@ -6,7 +6,8 @@
 use std::io::{ErrorKind, Read, Write};
 use std::time::{Duration, Instant};
 
-pub use accelcal_core::stream::arrival::{arrival_hz, arrival_rate, Arrivals, Silence, ARRIVAL_RATE_TAG};
+pub use accelcal_core::stream::arrival::{arrival_hz, Arrivals, Silence};
+use accelcal_core::stream::ARRIVAL_RATE_TAG;
 
 use crate::link::{Port, TalkingPort};
 

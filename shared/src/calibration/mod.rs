@@ -61,6 +61,67 @@ impl AccelRange {
     }
 }
 
+/// Standard gravity, m/s^2 per g: the g every value in m/s^2 is converted with (CGPM 1901, 3rd
+/// meeting; ISO 80000-3; the value ArduPilot's GRAVITY_MSS, PX4's CONSTANTS_ONE_G and Adafruit's
+/// SENSORS_GRAVITY_STANDARD use).
+pub const STANDARD_GRAVITY: f64 = 9.80665;
+
+/// Full-scale range of the MPU-6050 gyro (register GYRO_CONFIG, FS_SEL 0-3).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum GyroRange {
+    /// +-250 deg/s, 131 LSB per deg/s (FS_SEL 0; the range every family's self-test trim assumes).
+    Dps250 = 0,
+    /// +-500 deg/s, 65.5 LSB per deg/s.
+    Dps500 = 1,
+    /// +-1000 deg/s, 32.8 LSB per deg/s.
+    Dps1000 = 2,
+    /// +-2000 deg/s, 16.4 LSB per deg/s.
+    Dps2000 = 3,
+}
+
+impl GyroRange {
+    /// Sensitivity in LSB per deg/s (MPU-6000/6050 Product Specification rev 3.4, section 6.1; the
+    /// table's own rounded figures, not 131 halved).
+    ///
+    /// NOTE: f64, unlike [`AccelRange::lsb_per_g`]'s powers of two: 32.8 and 16.4 have no exact
+    /// binary form, and the host prints them (exports); the chip takes `as f32` in a `const`, which
+    /// is the nearest f32 to the printed figure.
+    pub const fn lsb_per_dps(self) -> f64 {
+        match self {
+            GyroRange::Dps250 => 131.0,
+            GyroRange::Dps500 => 65.5,
+            GyroRange::Dps1000 => 32.8,
+            GyroRange::Dps2000 => 16.4,
+        }
+    }
+
+    /// Full scale in deg/s.
+    pub const fn full_scale_dps(self) -> u16 {
+        match self {
+            GyroRange::Dps250 => 250,
+            GyroRange::Dps500 => 500,
+            GyroRange::Dps1000 => 1000,
+            GyroRange::Dps2000 => 2000,
+        }
+    }
+
+    /// The range GYRO_CONFIG's FS_SEL field (0-3, register map section 4.4) selects; its two low
+    /// bits only.
+    pub const fn from_fs_sel(fs_sel: u8) -> Self {
+        match fs_sel & 0x03 {
+            0 => GyroRange::Dps250,
+            1 => GyroRange::Dps500,
+            2 => GyroRange::Dps1000,
+            _ => GyroRange::Dps2000,
+        }
+    }
+
+    /// GYRO_CONFIG's FS_SEL field for this range (register map section 4.4).
+    pub const fn fs_sel(self) -> u8 {
+        self as u8
+    }
+}
+
 /// The gyro correction `w = G (w_raw - b)`, in deg/s.
 #[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq)]
 pub struct GyroCalibration {

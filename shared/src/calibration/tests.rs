@@ -183,3 +183,19 @@ fn range_sensitivities_follow_the_datasheet() {
     }
     assert_eq!(AccelRange::from_full_scale_g(3), None);
 }
+
+#[test]
+fn gyro_range_sensitivities_follow_the_datasheet_and_fs_sel_selects_each() {
+    // NOTE: MPU-6000/6050 Product Specification rev 3.4, section 6.1: FS_SEL 0-3 are +-250, 500, 1000
+    // and 2000 deg/s at 131, 65.5, 32.8 and 16.4 LSB per deg/s.
+    let table = [(0, 250, 131.0), (1, 500, 65.5), (2, 1000, 32.8), (3, 2000, 16.4)];
+    for (fs_sel, full_scale_dps, lsb) in table {
+        let range = GyroRange::from_fs_sel(fs_sel);
+        assert_eq!((range.fs_sel(), range.full_scale_dps(), range.lsb_per_dps()), (fs_sel, full_scale_dps, lsb));
+        // GYRO_CONFIG holds FS_SEL in bits 4:3; the bits around it select nothing.
+        assert_eq!(GyroRange::from_fs_sel(fs_sel | 0b1111_1100), range);
+    }
+    // The chip's f32 is the nearest f32 to the printed figure.
+    assert_eq!(GyroRange::Dps1000.lsb_per_dps() as f32, 32.8f32);
+    assert_eq!(STANDARD_GRAVITY, 9.80665, "CGPM 1901");
+}

@@ -125,33 +125,6 @@ impl Position {
     }
 }
 
-/// A wanted orientation of the board: the body-frame direction that should point up. The one type
-/// for "hold the board like this", whether at a face, a corner or anywhere for verification.
-#[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq)]
-pub struct Orientation<T> {
-    /// The body-frame unit vector that should point up (where the sensor reads +1 g at rest).
-    pub up: Vec3<T>,
-}
-
-impl<T: Float> Orientation<T> {
-    /// The orientation with `up` (any length, not zero) pointing up; `None` for a zero or
-    /// non-finite direction.
-    pub fn new(up: Vec3<T>) -> Option<Self> {
-        let length = linalg::norm(up);
-        (length.is_finite() && length > T::zero()).then(|| Orientation { up: linalg::scale(up, T::one() / length) })
-    }
-
-    /// The orientation of a face: its axis up.
-    pub fn face(position: Position) -> Self {
-        Orientation { up: position.specific_force_g() }
-    }
-
-    /// How far a reading at rest (any unit) is tilted from this orientation, in degrees.
-    pub fn tilt_deg(&self, reading: Vec3<T>) -> T {
-        angle_between_deg(reading, self.up)
-    }
-}
-
 /// The axis with the largest magnitude.
 fn dominant_axis(v: Vec3<f32>) -> usize {
     let mut best = 0;
@@ -249,15 +222,6 @@ mod tests {
         }
         // Exactly between +X and +Y and +Z: 54.7 degrees from every face.
         assert!(Position::detect([1.0, 1.0, 1.0], 10.0).is_err());
-    }
-
-    #[test]
-    fn an_orientation_is_a_unit_up_vector_and_measures_the_tilt_of_a_reading() {
-        let corner = Orientation::new([1.0f64, 1.0, 0.0]).unwrap();
-        assert!((linalg::norm(corner.up) - 1.0).abs() < 1e-15);
-        assert!((corner.tilt_deg([0.0, 3.0, 0.0]) - 45.0).abs() < 1e-12);
-        assert_eq!(Orientation::<f32>::face(Position::NegY).up, [0.0, -1.0, 0.0]);
-        assert_eq!(Orientation::new([0.0f32; 3]), None);
     }
 
     #[test]

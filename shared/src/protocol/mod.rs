@@ -11,6 +11,8 @@ pub use frame::{decode, encode, Feed, FrameAccumulator, FrameError};
 pub use messages::*;
 pub use temperature::{TempBin, TEMP_BINS_PER_MESSAGE};
 
+use crate::calibration::GyroRange;
+
 /// Protocol version carried in every frame's header and in [`Response::Hello`].
 ///
 /// NOTE: 2 from issue 9: the calibration record (origin tag, gyro matrix, temperature model) and the
@@ -60,9 +62,12 @@ pub const MAX_CAPTURE_SECONDS: u8 = 20;
 /// (1/sqrt(2(n-1))), so a stop rule judged on it would stop early by chance.
 pub const MIN_GOAL_SAMPLES: u32 = 20;
 
-/// The range raw gyro samples span, in deg/s: the firmware sets the MPU-6050 to +-1000 deg/s, so
-/// that a hand turning the board between positions does not saturate it.
-pub const GYRO_FULL_SCALE_DPS: f32 = 1000.0;
+/// The range raw gyro samples span: the firmware sets the MPU-6050 to +-1000 deg/s.
+///
+/// NOTE: +-1000 deg/s, because a hand turning the board between positions reaches several hundred
+/// deg/s and a clipped sample corrupts the turn's integral; the 0.03 deg/s step stays below the
+/// rate noise at any sample rate the tool uses (0.035 deg/s at 100 Hz).
+pub const GYRO_RANGE: GyroRange = GyroRange::Dps1000;
 /// Capture length used when the user does not choose one, in seconds.
 pub const DEFAULT_CAPTURE_SECONDS: u8 = 10;
 

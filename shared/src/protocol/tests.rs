@@ -264,7 +264,7 @@ fn another_protocol_version_is_named() {
     let mut frame = [0u8; MAX_FRAME_LEN];
     let len = encode(1, &Request::Cancel, &mut frame).unwrap() - 1;
     let mut raw = [0u8; MAX_FRAME_LEN];
-    let raw_len = cobs::decode(&frame[..len], &mut raw).unwrap().frame_size();
+    let raw_len = cobs::decode(&frame[..len], &mut raw).unwrap();
     raw[0] = PROTOCOL_VERSION + 1;
     let crc = crc::Crc::<u32>::new(&crc::CRC_32_ISO_HDLC).checksum(&raw[..raw_len - 4]);
     raw[raw_len - 4..raw_len].copy_from_slice(&crc.to_le_bytes());

@@ -35,7 +35,7 @@ fn a_move_ends_after_the_turn_and_the_rest_that_follows_it() {
 
 #[test]
 fn a_clipped_or_gapped_or_unfinished_move_is_named_and_not_recorded() {
-    let limit = GYRO_FULL_SCALE_DPS * 0.996;
+    let limit = f32::from(GYRO_RANGE.full_scale_dps()) * 0.996;
     let (watch, _) = watched(&turn(5, 20, limit, 200), 50);
     let clipped = watch.finish(0, "+X").unwrap_err();
     assert_eq!(clipped, Problem::Clipped(20));

@@ -6,43 +6,29 @@
 //! the sensor's time is the emulated chip's, and the bridge holds the emulator to the wall clock, so
 //! a person (or a test playing one) turns the board in real time, as with `sim --pty`.
 
+mod error;
 mod fit_timer;
 mod harness;
 mod port;
 
 use std::io::{BufRead, Write};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::mpsc::{channel, Receiver};
 use std::time::{Duration, Instant};
 
+pub use error::EmulatorError;
 use firmware::sim::{BytewiseTarget, SimMpu6050};
 use fit_timer::FitTimer;
 use harness::{Control, Event, Harness};
 use port::HostPort;
 
-use super::board::{SimCommand, SimSensor};
+use super::board::SimSensor;
 use super::commands::{help, parse, Line};
 use super::hand::Hand;
+use super::sim_command::SimCommand;
 
 /// Where the emulator harness and its `node_modules` live in the repository.
 const EMULATOR_DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../boards/pico/emulator");
-
-/// Why the emulated Pico could not run.
-#[derive(Debug, thiserror::Error)]
-pub enum EmulatorError {
-    #[error("cannot run the emulator with node ({0}); install Node.js 18 or later")]
-    Node(String),
-    #[error("the emulator is not installed in {0}; run `npm ci` there")]
-    NotInstalled(PathBuf),
-    #[error("no firmware at {0}; `cargo xtask dist` writes dist/accelcal-pico.uf2")]
-    NoFirmware(PathBuf),
-    #[error("the emulator ended ({0}); it says why on stderr")]
-    Ended(String),
-    #[error("the emulator sent a line the bridge does not know: {0:?}")]
-    Garbled(String),
-    #[error("cannot create a pseudo-terminal: {0}; run it on Linux or macOS")]
-    Pty(String),
-}
 
 /// What a line on stdin asks of the emulated board.
 enum Order {
