@@ -15,6 +15,13 @@
 //! - [`export`]: the calibration in other programs' formats, with what each loses;
 //! - [`report`]: what a fit or a calibration reports, computed once, rendered as text or JSON;
 //! - [`cli`]: the command line; the `accelcal` binary only calls [`cli::main`].
+//!
+//! `mutant` (crate-private) holds `mutant!`, the switch CI's guarded mutations break lines through
+//! (docs/mutations.md).
+
+// NOTE: first, so that every module below may use `mutant!` (a macro is in scope only after it).
+#[macro_use]
+mod mutant;
 
 pub mod calibration;
 pub mod certificate;

@@ -1,106 +1,175 @@
-"""Breaks, one at a time, each line whose mistake issue 22 found no test to catch, and checks that the
-test written for it now fails; restores the line after each run.
+"""Breaks, one at a time, each line whose mistake once went past every test (issue 22, issue 36), and checks that
+the test written for it now fails; docs/mutations.md tables them.
 
-Usage: python3 host/tools/guarded_mutations.py [WORDS...]   (only the changes whose name holds a word)
-Exits 1 when a change is no longer found in the code (update its line here with the code) or when a
-test stays green with it (the guard is gone). Run from the repository root; it runs `cargo test`.
+Each line is a `mutant!("name", original, broken)` in the host's source (host/src/mutant.rs): the test binaries are
+built once with `--features mutants`, and each guard test is run on its own with `ACCELCAL_MUTANT=name`, which picks
+the broken expression. No source file is ever written, so a run killed halfway leaves the tree as it was.
+
+Usage: python3 host/tools/guarded_mutations.py [WORDS...]   (only the changes whose name or words hold a word)
+Exits 1 when a named mutation is not in the source exactly once (in the file listed here), when a guard test fails
+with no mutation active, or when a guard test stays green with its mutation (the guard is gone). Run from anywhere;
+it runs `cargo test --no-run` in the target directory cargo would use (CARGO_TARGET_DIR is honoured).
 """
+import json
+import os
 import pathlib
+import re
 import subprocess
 import sys
 import time
 
-SRC = pathlib.Path(__file__).resolve().parent.parent / "src"
+HOST = pathlib.Path(__file__).resolve().parent.parent
+SRC = HOST / "src"
+VARIABLE = "ACCELCAL_MUTANT"
+# NOTE: a mutation may make its test loop forever; such a test did not pass, and the run goes on.
+TIMEOUT_S = 900
+LIB = "lib"
 
-# (what the change does to a user, file, the line as it is, the line broken, the tests that must fail)
+# (name in mutant!, what the change does to a user, file, the test that must fail[, test binary: "lib" or a
+# host/tests target name])
 CHANGES = [
-    ("a long noise-report capture limit is not held to the longest capture", "procedure/stop_rule.rs",
-     "capture_limit_s.unwrap_or(MAX_CAPTURE_SECONDS).clamp(MIN_CAPTURE_SECONDS, MAX_CAPTURE_SECONDS)",
-     "capture_limit_s.unwrap_or(MAX_CAPTURE_SECONDS)",
+    # Issue 22's: each line once no test caught.
+    ("stop-rule-no-upper-clamp", "a long noise-report capture limit is not held to the longest capture",
+     "procedure/stop_rule.rs",
      "procedure::stop_rule::tests::a_noise_report_capture_limit_is_held_within_the_shortest_and_longest_capture"),
-    ("a capture limit under the shortest capture is let through (a panic in clamp)", "procedure/stop_rule.rs",
-     "capture_limit_s.unwrap_or(MAX_CAPTURE_SECONDS).clamp(MIN_CAPTURE_SECONDS, MAX_CAPTURE_SECONDS)",
-     "capture_limit_s.unwrap_or(MAX_CAPTURE_SECONDS).max(MIN_CAPTURE_SECONDS)",
+    ("stop-rule-no-lower-clamp", "a capture limit under the shortest capture is let through (a panic in clamp)",
+     "procedure/stop_rule.rs",
      "procedure::stop_rule::tests::a_noise_report_capture_limit_is_held_within_the_shortest_and_longest_capture"),
-    ("a session resumes at another filter", "session/board.rs",
-     "(self.config.range, self.config.filter) != (board.config.range, board.config.filter)",
-     "self.config.range != board.config.range",
+    ("resume-other-filter", "a session resumes at another filter", "session/board.rs",
      "session::board::tests::a_session_resumes_only_on_its_board_at_its_range_and_filter"),
-    ("the verification's worst error ignores readings below 1 g", "session/verification.rs",
-     "m.max(c.after_mg.abs())", "m.max(c.after_mg)",
+    ("worst-error-signed", "the verification's worst error ignores readings below 1 g", "session/verification.rs",
      "procedure::verify::tests::the_worst_error_counts_readings_below_1_g_as_well_as_above"),
-    ("the random walk K 18 % low", "noise/fit.rs",
-     "FLICKER_FLOOR * FLICKER_FLOOR, tau_s / 3.0)", "FLICKER_FLOOR * FLICKER_FLOOR, tau_s / 2.0)",
+    ("random-walk-tau-2", "the random walk K 18 % low", "noise/fit.rs",
      "noise::fit::tests::an_exact_curve_gives_back_its_terms"),
-    ("G's standard errors 25 % small", "fit/gyro/solve.rs",
-     "(2 * turns.len()).saturating_sub(9)", "(3 * turns.len()).saturating_sub(9)",
+    ("gyro-dof-3n", "G's standard errors 25 % small", "fit/gyro/solve.rs",
      "fit::gyro::tests::the_standard_errors_of_g_match_its_scatter_over_repeated_sessions"),
-    ("each turn's residual with G transposed", "fit/gyro/summary.rs",
-     "Matrix3::from(*g).transpose()", "Matrix3::from(*g)",
+    ("gyro-residual-g-untransposed", "each turn's residual with G transposed", "fit/gyro/summary.rs",
      "fit::gyro::tests::a_turn_s_residual_with_the_true_g_is_nil_and_without_it_shows_the_scale_error"),
-    ("the report's refit calibrates the positions with the drift left in", "report/session.rs",
-     "None => fitted.rows.iter().map(|row| linalg::mul_vec(matrix, linalg::sub(row.reading, *offset))).collect(),",
-     "None => session.captures.iter().map(|c| linalg::mul_vec(matrix, "
-     "linalg::sub(c.stats.mean_g.map(f64::from), *offset))).collect(),",
+    ("report-refit-drift-left-in", "the report's refit calibrates the positions with the drift left in",
+     "report/session.rs",
      "report::session::tests::an_adaptive_session_s_positions_are_shown_with_the_drift_taken_out"),
-    ("an adaptive session's drift is not fitted", "session/outcome.rs",
-     "let drift = drift::fitted(&captures);",
-     "let drift = None;",
+    ("adaptive-drift-unfitted", "an adaptive session's drift is not fitted", "session/outcome.rs",
      "report::session::tests::an_adaptive_session_s_positions_are_shown_with_the_drift_taken_out"),
-    ("the uploaded record calibrates the positions without its temperature model", "report/uploaded.rs",
-     "calibrate(c.stats.mean_g, c.stats.temp_c)", "calibrate(c.stats.mean_g, session.captures[0].stats.temp_c)",
+    ("uploaded-first-temperature", "the uploaded record calibrates the positions without its temperature model",
+     "report/uploaded.rs",
      "report::session::tests::a_session_s_uploaded_record_is_shown_and_calibrates_its_positions"),
-    ("the thermal held-out error 1.73x", "fit/thermal.rs",
-     "(squares / 3.0).sqrt()", "squares.sqrt()",
+    ("thermal-held-out-unscaled", "the thermal held-out error 1.73x", "fit/thermal.rs",
      "fit::thermal::tests::the_held_out_error_of_noisy_readings_is_their_noise_per_axis"),
-    ("Allan confidence bands narrow: edf over m, not 2m", "noise/allan.rs",
-     "/ (2.0 * m)", "/ m",
+    ("allan-edf-over-m", "Allan confidence bands narrow: edf over m, not 2m", "noise/allan.rs",
      "noise::allan::tests::deviations_and_confidence_intervals_agree_with_allantools"),
-    ("Allan confidence bands: edf's 4m^2 + 5 as 4m^2 + 1", "noise/allan.rs",
-     "(4.0 * m * m + 5.0)", "(4.0 * m * m + 1.0)",
+    ("allan-edf-plus-1", "Allan confidence bands: edf's 4m^2 + 5 as 4m^2 + 1", "noise/allan.rs",
      "noise::allan::tests::deviations_and_confidence_intervals_agree_with_allantools"),
-    ("Allan confidence bands: the wrong tail", "noise/allan.rs",
-     "let tail = (1.0 - CONFIDENCE) / 2.0;", "let tail = (1.0 - CONFIDENCE) / 1.5;",
+    ("allan-wrong-tail", "Allan confidence bands: the wrong tail", "noise/allan.rs",
      "noise::allan::tests::deviations_and_confidence_intervals_agree_with_allantools"),
-    ("an adaptive session ends from nine positions", "limits/procedure.rs",
-     "const MIN_ADAPTIVE_POSITIONS: usize = 10;", "const MIN_ADAPTIVE_POSITIONS: usize = 9;",
+    ("adaptive-ends-from-nine", "an adaptive session ends from nine positions", "procedure/adaptive.rs",
      "procedure::adaptive::tests::a_prediction_ends_the_session_only_from_ten_positions_on"),
-    ("the simulated clock makes up a stall in one jump", "sim/clock.rs",
-     "u64::try_from(elapsed).unwrap_or(u64::MAX).min(MAX_REAL_STEP_US)", "u64::try_from(elapsed).unwrap_or(u64::MAX)",
+    ("sim-clock-one-jump", "the simulated clock makes up a stall in one jump", "sim/clock.rs",
      "sim::clock::tests::real_time_follows_the_wall_clock_and_stands_still_while_held"),
 ]
 
 
-def caught(name, rel, line, broken, test):
-    """Whether `test` fails with `line` broken; None when the line is not in the code once."""
-    path = SRC / rel
-    text = path.read_text()
-    if text.count(line) != 1:
-        print(f"NOT FOUND  {name}: {rel} holds the line {text.count(line)} times", flush=True)
+def mutants_in_source():
+    """Each mutant!'s name and the files it is in, once per use."""
+    found = {}
+    for path in sorted(SRC.rglob("*.rs")):
+        code = "\n".join(line for line in path.read_text().splitlines() if not line.lstrip().startswith("//"))
+        for name in re.findall(r'mutant!\(\s*"([^"]+)"', code):
+            found.setdefault(name, []).append(str(path.relative_to(SRC)))
+    return found
+
+
+def placed(chosen):
+    """Whether every chosen mutation is in its file, once, and nowhere else; says which is not."""
+    found, good = mutants_in_source(), True
+    for name, _, rel, *_ in chosen:
+        if found.get(name) != [rel]:
+            print(f"NOT FOUND  {name}: in {found.get(name, [])}, where once in {rel} is wanted", flush=True)
+            good = False
+    listed = {c[0] for c in CHANGES}
+    for name in sorted(set(found) - listed):
+        print(f"UNLISTED   {name}: in {found[name]} but not listed here", flush=True)
+        good = False
+    return good
+
+
+def binary_of(change):
+    return change[4] if len(change) > 4 else LIB
+
+
+def build(binaries):
+    """Builds the test binaries once with the mutants feature; their paths by binary name."""
+    command = ["cargo", "test", "-p", "accelcal", "--features", "mutants", "--no-run", "--message-format=json"]
+    for binary in sorted(binaries):
+        command += ["--lib"] if binary == LIB else ["--test", binary]
+    run = subprocess.run(command, cwd=HOST, capture_output=True, text=True)
+    paths = {}
+    for line in run.stdout.splitlines():
+        message = json.loads(line) if line.startswith("{") else {}
+        if message.get("reason") != "compiler-artifact" or not message.get("executable"):
+            continue
+        if not message["profile"]["test"] or message["package_id"].find("accelcal") < 0:
+            continue
+        target = message["target"]
+        paths[LIB if "lib" in target["kind"] else target["name"]] = message["executable"]
+    if run.returncode != 0 or not set(binaries) <= set(paths):
+        print(f"NOT BUILT  the test binaries with --features mutants\n{run.stderr[-3000:]}", flush=True)
         return None
-    path.write_text(text.replace(line, broken))
+    return paths
+
+
+def run_test(executable, test, mutation):
+    """Runs one test on its own; (passed, ran, seconds), passed False when it timed out."""
+    env = {k: v for k, v in os.environ.items() if k != VARIABLE}
+    if mutation:
+        env[VARIABLE] = mutation
+    started = time.monotonic()
     try:
-        started = time.monotonic()
-        run = subprocess.run(["cargo", "test", "-q", "-p", "accelcal", "--lib", "--", "--exact", test],
-                             capture_output=True, text=True)
-        output = run.stdout + run.stderr
-        if "error[" in output or "running 1 test" not in output:
-            print(f"NOT RUN    {name}: the broken code did not build or the test is gone\n{output[-2000:]}")
-            return None
-        verdict = "caught" if run.returncode else "GREEN"
-        print(f"{verdict:<10} {name} ({rel}; {test}; {time.monotonic() - started:.0f} s)", flush=True)
-        return run.returncode != 0
-    finally:
-        path.write_text(text)
+        run = subprocess.run([executable, "--exact", test], cwd=HOST, env=env, capture_output=True, text=True,
+                             timeout=TIMEOUT_S)
+    except subprocess.TimeoutExpired:
+        return False, True, time.monotonic() - started
+    ran = "running 1 test" in run.stdout
+    return run.returncode == 0, ran, time.monotonic() - started
+
+
+def guards_pass(chosen, paths):
+    """Whether every guard test passes with no mutation active (else a red guard proves nothing)."""
+    good = True
+    for binary, test in sorted({(binary_of(c), c[3]) for c in chosen}):
+        passed, ran, seconds = run_test(paths[binary], test, None)
+        if not (passed and ran):
+            why = "fails with no mutation active" if ran else "is not in the binary"
+            print(f"BROKEN     {test} ({binary}) {why} ({seconds:.1f} s)", flush=True)
+            good = False
+    return good
+
+
+def caught(change, paths):
+    """Whether the change's test fails with its mutation active; None when the test did not run."""
+    name, words, rel, test = change[:4]
+    passed, ran, seconds = run_test(paths[binary_of(change)], test, name)
+    if not ran:
+        print(f"NOT RUN    {name}: {test} is not in the binary", flush=True)
+        return None
+    verdict = "GREEN" if passed else "caught"
+    print(f"{verdict:<10} {name}: {words} ({rel}; {test}; {seconds:.1f} s)", flush=True)
+    return not passed
 
 
 def main():
+    started = time.monotonic()
     words = sys.argv[1:]
-    chosen = [c for c in CHANGES if not words or any(w in c[0] for w in words)]
-    results = [caught(*change) for change in chosen]
+    chosen = [c for c in CHANGES if not words or any(w in c[0] or w in c[1] for w in words)]
+    ready = placed(chosen)
+    paths = build({binary_of(c) for c in chosen})
+    if paths is None:
+        sys.exit(1)
+    print(f"built once with --features mutants ({time.monotonic() - started:.0f} s)", flush=True)
+    ready = guards_pass(chosen, paths) and ready
+    results = [caught(change, paths) for change in chosen]
     good = sum(r is True for r in results)
-    print(f"{good} of {len(chosen)} logic changes caught by their tests")
-    sys.exit(0 if good == len(chosen) else 1)
+    print(f"{good} of {len(chosen)} logic changes caught by their tests ({time.monotonic() - started:.0f} s in all)")
+    sys.exit(0 if good == len(chosen) and ready else 1)
 
 
 if __name__ == "__main__":
