@@ -142,3 +142,14 @@ fn text(statement: Vec<String>, comment: &Comment, body: &str, loss: Loss) -> Ex
 fn float(value: f64) -> String {
     format!("{:e}", value as f32)
 }
+
+/// A session's calibration as the exports take it, with a gyro bias of 1, -0.5 and 0.25 deg/s (so
+/// that each axis' sign and rounding show).
+#[cfg(test)]
+pub(crate) fn example_source() -> Source {
+    let session = crate::certificate::tests::session(1, 1.4, 2.8e-3);
+    let mut source = Source::from_session(&session, "s.json").expect("the example session fits");
+    source.calibration.gyro.bias_dps = [1.0, -0.5, 0.25];
+    source
+}
+
