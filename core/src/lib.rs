@@ -16,7 +16,12 @@
 //! - [`selftest`]: a self-test's result and its report; [`part`]: the sensor part named for a person;
 //! - [`orientation`]: the one type for a wanted orientation; [`limits`]: the thresholds, each with its
 //!   reason; [`shown`]: how a number, a date or a text is shown;
+//! - [`mutant`]: `mutant!`, the switch CI's guarded mutations break lines through (feature `mutants`);
 //! - [`sim`] (feature `sim`): the simulated person and sketches, and synthetic data sets.
+
+// NOTE: first, so that every module below may use `mutant!` (a macro is in scope only after it).
+#[macro_use]
+pub mod mutant;
 
 pub mod calibration;
 pub mod certificate;

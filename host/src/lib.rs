@@ -24,6 +24,13 @@
 //! - [`shown`]: how a number, a date or a text is shown to a person;
 //! - [`error`]: the library's top error, wrapping each layer's own;
 //! - [`cli`]: the command line; the `accelcal` binary only calls [`cli::main`].
+//!
+//! `mutant!` (the core's) is the switch CI's guarded mutations break lines through
+//! (docs/mutations.md).
+
+// NOTE: first, so that every module below may use the core's `mutant!`.
+#[macro_use]
+extern crate accelcal_core;
 
 pub mod certificate;
 pub mod cli;

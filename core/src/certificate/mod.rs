@@ -122,7 +122,7 @@ pub struct Interval {
 
 impl Interval {
     fn of(u: f64) -> Self {
-        Interval { u, expanded: COVERAGE_FACTOR * u }
+        Interval { u, expanded: mutant!("certificate-predicted-k1", COVERAGE_FACTOR * u, u) }
     }
 }
 
@@ -182,7 +182,7 @@ fn parameters(estimate: &Estimate, budget: &Budget) -> BTreeMap<String, Certifie
         let value = CertifiedValue {
             value: estimate.values[k],
             u,
-            expanded: COVERAGE_FACTOR * u,
+            expanded: mutant!("certificate-parameter-k1", COVERAGE_FACTOR * u, u),
             unit: unit(name).to_owned(),
             budget: budget.contributions[k].clone(),
         };

@@ -105,3 +105,18 @@ fn checking_a_session_file_as_a_certificate_says_it_is_the_session_and_how_to_is
     assert!(matches!(error, SealError::ASession { .. }), "{error}");
     assert!(error.to_string().contains("accelcal certificate issue"), "{error}");
 }
+
+// NOTE: GUM (JCGM 100:2008) 6.2.1: U = k u; the certificate states k = 2 (about 95 % for a normal
+// distribution) for every parameter and every predicted error.
+#[test]
+fn every_expanded_uncertainty_is_twice_its_standard_uncertainty() {
+    let certificate = Certificate::issue(&session(1, 1.0, 2.8e-3)).unwrap();
+    assert_eq!(certificate.coverage_factor, 2.0);
+    assert_eq!(certificate.parameters.len(), 12);
+    for (name, p) in &certificate.parameters {
+        assert!(p.u > 0.0 && (p.expanded - 2.0 * p.u).abs() <= 1e-12 * p.u, "{name}: U {} for u {}", p.expanded, p.u);
+    }
+    for interval in [certificate.predicted.norm_error_mg, certificate.predicted.tilt_error_deg] {
+        assert!(interval.u > 0.0 && (interval.expanded - 2.0 * interval.u).abs() <= 1e-12 * interval.u, "{interval:?}");
+    }
+}

@@ -24,7 +24,7 @@ const CONVENTION: &[&str] = &[
 fn offsets(source: &Source) -> ([f32; 3], [f32; 3], Carried, Loss) {
     let full = source.full();
     let accel = full.offset_g.map(|v| (v * STANDARD_GRAVITY) as f32);
-    let gyro = source.gyro_bias_dps().map(|v| (v * RAD_PER_DEG) as f32);
+    let gyro = source.gyro_bias_dps().map(|v| mutant!("adafruit-gyro-in-deg", v * RAD_PER_DEG, v) as f32);
     let carried = Carried {
         matrix: diagonal([1.0; 3]),
         offset_g: accel.map(|v| f64::from(v) / STANDARD_GRAVITY),
@@ -74,4 +74,23 @@ pub fn eeprom(source: &Source) -> Export {
     bytes.extend(floats.iter().flat_map(|v| v.to_le_bytes()));
     bytes.extend(CRC16.checksum(&bytes).to_le_bytes());
     Export { bytes, binary: true, statement, loss }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    // NOTE: Adafruit_Sensor_Calibration subtracts gyro_zerorate from the gyro event, which is in rad/s.
+    #[test]
+    fn the_json_s_gyro_zero_rate_is_the_bias_in_rad_per_s() {
+        let exported = json(&super::super::example_source());
+        let value: serde_json::Value = serde_json::from_slice(&exported.bytes).unwrap();
+        let zero_rate: Vec<f64> =
+            value["gyro_zerorate"].as_array().unwrap().iter().filter_map(|v| v.as_f64()).collect();
+        for (got, bias_dps) in zero_rate.iter().zip([1.0, -0.5, 0.25]) {
+            let wanted = bias_dps * std::f64::consts::PI / 180.0;
+            assert!((got - wanted).abs() < 1e-8, "{zero_rate:?}");
+        }
+        assert_eq!(zero_rate.len(), 3);
+    }
 }

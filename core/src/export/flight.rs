@@ -112,8 +112,9 @@ fn ardupilot_tcal(model: &TemperatureModel, (low, high): (f32, f32)) -> Vec<(Str
         ("INS_ACC1_CALTEMP".to_owned(), model.ref_temp_c.to_string()),
         ("INS_GYR1_CALTEMP".to_owned(), model.ref_temp_c.to_string()),
     ];
-    let shift = ARDUPILOT_TCAL_REF_C - t_ref;
-    let accel = shifted(&model.offset_g, shift, STANDARD_GRAVITY * ARDUPILOT_TCAL_SCALE);
+    let shift = mutant!("ardupilot-tcal-shift-sign", ARDUPILOT_TCAL_REF_C - t_ref, t_ref - ARDUPILOT_TCAL_REF_C);
+    let accel =
+        shifted(&model.offset_g, shift, mutant!("ardupilot-tcal-in-g", STANDARD_GRAVITY, 1.0) * ARDUPILOT_TCAL_SCALE);
     let gyro = shifted(&model.gyro_bias_dps, shift, RAD_PER_DEG * ARDUPILOT_TCAL_SCALE);
     for (k, (a, g)) in accel.iter().zip(&gyro).enumerate() {
         for (axis, name) in ["X", "Y", "Z"].iter().enumerate() {
@@ -171,17 +172,23 @@ const INT32: u8 = 6;
 /// TC_A_ENABLE, TC_A0_* and TC_G_ENABLE, TC_G0_*: the model about its own T_ref.
 fn px4_thermal(model: &TemperatureModel, (low, high): (f32, f32)) -> Vec<(String, String, u8)> {
     let mut params = Vec::new();
-    for (sensor, coefficients, factor) in
-        [("A", &model.offset_g, STANDARD_GRAVITY), ("G", &model.gyro_bias_dps, RAD_PER_DEG)]
-    {
+    for (sensor, coefficients, factor) in [
+        ("A", &model.offset_g, STANDARD_GRAVITY),
+        ("G", &model.gyro_bias_dps, mutant!("px4-tc-gyro-in-deg", RAD_PER_DEG, 1.0)),
+    ] {
         params.push((format!("TC_{sensor}_ENABLE"), "1".to_owned(), INT32));
         params.push((format!("TC_{sensor}0_TREF"), model.ref_temp_c.to_string(), REAL32));
         params.push((format!("TC_{sensor}0_TMIN"), low.to_string(), REAL32));
         params.push((format!("TC_{sensor}0_TMAX"), high.to_string(), REAL32));
         for order in 0..=3 {
             for axis in 0..3 {
-                let value =
-                    if order == 0 { 0.0 } else { coefficients.get(order - 1).map_or(0.0, |c| f64::from(c[axis])) };
+                let value = if order == 0 {
+                    0.0
+                } else {
+                    coefficients
+                        .get(mutant!("px4-tc-order-shifted", order - 1, order))
+                        .map_or(0.0, |c| f64::from(c[axis]))
+                };
                 params.push((format!("TC_{sensor}0_X{order}_{axis}"), ((value * factor) as f32).to_string(), REAL32));
             }
         }
@@ -216,6 +223,87 @@ mod tests {
             assert!((value_of(file, name).unwrap() - high).abs() < 1e-3, "{name} against {high}: {file}");
         }
         assert!(ardupilot.contains(&format!("learned over: {low:.1} to {high:.1} degC")), "{ardupilot}");
+    }
+
+    /// A model with every order of offset and gyro-bias drift, about 28.5 degC.
+    fn every_order() -> TemperatureModel {
+        TemperatureModel {
+            offset_g: [[2e-4, -1e-4, 5e-5], [3e-6, -2e-6, 1e-6], [4e-8, 1e-8, -2e-8]],
+            gyro_bias_dps: [[0.01, -0.02, 0.005], [2e-4, 1e-4, -3e-4], [5e-6, -1e-6, 2e-6]],
+            ..TemperatureModel::flat(28.5)
+        }
+    }
+
+    /// sum_k c_k (T - T_ref)^k of one axis, times `factor`: the model's change from T_ref to `temp_c`.
+    fn drift_from_ref(coefficients: &TempCoefficients, axis: usize, temp_c: f64, factor: f64) -> f64 {
+        let dt = temp_c - 28.5;
+        coefficients.iter().enumerate().map(|(k, c)| f64::from(c[axis]) * dt.powi(k as i32 + 1)).sum::<f64>() * factor
+    }
+
+    /// The parameter file of a session's calibration carrying `every_order`.
+    fn exported(target: Target) -> String {
+        let mut source = crate::export::example_source();
+        source.calibration.temperature = Some(every_order());
+        String::from_utf8(export(&source, target).unwrap().bytes).unwrap()
+    }
+
+    // NOTE: what ArduPilot subtracts (AP_InertialSensor_tempcal.cpp, TCal::correct_sensor):
+    // poly(T - 35) - poly(CALTEMP - 35), poly(t) = (c1 + c2 t + c3 t^2) t / 1e6, in m/s^2 and rad/s.
+    #[test]
+    fn ardupilot_s_tcal_takes_out_the_model_s_drift_in_m_s2_and_rad_s_at_every_temperature() {
+        let file = exported(Target::Ardupilot);
+        let poly = |sensor: &str, axis: &str, t: f64| {
+            let c = |k: u8| f64::from(value_of(&file, &format!("INS_TCAL1_{sensor}{k}_{axis}")).unwrap());
+            (c(1) + c(2) * t + c(3) * t * t) * t / 1e6
+        };
+        let cal_temp = f64::from(value_of(&file, "INS_ACC1_CALTEMP").unwrap());
+        let model = every_order();
+        for temp_c in [15.0, 35.0, 47.0] {
+            for (axis, name) in ["X", "Y", "Z"].iter().enumerate() {
+                let subtracted = |sensor| poly(sensor, name, temp_c - 35.0) - poly(sensor, name, cal_temp - 35.0);
+                let accel = drift_from_ref(&model.offset_g, axis, temp_c, STANDARD_GRAVITY);
+                let gyro = drift_from_ref(&model.gyro_bias_dps, axis, temp_c, RAD_PER_DEG);
+                assert!(
+                    (subtracted("ACC") - accel).abs() < 2e-6,
+                    "{name} at {temp_c}: {} m/s^2 against {accel}",
+                    subtracted("ACC")
+                );
+                assert!(
+                    (subtracted("GYR") - gyro).abs() < 2e-7,
+                    "{name} at {temp_c}: {} rad/s against {gyro}",
+                    subtracted("GYR")
+                );
+            }
+        }
+    }
+
+    // NOTE: PX4's thermal offset (TemperatureCompensation::calc_thermal_offsets_3D):
+    // X0 + X1 dT + X2 dT^2 + X3 dT^3, dT = T - TREF, in m/s^2 and rad/s.
+    #[test]
+    fn px4_s_thermal_offsets_are_the_model_s_drift_in_m_s2_and_rad_s_at_every_temperature() {
+        let file = exported(Target::Px4);
+        let model = every_order();
+        for temp_c in [15.0, 35.0, 47.0] {
+            for axis in 0..3 {
+                let offset = |sensor: &str| {
+                    let dt = temp_c - f64::from(value_of(&file, &format!("TC_{sensor}0_TREF")).unwrap());
+                    let x = |k: i32| f64::from(value_of(&file, &format!("TC_{sensor}0_X{k}_{axis}")).unwrap());
+                    (0..=3).map(|k| x(k) * dt.powi(k)).sum::<f64>()
+                };
+                let accel = drift_from_ref(&model.offset_g, axis, temp_c, STANDARD_GRAVITY);
+                let gyro = drift_from_ref(&model.gyro_bias_dps, axis, temp_c, RAD_PER_DEG);
+                assert!(
+                    (offset("A") - accel).abs() < 2e-6,
+                    "axis {axis} at {temp_c}: {} m/s^2 against {accel}",
+                    offset("A")
+                );
+                assert!(
+                    (offset("G") - gyro).abs() < 2e-7,
+                    "axis {axis} at {temp_c}: {} rad/s against {gyro}",
+                    offset("G")
+                );
+            }
+        }
     }
 
     #[test]

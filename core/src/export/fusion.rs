@@ -38,10 +38,36 @@ pub fn fusion(source: &Source) -> Export {
          static const FusionVector gyroscopeOffset = {};\n",
         flat(&full.matrix),
         c_vector(&[1.0 / lsb; 3]),
-        c_vector(&full.offset_g.map(|v| v * lsb)),
+        c_vector(&full.offset_g.map(|v| mutant!("fusion-offset-in-g", v * lsb, v))),
         flat(&full.gyro_matrix),
         c_vector(&[1.0 / source.gyro_lsb_per_dps(); 3]),
-        c_vector(&source.gyro_bias_dps().map(|v| v * source.gyro_lsb_per_dps())),
+        c_vector(
+            &source.gyro_bias_dps().map(|v| mutant!("fusion-gyro-offset-sign", v, -v) * source.gyro_lsb_per_dps())
+        ),
     );
     text(lines(source, &FUSION_SAID, &loss), &SLASHES, &body, loss)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{c_vector_of, example_source};
+    use super::*;
+
+    // NOTE: Fusion's FusionCalibrationInertial: calibrated = misalignment * ((uncalibrated - offset) .*
+    // sensitivity), the uncalibrated reading in counts: both offsets are the bias in counts, not negated.
+    #[test]
+    fn fusion_s_offsets_are_the_biases_in_counts() {
+        let source = example_source();
+        let text = String::from_utf8(fusion(&source).bytes).unwrap();
+        let (lsb_g, lsb_dps) = (source.lsb_per_g(), source.gyro_lsb_per_dps());
+        let accel = c_vector_of(&text, "accelerometerOffset").unwrap();
+        let gyro = c_vector_of(&text, "gyroscopeOffset").unwrap();
+        for axis in 0..3 {
+            let wanted = source.full().offset_g[axis] * lsb_g;
+            assert!((accel[axis] - wanted).abs() <= 1e-6 * wanted.abs().max(1.0), "{accel:?}: {text}");
+            let wanted = source.gyro_bias_dps()[axis] * lsb_dps;
+            assert!((gyro[axis] - wanted).abs() <= 1e-6 * wanted.abs(), "{gyro:?}: {text}");
+        }
+        assert!(source.full().offset_g.iter().all(|o| o.abs() * lsb_g > 10.0), "an offset too small to show");
+    }
 }

@@ -33,7 +33,10 @@ const I2CDEVLIB_SAID: Said = Said {
 pub fn i2cdevlib(source: &Source) -> Export {
     let full = source.full();
     let accel = full.offset_g.map(|v| -(v * ACCEL_OFFSET_LSB_PER_G).round() as i32);
-    let gyro = source.gyro_bias_dps().map(|v| -(v * GYRO_OFFSET_LSB_PER_DPS).round() as i32);
+    let gyro = source.gyro_bias_dps().map(|v| {
+        mutant!("i2cdevlib-gyro-sign", -(v * GYRO_OFFSET_LSB_PER_DPS).round(), (v * GYRO_OFFSET_LSB_PER_DPS).round())
+            as i32
+    });
     let carried = Carried {
         matrix: diagonal([1.0; 3]),
         offset_g: accel.map(|v| -f64::from(v) / ACCEL_OFFSET_LSB_PER_G),
@@ -66,4 +69,23 @@ fn imu_zero(source: &Source) -> String {
         rms * 1e3,
         worst * 1e3
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    // NOTE: the register adds to every reading (reading = raw + register), so a bias b is taken out by
+    // -b in the register's 32.8 counts per deg/s: 1.0 deg/s is -33, -0.5 is +16, 0.25 is -8.
+    #[test]
+    fn the_gyro_offset_lines_add_minus_the_bias_in_the_register_s_counts() {
+        let text = String::from_utf8(i2cdevlib(&super::super::example_source()).bytes).unwrap();
+        for line in [
+            "mpu.setXGyroOffset(mpu.getXGyroOffset() + (-33));",
+            "mpu.setYGyroOffset(mpu.getYGyroOffset() + (16));",
+            "mpu.setZGyroOffset(mpu.getZGyroOffset() + (-8));",
+        ] {
+            assert!(text.lines().any(|l| l == line), "no `{line}` in\n{text}");
+        }
+    }
 }

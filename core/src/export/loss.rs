@@ -66,7 +66,7 @@ pub fn spread(matrix: &Mat3<f64>, offset: &Vec3<f64>, target: &Mat3<f64>, target
         sum += error * error;
         worst = worst.max(error);
     }
-    ((sum / SPHERE_POINTS as f64).sqrt(), worst)
+    (mutant!("export-loss-rms-unmeaned", (sum / SPHERE_POINTS as f64).sqrt(), sum.sqrt()), worst)
 }
 
 /// The diagonal scale that leaves the least error over the sphere when only a scale per axis is kept:

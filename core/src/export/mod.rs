@@ -73,3 +73,22 @@ pub fn export(source: &Source, target: Target) -> Result<Export, ExportError> {
         Target::Kalibr => kalibr::kalibr(source),
     }
 }
+
+/// A session's calibration as the exports take it, with a gyro bias of 1, -0.5 and 0.25 deg/s (so
+/// that each axis' sign and rounding show).
+#[cfg(test)]
+pub(crate) fn example_source() -> Source {
+    let session = crate::sim::sessions::adaptive(1, 1.4, 2.8e-3);
+    let mut source = Source::from_session(&session, "s.json").expect("the example session fits");
+    source.calibration.gyro.bias_dps = [1.0, -0.5, 0.25];
+    source
+}
+
+/// The three numbers of `name = {x, y, z};` in a C export (`1.5e0f` as 1.5).
+#[cfg(test)]
+pub(crate) fn c_vector_of(text: &str, name: &str) -> Option<[f64; 3]> {
+    let line = text.lines().find(|l| l.contains(&format!(" {name} = ")))?;
+    let inside = line.split(['{', '}']).nth(1)?;
+    let numbers: Vec<f64> = inside.split(',').filter_map(|v| v.trim().trim_end_matches('f').parse().ok()).collect();
+    numbers.try_into().ok()
+}

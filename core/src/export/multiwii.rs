@@ -17,7 +17,9 @@ const INAV_GAIN_ONE: f64 = 4096.0;
 /// Offsets only, in whole counts at `lsb_per_g`, with an optional per-axis scale; no gyro bias kept.
 fn carried(source: &Source, lsb_per_g: f64, scale: Vec3<f64>) -> (Carried, [i32; 3]) {
     let full = source.full();
-    let counts = full.offset_g.map(|v| (v * lsb_per_g).round() as i32);
+    let counts = full
+        .offset_g
+        .map(|v| mutant!("multiwii-offset-sign", (v * lsb_per_g).round(), -(v * lsb_per_g).round()) as i32);
     let carried = Carried {
         matrix: diagonal(scale),
         offset_g: counts.map(|v| f64::from(v) / lsb_per_g),
@@ -75,4 +77,22 @@ pub fn inav(source: &Source) -> Export {
     }
     body.push_str("save\n");
     text(lines(source, &INAV_SAID, &loss), &HASH, &body, loss)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    // NOTE: Betaflight subtracts acc_calibration from the raw reading (sensors/acceleration.c,
+    // applyAccelerationTrims: accADC -= accZero), in counts at 2048 per g: the offset itself, rounded.
+    #[test]
+    fn betaflight_s_acc_calibration_is_the_offset_in_its_counts() {
+        let source = super::super::example_source();
+        let text = String::from_utf8(betaflight(&source).bytes).unwrap();
+        let counts = source.full().offset_g.map(|o| (o * 2048.0).round() as i32);
+        let line = format!("set acc_calibration = {},{},{},1", counts[0], counts[1], counts[2]);
+        assert!(text.lines().any(|l| l == line), "no `{line}` in\n{text}");
+        // The session's sensor offset is +0.03, -0.01, -0.08 g: the signs show.
+        assert!(counts[0] > 20 && counts[2] < -100, "{counts:?}");
+    }
 }

@@ -183,7 +183,7 @@ pub fn fit_temperature(reference: &ThermalReference, points: &[ThermalPoint]) ->
         squares += error * error;
         fit_gyro_axis(&mut fit, points, ref_c, axis, folds)?;
     }
-    fit.held_out_mg = (squares / 3.0).sqrt() * 1000.0;
+    fit.held_out_mg = mutant!("thermal-held-out-unscaled", (squares / 3.0).sqrt(), squares.sqrt()) * 1000.0;
     Ok(fit)
 }
 

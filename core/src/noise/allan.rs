@@ -99,7 +99,8 @@ fn second_difference_energy(x0: &[f64], x1: &[f64], x2: &[f64]) -> f64 {
 pub fn white_noise_edf(phase_points: usize, m: usize) -> f64 {
     let n = phase_points as f64;
     let m = m as f64;
-    let edf = (3.0 * (n - 1.0) / (2.0 * m) - 2.0 * (n - 2.0) / n) * (4.0 * m * m / (4.0 * m * m + 5.0));
+    let edf = (3.0 * (n - 1.0) / mutant!("allan-edf-over-m", 2.0 * m, m) - 2.0 * (n - 2.0) / n)
+        * (4.0 * m * m / (4.0 * m * m + mutant!("allan-edf-plus-1", 5.0, 1.0)));
     edf.max(1.0)
 }
 
@@ -109,7 +110,7 @@ const WILSON_HILFERTY_EDF: f64 = 100.0;
 
 /// The chi-square confidence interval of a deviation with `edf` degrees of freedom: (low, high).
 pub fn confidence_interval(adev: f64, edf: f64) -> (f64, f64) {
-    let tail = (1.0 - CONFIDENCE) / 2.0;
+    let tail = (1.0 - CONFIDENCE) / mutant!("allan-wrong-tail", 2.0, 1.5);
     let (Some(upper), Some(lower)) = (chi_square_quantile(edf, 1.0 - tail), chi_square_quantile(edf, tail)) else {
         return (0.0, f64::INFINITY);
     };

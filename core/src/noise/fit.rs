@@ -69,7 +69,7 @@ impl NoiseTerms {
 
 /// What each squared term contributes to the Allan variance at `tau_s`.
 fn model_terms(tau_s: f64) -> Vector3<f64> {
-    Vector3::new(1.0 / tau_s, FLICKER_FLOOR * FLICKER_FLOOR, tau_s / 3.0)
+    Vector3::new(1.0 / tau_s, FLICKER_FLOOR * FLICKER_FLOOR, mutant!("random-walk-tau-2", tau_s / 3.0, tau_s / 2.0))
 }
 
 /// Fits the three terms to the curve by weighted least squares on the relative variance error, each

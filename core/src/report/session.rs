@@ -137,7 +137,15 @@ fn positions(session: &Session, fitted: &Dataset, report: &FitReport) -> Vec<Pos
     let (matrix, offset) = (&report.fit.matrix, &report.fit.offset);
     let calibrated: Vec<[f64; 3]> = match &session.uploaded {
         Some(record) => super::uploaded::calibrated_by(record, session),
-        None => fitted.rows.iter().map(|row| linalg::mul_vec(matrix, linalg::sub(row.reading, *offset))).collect(),
+        None => mutant!(
+            "report-refit-drift-left-in",
+            fitted.rows.iter().map(|row| linalg::mul_vec(matrix, linalg::sub(row.reading, *offset))).collect(),
+            session
+                .captures
+                .iter()
+                .map(|c| linalg::mul_vec(matrix, linalg::sub(c.stats.mean_g.map(f64::from), *offset)))
+                .collect()
+        ),
     };
     session
         .captures

@@ -32,7 +32,16 @@ pub fn calibrated_by(record: &Calibration, session: &Session) -> Vec<[f64; 3]> {
         let (matrix, offset) = calibration::applied_at(record, temp_c);
         linalg::mul_vec(&matrix, linalg::sub(mean_g.map(f64::from), offset))
     };
-    session.captures.iter().map(|c| calibrate(c.stats.mean_g, c.stats.temp_c)).collect()
+    session
+        .captures
+        .iter()
+        .map(|c| {
+            calibrate(
+                c.stats.mean_g,
+                mutant!("uploaded-first-temperature", c.stats.temp_c, session.captures[0].stats.temp_c),
+            )
+        })
+        .collect()
 }
 
 /// The uploaded record's section of the HTML page: its line, then M, o and G row by row, each number

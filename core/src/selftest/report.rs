@@ -93,7 +93,7 @@ pub fn text(test: &SelfTest, previous: Option<&HistoryEntry>) -> String {
     let mut out = format!(
         "sensor: {}\nself-test at +-{range} g and +-250 deg/s, {attempts} attempt{}\n",
         describe(&test.identity),
-        if attempts == 1 { "" } else { "s (the board moved; repeated)" }
+        if attempts == mutant!("selftest-attempts-plural", 1, 0) { "" } else { "s (the board moved; repeated)" }
     );
     out += &format!(
         "{:<8} {:>12} {:>13} {:>9} {:>5}  {:<9} {:<9}{}\n",

@@ -54,7 +54,12 @@ impl BoardRecord {
         // NOTE: a rate the board achieves a little differently (99 for 100 Hz) measures the same; a
         // board left at 1000 Hz by `record` filters and averages otherwise.
         let rate_differs = (rate - other_rate).abs() > RESUME_RATE_TOLERANCE * rate;
-        if (self.config.range, self.config.filter) != (board.config.range, board.config.filter) || rate_differs {
+        let setting_differs = mutant!(
+            "resume-other-filter",
+            (self.config.range, self.config.filter) != (board.config.range, board.config.filter),
+            self.config.range != board.config.range
+        );
+        if setting_differs || rate_differs {
             return Err(SessionError::OtherSetting {
                 path,
                 session: setting(&self.config),

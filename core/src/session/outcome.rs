@@ -72,7 +72,7 @@ impl Session {
             let captures = drift::learned::at_reference(&captures, learned);
             return Fitted { model, drift: None, learned: learned.temperature, captures };
         }
-        let drift = drift::fitted(&captures);
+        let drift = mutant!("adaptive-drift-unfitted", drift::fitted(&captures), None);
         let captures = drift::at_mean_temperature(&captures, drift.as_ref());
         Fitted { model, drift, learned: None, captures }
     }

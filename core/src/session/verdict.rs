@@ -36,7 +36,9 @@ pub struct TargetVerdict {
 impl Verification {
     /// Whether the calibrated error is within [`TRUSTED_AFTER_NOISE_FLOOR`] noise floors.
     pub fn trusted(&self) -> bool {
-        self.after_rms_mg <= TRUSTED_AFTER_NOISE_FLOOR * self.noise_floor_mg.max(f64::EPSILON)
+        self.after_rms_mg
+            <= mutant!("verdict-trusted-ten-floors", TRUSTED_AFTER_NOISE_FLOOR, 10.0)
+                * self.noise_floor_mg.max(f64::EPSILON)
     }
 
     /// The verification against `target_mg`: reached, within its noise of it, or missed; without a
@@ -49,10 +51,10 @@ impl Verification {
             let line = format!("{rms:.3} mg verified (noise floor {floor:.3} mg, {judged}); captures of a fixed length aim at no --target-mg");
             return TargetVerdict { target_mg, reached: trusted, trusted, missed: false, line };
         };
-        let reached = rms <= target_mg;
+        let reached = mutant!("verdict-reached-by-the-floor", rms, rms - floor) <= target_mg;
         // NOTE: the rms carries its own noise: the error without it must exceed the target by more
         // than one noise floor for the miss to be the calibration's.
-        let missed = self.after_rms_without_noise_mg > target_mg + floor;
+        let missed = self.after_rms_without_noise_mg > target_mg + mutant!("verdict-missed-within-noise", floor, 0.0);
         let judged = if trusted { "trusted" } else { "not trusted" };
         let head = format!("target {target_mg} mg: {rms:.3} mg verified (noise floor {floor:.3} mg, {judged})");
         let line = match (reached, missed) {

@@ -97,7 +97,9 @@ impl Verification {
             before_rms_mg: rms(|c| c.before_mg),
             after_rms_mg: after,
             after_rms_without_noise_mg: (after * after - floor * floor).max(0.0).sqrt(),
-            after_max_mg: checks.iter().fold(0.0, |m, c| m.max(c.after_mg.abs())),
+            after_max_mg: checks
+                .iter()
+                .fold(0.0, |m, c| m.max(mutant!("worst-error-signed", c.after_mg.abs(), c.after_mg))),
             on_chip_difference_mg: checks.iter().fold(0.0, |m, c| m.max(c.on_chip_mg)),
             on_chip_noise_mg: checks.iter().fold(0.0, |m, c| m.max(c.on_chip_noise_mg)),
             noise_floor_mg: floor,

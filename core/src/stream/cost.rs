@@ -41,11 +41,12 @@ fn aliasing(log: &StreamLog, scatter_g: f64) -> Option<Cost> {
     if band_hz < FOLDED_NOISE_FACTOR * rate / 2.0 {
         return None;
     }
-    let here_s = (scatter_g / MEAN_GOAL_G).powi(2) / rate;
-    let low_pass = LOW_PASS_HZ.into_iter().find(|&f| f <= rate / 2.0).unwrap_or(5.0);
+    let here_s = (scatter_g / MEAN_GOAL_G).powi(2) / mutant!("cost-here-time-doubled", rate, rate / 2.0);
+    let low_pass =
+        LOW_PASS_HZ.into_iter().find(|&f| f <= mutant!("cost-low-pass-above-nyquist", rate / 2.0, rate)).unwrap_or(5.0);
     // NOTE: with the band within the rate, a mean over T seconds scatters density / sqrt(2 T), however
     // narrow the low-pass: the time no longer depends on the rate.
-    let filtered_s = (ACCEL_DENSITY_G / MEAN_GOAL_G).powi(2) / 2.0;
+    let filtered_s = (ACCEL_DENSITY_G / MEAN_GOAL_G).powi(2) / mutant!("cost-filtered-time-unhalved", 2.0, 1.0);
     Some(Cost {
         kind: "aliasing",
         words: format!(
@@ -79,7 +80,7 @@ fn gyro_decimals(log: &StreamLog, segments: &[Segment]) -> Option<Cost> {
         words: format!(
             "the gyro's values step by {step_dps:.2} deg/s, more than its noise ({scatter:.3} deg/s): its bias is known \
              no better than {:.2} deg/s; print more decimals",
-            step_dps / 2.0
+            mutant!("cost-gyro-bias-whole-step", step_dps / 2.0, step_dps)
         ),
     })
 }
@@ -97,7 +98,10 @@ fn timestamps(log: &StreamLog) -> Option<Cost> {
     let rate = log.rate?;
     let times: Vec<f64> = log.samples.iter().filter_map(|s| s.time).collect();
     let lost = lost_in_gaps(&times, rate);
-    (lost > 0).then(|| Cost { kind: "lost", words: format!("the timestamps show {lost} samples lost in gaps") })
+    (lost > 0).then(|| Cost {
+        kind: "lost",
+        words: format!("the timestamps show {} samples lost in gaps", mutant!("cost-lost-one-short", lost, lost - 1)),
+    })
 }
 
 /// The step the values are printed in: 10^-d for the most decimals any value has (d <= 6), the
@@ -116,4 +120,60 @@ fn median(values: impl Iterator<Item = f64>) -> Option<f64> {
     let mut values: Vec<f64> = values.collect();
     values.sort_by(f64::total_cmp);
     values.get(values.len() / 2).copied()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::stream::{AccelUnit, GyroUnit, StreamOptions};
+
+    /// A still board's log at 100 Hz (millis), in g and deg/s, without the samples numbered in `lost`;
+    /// its gyro printed with one decimal and steady, its accelerometer with four.
+    fn still_log(lost: &[usize]) -> StreamLog {
+        let mut text = "millis,ax,ay,az,gx,gy,gz\n".to_owned();
+        for i in (0..1000).filter(|i| !lost.contains(i)) {
+            let wobble = [0.0, 0.003, -0.003, 0.0][i % 4];
+            text += &format!("{},{wobble:.4},{:.4},{:.4},0.5,-0.2,0.1\n", i * 10, -wobble, 1.0 + wobble);
+        }
+        let options =
+            StreamOptions { accel_unit: Some(AccelUnit::G), gyro_unit: Some(GyroUnit::DegPerS), ..Default::default() };
+        StreamLog::parse(&text, &options).unwrap()
+    }
+
+    // NOTE: 4 mg at 100 Hz: a band of (4 mg / 400 ug/sqrt(Hz))^2 = 100 Hz; a mean to 0.1 mg takes
+    // (4 / 0.1)^2 / 100 Hz = 16 s here, (0.4 / 0.1)^2 / 2 = 8 s behind the low-pass, 44 Hz being the
+    // widest setting at or below the 50 Hz Nyquist frequency.
+    #[test]
+    fn a_stream_s_aliasing_cost_names_its_band_and_both_capture_times() {
+        let words = aliasing(&still_log(&[]), 0.004).unwrap().words;
+        for said in [
+            "each sample scatters 4.0 mg",
+            "about 100 Hz wide at 100 Hz",
+            "takes 16 s here, 8 s with the chip's low-pass at 44 Hz",
+        ] {
+            assert!(words.contains(said), "no `{said}` in: {words}");
+        }
+    }
+
+    #[test]
+    fn a_gyro_printed_in_tenths_is_known_to_half_a_tenth() {
+        let log = still_log(&[]);
+        let still = Segment {
+            first: 0,
+            last: log.samples.len() - 1,
+            samples: log.samples.len(),
+            mean_g: [0.0, 0.0, 1.0],
+            std_g: [0.002; 3],
+            gyro_mean_dps: None,
+        };
+        let words = gyro_decimals(&log, &[still]).unwrap().words;
+        let said = "step by 0.10 deg/s, more than its noise (0.000 deg/s): its bias is known no better than 0.05 deg/s";
+        assert!(words.contains(said), "{words}");
+    }
+
+    #[test]
+    fn the_samples_lost_in_gaps_are_counted_in_the_cost_line() {
+        let lost = timestamps(&still_log(&[500, 700, 701, 702])).unwrap();
+        assert_eq!((lost.kind, lost.words.as_str()), ("lost", "the timestamps show 4 samples lost in gaps"));
+    }
 }

@@ -57,7 +57,7 @@ impl Dropped {
     /// Counts line `line` as dropped for `reason`.
     pub fn add(&mut self, reason: DropReason, line: usize) {
         match self.0.iter_mut().find(|d| d.reason == reason) {
-            Some(dropped) => dropped.lines += 1,
+            Some(dropped) => dropped.lines += mutant!("dropped-lines-counted-once", 1, 0),
             None => {
                 let at = self.0.partition_point(|d| d.first_line < line);
                 self.0.insert(at, DroppedLines { reason, lines: 1, first_line: line });

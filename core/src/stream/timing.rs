@@ -88,7 +88,7 @@ pub fn lost_in_gaps(times: &[f64], rate: Rate) -> usize {
     let period = 1.0 / rate.hz;
     let hidden = |(i, a): (usize, f64), (j, b): (usize, f64)| {
         let (steps, between) = ((b - a) / period, (j - i) as f64);
-        if steps > between + 0.5 {
+        if steps > between + mutant!("stream-single-lost-uncounted", 0.5, 1.5) {
             (steps.round() - between) as usize
         } else {
             0
@@ -145,6 +145,15 @@ mod tests {
         let rate = rate_of(&[0.0, 0.01, 0.02, 0.05, 0.06], RateSource::Timestamps).unwrap();
         assert!((rate.hz - 100.0).abs() < 1e-9);
         assert_eq!(lost_in_gaps(&[0.0, 0.01, 0.02, 0.05, 0.06], rate), 2);
+    }
+
+    #[test]
+    fn a_single_lost_sample_is_counted_alone_and_after_another() {
+        let rate = Rate { hz: 100.0, source: RateSource::Timestamps };
+        // 1.02 missing: a step of two periods hides one sample.
+        assert_eq!(lost_in_gaps(&[1.0, 1.01, 1.03, 1.04], rate), 1);
+        // Two single losses apart.
+        assert_eq!(lost_in_gaps(&[1.0, 1.02, 1.03, 1.05, 1.06], rate), 2);
     }
 
     #[test]

@@ -92,7 +92,7 @@ impl AccelUnit {
             AccelUnit::MilliG => 1000.0,
             AccelUnit::MetersPerSecond2 => STANDARD_GRAVITY,
             AccelUnit::Counts2g => f64::from(AccelRange::G2.lsb_per_g()),
-            AccelUnit::Counts4g => f64::from(AccelRange::G4.lsb_per_g()),
+            AccelUnit::Counts4g => mutant!("stream-counts-4g-as-2g", f64::from(AccelRange::G4.lsb_per_g()), 16384.0),
             AccelUnit::Counts8g => f64::from(AccelRange::G8.lsb_per_g()),
             AccelUnit::Counts16g => f64::from(AccelRange::G16.lsb_per_g()),
             AccelUnit::MotionCal => MOTIONCAL_COUNTS_PER_MS2 * STANDARD_GRAVITY,
@@ -170,7 +170,7 @@ impl GyroUnit {
             GyroUnit::RadPerS => 1f64.to_radians(),
             GyroUnit::Counts250 => GyroRange::Dps250.lsb_per_dps(),
             GyroUnit::Counts500 => GyroRange::Dps500.lsb_per_dps(),
-            GyroUnit::Counts1000 => GyroRange::Dps1000.lsb_per_dps(),
+            GyroUnit::Counts1000 => mutant!("stream-gyro-1000-rounded", GyroRange::Dps1000.lsb_per_dps(), 33.0),
             GyroUnit::Counts2000 => GyroRange::Dps2000.lsb_per_dps(),
             GyroUnit::MotionCal => MOTIONCAL_COUNTS_PER_DPS,
         }
@@ -255,5 +255,24 @@ mod tests {
         assert_eq!(AccelUnit::infer(Dialect::AdafruitPlotter, 1.0).unwrap(), AccelUnit::MetersPerSecond2);
         assert_eq!(AccelUnit::Counts2g.name(), "counts-2g");
         assert_eq!(GyroUnit::RadPerS.name(), "rad/s");
+    }
+
+    // NOTE: the MPU-6000/6050 Product Specification, 6.1: 131, 65.5, 32.8 and 16.4 LSB/(deg/s) at
+    // FS_SEL 0-3 (+-250 to +-2000 deg/s); 16384 to 2048 LSB/g at AFS_SEL 0-3 (6.2).
+    #[test]
+    fn a_stream_s_counts_are_read_at_the_datasheet_s_sensitivity_of_their_range() {
+        let log = |header: &str, row: &str, gyro_unit| {
+            let text: String = (0..50).map(|i| format!("{}{row}\n", i * 10)).collect();
+            let options = super::super::StreamOptions { gyro_unit, ..Default::default() };
+            super::super::StreamLog::parse(&format!("{header}\n{text}"), &options).unwrap()
+        };
+        let counts = log("millis,ax,ay,az,gx,gy,gz", ",0,0,8192,328,-164,3280", Some(GyroUnit::Counts1000));
+        assert_eq!(counts.accel_unit, AccelUnit::Counts4g);
+        let accel_g = counts.samples[0].accel.map(|v| v / counts.accel_unit.per_g());
+        assert_eq!(accel_g, [0.0, 0.0, 1.0]);
+        let gyro_dps = counts.gyro_dps().unwrap()[0];
+        for (got, wanted) in gyro_dps.iter().zip([10.0, -5.0, 100.0]) {
+            assert!((got - wanted).abs() < 1e-9, "{gyro_dps:?}");
+        }
     }
 }

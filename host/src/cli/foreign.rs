@@ -64,8 +64,19 @@ struct Ended {
 }
 
 impl Ended {
+    /// Cut short (the port gone, the stream stopped or unreadable): kept to resume, never certified.
     fn short(why: impl Into<String>) -> Self {
         Ended { why: why.into(), complete: false }
+    }
+
+    /// Stopped by Ctrl-C: cut short however much the log holds, as a person who stops a run means it
+    /// unfinished (a log long enough to fit is still fitted and shown, never certified).
+    fn interrupted() -> Self {
+        mutant!(
+            "stream-ctrl-c-certified",
+            Ended::short("stopped by Ctrl-C"),
+            Ended { why: "stopped by Ctrl-C".to_owned(), complete: true }
+        )
     }
 }
 
@@ -93,7 +104,7 @@ fn listen_until_done(
             return Ok(Ended::short(format!("the port went away ({e})")));
         }
         if interrupt.load(Ordering::SeqCst) {
-            return Ok(Ended::short("stopped by Ctrl-C"));
+            return Ok(Ended::interrupted());
         }
         match live.silence() {
             Silence::Stopped => return Ok(Ended::short("the stream stopped")),
@@ -193,4 +204,16 @@ fn certify(args: &CalibrateArgs, kept: &Kept, session: &Session) -> Result<(), E
 fn read_log(path: &Path, options: &StreamOptions) -> Result<StreamLog, Error> {
     let text = crate::stream::read_text(path).map_err(|source| Error::ReadFile { path: path.to_owned(), source })?;
     StreamLog::parse(&text, options).map_err(|source| Error::Stream { path: path.to_owned(), source })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Ended;
+
+    #[test]
+    fn a_stream_session_stopped_by_ctrl_c_is_not_complete_so_gets_no_certificate() {
+        let ended = Ended::interrupted();
+        assert!(!ended.complete, "Ctrl-C counted as a complete session: `report` would certify it");
+        assert_eq!(ended.why, "stopped by Ctrl-C");
+    }
 }

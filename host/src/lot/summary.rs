@@ -70,7 +70,11 @@ impl Distribution {
         let values: Vec<f64> = boards.iter().map(|b| b.1).collect();
         let (mean, std) = mean_and_std(&values);
         let outside = match limits {
-            Some(limits) => boards.iter().filter(|b| !limits.admits(b.1)).map(|b| b.0.to_owned()).collect(),
+            Some(limits) => boards
+                .iter()
+                .filter(|b| mutant!("lot-outside-inverted", !limits.admits(b.1), limits.admits(b.1)))
+                .map(|b| b.0.to_owned())
+                .collect(),
             None => Vec::new(),
         };
         Distribution {
@@ -93,7 +97,9 @@ impl Distribution {
 fn mean_and_std(values: &[f64]) -> (f64, Option<f64>) {
     let n = values.len() as f64;
     let mean = values.iter().sum::<f64>() / n;
-    let std = (values.len() >= 2).then(|| (values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt());
+    let std = (values.len() >= 2).then(|| {
+        (values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / mutant!("lot-std-population", n - 1.0, n)).sqrt()
+    });
     (mean, std)
 }
 
@@ -101,7 +107,7 @@ fn mean_and_std(values: &[f64]) -> (f64, Option<f64>) {
 /// (with one limit, that side's Cpu or Cpl); none when the boards do not spread.
 pub fn cpk(mean: f64, std: f64, limits: &Limits) -> Option<f64> {
     let above = limits.high.map(|high| (high - mean) / (3.0 * std));
-    let below = limits.low.map(|low| (mean - low) / (3.0 * std));
+    let below = limits.low.map(|low| mutant!("lot-cpk-below-sign", mean - low, low - mean) / (3.0 * std));
     let nearer = [above, below].into_iter().flatten().fold(f64::INFINITY, f64::min);
     (std > 0.0 && nearer.is_finite()).then_some(nearer)
 }

@@ -7,7 +7,11 @@ use crate::certificate::Certificate;
 
 /// The lot's summary as lines for the terminal.
 pub fn summary(summary: &LotSummary) -> String {
-    let boards = if summary.boards == 1 { "1 board".to_owned() } else { format!("{} boards", summary.boards) };
+    let boards = if summary.boards == mutant!("lot-text-one-boards", 1, 0) {
+        "1 board".to_owned()
+    } else {
+        format!("{} boards", summary.boards)
+    };
     let mut out = format!("{boards} (each by its latest certificate): {}\n", summary.serials.join(", "));
     let _ = writeln!(
         out,

@@ -97,7 +97,11 @@ impl FamilyCheck {
 
     /// Whether the offset registers confirm the family the board runs the part as.
     pub fn confirmed(&self) -> bool {
-        matches!(self.verdict, Verdict::Confirmed | Verdict::ContradictsWhoAmI { .. })
+        mutant!(
+            "family-lookalike-unconfirmed",
+            matches!(self.verdict, Verdict::Confirmed | Verdict::ContradictsWhoAmI { .. }),
+            matches!(self.verdict, Verdict::Confirmed)
+        )
     }
 
     /// What confirmed the family ("offset registers"), or `None` when nothing did.

@@ -80,7 +80,9 @@ pub fn collect_adaptive<P: Port>(
 // drift can be fitted, a warming board kept it in the calibration (--target-mg 0.5, seed 2: 1.04 mg
 // at verification where 0.43 was predicted).
 fn enough(session: &Session, target_mg: f64, feedback: &mut dyn Feedback) -> bool {
-    if session.captures.len() < MIN_ADAPTIVE_POSITIONS || drift::unfitted_after(session, 1) {
+    if session.captures.len() < mutant!("adaptive-ends-from-nine", MIN_ADAPTIVE_POSITIONS, 9)
+        || drift::unfitted_after(session, 1)
+    {
         return false;
     }
     let Some(predicted_mg) = predicted_mg(session) else {

@@ -112,7 +112,16 @@ impl StopRule {
             return MAX_CAPTURE_SECONDS;
         };
         let worst = white_noise_g.iter().copied().fold(0.0, f64::max);
-        let longest = capture_limit_s.unwrap_or(MAX_CAPTURE_SECONDS).clamp(MIN_CAPTURE_SECONDS, MAX_CAPTURE_SECONDS);
+        let limit_s = capture_limit_s.unwrap_or(MAX_CAPTURE_SECONDS);
+        let longest = mutant!(
+            "stop-rule-no-upper-clamp",
+            mutant!(
+                "stop-rule-no-lower-clamp",
+                limit_s.clamp(MIN_CAPTURE_SECONDS, MAX_CAPTURE_SECONDS),
+                limit_s.max(MIN_CAPTURE_SECONDS)
+            ),
+            limit_s
+        );
         (worst / mean_std_g).powi(2).clamp(MIN_CAPTURE_SECONDS, longest)
     }
 

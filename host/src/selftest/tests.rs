@@ -100,6 +100,8 @@ fn a_board_moved_during_the_first_attempt_is_retried_and_then_passes() {
         let test = run(&mut connection.client, &connection.info, &mut bumping).unwrap();
         assert_eq!((bumping.moves, test.raw.attempts), (vec![1], 2), "{name}");
         assert!(test.passed(), "{name}: {:?}", test.verdicts);
+        let text = report::text(&test, None);
+        assert!(text.contains("+-250 deg/s, 2 attempts (the board moved; repeated)\n"), "{name}: {text}");
     }
 }
 
@@ -170,6 +172,7 @@ fn the_text_shows_the_previous_deviation_beside_each_axis_and_the_family_verdict
     let text = report::text(&test, Some(&previous));
     let line = |axis: &str| text.lines().find(|l| l.starts_with(axis)).unwrap_or_default().to_owned();
     assert!(text.contains("previous (2026-11-24 10:00)"), "{text}");
+    assert!(text.contains("+-250 deg/s, 1 attempt\n"), "{text}");
     assert!(line("accel_x").contains("FAIL") && line("accel_x").ends_with("+1.5 %"), "{text}");
     assert!(line("gyro_z").contains("pass") && line("gyro_z").ends_with("+6.5 %"), "{text}");
     let verdict = text.lines().last().unwrap_or_default();

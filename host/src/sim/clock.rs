@@ -49,7 +49,11 @@ impl Clock {
             Pace::RealTime => {
                 let elapsed = now.duration_since(self.last).as_micros();
                 self.last = now;
-                u64::try_from(elapsed).unwrap_or(u64::MAX).min(MAX_REAL_STEP_US)
+                mutant!(
+                    "sim-clock-one-jump",
+                    u64::try_from(elapsed).unwrap_or(u64::MAX).min(MAX_REAL_STEP_US),
+                    u64::try_from(elapsed).unwrap_or(u64::MAX)
+                )
             }
         }
     }

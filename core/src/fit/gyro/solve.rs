@@ -72,7 +72,7 @@ fn gauss_newton_step(turns: &[Turn], params: &DVector<f64>) -> Option<DVector<f6
 fn summarise(turns: &[Turn], params: &DVector<f64>) -> Result<GyroFit, GyroFitError> {
     let r = residuals(turns, params);
     let j = jacobian(turns, params, &r);
-    let dof = (2 * turns.len()).saturating_sub(9).max(1) as f64;
+    let dof = mutant!("gyro-dof-3n", 2 * turns.len(), 3 * turns.len()).saturating_sub(9).max(1) as f64;
     let variance = r.norm_squared() / dof;
     let covariance = (j.transpose() * &j).try_inverse().ok_or(GyroFitError::Diverged)? * variance;
     let g = matrix_of(params);

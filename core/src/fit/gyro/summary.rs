@@ -29,7 +29,7 @@ pub struct TurnSummary {
 
 /// The summary of `turn` from `from` to `to`, calibrated with `g`.
 pub fn summarise_turn(turn: &Turn, g: &Mat3<f64>, from: &str, to: &str) -> TurnSummary {
-    let g = Matrix3::from(*g).transpose();
+    let g = mutant!("gyro-residual-g-untransposed", Matrix3::from(*g).transpose(), Matrix3::from(*g));
     let miss = |g: &Matrix3<f64>| rotate_up(turn, g).angle(&Vector3::from(turn.up_after)).to_degrees();
     TurnSummary {
         from: from.to_owned(),

@@ -93,6 +93,11 @@ fn ctrl_c_during_the_check_ends_it_as_interrupted_with_the_offsets_written_back(
 
 /// A check as `judge` sees it: steps of `moved_mg` at 0x06 and 0x77, each 125 mg expected.
 fn judged(who_am_i: u8, family: Family, moved_mg: [f64; 2]) -> Verdict {
+    judged_check(who_am_i, family, moved_mg).verdict
+}
+
+/// The whole check of [`judged`].
+fn judged_check(who_am_i: u8, family: Family, moved_mg: [f64; 2]) -> FamilyCheck {
     let step = |i: usize, family, register| OffsetStep {
         family,
         register,
@@ -102,7 +107,7 @@ fn judged(who_am_i: u8, family: Family, moved_mg: [f64; 2]) -> Verdict {
     };
     let steps = [step(0, Family::Mpu6050, 0x06), step(1, Family::Mpu6500, 0x77)];
     let identity = SensorIdentity { address: 0x68, who_am_i, family };
-    FamilyCheck::judge(&identity, Measured::Steps { steps, attempts: 1 }).verdict
+    FamilyCheck::judge(&identity, Measured::Steps { steps, attempts: 1 })
 }
 
 #[test]
@@ -121,6 +126,18 @@ fn the_verdict_names_which_register_moved_the_output_against_the_read_back_and_t
     assert_eq!(judged(0x70, Mpu6500, [24.0, 101.0]), Verdict::Confirmed);
     assert_eq!(judged(0x70, Mpu6500, [26.0, 125.0]), Verdict::Unclear);
     assert_eq!(judged(0x70, Mpu6500, [0.0, 99.0]), Verdict::Unclear);
+}
+
+// NOTE: the look-alikes the check exists for: a 6500-family map answering the MPU-6050's 0x68. Its
+// offsets confirm the family the board runs it as, so calibration, info and selftest may rely on it.
+#[test]
+fn a_look_alike_whose_offsets_confirm_the_family_it_runs_as_is_confirmed_whatever_its_who_am_i() {
+    let check = judged_check(0x68, Family::Mpu6500, [0.0, 125.0]);
+    assert_eq!((check.confirmed(), check.confirmed_by()), (true, Some("offset registers")));
+    let json = super::FamilyCheckJson::of(&check);
+    assert_eq!((json.verdict, json.confirmed), ("contradicts_who_am_i", true));
+    let read_back_wrong = judged_check(0x70, Family::Mpu6500, [125.0, 0.0]);
+    assert_eq!((read_back_wrong.confirmed(), read_back_wrong.confirmed_by()), (false, None));
 }
 
 #[test]
