@@ -4,6 +4,8 @@
 //! the person and what to keep. The command line (`accelcal`) and the web page are its hosts.
 //!
 //! - [`run`]: the calibration run (the order that measures a drift, ...);
+//! - [`link`]: the wire's decisions (frames out under their ids, answers in, silence judged by
+//!   frames at the times the host gives), what can go wrong on it and each device error in words;
 //! - [`session`]: a session's captures and what it yields ([`session::Session::outcome`]);
 //! - [`fit`]: least-squares fits, their statistics and the drift and thermal models;
 //! - [`calibration`]: the device's calibration record on the host (its JSON form, from a fit);
@@ -29,6 +31,7 @@ pub mod data;
 pub mod export;
 pub mod fit;
 pub mod limits;
+pub mod link;
 pub mod noise;
 pub mod orientation;
 pub mod part;

@@ -1,27 +1,25 @@
 //! The protocol client: requests out, responses in, over any [`Port`], never waiting forever.
 
-use std::collections::VecDeque;
 use std::io::ErrorKind;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
-use shared::protocol::{self, DeviceInfo, Feed, FrameAccumulator, Request, Response, MAX_FRAME_LEN};
+use accelcal_core::link::{Call, Exchange, Step};
+use shared::protocol::{DeviceInfo, Request, Response};
 
-use super::error::LinkError;
-use super::listening::Listening;
 use super::port::Port;
-use crate::limits::SILENCE_LIMIT;
+use super::LinkError;
 
 /// How long one read waits, so that silence is noticed promptly.
 const READ_SLICE: Duration = Duration::from_millis(50);
 
-/// A connection to one device.
+/// A connection to one device: the port and the clock, driving the core's [`Exchange`].
 pub struct Client<P: Port> {
     port: P,
-    accumulator: FrameAccumulator,
-    decoded: VecDeque<Result<(u16, Response), LinkError>>,
-    next_id: u16,
+    exchange: Exchange,
+    /// The origin of the times the exchange is given.
+    opened: Instant,
     interrupt: Option<Arc<AtomicBool>>,
 }
 
@@ -37,13 +35,8 @@ impl<P: Port> Client<P> {
         if let Err(error) = port.set_read_timeout(READ_SLICE) {
             return Err((LinkError::Timeout(error), port));
         }
-        let mut client = Client {
-            port,
-            accumulator: FrameAccumulator::new(),
-            decoded: VecDeque::new(),
-            next_id: 1,
-            interrupt: None,
-        };
+        let mut client =
+            Client { port, exchange: Exchange::new(Duration::ZERO), opened: Instant::now(), interrupt: None };
         // A leading delimiter ends any half frame left in the device's buffer by an earlier session.
         let said = client.port.write_all(&[0]).map_err(LinkError::disconnected);
         match said.and_then(|()| client.hello()) {
@@ -93,33 +86,22 @@ impl<P: Port> Client<P> {
             return Err(LinkError::Interrupted);
         }
         let id = self.send(&request)?;
-        let mut listening = Listening::new();
-        let (mut updates, mut cancelled, mut interrupted) = (0usize, false, false);
+        self.exchange.listen(self.now());
+        let mut call = Call::new(id);
         loop {
-            if !interrupted && self.interrupted() {
-                // NOTE: the device ends the cancelled operation with its final response, awaited below.
+            // NOTE: the device ends the cancelled operation with its final response, awaited below.
+            if self.interrupted() && call.interrupt() {
                 self.cancel()?;
-                (cancelled, interrupted) = (true, true);
             }
-            let (answer_id, response) = match self.receive(&mut listening) {
-                // Silence after progress: the device was there and no longer is.
-                Err(LinkError::Silent { .. }) if updates > 0 => return Err(LinkError::StoppedAnswering),
-                other => other?,
-            };
-            if !answers(id, answer_id) {
-                continue;
-            }
-            match response {
-                Response::Progress(_) | Response::Sample(_) => {
-                    updates += 1;
-                    if !on_update(&response) && !cancelled {
+            let (answer_id, response) = self.receive().map_err(|error| call.failed(error))?;
+            match call.answered(answer_id, response) {
+                Step::Ignore => {}
+                Step::Update(update) => {
+                    if !on_update(&update) && call.decline() {
                         self.cancel()?;
-                        cancelled = true;
                     }
                 }
-                _ if interrupted => return Err(LinkError::Interrupted),
-                Response::Error(error) => return Err(error.into()),
-                last => return Ok(last),
+                Step::Done(result) => return result,
             }
         }
     }
@@ -130,96 +112,40 @@ impl<P: Port> Client<P> {
     }
 
     fn send(&mut self, request: &Request) -> Result<u16, LinkError> {
-        let id = self.next_id;
-        // NOTE: id 0 is reserved for answers to unreadable frames.
-        self.next_id = self.next_id.checked_add(1).unwrap_or(1);
-        let mut frame = [0u8; MAX_FRAME_LEN];
-        let len = protocol::encode(id, request, &mut frame)
-            .map_err(|e| LinkError::Encode { request: request_name(request), reason: format!("{e:?}") })?;
-        self.port.write_all(&frame[..len]).map_err(LinkError::disconnected)?;
+        let (id, frame) = self.exchange.send(request)?;
+        self.port.write_all(&frame).map_err(LinkError::disconnected)?;
         self.port.flush().map_err(LinkError::disconnected)?;
         Ok(id)
     }
 
-    /// The next decodable response: from those already read, else from the port. Fails after
-    /// [`SILENCE_LIMIT`] without a frame, however many other bytes arrive.
-    fn receive(&mut self, listening: &mut Listening) -> Result<(u16, Response), LinkError> {
+    /// The time since the connection opened, as the exchange is given it.
+    fn now(&self) -> Duration {
+        self.opened.elapsed()
+    }
+
+    /// The next answer (with the id it answers), reading the port until one comes or the silence
+    /// limit passes.
+    fn receive(&mut self) -> Result<(u16, Response), LinkError> {
         let mut buffer = [0u8; 256];
         loop {
-            if let Some(message) = self.decoded.pop_front() {
-                listening.frame();
-                return message;
+            if let Some(answer) = self.exchange.answer(self.now())? {
+                return Ok(answer);
             }
             match self.port.read(&mut buffer) {
                 Ok(0) => return Err(LinkError::Disconnected { reason: "end of stream".into() }),
-                Ok(n) => {
-                    listening.bytes(&buffer[..n]);
-                    self.decode(&buffer[..n]);
-                }
+                Ok(n) => self.exchange.received(&buffer[..n]),
                 Err(e) if matches!(e.kind(), ErrorKind::TimedOut | ErrorKind::WouldBlock | ErrorKind::Interrupted) => {}
                 Err(e) => return Err(LinkError::disconnected(e)),
             }
-            // NOTE: a frame just read is taken before the silence is judged: a host that reads late
-            // (busy, or descheduled on a loaded machine) finds the answer waiting, not a silent board.
-            if self.decoded.is_empty() {
-                listening.check(SILENCE_LIMIT)?;
-            }
         }
-    }
-
-    /// Feeds bytes to the frame accumulator and queues every message they complete.
-    fn decode(&mut self, bytes: &[u8]) {
-        for &byte in bytes {
-            let Feed::Frame(frame) = self.accumulator.feed(byte) else { continue };
-            match protocol::decode::<Response>(frame) {
-                Ok(message) => self.decoded.push_back(Ok(message)),
-                Err(protocol::FrameError::Version { got }) => self.decoded.push_back(Err(LinkError::version(got))),
-                // A corrupted frame: its request is answered by nothing, and times out.
-                Err(_) => {}
-            }
-        }
-    }
-}
-
-/// Whether a response with `answer_id` answers the request sent as `id`: its own id, or the id of
-/// answers to frames the device could not read.
-fn answers(id: u16, answer_id: u16) -> bool {
-    answer_id == id || answer_id == protocol::frame::UNKNOWN_REQUEST_ID
-}
-
-/// A request's name, for messages.
-pub(super) fn request_name(request: &Request) -> &'static str {
-    match request {
-        Request::Hello { .. } => "Hello",
-        Request::Configure(_) => "Configure",
-        Request::Capture { .. } => "Capture",
-        Request::Cancel => "Cancel",
-        Request::ClearPositions => "ClearPositions",
-        Request::FitSixPosition => "FitSixPosition",
-        Request::GetCalibration(_) => "GetCalibration",
-        Request::SetCalibration(_) => "SetCalibration",
-        Request::SaveCalibration => "SaveCalibration",
-        Request::EraseCalibration => "EraseCalibration",
-        Request::Stream { .. } => "Stream",
-        Request::TakeTemperatureBins => "TakeTemperatureBins",
-        Request::FitOrtho9 => "FitOrtho9",
-        Request::CaptureUntil(_) => "CaptureUntil",
-        Request::Register { .. } => "Register",
-        Request::StoreSelfTest(_) => "StoreSelfTest",
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn only_the_request_s_own_id_or_the_unreadable_frame_id_answers_it() {
-        assert!(answers(7, 7));
-        assert!(answers(7, protocol::frame::UNKNOWN_REQUEST_ID));
-        assert!(!answers(7, 6));
-        assert!(!answers(7, 8));
-    }
+    use crate::limits::SILENCE_LIMIT;
+    use shared::protocol::{self, MAX_FRAME_LEN};
 
     /// A port whose answer arrives while the host is busy elsewhere: the first read returns only
     /// once the silence limit has passed, with the whole answer in it.
@@ -261,8 +187,8 @@ mod tests {
         let mut frame = [0u8; MAX_FRAME_LEN];
         let len = protocol::encode(1, &Response::Done, &mut frame).unwrap();
         let port = ReadLate { answer: frame[..len].to_vec() };
-        let decoded = VecDeque::new();
-        let mut client = Client { port, accumulator: FrameAccumulator::new(), decoded, next_id: 1, interrupt: None };
+        let mut client =
+            Client { port, exchange: Exchange::new(Duration::ZERO), opened: Instant::now(), interrupt: None };
         assert!(matches!(client.call(Request::SaveCalibration), Ok(Response::Done)));
     }
 }

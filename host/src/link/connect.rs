@@ -9,9 +9,9 @@ use std::time::{Duration, Instant};
 use shared::protocol::DeviceInfo;
 
 use super::client::Client;
-use super::error::LinkError;
-use super::listening::describe;
+use super::describe;
 use super::port::{open_serial, Port};
+use super::LinkError;
 use crate::limits::LISTEN_FIRST;
 
 /// An open session with a device.
@@ -53,7 +53,7 @@ pub enum Opened {
 
 /// Opens the serial port at `path` at `baud`, listens, and says hello only when it stayed silent.
 pub fn open_listening(path: &str, baud: u32) -> Result<Opened, LinkError> {
-    let port = open_serial(path, baud).map_err(|e| LinkError::opening(path, e))?;
+    let port = open_serial(path, baud).map_err(|e| not_opened(path, e))?;
     let mut port: Box<dyn Port> = Box::new(port);
     let heard = listen(&mut port, LISTEN_FIRST)?;
     if !heard.is_empty() {
@@ -106,4 +106,14 @@ pub fn listen(port: &mut Box<dyn Port>, span: Duration) -> Result<Vec<u8>, LinkE
         }
     }
     Ok(heard)
+}
+
+/// Why the serial port at `port` did not open.
+fn not_opened(port: &str, error: serialport::Error) -> LinkError {
+    // NOTE: serialport reports a port another program holds (open(2) failing with EBUSY under
+    // its TIOCEXCL, or its exclusive flock taken) as NoDevice; a missing path is Io(NotFound).
+    match error.kind() {
+        serialport::ErrorKind::NoDevice => LinkError::PortBusy { port: port.to_owned() },
+        _ => LinkError::Open { port: port.to_owned(), reason: error.to_string() },
+    }
 }

@@ -3,7 +3,7 @@
 
 use shared::protocol::{USB_PID, USB_VID};
 
-use super::error::LinkError;
+use super::LinkError;
 
 /// A serial port, and whether an accelcal board is behind it.
 #[derive(Debug, Clone, PartialEq, Eq)]

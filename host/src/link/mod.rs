@@ -5,19 +5,15 @@
 mod client;
 mod connect;
 mod discovery;
-mod error;
-mod explain;
-mod listening;
 pub mod port;
 mod probe;
 mod requests;
 mod tally;
 
+pub use accelcal_core::link::{describe, explain, LinkError};
 pub use client::Client;
 pub use connect::{listen, open_listening, open_port, Connection, Opened as PortOpened, TalkingPort};
 pub use discovery::{resolve_port, serial_ports, SerialPortEntry};
-pub use error::LinkError;
-pub use explain::explain;
 pub use port::{open_serial, pipe, PipeEnd, Port};
 pub use probe::{ask, find_board, find_boards, is_worth_asking, Answer};
 pub use requests::{ChipOrtho9, StreamRequest};

@@ -4,10 +4,10 @@
 //! accelcal board answers the hello.
 
 use super::connect::{open_listening, open_port, Connection, Opened};
+use super::describe;
 use super::discovery::SerialPortEntry;
-use super::error::LinkError;
-use super::listening::describe;
 use super::port::DEFAULT_BAUD;
+use super::LinkError;
 
 /// What a port that matches no accelcal id turned out to be.
 pub enum Answer {

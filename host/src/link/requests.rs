@@ -7,10 +7,11 @@ use shared::protocol::{
 use shared::selftest::StoredSelfTest;
 use shared::{Calibration, Position};
 
-use super::client::{request_name, Client};
-use super::error::LinkError;
+use super::client::Client;
 use super::port::Port;
 use super::tally::Tally;
+use super::LinkError;
+use accelcal_core::link::request_name;
 
 /// What a stream asks for: raw or corrected samples, how many per second, how many.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -1,7 +1,7 @@
 //! What a stream delivered: samples carry consecutive sequence numbers, so every gap is a lost
 //! sample, whether the board dropped it (it says how many at the end) or the link did.
 
-use super::error::LinkError;
+use super::LinkError;
 
 /// Samples received, and the sequence numbers not seen, of one stream.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

@@ -1,8 +1,8 @@
 //! What a request has heard so far: silence and progress are judged by accelcal frames, never by
 //! bytes, so a port that chatters (a GPS printing NMEA, another board, noise) cannot hold a request
-//! open for ever.
+//! open for ever. The host says when each thing arrived (time since an origin of its choosing).
 
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use super::error::LinkError;
 
@@ -10,35 +10,36 @@ use super::error::LinkError;
 const EVIDENCE_LEN: usize = 48;
 
 /// The state of one request's wait for frames.
-pub(super) struct Listening {
-    last_frame: Instant,
+pub struct Listening {
+    last_frame: Duration,
     foreign: Vec<u8>,
     foreign_bytes: usize,
 }
 
 impl Listening {
-    /// Starts listening now (the request was just sent).
-    pub(super) fn new() -> Self {
-        Listening { last_frame: Instant::now(), foreign: Vec::new(), foreign_bytes: 0 }
+    /// Starts listening at `now` (the request was just sent).
+    pub fn new(now: Duration) -> Self {
+        Listening { last_frame: now, foreign: Vec::new(), foreign_bytes: 0 }
     }
 
     /// Bytes read from the port, frames or not: kept until a frame shows they belonged to one.
-    pub(super) fn bytes(&mut self, bytes: &[u8]) {
+    pub fn bytes(&mut self, bytes: &[u8]) {
         self.foreign_bytes += bytes.len();
         let room = EVIDENCE_LEN.saturating_sub(self.foreign.len());
         self.foreign.extend_from_slice(&bytes[..bytes.len().min(room)]);
     }
 
-    /// A valid accelcal frame arrived: the device is there, and what came before was its own.
-    pub(super) fn frame(&mut self) {
-        self.last_frame = Instant::now();
+    /// A valid accelcal frame arrived at `now`: the device is there, and what came before was its own.
+    pub fn frame(&mut self, now: Duration) {
+        self.last_frame = now;
         self.foreign.clear();
         self.foreign_bytes = 0;
     }
 
-    /// `Err` once `limit` has passed without a frame: silent, or talking but not an accelcal board.
-    pub(super) fn check(&self, limit: Duration) -> Result<(), LinkError> {
-        if self.last_frame.elapsed() <= limit {
+    /// `Err` once `limit` has passed at `now` without a frame: silent, or talking but not an accelcal
+    /// board.
+    pub fn check(&self, limit: Duration, now: Duration) -> Result<(), LinkError> {
+        if now.saturating_sub(self.last_frame) <= limit {
             return Ok(());
         }
         let seconds = limit.as_secs_f64();
@@ -50,7 +51,7 @@ impl Listening {
 }
 
 /// What the port sent, in words: a quote of its text, or a count of its bytes.
-pub(super) fn describe(evidence: &[u8], total: usize) -> String {
+pub fn describe(evidence: &[u8], total: usize) -> String {
     let printable = evidence.iter().filter(|b| b.is_ascii_graphic() || b.is_ascii_whitespace()).count();
     // NOTE: a few stray bytes do not make text binary; line noise is mostly unprintable.
     if printable * 10 >= evidence.len() * 9 {
@@ -74,13 +75,15 @@ mod tests {
 
     #[test]
     fn bytes_without_a_frame_are_not_accelcal_and_a_frame_clears_them() {
-        let mut listening = Listening::new();
+        let (start, limit) = (Duration::from_secs(100), Duration::from_secs(2));
+        let mut listening = Listening::new(start);
         listening.bytes(b"$GPGGA,1\r\n");
-        let error = listening.check(Duration::ZERO).unwrap_err();
+        assert!(listening.check(limit, start + limit).is_ok(), "not yet past the limit");
+        let error = listening.check(limit, start + limit + Duration::from_millis(1)).unwrap_err();
         assert!(matches!(&error, LinkError::NotAccelcal { seen, .. } if seen == "text such as \"$GPGGA,1\""));
-        listening.frame();
-        std::thread::sleep(Duration::from_millis(2));
-        assert!(matches!(listening.check(Duration::ZERO), Err(LinkError::Silent { .. })));
-        assert!(listening.check(Duration::from_secs(60)).is_ok());
+        listening.frame(start + Duration::from_secs(3));
+        let later = start + Duration::from_secs(5) + Duration::from_millis(1);
+        assert!(matches!(listening.check(limit, later), Err(LinkError::Silent { .. })));
+        assert!(listening.check(limit, start + Duration::from_secs(5)).is_ok());
     }
 }

@@ -67,22 +67,12 @@ impl From<DeviceError> for LinkError {
 
 impl LinkError {
     /// The version mismatch of a device speaking protocol `device`.
-    pub(super) fn version(device: u8) -> Self {
+    pub fn version(device: u8) -> Self {
         LinkError::Version { device, host: PROTOCOL_VERSION }
     }
 
-    /// Why the serial port at `port` did not open.
-    pub(super) fn opening(port: &str, error: serialport::Error) -> Self {
-        // NOTE: serialport reports a port another program holds (open(2) failing with EBUSY under
-        // its TIOCEXCL, or its exclusive flock taken) as NoDevice; a missing path is Io(NotFound).
-        match error.kind() {
-            serialport::ErrorKind::NoDevice => LinkError::PortBusy { port: port.to_owned() },
-            _ => LinkError::Open { port: port.to_owned(), reason: error.to_string() },
-        }
-    }
-
     /// An I/O failure of the port: the device went away.
-    pub(super) fn disconnected(error: std::io::Error) -> Self {
+    pub fn disconnected(error: std::io::Error) -> Self {
         LinkError::Disconnected { reason: error.to_string() }
     }
 }

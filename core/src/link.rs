@@ -1,0 +1,38 @@
+//! The link to a board, free of I/O: what can go wrong on it and what each device error means for a
+//! person ([`LinkError`], [`explain`]), and the wire's decisions ([`Exchange`]: frames out under
+//! their ids, bytes in as answers, silence judged by frames at the times the host gives). The host
+//! owns the port and the clock (`accelcal::link`).
+
+mod error;
+mod exchange;
+mod explain;
+mod listening;
+
+pub use error::LinkError;
+pub use exchange::{Call, Exchange, Step};
+pub use explain::explain;
+pub use listening::{describe, Listening};
+
+use shared::protocol::Request;
+
+/// The name of a request, as messages name it.
+pub fn request_name(request: &Request) -> &'static str {
+    match request {
+        Request::Hello { .. } => "Hello",
+        Request::Configure(_) => "Configure",
+        Request::Capture { .. } => "Capture",
+        Request::Cancel => "Cancel",
+        Request::ClearPositions => "ClearPositions",
+        Request::FitSixPosition => "FitSixPosition",
+        Request::GetCalibration(_) => "GetCalibration",
+        Request::SetCalibration(_) => "SetCalibration",
+        Request::SaveCalibration => "SaveCalibration",
+        Request::EraseCalibration => "EraseCalibration",
+        Request::Stream { .. } => "Stream",
+        Request::TakeTemperatureBins => "TakeTemperatureBins",
+        Request::FitOrtho9 => "FitOrtho9",
+        Request::CaptureUntil(_) => "CaptureUntil",
+        Request::Register { .. } => "Register",
+        Request::StoreSelfTest(_) => "StoreSelfTest",
+    }
+}
