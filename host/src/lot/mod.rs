@@ -7,6 +7,7 @@ mod error;
 pub mod spec;
 pub mod summary;
 pub mod text;
+mod verify;
 
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -132,11 +133,10 @@ impl Lot {
         Ok(Added::New)
     }
 
-    /// Every board's latest certificate, by serial.
+    /// Every board's latest certificate, by serial; each checked (`verify.rs`).
     pub fn latest(&self) -> Result<Vec<Certificate>, LotError> {
-        let all = self.certificates("SELECT json FROM certificates ORDER BY serial, date_utc, id", [])?;
         let mut latest: Vec<Certificate> = Vec::new();
-        for certificate in all {
+        for certificate in self.verified()? {
             match latest.last_mut() {
                 Some(last) if last.board.serial == certificate.board.serial => *last = certificate,
                 _ => latest.push(certificate),
@@ -145,27 +145,15 @@ impl Lot {
         Ok(latest)
     }
 
-    /// Every certificate of one board, oldest first; refused when the lot has none.
+    /// Every certificate of one board, oldest first; refused when the lot has none. The whole lot is
+    /// checked, so a row whose serial was altered cannot hide a certificate from its board.
     pub fn board(&self, serial: &str) -> Result<Vec<Certificate>, LotError> {
-        let sql = "SELECT json FROM certificates WHERE serial = ?1 ORDER BY date_utc, id";
-        let found = self.certificates(sql, [serial])?;
+        let all = self.verified()?.into_iter();
+        let found: Vec<Certificate> = all.filter(|c| c.board.serial.as_deref() == Some(serial)).collect();
         match found.is_empty() {
             true => Err(LotError::UnknownBoard { path: self.path.clone(), serial: serial.into() }),
             false => Ok(found),
         }
-    }
-
-    /// The certificates a query selects (its one column the JSON), read back as issued.
-    fn certificates<P: rusqlite::Params>(&self, query: &str, bound: P) -> Result<Vec<Certificate>, LotError> {
-        let sql = |source| LotError::from_sqlite(&self.path, source, sql_failed);
-        let mut statement = self.connection.prepare(query).map_err(sql)?;
-        let rows = statement.query_map(bound, |row| row.get::<_, String>(0)).map_err(sql)?;
-        let texts: Vec<String> = rows.collect::<Result<_, _>>().map_err(sql)?;
-        let read = |text: &String| {
-            serde_json::from_str(text)
-                .map_err(|e| LotError::Unreadable { path: self.path.clone(), reason: e.to_string() })
-        };
-        texts.iter().map(read).collect()
     }
 
     /// The number of certificates and of parameter rows, and whether every certificate has all of its
@@ -183,8 +171,7 @@ impl Lot {
 
     /// The parameters the stored certificates state between them.
     fn stated_parameter_count(&self) -> Result<i64, LotError> {
-        let all = self.certificates("SELECT json FROM certificates", [])?;
-        Ok(all.iter().map(|c| c.parameters.len() as i64).sum())
+        Ok(self.verified()?.iter().map(|c| c.parameters.len() as i64).sum())
     }
 }
 
