@@ -39,11 +39,17 @@ impl LotError {
         source: rusqlite::Error,
         make: fn(PathBuf, rusqlite::Error) -> Self,
     ) -> Self {
-        use rusqlite::ErrorCode::{DatabaseBusy, DatabaseCorrupt, DatabaseLocked, NotADatabase};
+        use rusqlite::ErrorCode::{DatabaseCorrupt, NotADatabase};
         match source.sqlite_error_code() {
-            Some(DatabaseBusy | DatabaseLocked) => LotError::Busy { path: path.into() },
+            _ if is_busy(&source) => LotError::Busy { path: path.into() },
             Some(DatabaseCorrupt | NotADatabase) => LotError::Damaged { path: path.into(), reason: source.to_string() },
             _ => make(path.into(), source),
         }
     }
+}
+
+/// Whether SQLite refused because another connection holds the lot.
+pub(super) fn is_busy(error: &rusqlite::Error) -> bool {
+    use rusqlite::ErrorCode::{DatabaseBusy, DatabaseLocked};
+    matches!(error.sqlite_error_code(), Some(DatabaseBusy | DatabaseLocked))
 }

@@ -231,3 +231,70 @@ fn no_bit_flipped_in_the_lot_file_changes_what_is_printed_without_a_refusal() {
     remove(&trial);
     remove(&original_path);
 }
+
+#[test]
+fn three_writers_on_a_new_lot_each_wait_for_the_others_and_every_board_goes_in() {
+    let certificates: Vec<Certificate> =
+        (1..=3).map(|s| certificate(s, &format!("B{s}"), "2026-11-24 10:00")).collect();
+    let path = std::env::temp_dir().join(format!("accelcal-lot-writers-{}.sqlite", std::process::id()));
+    let mut failures = Vec::new();
+    for _ in 0..60 {
+        remove(&path);
+        let start = std::sync::Barrier::new(3);
+        let written: Vec<Result<Added, LotError>> = std::thread::scope(|scope| {
+            let writers: Vec<_> = certificates
+                .iter()
+                .map(|certificate| {
+                    let (start, path) = (&start, &path);
+                    scope.spawn(move || {
+                        start.wait();
+                        Lot::create_or_open(path)?.add(certificate)
+                    })
+                })
+                .collect();
+            writers.into_iter().map(|writer| writer.join().unwrap()).collect()
+        });
+        failures.extend(written.into_iter().filter_map(Result::err).map(|e| e.to_string()));
+    }
+    assert_eq!(failures, Vec::<String>::new());
+    let consistency = Lot::open_existing(&path).unwrap().consistency().unwrap();
+    assert_eq!((consistency.certificates, consistency.parameters, consistency.complete), (3, 36, true));
+    remove(&path);
+}
+
+#[test]
+fn a_writer_waits_for_another_connection_holding_a_new_lot_as_its_busy_wait_says() {
+    let path = std::env::temp_dir().join(format!("accelcal-lot-held-{}.sqlite", std::process::id()));
+    remove(&path);
+    // NOTE: another writer half way through creating the lot: it holds the new file (still in
+    // rollback mode) for writing, and SQLite refuses the switch to WAL at once, without waiting.
+    let holder = rusqlite::Connection::open(&path).unwrap();
+    holder.execute_batch("BEGIN IMMEDIATE; CREATE TABLE held (x);").unwrap();
+    let started = std::time::Instant::now();
+    let writer = std::thread::spawn({
+        let path = path.clone();
+        move || Lot::create_or_open(&path).map(|_| started.elapsed())
+    });
+    std::thread::sleep(Duration::from_millis(500));
+    holder.execute_batch("COMMIT").unwrap();
+    let waited = writer.join().unwrap().map_err(|e| e.to_string());
+    assert!(matches!(waited, Ok(waited) if waited >= Duration::from_millis(500)), "{waited:?}");
+    remove(&path);
+}
+
+#[test]
+fn a_lot_is_read_without_writing_even_where_its_shared_memory_file_cannot_be_made() {
+    let path = closed_lot("read-only");
+    let before = std::fs::read(&path).unwrap();
+    // NOTE: a dangling link where SQLite makes the WAL's `-shm` (it opens it without following
+    // links): the reader cannot make it, as in a folder it cannot write.
+    let shm = format!("{}-shm", path.display());
+    std::os::unix::fs::symlink("/nonexistent/accelcal-lot-shm", &shm).unwrap();
+    let lot = Lot::open_existing(&path).unwrap();
+    assert_eq!(lot.latest().unwrap().len(), 2);
+    let write = lot.connection.execute("DELETE FROM parameters", []).map_err(|e| e.sqlite_error_code());
+    assert_eq!(write, Err(Some(rusqlite::ErrorCode::ReadOnly)));
+    drop(lot);
+    assert!(std::fs::read(&path).unwrap() == before, "a read changed the lot file");
+    remove(&path);
+}
