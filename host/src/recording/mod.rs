@@ -1,6 +1,6 @@
 //! Recordings: long raw sample series in a NumPy `.npy` file of one structured record per sample,
-//! written as they stream and readable up to the last complete block after a crash
-//! (`np.load("rec.npy")` in Python; [`read::read_path`] here).
+//! written as they stream, the header's count brought up to date after each block
+//! (`np.load("rec.npy")` in Python; [`read::read_path`] here, exactly the samples the header states).
 
 pub mod header;
 pub mod read;
@@ -36,4 +36,8 @@ pub enum RecordingError {
     Io { path: String, source: std::io::Error },
     #[error("{path} is not an accelcal recording: {reason}")]
     NotARecording { path: String, reason: String },
+    #[error("{path} holds {extra_bytes} bytes after the {stated} samples its header states (something was appended to it, or `accelcal record` was killed before it updated the header); nothing was read. To read the {stated} samples it states, cut it to them: `truncate -s {keep_bytes} {path}`")]
+    PastStated { path: String, stated: u64, extra_bytes: u64, keep_bytes: u64 },
+    #[error("{path} is cut short: it holds {held} complete samples where its header promises {stated}; nothing was read. Copy it again from the original (a copy or download that did not finish cuts a file short)")]
+    CutShort { path: String, held: u64, stated: u64 },
 }
