@@ -17,6 +17,7 @@ mod error;
 #[cfg(test)]
 mod fixture;
 mod kind;
+mod other;
 mod outcome;
 mod source;
 mod unmeasured;
@@ -26,6 +27,7 @@ mod verification;
 pub use board::{Board, BoardRecord};
 pub use error::SessionError;
 pub use kind::SessionKind;
+pub use other::other_file;
 pub use outcome::{Fitted, Outcome, OutcomeError};
 pub use source::StreamSource;
 pub use verdict::TargetVerdict;
@@ -160,8 +162,7 @@ impl Session {
     /// Reads a session written by [`Session::save`] (the JSON file).
     pub fn load(path: &Path) -> Result<Self, SessionError> {
         let text = std::fs::read_to_string(path).map_err(|source| SessionError::Read { path: path.into(), source })?;
-        let session = unmeasured::parse(&text)
-            .map_err(|e| SessionError::NotASession { path: path.into(), reason: e.to_string() })?;
+        let session = unmeasured::parse(&text).map_err(|e| other::not_a_session(path, &text, e.to_string()))?;
         Ok(session.with_closing_marked())
     }
 

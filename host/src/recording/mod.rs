@@ -25,6 +25,15 @@ pub const SAMPLE_COLUMNS: [&str; 7] = ["ax_g", "ay_g", "az_g", "gx_dps", "gy_dps
 /// on the board in seconds.
 pub const STREAM_COLUMNS: [&str; 2] = ["index", "time_s"];
 
+/// The last column of `accelcal stream`'s CSV, after [`STREAM_COLUMNS`] and [`SAMPLE_COLUMNS`]:
+/// the board's serial.
+pub const BOARD_COLUMN: &str = "board";
+
+/// The columns of `accelcal stream`'s CSV, in order.
+pub fn stream_csv_columns() -> Vec<&'static str> {
+    [STREAM_COLUMNS.as_slice(), &SAMPLE_COLUMNS, &[BOARD_COLUMN]].concat()
+}
+
 /// Samples written per block; the header's count is brought up to date after each block, so a
 /// crash loses at most this many (one second at 1 kHz).
 pub const BLOCK_SAMPLES: usize = 1000;
