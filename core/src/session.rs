@@ -17,6 +17,7 @@ mod error;
 #[cfg(any(test, feature = "sim"))]
 mod fixture;
 mod kind;
+mod other;
 mod outcome;
 mod source;
 mod unmeasured;
@@ -26,6 +27,7 @@ mod verification;
 pub use board::{Board, BoardRecord};
 pub use error::SessionError;
 pub use kind::SessionKind;
+pub use other::{not_a_session, other_file};
 pub use outcome::{Fitted, Outcome, OutcomeError};
 pub use source::StreamSource;
 pub use verdict::TargetVerdict;

@@ -26,8 +26,7 @@ impl SessionFiles for Session {
 
     fn load(path: &Path) -> Result<Self, SessionError> {
         let text = std::fs::read_to_string(path).map_err(|source| SessionError::Read { path: path.into(), source })?;
-        Session::from_json_text(&text)
-            .map_err(|e| SessionError::NotASession { path: path.into(), reason: e.to_string() })
+        Session::from_json_text(&text).map_err(|e| not_a_session(path, &text, e.to_string()))
     }
 
     fn load_or_new(stem: &Path) -> Result<Self, SessionError> {

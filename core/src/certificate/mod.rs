@@ -18,7 +18,7 @@ use crate::fit::FitError;
 use crate::session::{Board, Session, SessionKind, Verification};
 pub use budget::{budget, Budget, Component};
 pub use estimate::Estimate;
-pub use seal::{check_text, SealError};
+pub use seal::{check_text, digest_of, SealError};
 
 /// The coverage factor of every expanded uncertainty: k = 2, about 95 % for a normal distribution
 /// (GUM 6.2; what an ISO/IEC 17025 certificate states).

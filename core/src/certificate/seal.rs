@@ -31,7 +31,7 @@ pub(super) fn digest(certificate: &impl Serialize) -> String {
 
 /// SHA-256 of the canonical JSON of `value` with `sha256` removed. serde_json's map keeps its keys
 /// sorted, so the same content always gives the same bytes.
-fn digest_of(mut value: serde_json::Value) -> String {
+pub fn digest_of(mut value: serde_json::Value) -> String {
     if let Some(object) = value.as_object_mut() {
         object.remove("sha256");
     }

@@ -17,8 +17,8 @@ pub struct Columns {
     pub gyro: Option<[usize; 3]>,
 }
 
-/// Names of a clock column (lower case, `_` and spaces removed).
-const TIME_NAMES: [&str; 9] = ["millis", "ms", "time", "timestamp", "t", "micros", "us", "timems", "timeus"];
+/// Names of a clock column (lower case, `_` and spaces removed); `times` is `accelcal stream`'s `time_s`.
+const TIME_NAMES: [&str; 10] = ["millis", "ms", "time", "timestamp", "t", "micros", "us", "timems", "timeus", "times"];
 /// What accelerometer columns are called before their axis letter.
 /// NOTE: a bare `x,y,z` (and `mx`, `raw_x`) is how accelcal's own data files name a reading.
 const ACCEL_HEADS: [&str; 11] =

@@ -227,11 +227,11 @@ pub enum Command {
     /// N calibrations of one simulated board with a power cycle between them: each parameter's spread
     /// beside the standard error the sessions predicted.
     Repeat(RepeatArgs),
-    /// Uploads a calibration (from `download`, `calibrate --json`, or `fit --json` on data in g) and makes it active.
+    /// Uploads a calibration (from `download`, `calibrate --json`, `fit --json` on data in g, or a session's SESSION.json, fitted as `export` fits it) and makes it active.
     Upload {
         #[command(flatten)]
         device: Device,
-        /// The calibration JSON file.
+        /// The calibration JSON file, or a session file.
         file: PathBuf,
         /// Also store it in flash.
         #[arg(long)]

@@ -13,7 +13,7 @@ use crate::link::{ask, explain, is_worth_asking, serial_ports, Answer, LinkError
 use crate::link::{Client, Port};
 use crate::part::check::{check_family, FamilyCheck, FamilyCheckJson};
 use crate::part::{describe as describe_part, format_dump, part_name, register_dump};
-use crate::recording::{SAMPLE_COLUMNS, STREAM_COLUMNS};
+use crate::recording::stream_csv_columns;
 use crate::session::BoardRecord;
 
 /// `accelcal ports`: serial ports, ours marked; a USB port of another identity is asked (listened to
@@ -210,7 +210,7 @@ pub(super) fn stream(args: &StreamArgs) -> Result<(), Error> {
     let request = StreamRequest { kind, rate_hz: args.rate, count: args.count };
     let mut out = csv::Writer::from_writer(std::io::stdout().lock());
     let serial = BoardRecord::of(&opened.connection.info).serial;
-    let mut reading = write_row(&mut out, header()).is_ok();
+    let mut reading = write_row(&mut out, stream_csv_columns()).is_ok();
     let tally = opened.connection.client.stream_while(request, |sample| {
         reading = reading && write_row(&mut out, sample_cells(sample, &serial)).is_ok();
         reading
@@ -219,11 +219,6 @@ pub(super) fn stream(args: &StreamArgs) -> Result<(), Error> {
         tally.complete()?;
     }
     Ok(())
-}
-
-/// The stream's columns: the sample number and time, the sample's columns, and the board.
-fn header() -> Vec<&'static str> {
-    [STREAM_COLUMNS.as_slice(), &SAMPLE_COLUMNS, &["board"]].concat()
 }
 
 /// One row, flushed at once: the stream is live, and a reader that went away shows at the next row.
@@ -271,7 +266,7 @@ mod tests {
             temp_c: 24.126,
         };
         let mut out = csv::Writer::from_writer(Arrivals::default());
-        write_row(&mut out, header()).unwrap();
+        write_row(&mut out, stream_csv_columns()).unwrap();
         write_row(&mut out, sample_cells(&sample(3), "53494D")).unwrap();
         write_row(&mut out, sample_cells(&sample(4), "53494D")).unwrap();
         let arrived = out.into_inner().map_err(|_| "unflushed").unwrap().0;

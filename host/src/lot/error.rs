@@ -9,7 +9,7 @@ pub enum LotError {
     Open { path: PathBuf, source: rusqlite::Error },
     #[error("{} is no lot database: there is no such file; add certificates to it first with `accelcal lot add {} CERT.json` or `accelcal calibrate --lot {}`", .path.display(), .path.display(), .path.display())]
     Missing { path: PathBuf },
-    #[error("{} is not an accelcal lot of this version (schema {found}, this accelcal reads 1); give the lot file `accelcal lot add` wrote, or a new path", .path.display())]
+    #[error("{} is not an accelcal lot of this version (schema {found}, this accelcal reads 1); give the lot file `accelcal lot add` wrote, or a new path; a lot file that was altered or damaged reads so too: add its boards again from their certificate files to a new lot", .path.display())]
     NotALot { path: PathBuf, found: i64 },
     #[error("the lot database {} failed: {source}; nothing of the board being written was kept, run the command again (a lot another process is writing is waited for up to 30 s)", .path.display())]
     Sql { path: PathBuf, source: rusqlite::Error },
@@ -17,6 +17,10 @@ pub enum LotError {
     Busy { path: PathBuf },
     #[error("a certificate in {} does not read back ({reason}); it was stored by another accelcal version: read it with that version", .path.display())]
     Unreadable { path: PathBuf, reason: String },
+    #[error("the lot {} was altered or damaged: board {serial}'s {what}; nothing of the lot is shown. The file cannot be trusted: add the boards again from their certificate files to a new lot (`accelcal lot add NEW.sqlite CERT.json...`)", .path.display())]
+    Altered { path: PathBuf, serial: String, what: String },
+    #[error("the lot database {} is damaged ({reason}); nothing of the lot is shown. The file was altered or damaged: add the boards again from their certificate files to a new lot (`accelcal lot add NEW.sqlite CERT.json...`)", .path.display())]
+    Damaged { path: PathBuf, reason: String },
     #[error("the certificate names no board serial, so the lot cannot key it: issue it from a session that recorded its board (calibrate or capture on the board)")]
     NoSerial,
     #[error("{} names no board serial, so the lot cannot key it, and no certificate was added: leave it out, or issue it from a session that recorded its board (calibrate or capture on the board; a board's own stream with --serial)", .file.display())]
@@ -28,16 +32,24 @@ pub enum LotError {
 }
 
 impl LotError {
-    /// An SQLite failure at `path`: a lot another process holds is named as such, the rest as `make`.
+    /// An SQLite failure at `path`: a lot another process holds is named as such, a file SQLite
+    /// finds corrupt as damaged, the rest as `make`.
     pub(super) fn from_sqlite(
         path: &std::path::Path,
         source: rusqlite::Error,
         make: fn(PathBuf, rusqlite::Error) -> Self,
     ) -> Self {
-        use rusqlite::ErrorCode::{DatabaseBusy, DatabaseLocked};
+        use rusqlite::ErrorCode::{DatabaseCorrupt, NotADatabase};
         match source.sqlite_error_code() {
-            Some(DatabaseBusy | DatabaseLocked) => LotError::Busy { path: path.into() },
+            _ if is_busy(&source) => LotError::Busy { path: path.into() },
+            Some(DatabaseCorrupt | NotADatabase) => LotError::Damaged { path: path.into(), reason: source.to_string() },
             _ => make(path.into(), source),
         }
     }
+}
+
+/// Whether SQLite refused because another connection holds the lot.
+pub(super) fn is_busy(error: &rusqlite::Error) -> bool {
+    use rusqlite::ErrorCode::{DatabaseBusy, DatabaseLocked};
+    matches!(error.sqlite_error_code(), Some(DatabaseBusy | DatabaseLocked))
 }

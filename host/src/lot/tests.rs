@@ -1,3 +1,5 @@
+use std::collections::BTreeMap;
+
 use super::*;
 use crate::sim::sessions::adaptive as session;
 
@@ -113,4 +115,186 @@ fn the_summary_says_no_spec_was_given_rather_than_that_no_board_is_outside_it() 
     let wide = Spec { limits: [("o_x".to_owned(), Limits { low: Some(-1.0), high: Some(1.0) })].into() };
     let within = super::text::summary(&LotSummary::of(&one, &wide));
     assert!(within.contains("no board outside the spec's limits"), "{within}");
+}
+
+/// A closed lot of three boards (B1 twice) at `path`, as `lot add` leaves it (WAL checkpointed).
+fn closed_lot(name: &str) -> PathBuf {
+    let (mut lot, path) = temporary_lot(name);
+    for (seed, serial, date) in
+        [(1, "B1", "2026-11-24 10:00"), (2, "B2", "2026-11-24 10:05"), (3, "B1", "2026-11-25 09:00")]
+    {
+        lot.add(&certificate(seed, serial, date)).unwrap();
+    }
+    drop(lot);
+    path
+}
+
+/// What `lot show` and `lot board` print for every board of the lot at `path`, or the refusal.
+fn printed(path: &Path) -> Result<String, LotError> {
+    let lot = Lot::open_existing(path)?;
+    let latest = lot.latest()?;
+    let mut out = super::text::summary(&LotSummary::of(&latest, &Spec::default()));
+    for serial in ["B1", "B2"] {
+        out.push_str(&serde_json::to_string_pretty(&lot.board(serial)?).unwrap());
+        out.push_str(&super::text::board(&lot.board(serial)?));
+    }
+    Ok(out)
+}
+
+/// The refusal of reading the lot at `path`; empty when it was read.
+fn refused(path: &Path) -> String {
+    printed(path).err().map(|e| e.to_string()).unwrap_or_default()
+}
+
+fn sql(path: &Path, statement: &str) {
+    rusqlite::Connection::open(path).unwrap().execute_batch(statement).unwrap();
+}
+
+#[test]
+fn one_digit_changed_in_a_stored_certificate_is_refused_naming_the_board() {
+    let path = closed_lot("digit");
+    printed(&path).unwrap();
+    let connection = rusqlite::Connection::open(&path).unwrap();
+    let json: String =
+        connection.query_row("SELECT json FROM certificates WHERE serial = 'B2'", [], |row| row.get(0)).unwrap();
+    // NOTE: the last digit of the first parameter's value, as someone editing the file would.
+    let value = json.find("\"value\": ").unwrap() + "\"value\": ".len();
+    let digit = value + json[value..].find([',', '\n']).unwrap() - 1;
+    let changed = (json.as_bytes()[digit] - b'0' + 1) % 10 + b'0';
+    let altered = format!("{}{}{}", &json[..digit], changed as char, &json[digit + 1..]);
+    connection.execute("UPDATE certificates SET json = ?1 WHERE serial = 'B2'", [&altered]).unwrap();
+    drop(connection);
+    let refused = printed(&path).err();
+    assert!(matches!(&refused, Some(LotError::Altered { serial, .. }) if serial == "B2"), "{refused:?}");
+    let said = refused.map(|e| e.to_string()).unwrap_or_default();
+    assert!(
+        said.contains("board B2's certificate hashes to") && said.contains("from their certificate files"),
+        "{said}"
+    );
+    remove(&path);
+}
+
+#[test]
+fn a_parameters_row_that_differs_from_its_certificate_is_refused_naming_the_board_and_the_row() {
+    let path = closed_lot("parameters");
+    let b2 = "(SELECT id FROM certificates WHERE serial = 'B2')";
+    sql(&path, &format!("UPDATE parameters SET value = value * (1 + 1e-12) WHERE name = 'o_y' AND certificate = {b2}"));
+    let said = refused(&path);
+    assert!(said.contains("board B2's `parameters` row o_y differs"), "{said}");
+    let path = closed_lot("parameters");
+    sql(&path, &format!("DELETE FROM parameters WHERE name = 's_z' AND certificate = {b2}"));
+    let said = refused(&path);
+    assert!(said.contains("board B2's `parameters` row s_z differs"), "{said}");
+    remove(&path);
+}
+
+/// What one bit flipped in the lot file did to what is printed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+enum Flipped {
+    Identical,
+    RefusedAltered,
+    RefusedDamaged,
+    RefusedOther,
+    ChangedSilently,
+}
+
+#[test]
+fn no_bit_flipped_in_the_lot_file_changes_what_is_printed_without_a_refusal() {
+    use rand_xoshiro::rand_core::{Rng, SeedableRng};
+    let original_path = closed_lot("flips");
+    let (original, bytes) = (printed(&original_path).unwrap(), std::fs::read(&original_path).unwrap());
+    let trial = original_path.with_extension("flipped.sqlite");
+    let mut random = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(40);
+    let mut counts: BTreeMap<Flipped, usize> = BTreeMap::new();
+    for _ in 0..200 {
+        let bit = random.next_u64() % (bytes.len() as u64 * 8);
+        let mut flipped = bytes.clone();
+        flipped[(bit / 8) as usize] ^= 1 << (bit % 8);
+        remove(&trial);
+        std::fs::write(&trial, &flipped).unwrap();
+        let outcome = match printed(&trial) {
+            Ok(text) if text == original => Flipped::Identical,
+            Ok(_) => Flipped::ChangedSilently,
+            Err(LotError::Altered { .. }) => Flipped::RefusedAltered,
+            Err(refused) => match refused.to_string() {
+                said if said.contains(&*trial.to_string_lossy()) && said.contains("from their certificate files") => {
+                    Flipped::RefusedDamaged
+                }
+                _ => Flipped::RefusedOther,
+            },
+        };
+        *counts.entry(outcome).or_default() += 1;
+    }
+    eprintln!("200 bit flips of a {}-byte lot: {counts:?}", bytes.len());
+    let wrong = [Flipped::ChangedSilently, Flipped::RefusedOther].map(|k| counts.get(&k).copied().unwrap_or(0));
+    assert_eq!(wrong, [0, 0], "{counts:?}");
+    remove(&trial);
+    remove(&original_path);
+}
+
+#[test]
+fn three_writers_on_a_new_lot_each_wait_for_the_others_and_every_board_goes_in() {
+    let certificates: Vec<Certificate> =
+        (1..=3).map(|s| certificate(s, &format!("B{s}"), "2026-11-24 10:00")).collect();
+    let path = std::env::temp_dir().join(format!("accelcal-lot-writers-{}.sqlite", std::process::id()));
+    let mut failures = Vec::new();
+    for _ in 0..60 {
+        remove(&path);
+        let start = std::sync::Barrier::new(3);
+        let written: Vec<Result<Added, LotError>> = std::thread::scope(|scope| {
+            let writers: Vec<_> = certificates
+                .iter()
+                .map(|certificate| {
+                    let (start, path) = (&start, &path);
+                    scope.spawn(move || {
+                        start.wait();
+                        Lot::create_or_open(path)?.add(certificate)
+                    })
+                })
+                .collect();
+            writers.into_iter().map(|writer| writer.join().unwrap()).collect()
+        });
+        failures.extend(written.into_iter().filter_map(Result::err).map(|e| e.to_string()));
+    }
+    assert_eq!(failures, Vec::<String>::new());
+    let consistency = Lot::open_existing(&path).unwrap().consistency().unwrap();
+    assert_eq!((consistency.certificates, consistency.parameters, consistency.complete), (3, 36, true));
+    remove(&path);
+}
+
+#[test]
+fn a_writer_waits_for_another_connection_holding_a_new_lot_as_its_busy_wait_says() {
+    let path = std::env::temp_dir().join(format!("accelcal-lot-held-{}.sqlite", std::process::id()));
+    remove(&path);
+    // NOTE: another writer half way through creating the lot: it holds the new file (still in
+    // rollback mode) for writing, and SQLite refuses the switch to WAL at once, without waiting.
+    let holder = rusqlite::Connection::open(&path).unwrap();
+    holder.execute_batch("BEGIN IMMEDIATE; CREATE TABLE held (x);").unwrap();
+    let started = std::time::Instant::now();
+    let writer = std::thread::spawn({
+        let path = path.clone();
+        move || Lot::create_or_open(&path).map(|_| started.elapsed())
+    });
+    std::thread::sleep(Duration::from_millis(500));
+    holder.execute_batch("COMMIT").unwrap();
+    let waited = writer.join().unwrap().map_err(|e| e.to_string());
+    assert!(matches!(waited, Ok(waited) if waited >= Duration::from_millis(500)), "{waited:?}");
+    remove(&path);
+}
+
+#[test]
+fn a_lot_is_read_without_writing_even_where_its_shared_memory_file_cannot_be_made() {
+    let path = closed_lot("read-only");
+    let before = std::fs::read(&path).unwrap();
+    // NOTE: a dangling link where SQLite makes the WAL's `-shm` (it opens it without following
+    // links): the reader cannot make it, as in a folder it cannot write.
+    let shm = format!("{}-shm", path.display());
+    std::os::unix::fs::symlink("/nonexistent/accelcal-lot-shm", &shm).unwrap();
+    let lot = Lot::open_existing(&path).unwrap();
+    assert_eq!(lot.latest().unwrap().len(), 2);
+    let write = lot.connection.execute("DELETE FROM parameters", []).map_err(|e| e.sqlite_error_code());
+    assert_eq!(write, Err(Some(rusqlite::ErrorCode::ReadOnly)));
+    drop(lot);
+    assert!(std::fs::read(&path).unwrap() == before, "a read changed the lot file");
+    remove(&path);
 }

@@ -30,6 +30,8 @@ pub struct Header {
     pub serial: Option<String>,
     /// Bytes of the header: the samples start here.
     pub bytes: usize,
+    /// The samples its `shape` states: exactly those follow the header.
+    pub samples: u64,
 }
 
 /// The record layout as numpy's `descr` for a recording at `rate_hz` of the board `serial`.
@@ -69,7 +71,15 @@ pub fn check(bytes: &[u8]) -> Result<Header, String> {
     if !text.contains(&descr(rate_hz, serial.as_deref())) || !text.contains("'fortran_order': False") {
         return Err(differs(rate_hz, serial.as_deref()));
     }
-    Ok(Header { rate_hz, serial, bytes: header_bytes })
+    let samples = samples_in(&text).ok_or("its .npy header states no sample count (`'shape': (N,)`)")?;
+    Ok(Header { rate_hz, serial, bytes: header_bytes, samples })
+}
+
+/// The sample count a header's `shape` states.
+fn samples_in(text: &str) -> Option<u64> {
+    const SHAPE: &str = "'shape': (";
+    let after = &text[text.find(SHAPE)? + SHAPE.len()..];
+    after[..after.find(",)")?].parse().ok()
 }
 
 /// The sample rate the `seq` title in a header's text names.
@@ -94,7 +104,7 @@ mod tests {
             let header = render(samples, rate_hz, SERIAL);
             assert_eq!(header.len(), HEADER_BYTES);
             assert!(String::from_utf8_lossy(&header).contains(&format!("'shape': ({samples},)")));
-            let read = Header { rate_hz, serial: Some(SERIAL.to_owned()), bytes: HEADER_BYTES };
+            let read = Header { rate_hz, serial: Some(SERIAL.to_owned()), bytes: HEADER_BYTES, samples };
             assert_eq!(check(&header), Ok(read));
         }
     }
@@ -105,7 +115,8 @@ mod tests {
         let text_len = UNNAMED_HEADER_BYTES - 10;
         let mut bytes = [MAGIC, &[1, 0], &(text_len as u16).to_le_bytes()].concat();
         bytes.extend_from_slice(format!("{dict:<width$}\n", width = text_len - 1).as_bytes());
-        assert_eq!(check(&bytes), Ok(Header { rate_hz: 100, serial: None, bytes: UNNAMED_HEADER_BYTES }));
+        let read = Header { rate_hz: 100, serial: None, bytes: UNNAMED_HEADER_BYTES, samples: 5 };
+        assert_eq!(check(&bytes), Ok(read));
     }
 
     const SERIAL: &str = "53494D000000000000000017";

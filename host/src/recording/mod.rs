@@ -1,6 +1,6 @@
 //! Recordings: long raw sample series in a NumPy `.npy` file of one structured record per sample,
-//! written as they stream and readable up to the last complete block after a crash
-//! (`np.load("rec.npy")` in Python; [`read::read_path`] here).
+//! written as they stream, the header's count brought up to date after each block
+//! (`np.load("rec.npy")` in Python; [`read::read_path`] here, exactly the samples the header states).
 
 pub mod header;
 pub mod read;
@@ -25,6 +25,15 @@ pub const SAMPLE_COLUMNS: [&str; 7] = ["ax_g", "ay_g", "az_g", "gx_dps", "gy_dps
 /// on the board in seconds.
 pub const STREAM_COLUMNS: [&str; 2] = ["index", "time_s"];
 
+/// The last column of `accelcal stream`'s CSV, after [`STREAM_COLUMNS`] and [`SAMPLE_COLUMNS`]:
+/// the board's serial.
+pub const BOARD_COLUMN: &str = "board";
+
+/// The columns of `accelcal stream`'s CSV, in order.
+pub fn stream_csv_columns() -> Vec<&'static str> {
+    [STREAM_COLUMNS.as_slice(), &SAMPLE_COLUMNS, &[BOARD_COLUMN]].concat()
+}
+
 /// Samples written per block; the header's count is brought up to date after each block, so a
 /// crash loses at most this many (one second at 1 kHz).
 pub const BLOCK_SAMPLES: usize = 1000;
@@ -36,4 +45,8 @@ pub enum RecordingError {
     Io { path: String, source: std::io::Error },
     #[error("{path} is not an accelcal recording: {reason}")]
     NotARecording { path: String, reason: String },
+    #[error("{path} holds {extra_bytes} bytes after the {stated} samples its header states (something was appended to it, or `accelcal record` was killed before it updated the header); nothing was read. To read the {stated} samples it states, cut it to them: `truncate -s {keep_bytes} {path}`")]
+    PastStated { path: String, stated: u64, extra_bytes: u64, keep_bytes: u64 },
+    #[error("{path} is cut short: it holds {held} complete samples where its header promises {stated}; nothing was read. Copy it again from the original (a copy or download that did not finish cuts a file short)")]
+    CutShort { path: String, held: u64, stated: u64 },
 }
