@@ -20,6 +20,7 @@ use crate::link::{Client, LinkError, Port};
 use crate::procedure::{self, CollectOptions, Feedback, Moves, ProcedureError, TurnCheck, Turning, Verification};
 use crate::report::{self, CalibrateReport};
 use crate::session::{stem_file, Session, SessionError, SessionKind, TargetVerdict};
+use accelcal_core::run::resume;
 
 /// One board's session, from its first capture to its verified report (`None`: the upload was
 /// declined); the same for a board alone and for each board on a fixture.
@@ -51,10 +52,9 @@ pub(super) fn calibrate_board(
     // NOTE: kept before the verification, so that a Ctrl-C or a pulled cable during it still leaves
     // the session saying what the board holds.
     if let Some(path) = kept.path.as_deref() {
-        Session { uploaded: Some(fitted.chosen), ..fitted.session.clone() }.save(path)?;
+        resume::kept_before_verifying(&fitted.session, fitted.chosen).save(path)?;
     }
-    // NOTE: a resumed session's first capture was taken in another run: its board time is unknown.
-    let first_capture_s = first_capture_s.filter(|_| !kept.resumed);
+    let first_capture_s = resume::board_time_start(first_capture_s, kept.resumed);
     finish(args, &mut opened, &fitted, kept.path.as_deref(), first_capture_s, feedback).map(Some)
 }
 

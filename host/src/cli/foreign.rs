@@ -6,6 +6,7 @@
 //! of `accelcal fit LOG`: the still periods at faces and corners fitted, those at fresh
 //! orientations its verification.
 
+use accelcal_core::run::ending::Ended;
 use std::path::Path;
 use std::sync::atomic::Ordering;
 use std::time::{Duration, Instant};
@@ -56,30 +57,6 @@ pub(super) fn calibrate_from_stream(args: &CalibrateArgs, talking: TalkingPort) 
     report(args, &kept, &options, ended.complete)
 }
 
-/// Why listening ended, and whether the session is complete (every face and corner rested and
-/// enough fresh orientations held) rather than cut short.
-struct Ended {
-    why: String,
-    complete: bool,
-}
-
-impl Ended {
-    /// Cut short (the port gone, the stream stopped or unreadable): kept to resume, never certified.
-    fn short(why: impl Into<String>) -> Self {
-        Ended { why: why.into(), complete: false }
-    }
-
-    /// Stopped by Ctrl-C: cut short however much the log holds, as a person who stops a run means it
-    /// unfinished (a log long enough to fit is still fitted and shown, never certified).
-    fn interrupted() -> Self {
-        mutant!(
-            "stream-ctrl-c-certified",
-            Ended::short("stopped by Ctrl-C"),
-            Ended { why: "stopped by Ctrl-C".to_owned(), complete: true }
-        )
-    }
-}
-
 /// The command that goes on with the session, with the lot it was to go into.
 fn resume_command(args: &CalibrateArgs, kept: &Kept) -> String {
     let lot = args.lot.as_ref().map(|lot| format!(" --lot {}", lot.display())).unwrap_or_default();
@@ -124,7 +101,7 @@ fn listen_until_done(
         }
         last_status = Instant::now();
         if let Some(done) = status(live, options, kept, &mut progress)? {
-            return Ok(Ended { why: done, complete: true });
+            return Ok(Ended::complete(done));
         }
     }
 }
@@ -204,16 +181,4 @@ fn certify(args: &CalibrateArgs, kept: &Kept, session: &Session) -> Result<(), E
 fn read_log(path: &Path, options: &StreamOptions) -> Result<StreamLog, Error> {
     let text = crate::stream::read_text(path).map_err(|source| Error::ReadFile { path: path.to_owned(), source })?;
     StreamLog::parse(&text, options).map_err(|source| Error::Stream { path: path.to_owned(), source })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::Ended;
-
-    #[test]
-    fn a_stream_session_stopped_by_ctrl_c_is_not_complete_so_gets_no_certificate() {
-        let ended = Ended::interrupted();
-        assert!(!ended.complete, "Ctrl-C counted as a complete session: `report` would certify it");
-        assert_eq!(ended.why, "stopped by Ctrl-C");
-    }
 }
