@@ -84,3 +84,32 @@ fn the_largest_values_the_parser_accepts_succeed_with_the_simulated_hand() {
         assert!(output.status.success(), "{extra:?}: {}", String::from_utf8_lossy(&output.stderr));
     }
 }
+
+#[test]
+fn a_second_run_into_a_session_another_run_is_writing_is_refused_naming_that_run_and_the_first_keeps_it() {
+    use common::person::{Moves, Run};
+    let dir = folder("held");
+    let stem = dir.join("z");
+    let mut board = common::SimPty::start(&[]);
+    let mut first = Run::start(&board.path, &["--quick", "--yes", "--session", stem.to_str().unwrap()], Moves::Place);
+    // NOTE: the person has not moved the board yet: the first run waits at its first position.
+    assert!(first.follow(&mut board, "the captures are kept in").is_some(), "{}", first.seen.join("\n"));
+    let serial = serde_json::from_slice::<serde_json::Value>(&std::fs::read(dir.join("z.json")).unwrap()).unwrap()
+        ["board"]["serial"]
+        .as_str()
+        .unwrap()
+        .to_owned();
+    let second = quick_session(&stem);
+    let stderr = String::from_utf8_lossy(&second.stderr);
+    assert!(!second.status.success(), "{stderr}");
+    let holder =
+        format!("z.json is being written by another run of accelcal (pid {}, board {serial})", first.child.id());
+    assert!(stderr.contains(&holder) && stderr.contains("or give another --session name"), "{stderr}");
+    // Ctrl-C ends the first run with its session kept, and its lock gone with it.
+    first.interrupt();
+    let (status, _, seen) = first.finish(&mut board);
+    assert!(!status.success(), "{seen}");
+    let kept: serde_json::Value = serde_json::from_slice(&std::fs::read(dir.join("z.json")).unwrap()).unwrap();
+    assert_eq!(kept["board"]["serial"], serial.as_str());
+    assert!(!dir.join("z.json.lock").exists(), "the lock file is left after Ctrl-C");
+}
