@@ -57,6 +57,8 @@ pub enum Error {
     BadGravity { g: f64 },
     #[error("{source}; {} so far {} kept in {}: continue with `accelcal calibrate {device} --resume {}`", count(*.captures, "capture"), if *.captures == 1 { "is" } else { "are" }, .path.display(), .path.display())]
     Stopped { source: Box<ProcedureError>, captures: usize, path: PathBuf, device: String },
+    #[error("{source}; the verification is not kept: {} holds the captures and the calibration uploaded to the board; check it again with `accelcal calibrate {device} --resume {}`", .path.display(), .path.display())]
+    VerificationNotKept { source: Box<SessionError>, path: PathBuf, device: String },
     #[error("{source}; the calibration is already uploaded and saved on the board: {check_later}")]
     AfterUpload { source: Box<ProcedureError>, check_later: String },
     #[error("{source}; verifying changes nothing on the board: its calibration is as it was")]

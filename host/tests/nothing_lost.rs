@@ -113,3 +113,70 @@ fn a_second_run_into_a_session_another_run_is_writing_is_refused_naming_that_run
     assert_eq!(kept["board"]["serial"], serial.as_str());
     assert!(!dir.join("z.json.lock").exists(), "the lock file is left after Ctrl-C");
 }
+
+/// `accelcal ARGS` run in `dir` with every file it writes limited to `blocks` of 512 bytes
+/// (RLIMIT_FSIZE, SIGXFSZ ignored): a write past the limit is cut short and fails with EFBIG, as
+/// on a full disk.
+fn with_file_limit(dir: &Path, blocks: u64, args: &[&str]) -> (std::process::ExitStatus, String) {
+    let mut child = std::process::Command::new("sh")
+        .args(["-c", "ulimit -f \"$0\" && trap '' XFSZ && exec \"$@\"", &blocks.to_string()])
+        .arg(env!("CARGO_BIN_EXE_accelcal"))
+        .args(args)
+        .current_dir(dir)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::fs::File::create(dir.join("stderr.txt")).unwrap())
+        .spawn()
+        .unwrap();
+    let status = common::wait_or_kill(&mut child, Duration::from_secs(120));
+    (status, std::fs::read_to_string(dir.join("stderr.txt")).unwrap())
+}
+
+/// The session file's JSON, and no temporary file left beside it.
+fn kept_whole(dir: &Path) -> serde_json::Value {
+    let names: Vec<String> =
+        std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    assert!(!names.iter().any(|n| n.contains(".tmp")), "a failed write left its temporary: {names:?}");
+    serde_json::from_slice(&std::fs::read(dir.join("z.json")).unwrap()).unwrap()
+}
+
+const QUICK: [&str; 6] = ["calibrate", "--sim", "--quick", "--yes", "--session", "z"];
+
+#[test]
+fn on_a_full_disk_the_captures_said_to_be_kept_are_those_the_session_file_holds() {
+    let dir = folder("full-captures");
+    // NOTE: 4 KiB holds the empty session and a few captures, not all ten.
+    let (status, stderr) = with_file_limit(&dir, 8, &QUICK);
+    assert!(!status.success(), "{stderr}");
+    let kept = kept_whole(&dir)["captures"].as_array().unwrap().len();
+    assert!(kept > 0 && kept < 10, "{kept} captures: {stderr}");
+    assert!(stderr.contains("File too large"), "{stderr}");
+    let said = format!(
+        "{kept} captures so far are kept in z.json: continue with `accelcal calibrate --sim --seed 1 --resume z.json`"
+    );
+    assert!(stderr.contains(&said), "the file holds {kept}: {stderr}");
+}
+
+#[test]
+fn on_a_full_disk_a_verification_that_cannot_be_kept_says_so_with_the_resume_line() {
+    let whole = folder("full-whole");
+    let (status, stderr) = with_file_limit(&whole, 1 << 20, &QUICK);
+    assert!(status.success(), "{stderr}");
+    let mut session = kept_whole(&whole);
+    let verified_bytes = serde_json::to_string_pretty(&session).unwrap().len() as u64;
+    session.as_object_mut().unwrap().remove("verification");
+    let uploaded_bytes = serde_json::to_string_pretty(&session).unwrap().len() as u64;
+    // NOTE: room for the session as uploaded, not for it with its verification.
+    let blocks = (uploaded_bytes + verified_bytes) / 2 / 512;
+    assert!(
+        blocks * 512 > uploaded_bytes + 64 && blocks * 512 + 64 < verified_bytes,
+        "{uploaded_bytes} {verified_bytes}"
+    );
+    let dir = folder("full-verification");
+    let (status, stderr) = with_file_limit(&dir, blocks, &QUICK);
+    assert!(!status.success(), "{stderr}");
+    assert!(stderr.contains("the verification is not kept"), "{stderr}");
+    assert!(stderr.contains("check it again with `accelcal calibrate --sim --seed 1 --resume z.json`"), "{stderr}");
+    let kept = kept_whole(&dir);
+    assert!(kept.get("uploaded").is_some() && kept.get("verification").is_none(), "{kept}");
+    assert_eq!(kept["captures"].as_array().unwrap().len(), 10);
+}

@@ -111,16 +111,21 @@ fn collect(
     } else {
         collect_fixed(args, opened, turning, wait_limit, session, &mut keep, feedback)
     };
-    match (result, &kept.path) {
+    match (result, kept.path.as_deref().map(kept_on_disk)) {
         (Ok(first), _) => Ok((moves, first)),
-        (Err(source), Some(path)) if !kept.session.captures.is_empty() => Err(Error::Stopped {
-            source: Box::new(source),
-            captures: kept.session.captures.len(),
-            path: stem_file(path, "json"),
-            device: device_flags(args),
-        }),
+        (Err(source), Some((path, captures))) if captures > 0 => {
+            Err(Error::Stopped { source: Box::new(source), captures, path, device: device_flags(args) })
+        }
         (Err(source), _) => Err(source.into()),
     }
+}
+
+/// The session's JSON file and how many captures it holds as written (not as in memory: a capture
+/// whose write failed, on a full disk say, is not in it); none when it cannot be read.
+fn kept_on_disk(stem: &Path) -> (std::path::PathBuf, usize) {
+    let json = stem_file(stem, "json");
+    let captures = Session::load(&json).map_or(0, |session| session.captures.len());
+    (json, captures)
 }
 
 /// Collects with a fixed capture length (`--seconds`, or `--quick`'s); the board's clock when the
@@ -165,7 +170,7 @@ fn finish(
     let uploaded = Some(fitted.chosen);
     let target = verification.against((kind == SessionKind::Adaptive).then_some(args.length.target_mg));
     let verified = Session { verification: Some(verification.clone()), uploaded, ..fitted.session.clone() };
-    let certificate = certify(&verified, &target, kept_at, args.lot.as_deref(), feedback)?;
+    let certificate = certify(&verified, &target, kept_at, args, feedback)?;
     let mut report = report_of(opened, fitted, verification, check);
     report.board_seconds = board_seconds;
     report.certificate = certificate;
@@ -198,28 +203,33 @@ fn certify(
     verified: &Session,
     target: &TargetVerdict,
     kept_at: Option<&Path>,
-    lot: Option<&Path>,
+    args: &CalibrateArgs,
     feedback: &mut dyn Feedback,
 ) -> Result<Option<Certificate>, Error> {
     let path = kept_at.unwrap_or(Path::new("the session"));
     let certificate = super::certificate::unless_failed(verified, target, path, feedback)?;
     if let Some(stem) = kept_at {
+        let not_kept = |source| Error::VerificationNotKept {
+            source: Box::new(source),
+            path: stem_file(stem, "json"),
+            device: device_flags(args),
+        };
+        verified.save(stem).map_err(not_kept)?;
         keep_with_report(verified, certificate.as_ref(), stem, feedback)?;
     }
-    if let (Some(lot), Some(certificate)) = (lot, &certificate) {
+    if let (Some(lot), Some(certificate)) = (args.lot.as_deref(), &certificate) {
         feedback.say(&super::lot::add_issued(lot, certificate)?);
     }
     Ok(certificate)
 }
 
-/// Saves the verified session again, writes its report and certificate beside it, and says where.
+/// Writes the verified session's report and certificate beside it, and says where.
 fn keep_with_report(
     session: &Session,
     certificate: Option<&Certificate>,
     stem: &Path,
     feedback: &mut dyn Feedback,
 ) -> Result<(), Error> {
-    session.save(stem)?;
     let json = stem_file(stem, "json");
     let page = super::report::beside(&json);
     super::report::write_page(&super::report::build(session, &json)?, &page)?;
