@@ -53,6 +53,8 @@ pub enum Error {
     Certificate(#[from] crate::certificate::SealError),
     #[error(transparent)]
     Lot(#[from] crate::lot::LotError),
+    #[error("{} already exists: {other}, or add --overwrite to replace it", .path.display())]
+    OutputExists { path: PathBuf, other: &'static str },
     #[error("--g must be a positive number, got {g}")]
     BadGravity { g: f64 },
     #[error("{source}; {} so far {} kept in {}: continue with `accelcal calibrate {device} --resume {}`", count(*.captures, "capture"), if *.captures == 1 { "is" } else { "are" }, .path.display(), .path.display())]

@@ -180,3 +180,41 @@ fn on_a_full_disk_a_verification_that_cannot_be_kept_says_so_with_the_resume_lin
     assert!(kept.get("uploaded").is_some() && kept.get("verification").is_none(), "{kept}");
     assert_eq!(kept["captures"].as_array().unwrap().len(), 10);
 }
+
+/// Runs `accelcal ARGS`, which must succeed.
+fn succeeds(args: &[&str]) {
+    let output = accelcal(args);
+    assert!(output.status.success(), "{args:?}: {}", String::from_utf8_lossy(&output.stderr));
+}
+
+/// Runs `accelcal ARGS`, which must refuse to replace `path`, leaving it as it was, and name it
+/// with the flag that replaces it; then with that flag, which must replace it.
+fn kept_unless_overwrite(args: &[&str], path: &Path) {
+    let before = std::fs::read(path).unwrap();
+    let refused = accelcal(args);
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    assert!(!refused.status.success(), "{args:?}: {stderr}");
+    let said = format!("{} already exists: ", path.display());
+    assert!(stderr.contains(&said) && stderr.contains("or add --overwrite to replace it"), "{args:?}: {stderr}");
+    assert_eq!(std::fs::read(path).unwrap(), before, "{args:?} changed {}", path.display());
+    succeeds(&[args, &["--overwrite"]].concat());
+    assert_ne!(std::fs::read(path).unwrap(), before, "{args:?} --overwrite left {}", path.display());
+}
+
+#[test]
+fn a_recording_a_certificate_or_an_export_already_there_is_kept_unless_overwrite_is_given() {
+    let dir = folder("overwrite");
+    let recording = dir.join("long.npy");
+    let record = |seconds: &'static str| ["record", "--sim", "--rate", "100", "--seconds", seconds, "-o"];
+    succeeds(&[&record("3")[..], &[recording.to_str().unwrap()]].concat());
+    kept_unless_overwrite(&[&record("1")[..], &[recording.to_str().unwrap()]].concat(), &recording);
+    // `calibrate` issued the session's certificate: issuing it again would replace it.
+    assert!(quick_session(&dir.join("z")).status.success());
+    let (session, certificate) = (dir.join("z.json"), dir.join("z.certificate.json"));
+    // NOTE: issued again within the minute, the certificate is the same bytes: a mark tells them apart.
+    std::fs::write(&certificate, [std::fs::read(&certificate).unwrap(), b"\n".to_vec()].concat()).unwrap();
+    kept_unless_overwrite(&["certificate", "issue", session.to_str().unwrap()], &certificate);
+    let header = dir.join("cal.h");
+    std::fs::write(&header, "// a person's own file\n").unwrap();
+    kept_unless_overwrite(&["export", session.to_str().unwrap(), "--to", "c", "-o", header.to_str().unwrap()], &header);
+}

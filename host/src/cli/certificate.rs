@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 
 use clap::{Args, Subcommand};
 
+use super::overwrite::Overwrite;
 use crate::certificate::{self, Certificate};
 use crate::error::Error;
 use crate::procedure::Feedback;
@@ -27,6 +28,8 @@ pub enum CertificateAction {
         /// Print the certificate as JSON too.
         #[arg(long)]
         json: bool,
+        #[command(flatten)]
+        replace: Overwrite,
     },
     /// Checks that a certificate file is unchanged since it was issued (its SHA-256).
     Verify {
@@ -38,8 +41,11 @@ pub enum CertificateAction {
 /// Runs `accelcal certificate`.
 pub(super) fn certificate(args: &CertificateArgs) -> Result<(), Error> {
     match &args.action {
-        CertificateAction::Issue { session, json } => {
+        CertificateAction::Issue { session, json, replace } => {
             let loaded = Session::load(session)?;
+            for earlier in beside(session) {
+                replace.check(&earlier, "it was issued before (`accelcal certificate verify` checks it)")?;
+            }
             let issued = issue(&loaded, session)?;
             let (json_path, page) = written(&issued, session)?;
             if *json {
@@ -111,12 +117,16 @@ pub(super) fn unless_contradicted(
 
 /// Writes a certificate's JSON and page beside the session at `session_path`; their paths.
 pub(super) fn written(certificate: &Certificate, session_path: &Path) -> Result<(PathBuf, PathBuf), Error> {
-    let stem = stem_of(session_path);
-    let json = stem_file(&stem, "certificate.json");
-    let page = stem_file(&stem, "certificate.html");
+    let [json, page] = beside(session_path);
     write_atomically(&json, certificate.to_json().as_bytes())?;
     write_atomically(&page, certificate::html::page(certificate).as_bytes())?;
     Ok((json, page))
+}
+
+/// A session's certificate files: its JSON and its printable page beside it.
+fn beside(session_path: &Path) -> [PathBuf; 2] {
+    let stem = stem_of(session_path);
+    [stem_file(&stem, "certificate.json"), stem_file(&stem, "certificate.html")]
 }
 
 #[cfg(test)]

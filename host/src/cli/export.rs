@@ -7,6 +7,7 @@ use clap::Args;
 use shared::protocol::CalibrationSlot;
 
 use super::args::Device;
+use super::overwrite::Overwrite;
 use crate::error::Error;
 use crate::export::{self, Noise, Readings, Source, Target};
 use crate::session::{write_atomically, BoardRecord};
@@ -28,12 +29,17 @@ pub struct ExportArgs {
     pub noise: Option<PathBuf>,
     #[command(flatten)]
     pub device: Device,
+    #[command(flatten)]
+    pub replace: Overwrite,
 }
 
 /// Reads the calibration, exports it, writes the file (or stdout) and says what it carries.
 pub(super) fn export(args: &ExportArgs) -> Result<(), Error> {
     if export_is_binary(args.to) && args.output.is_none() {
         return Err(export::ExportError::BinaryNeedsFile { target: target_name(args.to) }.into());
+    }
+    if let Some(path) = &args.output {
+        args.replace.check(path, "give another -o")?;
     }
     let mut source = match &args.calibration {
         Some(path) => Source::from_text(&read(path)?, &path.display().to_string())?,

@@ -20,6 +20,7 @@ mod kept;
 mod length;
 mod lot;
 mod noise;
+mod overwrite;
 mod procedure;
 mod record;
 mod repeat;

@@ -9,6 +9,7 @@ use shared::protocol::{SensorConfig, StreamKind};
 
 use super::args::Device;
 use super::calibrate::interrupt_on_ctrl_c;
+use super::overwrite::Overwrite;
 use crate::error::Error;
 use crate::limits::MAX_RECORD_SECONDS;
 use crate::link::{Client, LinkError, Port, StreamRequest, Tally};
@@ -29,10 +30,14 @@ pub struct RecordArgs {
     /// The sensor's sample rate, every sample recorded (must divide 1000 Hz).
     #[arg(long, default_value_t = 1000, value_parser = clap::value_parser!(u16).range(1..=1000))]
     pub rate: u16,
+    #[command(flatten)]
+    pub replace: Overwrite,
 }
 
 /// `accelcal record (--port P | --sim) -o FILE [--seconds S] [--rate HZ]`.
 pub(super) fn record(args: &RecordArgs) -> Result<(), Error> {
+    // NOTE: before the board is opened: an earlier recording is kept, not cut to this one's length.
+    args.replace.check(&args.output, "give another -o")?;
     let mut opened = args.device.open()?;
     let config = SensorConfig { sample_rate_hz: args.rate, ..opened.connection.info.config };
     let client = &mut opened.connection.client;
