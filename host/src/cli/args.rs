@@ -7,6 +7,7 @@ use shared::protocol::DEFAULT_CAPTURE_SECONDS;
 
 pub use super::device::Device;
 pub use super::export::ExportArgs;
+use super::overwrite::Overwrite;
 pub use super::record::RecordArgs;
 pub use super::report::ReportArgs;
 use super::values::{placement_deg, rate_help, seconds, seconds_help, stream_rate, target_span_c};
@@ -79,6 +80,8 @@ pub struct CalibrateArgs {
     /// session's SESSION.log); `accelcal fit` on it gives the same calibration.
     #[arg(long, value_name = "LOG")]
     pub stream_log: Option<PathBuf>,
+    #[command(flatten)]
+    pub replace: Overwrite,
     #[command(flatten)]
     pub stream: SketchStreamArgs,
     /// Ten positions (six faces, four corners), fitted on the chip: no fit on the host.

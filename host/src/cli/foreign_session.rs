@@ -42,6 +42,9 @@ impl Kept {
             None => first_free(&default_name(serial), &holder)?,
         };
         let log = args.stream_log.clone().unwrap_or_else(|| stem_file(&stem, "log"));
+        // NOTE: a new session's log holds its lines alone: appended to another's, it would be fitted
+        // with that session's lines too.
+        args.replace.check(&log, "give another --stream-log, or go on with the session it keeps with --resume")?;
         let source = StreamSource {
             port: port.to_owned(),
             log,

@@ -1,5 +1,5 @@
 //! The one rule for a file a command is told to write (`record -o`, `export -o`, `certificate
-//! issue`): a file already there is refused, named, unless the person says to replace it. A
+//! issue`, a new stream session's `--stream-log`): a file already there is refused, named, unless the person says to replace it. A
 //! recording or an issued certificate cannot be made again; a session's report page, which its
 //! session makes again, is rewritten.
 
@@ -12,7 +12,8 @@ use crate::error::Error;
 /// Whether the command may replace its output file.
 #[derive(Args, Clone, Copy, Debug)]
 pub struct Overwrite {
-    /// Replace the output file when it exists (without it, an existing file is refused and kept).
+    /// Replace the file this command writes (its -o, a certificate issued before, a new session's
+    /// --stream-log) when it exists; without it, an existing file is refused and kept.
     #[arg(long)]
     pub overwrite: bool,
 }
