@@ -218,3 +218,48 @@ fn a_recording_a_certificate_or_an_export_already_there_is_kept_unless_overwrite
     std::fs::write(&header, "// a person's own file\n").unwrap();
     kept_unless_overwrite(&["export", session.to_str().unwrap(), "--to", "c", "-o", header.to_str().unwrap()], &header);
 }
+
+#[test]
+fn ctrl_c_at_the_upload_question_ends_the_run_at_once_with_the_resume_line() {
+    use std::io::Read;
+    use std::os::fd::FromRawFd;
+    let dir = folder("question");
+    let stem = dir.join("z");
+    // NOTE: the question is asked only of a terminal: stdin is a pseudo-terminal, its master held open.
+    let terminal = nix::pty::openpty(None, None).unwrap();
+    let (_master, stdin) =
+        unsafe { (std::fs::File::from_raw_fd(terminal.master), std::fs::File::from_raw_fd(terminal.slave)) };
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_accelcal"))
+        .args(["calibrate", "--sim", "--quick", "--session", stem.to_str().unwrap()])
+        .stdin(stdin)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let said = std::sync::Arc::new(std::sync::Mutex::new(String::new()));
+    let mut stderr = child.stderr.take().unwrap();
+    let heard = said.clone();
+    std::thread::spawn(move || {
+        let mut buffer = [0u8; 1024];
+        while let Ok(n @ 1..) = stderr.read(&mut buffer) {
+            heard.lock().unwrap().push_str(&String::from_utf8_lossy(&buffer[..n]));
+        }
+    });
+    let asked = std::time::Instant::now();
+    while !said.lock().unwrap().contains("[y/N]") {
+        assert!(asked.elapsed() < Duration::from_secs(60), "never asked: {}", said.lock().unwrap());
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    std::process::Command::new("kill").args(["-INT", &child.id().to_string()]).status().unwrap();
+    // NOTE: before, the run waited for Enter: killed after 5 s, the helper fails the test as a hang.
+    let status = common::wait_or_kill(&mut child, Duration::from_secs(5));
+    std::thread::sleep(Duration::from_millis(100));
+    let said = said.lock().unwrap().clone();
+    assert!(!status.success(), "{said}");
+    let resume = format!(
+        "10 captures so far are kept in {}: continue with `accelcal calibrate --sim --seed 1 --resume",
+        stem.with_extension("json").display()
+    );
+    assert!(said.contains(&resume), "{said}");
+    assert!(!said.contains("not uploaded"), "{said}");
+}

@@ -13,6 +13,7 @@ use super::choice::{fit_with_gyro, show_choice, Fitted};
 use super::device::Opened;
 use super::kept::{self, Kept};
 use super::terminal::feedback;
+pub(super) use super::terminal::interrupt_on_ctrl_c;
 use crate::calibration;
 use crate::certificate::Certificate;
 use crate::error::Error;
@@ -67,10 +68,12 @@ pub(super) fn calibrate_board(
     let fitted = fit_with_gyro(&mut opened, &kept, &moves, feedback)?;
     show_choice(feedback, &fitted);
     let client = &mut opened.connection.client;
+    // NOTE: the captures are all kept by now: a Ctrl-C or a lost board here is resumed from them.
+    let stopped = |source: LinkError| stopped_at(args, kept.path.as_deref(), source.into());
     if interrupt.load(Ordering::SeqCst) {
-        return Err(LinkError::Interrupted.into());
+        return Err(stopped(LinkError::Interrupted));
     }
-    if !upload_if_confirmed(client, &fitted.chosen, feedback)? {
+    if !upload_if_confirmed(client, &fitted.chosen, &interrupt, feedback).map_err(stopped)? {
         return Ok(None);
     }
     // NOTE: kept before the verification, so that a Ctrl-C or a pulled cable during it still leaves
@@ -111,12 +114,17 @@ fn collect(
     } else {
         collect_fixed(args, opened, turning, wait_limit, session, &mut keep, feedback)
     };
-    match (result, kept.path.as_deref().map(kept_on_disk)) {
-        (Ok(first), _) => Ok((moves, first)),
-        (Err(source), Some((path, captures))) if captures > 0 => {
-            Err(Error::Stopped { source: Box::new(source), captures, path, device: device_flags(args) })
+    result.map(|first| (moves, first)).map_err(|source| stopped_at(args, kept.path.as_deref(), source))
+}
+
+/// Why a run stopped, with the command that resumes its session when the session file holds a
+/// capture.
+fn stopped_at(args: &CalibrateArgs, kept_at: Option<&Path>, source: ProcedureError) -> Error {
+    match kept_at.map(kept_on_disk) {
+        Some((path, captures)) if captures > 0 => {
+            Error::Stopped { source: Box::new(source), captures, path, device: device_flags(args) }
         }
-        (Err(source), _) => Err(source.into()),
+        _ => source.into(),
     }
 }
 
@@ -243,17 +251,6 @@ fn keep_with_report(
     Ok(())
 }
 
-/// A flag that Ctrl-C sets (instead of ending the process), so that the capture is cancelled on
-/// the board and the session stays as written.
-pub(super) fn interrupt_on_ctrl_c() -> Arc<AtomicBool> {
-    let flag = Arc::new(AtomicBool::new(false));
-    let set = flag.clone();
-    // NOTE: fails only when a handler is already set; without one, Ctrl-C ends the process and the
-    // session still holds every capture written so far.
-    let _ = ctrlc::set_handler(move || set.store(true, Ordering::SeqCst));
-    flag
-}
-
 /// The device flags that reach the same board again, for the resume hint.
 fn device_flags(args: &CalibrateArgs) -> String {
     match &args.device.port {
@@ -274,13 +271,18 @@ fn check_later(args: &CalibrateArgs) -> String {
     }
 }
 
-/// Uploads and saves the calibration if the user agrees; whether it did.
+/// Uploads and saves the calibration if the user agrees; whether it did. Ctrl-C at the question
+/// ends the run at once (`Interrupted`).
 fn upload_if_confirmed<P: Port>(
     client: &mut Client<P>,
     calibration: &Calibration,
+    interrupt: &AtomicBool,
     feedback: &mut dyn Feedback,
-) -> Result<bool, Error> {
+) -> Result<bool, LinkError> {
     if !feedback.confirm("Upload this calibration to the board and save it in flash?") {
+        if interrupt.load(Ordering::SeqCst) {
+            return Err(LinkError::Interrupted);
+        }
         feedback.say("not uploaded; the board keeps its previous calibration");
         return Ok(false);
     }
