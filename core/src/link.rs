@@ -11,7 +11,7 @@ mod listening;
 pub use error::LinkError;
 pub use exchange::{Call, Exchange, Step};
 pub use explain::explain;
-pub use listening::{describe, Listening};
+pub use listening::{describe, holds_accelcal_frame, Listening};
 
 use shared::protocol::Request;
 

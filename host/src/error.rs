@@ -53,10 +53,14 @@ pub enum Error {
     Certificate(#[from] crate::certificate::SealError),
     #[error(transparent)]
     Lot(#[from] crate::lot::LotError),
+    #[error("{} already exists: {other}, or add --overwrite to replace it", .path.display())]
+    OutputExists { path: PathBuf, other: &'static str },
     #[error("--g must be a positive number, got {g}")]
     BadGravity { g: f64 },
     #[error("{source}; {} so far {} kept in {}: continue with `accelcal calibrate {device} --resume {}`", count(*.captures, "capture"), if *.captures == 1 { "is" } else { "are" }, .path.display(), .path.display())]
     Stopped { source: Box<ProcedureError>, captures: usize, path: PathBuf, device: String },
+    #[error("{source}; the verification is not kept: {} holds the captures and the calibration uploaded to the board; check it again with `accelcal calibrate {device} --resume {}`", .path.display(), .path.display())]
+    VerificationNotKept { source: Box<SessionError>, path: PathBuf, device: String },
     #[error("{source}; the calibration is already uploaded and saved on the board: {check_later}")]
     AfterUpload { source: Box<ProcedureError>, check_later: String },
     #[error("{source}; verifying changes nothing on the board: its calibration is as it was")]

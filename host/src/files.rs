@@ -4,13 +4,16 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
+pub mod lock;
+
 /// Now, in seconds since the Unix epoch.
 pub fn unix_time_s() -> f64 {
     std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0.0, |d| d.as_secs_f64())
 }
 
 /// Writes a file so that a crash leaves either the old file or the new one, never half of one:
-/// a temporary file beside it, flushed to disk, then renamed over it.
+/// a temporary file beside it, flushed to disk, then renamed over it; a write that fails leaves
+/// the old file and removes its temporary.
 ///
 /// A path that names something other than a file (`/dev/null`, `/dev/stdout`, a named pipe) is
 /// written in place: renaming over it would replace the device with a file, and as root that
@@ -25,9 +28,15 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
         Err(_) => path.to_owned(),
     };
     let temporary = temporary_beside(&path);
-    let mut file = std::fs::File::create(&temporary)?;
-    file.write_all(bytes).and_then(|()| file.sync_all())?;
-    std::fs::rename(&temporary, &path)
+    let written = std::fs::File::create(&temporary)
+        .and_then(|mut file| file.write_all(bytes).and_then(|()| file.sync_all()))
+        .and_then(|()| std::fs::rename(&temporary, &path));
+    // NOTE: a write cut short (a full disk, a file size limit) leaves the old file as it was and
+    // no half-written temporary beside it.
+    if written.is_err() {
+        let _ = std::fs::remove_file(&temporary);
+    }
+    written
 }
 
 fn temporary_beside(path: &Path) -> PathBuf {

@@ -137,3 +137,28 @@ fn a_sketch_that_starts_printing_after_the_hello_is_taken_as_talking_and_said_so
     assert!(matches!(refused, LinkError::TalksOnItsOwn { greeted: true, .. }), "{refused}");
     assert!(refused.to_string().contains("though it began only after accelcal's hello"), "{refused}");
 }
+
+#[test]
+fn a_board_still_streaming_for_a_run_cut_short_is_greeted_as_a_board_and_left_idle() {
+    use shared::protocol::{encode, Request, StreamKind, MAX_FRAME_LEN};
+    use std::io::Write;
+    let board = SimPty::start(&[]);
+    // An earlier run asked for a long stream and ended (Ctrl-C, a kill) before reading its frames.
+    let mut earlier = accelcal::link::open_serial(&board.path, 115_200).unwrap();
+    let mut frame = [0u8; MAX_FRAME_LEN];
+    let len =
+        encode(1, &Request::Stream { kind: StreamKind::Raw, rate_hz: 100, count: 1_000_000 }, &mut frame).unwrap();
+    earlier.write_all(&[[0u8].as_slice(), &frame[..len]].concat()).unwrap();
+    std::thread::sleep(Duration::from_millis(300));
+    drop(earlier);
+    let opened = open_listening(&board.path, 115_200).unwrap();
+    let PortOpened::Board(mut connection) = opened else {
+        panic!("the board's leftover frames were taken for a sketch's stream");
+    };
+    // The stream was cancelled: the board takes a capture instead of answering busy.
+    let seconds = shared::protocol::MIN_CAPTURE_SECONDS;
+    let (stats, _) = connection.client.capture(seconds, |_| {}).expect("the board is idle again");
+    let rate_hz = connection.info.config.sample_rate_hz;
+    let wanted = u32::from(seconds) * u32::from(rate_hz);
+    assert!(stats.samples + 2 >= wanted, "{} samples in {seconds} s at {rate_hz} Hz", stats.samples);
+}

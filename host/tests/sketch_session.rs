@@ -126,3 +126,29 @@ fn a_live_stream_read_in_the_wrong_unit_ends_early_naming_the_unit_its_values_fi
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_new_session_onto_an_existing_log_is_refused_naming_it_and_with_overwrite_starts_it_afresh() {
+    let dir = std::env::temp_dir().join(format!("accelcal-sketch-log-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (stem, log) = (dir.join("new"), dir.join("mylog.txt"));
+    let earlier = "ax,ay,az\n0.01,0.02,1.00\n";
+    std::fs::write(&log, earlier).unwrap();
+    let sim = SimPty::with_seed("3", &["--sketch", "csv"]);
+    let (stem_arg, log_arg) = (stem.to_str().unwrap(), log.to_str().unwrap());
+    let args = ["calibrate", "--port", &sim.path, "--session", stem_arg, "--stream-log", log_arg];
+    let (refused, _) = accelcal_within(&args, LIMIT);
+    let said = String::from_utf8_lossy(&refused.stderr);
+    assert!(!refused.status.success(), "{said}");
+    assert!(said.contains(&format!("{log_arg} already exists: give another --stream-log")), "{said}");
+    assert!(said.contains("or add --overwrite to replace it"), "{said}");
+    assert_eq!(std::fs::read_to_string(&log).unwrap(), earlier, "the refused run changed the log");
+    // With --overwrite the new session's log holds its own lines only.
+    let mut replacing = calibrate(&[&args[1..], &["--overwrite"]].concat());
+    wait_for_captures(&dir.join("new.json"), 0);
+    Command::new("kill").args(["-INT", &replacing.id().to_string()]).status().unwrap();
+    wait_or_kill(&mut replacing, Duration::from_secs(30));
+    let kept = std::fs::read_to_string(&log).unwrap();
+    assert!(!kept.contains("0.01,0.02,1.00"), "the earlier session's lines are still in the log");
+    assert!(kept.lines().count() > 100, "{} lines", kept.lines().count());
+}

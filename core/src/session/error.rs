@@ -13,6 +13,8 @@ pub enum SessionError {
     NotASession { path: PathBuf, reason: String },
     #[error("{path} is not a session but {what}; give the session's .json file written by calibrate or capture")]
     OtherFile { path: PathBuf, what: &'static str },
+    #[error("{path} is being written by another run of accelcal ({holder}); wait for it to end, or give another --session name")]
+    Busy { path: PathBuf, holder: String },
     #[error("{path} already holds a session; continue it with `--resume {path}`, or give another --session name")]
     Exists { path: PathBuf },
     #[error("{path} is not a session of a board's own stream; resume it with the board it was captured on, or start a new one without --resume")]

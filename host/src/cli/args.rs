@@ -82,6 +82,8 @@ pub struct CalibrateArgs {
     #[arg(long, value_name = "LOG")]
     pub stream_log: Option<PathBuf>,
     #[command(flatten)]
+    pub replace: Overwrite,
+    #[command(flatten)]
     pub stream: SketchStreamArgs,
     /// Ten positions (six faces, four corners), fitted on the chip: no fit on the host.
     #[arg(long)]
@@ -315,6 +317,8 @@ pub enum CertificateAction {
         /// Print the certificate as JSON too.
         #[arg(long)]
         json: bool,
+        #[command(flatten)]
+        replace: Overwrite,
     },
     /// Checks that a certificate file is unchanged since it was issued (its SHA-256).
     Verify {
@@ -360,7 +364,7 @@ pub struct ExportArgs {
     #[arg(required_unless_present_any = ["port", "sim"], conflicts_with_all = ["port", "sim"])]
     pub calibration: Option<PathBuf>,
     /// The format (each says what of the calibration it carries).
-    #[arg(long, value_enum)]
+    #[arg(long, value_parser = super::named::named::<Target>())]
     pub to: Target,
     /// The file to write (default: stdout; the binary adafruit-eeprom needs a file).
     #[arg(short, long)]
@@ -370,6 +374,8 @@ pub struct ExportArgs {
     pub noise: Option<PathBuf>,
     #[command(flatten)]
     pub device: Device,
+    #[command(flatten)]
+    pub replace: Overwrite,
 }
 
 /// `calibrate`'s boards on one fixture.
@@ -457,6 +463,8 @@ pub struct RecordArgs {
     /// The sensor's sample rate, every sample recorded (must divide 1000 Hz).
     #[arg(long, default_value_t = 1000, value_parser = clap::value_parser!(u16).range(1..=1000))]
     pub rate: u16,
+    #[command(flatten)]
+    pub replace: Overwrite,
 }
 
 /// `accelcal repeat`.
@@ -508,4 +516,13 @@ pub struct SelftestArgs {
     /// only when given.
     #[arg(long)]
     pub history: Option<PathBuf>,
+}
+
+/// Whether the command may replace its output file.
+#[derive(Args, Clone, Copy, Debug)]
+pub struct Overwrite {
+    /// Replace the file this command writes (its -o, a certificate issued before, a new session's
+    /// --stream-log) when it exists; without it, an existing file is refused and kept.
+    #[arg(long)]
+    pub overwrite: bool,
 }

@@ -43,10 +43,12 @@ pub(super) fn calibrate_board(
     let fitted = fit_with_gyro(&mut opened, &kept, &moves, feedback)?;
     show_choice(feedback, &fitted);
     let client = &mut opened.connection.client;
+    // NOTE: the captures are all kept by now: a Ctrl-C or a lost board here is resumed from them.
+    let stopped = |source: LinkError| stopped_at(args, kept.path.as_deref(), source.into());
     if interrupt.load(Ordering::SeqCst) {
-        return Err(LinkError::Interrupted.into());
+        return Err(stopped(LinkError::Interrupted));
     }
-    if !upload_if_confirmed(client, &fitted.chosen, feedback)? {
+    if !upload_if_confirmed(client, &fitted.chosen, &interrupt, feedback).map_err(stopped)? {
         return Ok(None);
     }
     // NOTE: kept before the verification, so that a Ctrl-C or a pulled cable during it still leaves
@@ -86,16 +88,26 @@ fn collect(
     } else {
         collect_fixed(args, opened, turning, wait_limit, session, &mut keep, feedback)
     };
-    match (result, &kept.path) {
-        (Ok(first), _) => Ok((moves, first)),
-        (Err(source), Some(path)) if !kept.session.captures.is_empty() => Err(Error::Stopped {
-            source: Box::new(source),
-            captures: kept.session.captures.len(),
-            path: stem_file(path, "json"),
-            device: device_flags(args),
-        }),
-        (Err(source), _) => Err(source.into()),
+    result.map(|first| (moves, first)).map_err(|source| stopped_at(args, kept.path.as_deref(), source))
+}
+
+/// Why a run stopped, with the command that resumes its session when the session file holds a
+/// capture.
+fn stopped_at(args: &CalibrateArgs, kept_at: Option<&Path>, source: ProcedureError) -> Error {
+    match kept_at.map(kept_on_disk) {
+        Some((path, captures)) if captures > 0 => {
+            Error::Stopped { source: Box::new(source), captures, path, device: device_flags(args) }
+        }
+        _ => source.into(),
     }
+}
+
+/// The session's JSON file and how many captures it holds as written (not as in memory: a capture
+/// whose write failed, on a full disk say, is not in it); none when it cannot be read.
+fn kept_on_disk(stem: &Path) -> (std::path::PathBuf, usize) {
+    let json = stem_file(stem, "json");
+    let captures = Session::load(&json).map_or(0, |session| session.captures.len());
+    (json, captures)
 }
 
 /// Collects with a fixed capture length (`--seconds`, or `--quick`'s); the board's clock when the
@@ -140,7 +152,7 @@ fn finish(
     let uploaded = Some(fitted.chosen);
     let target = verification.against((kind == SessionKind::Adaptive).then_some(args.length.target_mg));
     let verified = Session { verification: Some(verification.clone()), uploaded, ..fitted.session.clone() };
-    let certificate = certify(&verified, &target, kept_at, args.lot.as_deref(), feedback)?;
+    let certificate = certify(&verified, &target, kept_at, args, feedback)?;
     let mut report = report_of(opened, fitted, verification, check);
     report.board_seconds = board_seconds;
     report.certificate = certificate;
@@ -173,28 +185,33 @@ fn certify(
     verified: &Session,
     target: &TargetVerdict,
     kept_at: Option<&Path>,
-    lot: Option<&Path>,
+    args: &CalibrateArgs,
     feedback: &mut dyn Feedback,
 ) -> Result<Option<Certificate>, Error> {
     let path = kept_at.unwrap_or(Path::new("the session"));
     let certificate = super::certificate::unless_failed(verified, target, path, feedback)?;
     if let Some(stem) = kept_at {
+        let not_kept = |source| Error::VerificationNotKept {
+            source: Box::new(source),
+            path: stem_file(stem, "json"),
+            device: device_flags(args),
+        };
+        verified.save(stem).map_err(not_kept)?;
         keep_with_report(verified, certificate.as_ref(), stem, feedback)?;
     }
-    if let (Some(lot), Some(certificate)) = (lot, &certificate) {
+    if let (Some(lot), Some(certificate)) = (args.lot.as_deref(), &certificate) {
         feedback.say(&super::lot::add_issued(lot, certificate)?);
     }
     Ok(certificate)
 }
 
-/// Saves the verified session again, writes its report and certificate beside it, and says where.
+/// Writes the verified session's report and certificate beside it, and says where.
 fn keep_with_report(
     session: &Session,
     certificate: Option<&Certificate>,
     stem: &Path,
     feedback: &mut dyn Feedback,
 ) -> Result<(), Error> {
-    session.save(stem)?;
     let json = stem_file(stem, "json");
     let page = super::report::beside(&json);
     super::report::write_page(&super::report::build(session, &json)?, &page)?;
@@ -228,13 +245,18 @@ fn check_later(args: &CalibrateArgs) -> String {
     }
 }
 
-/// Uploads and saves the calibration if the user agrees; whether it did.
+/// Uploads and saves the calibration if the user agrees; whether it did. Ctrl-C at the question
+/// ends the run at once (`Interrupted`).
 fn upload_if_confirmed<P: Port>(
     client: &mut Client<P>,
     calibration: &Calibration,
+    interrupt: &AtomicBool,
     feedback: &mut dyn Feedback,
-) -> Result<bool, Error> {
+) -> Result<bool, LinkError> {
     if !feedback.confirm("Upload this calibration to the board and save it in flash?") {
+        if interrupt.load(Ordering::SeqCst) {
+            return Err(LinkError::Interrupted);
+        }
         feedback.say("not uploaded; the board keeps its previous calibration");
         return Ok(false);
     }

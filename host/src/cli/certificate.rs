@@ -13,8 +13,11 @@ use crate::session::{stem_file, stem_of, write_atomically, Session, TargetVerdic
 /// Runs `accelcal certificate`.
 pub(super) fn certificate(args: &CertificateArgs) -> Result<(), Error> {
     match &args.action {
-        CertificateAction::Issue { session, json } => {
+        CertificateAction::Issue { session, json, replace } => {
             let loaded = Session::load(session)?;
+            for earlier in beside(session) {
+                replace.check(&earlier, "it was issued before (`accelcal certificate verify` checks it)")?;
+            }
             let issued = issue(&loaded, session)?;
             let (json_path, page) = written(&issued, session)?;
             if *json {
@@ -86,12 +89,16 @@ pub(super) fn unless_contradicted(
 
 /// Writes a certificate's JSON and page beside the session at `session_path`; their paths.
 pub(super) fn written(certificate: &Certificate, session_path: &Path) -> Result<(PathBuf, PathBuf), Error> {
-    let stem = stem_of(session_path);
-    let json = stem_file(&stem, "certificate.json");
-    let page = stem_file(&stem, "certificate.html");
+    let [json, page] = beside(session_path);
     write_atomically(&json, certificate.to_json().as_bytes())?;
     write_atomically(&page, certificate::html::page(certificate).as_bytes())?;
     Ok((json, page))
+}
+
+/// A session's certificate files: its JSON and its printable page beside it.
+fn beside(session_path: &Path) -> [PathBuf; 2] {
+    let stem = stem_of(session_path);
+    [stem_file(&stem, "certificate.json"), stem_file(&stem, "certificate.html")]
 }
 
 #[cfg(test)]

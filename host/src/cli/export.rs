@@ -15,6 +15,9 @@ pub(super) fn export(args: &ExportArgs) -> Result<(), Error> {
     if export_is_binary(args.to) && args.output.is_none() {
         return Err(export::ExportError::BinaryNeedsFile { target: target_name(args.to) }.into());
     }
+    if let Some(path) = &args.output {
+        args.replace.check(path, "give another -o")?;
+    }
     let mut source = match &args.calibration {
         Some(path) => Source::from_text(&read(path)?, &path.display().to_string())?,
         None => from_board(&args.device)?,

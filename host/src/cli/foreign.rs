@@ -37,7 +37,7 @@ pub(super) fn calibrate_from_stream(args: &CalibrateArgs, talking: TalkingPort) 
     }
     let log = kept.source.log.clone();
     let unwritable = |source| Error::WriteFile { path: log.clone(), source };
-    let file = std::fs::OpenOptions::new().create(true).append(true).open(&log).map_err(unwritable)?;
+    let file = open_log(&log, args.resume.is_some()).map_err(unwritable)?;
     let late = match talking.greeted {
         true => ", begun only after accelcal's hello (a board the port's opening reset, or a slow sketch); accelcal writes nothing more to it",
         false => ": accelcal writes nothing to it",
@@ -55,6 +55,17 @@ pub(super) fn calibrate_from_stream(args: &CalibrateArgs, talking: TalkingPort) 
     live.finish(&data).map_err(unwritable)?;
     eprintln!("{}: fitting the still periods of {}", ended.why, log.display());
     report(args, &kept, &options, ended.complete)
+}
+
+/// The session's log: a resumed session's goes on, a new one's starts empty (one already there was
+/// refused unless --overwrite).
+fn open_log(log: &Path, resumed: bool) -> std::io::Result<std::fs::File> {
+    let mut options = std::fs::OpenOptions::new();
+    match resumed {
+        true => options.create(true).append(true),
+        false => options.create(true).write(true).truncate(true),
+    };
+    options.open(log)
 }
 
 /// The command that goes on with the session, with the lot it was to go into.

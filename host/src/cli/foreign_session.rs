@@ -9,9 +9,10 @@ use std::path::{Path, PathBuf};
 use shared::protocol::CaptureStats;
 
 use super::args::CalibrateArgs;
-use super::kept::new_session_path;
+use super::kept::{default_name, first_free, hold, holder, new_session_path};
 use crate::data::Row;
 use crate::error::Error;
+use crate::files::lock::Held;
 use crate::session::{stem_file, stem_of, unix_time_s, CaptureRecord, Session, SessionError, SessionKind};
 use crate::session::{StreamSource, Verification};
 use crate::stream::guide::nearest_name;
@@ -25,17 +26,26 @@ pub(super) struct Kept {
     pub source: StreamSource,
     /// When the session began, seconds since the Unix epoch: its captures' time.
     began_unix_s: f64,
+    /// The session file, held by this run while it writes it.
+    _held: Held,
 }
 
 impl Kept {
     /// A new session, or the one `--resume` names with the lines its log already holds.
     pub fn begin(args: &CalibrateArgs, port: &str) -> Result<(Kept, String), Error> {
+        let serial = args.serial.as_deref();
+        let holder = holder(&serial.map_or_else(|| format!("port {port}"), |serial| format!("board {serial}")));
         if let Some(path) = &args.resume {
-            return resume(path, port, args.serial.as_deref());
+            return resume(path, port, serial, &holder);
         }
-        let stem = new_session_path(args)?
-            .unwrap_or_else(|| PathBuf::from(format!("accelcal-session-{}", unix_time_s() as u64)));
+        let (stem, held) = match new_session_path(args, serial, &holder)? {
+            Some(new) => new,
+            None => first_free(&default_name(serial), &holder)?,
+        };
         let log = args.stream_log.clone().unwrap_or_else(|| stem_file(&stem, "log"));
+        // NOTE: a new session's log holds its lines alone: appended to another's, it would be fitted
+        // with that session's lines too.
+        args.replace.check(&log, "give another --stream-log, or go on with the session it keeps with --resume")?;
         let source = StreamSource {
             port: port.to_owned(),
             log,
@@ -45,7 +55,7 @@ impl Kept {
             rate_hz: None,
             serial: args.serial.clone(),
         };
-        Ok((Kept { stem, source, began_unix_s: unix_time_s() }, String::new()))
+        Ok((Kept { stem, source, began_unix_s: unix_time_s(), _held: held }, String::new()))
     }
 
     /// The session's JSON file.
@@ -97,8 +107,9 @@ impl Kept {
 
 /// The stream session at `path` and the lines its log holds, to go on with on `port`, with the
 /// serial it records or, where it records none, `serial`.
-fn resume(path: &Path, port: &str, serial: Option<&str>) -> Result<(Kept, String), Error> {
+fn resume(path: &Path, port: &str, serial: Option<&str>, holder: &str) -> Result<(Kept, String), Error> {
     let stem = stem_of(path);
+    let held = hold(&stem, holder)?;
     let session = Session::load(&stem_file(&stem, "json"))?;
     let Some(source) = session.stream.filter(|_| session.kind == SessionKind::Stream) else {
         return Err(SessionError::NotAStream { path: path.to_owned() }.into());
@@ -112,5 +123,5 @@ fn resume(path: &Path, port: &str, serial: Option<&str>) -> Result<(Kept, String
         (kept, given) => kept.or(given.map(str::to_owned)),
     };
     let source = StreamSource { port: port.to_owned(), serial, ..source };
-    Ok((Kept { stem, source, began_unix_s: unix_time_s() }, before))
+    Ok((Kept { stem, source, began_unix_s: unix_time_s(), _held: held }, before))
 }

@@ -21,6 +21,7 @@ mod length;
 mod lot;
 mod named;
 mod noise;
+mod overwrite;
 mod procedure;
 mod record;
 mod repeat;

@@ -13,6 +13,8 @@ use crate::session::BoardRecord;
 
 /// `accelcal record (--port P | --sim) -o FILE [--seconds S] [--rate HZ]`.
 pub(super) fn record(args: &RecordArgs) -> Result<(), Error> {
+    // NOTE: before the board is opened: an earlier recording is kept, not cut to this one's length.
+    args.replace.check(&args.output, "give another -o")?;
     let mut opened = args.device.open()?;
     let config = SensorConfig { sample_rate_hz: args.rate, ..opened.connection.info.config };
     let client = &mut opened.connection.client;

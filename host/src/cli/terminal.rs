@@ -2,7 +2,9 @@
 
 use std::io::{BufRead, IsTerminal, Write};
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Arc;
+use std::sync::mpsc::RecvTimeoutError;
+use std::sync::{Arc, OnceLock};
+use std::time::Duration;
 
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 
@@ -34,12 +36,53 @@ impl Terminal {
         self.lines.suspend(|| {
             eprint!("{question} [y/N] ");
             let _ = std::io::stderr().flush();
-            let mut answer = String::new();
-            let _ = std::io::stdin().lock().read_line(&mut answer);
-            matches!(answer.trim(), "y" | "Y" | "yes")
+            answer_unless_ctrl_c().is_some_and(|answer| matches!(answer.trim(), "y" | "Y" | "yes"))
         })
     }
 }
+
+/// A flag that Ctrl-C sets (instead of ending the process), so that the capture is cancelled on
+/// the board and the session stays as written; one for the process, its handler set once.
+pub(super) fn interrupt_on_ctrl_c() -> Arc<AtomicBool> {
+    CTRL_C
+        .get_or_init(|| {
+            let flag = Arc::new(AtomicBool::new(false));
+            let set = flag.clone();
+            // NOTE: fails only when a handler is already set; without one, Ctrl-C ends the process
+            // and the session still holds every capture written so far.
+            let _ = ctrlc::set_handler(move || set.store(true, Ordering::SeqCst));
+            flag
+        })
+        .clone()
+}
+
+static CTRL_C: OnceLock<Arc<AtomicBool>> = OnceLock::new();
+
+/// The line the person types; `None` at once on Ctrl-C where the run handles it (a read of stdin
+/// would hold Ctrl-C until Enter), or when stdin ends.
+fn answer_unless_ctrl_c() -> Option<String> {
+    let read_line = || {
+        let mut answer = String::new();
+        std::io::stdin().lock().read_line(&mut answer).ok().filter(|&n| n > 0).map(|_| answer)
+    };
+    let Some(ctrl_c) = CTRL_C.get() else { return read_line() };
+    let (send, answer) = std::sync::mpsc::channel();
+    // NOTE: the reader is left blocked on stdin when Ctrl-C comes first; the run ends soon after.
+    std::thread::spawn(move || send.send(read_line()));
+    loop {
+        if ctrl_c.load(Ordering::SeqCst) {
+            return None;
+        }
+        match answer.recv_timeout(CTRL_C_POLL) {
+            Ok(line) => return line,
+            Err(RecvTimeoutError::Timeout) => {}
+            Err(RecvTimeoutError::Disconnected) => return None,
+        }
+    }
+}
+
+/// How often a question looks at the Ctrl-C flag while the person has not answered.
+const CTRL_C_POLL: Duration = Duration::from_millis(50);
 
 impl Feedback for Terminal {
     fn say(&mut self, line: &str) {
@@ -108,15 +151,4 @@ pub(super) fn working(message: String) -> ProgressBar {
     spinner.set_message(message);
     spinner.enable_steady_tick(std::time::Duration::from_millis(100));
     spinner
-}
-
-/// A flag that Ctrl-C sets (instead of ending the process), so that the capture is cancelled on
-/// the board and the session stays as written.
-pub(super) fn interrupt_on_ctrl_c() -> Arc<AtomicBool> {
-    let flag = Arc::new(AtomicBool::new(false));
-    let set = flag.clone();
-    // NOTE: fails only when a handler is already set; without one, Ctrl-C ends the process and the
-    // session still holds every capture written so far.
-    let _ = ctrlc::set_handler(move || set.store(true, Ordering::SeqCst));
-    flag
 }

@@ -6,12 +6,11 @@
 use std::io::Read;
 use std::time::{Duration, Instant};
 
-use shared::protocol::DeviceInfo;
+use shared::protocol::{DeviceInfo, Request};
 
 use super::client::Client;
-use super::describe;
 use super::port::{open_serial, Port};
-use super::LinkError;
+use super::{describe, holds_accelcal_frame, LinkError};
 use crate::limits::LISTEN_FIRST;
 
 /// An open session with a device.
@@ -56,10 +55,17 @@ pub fn open_listening(path: &str, baud: u32) -> Result<Opened, LinkError> {
     let port = open_serial(path, baud).map_err(|e| not_opened(path, e))?;
     let mut port: Box<dyn Port> = Box::new(port);
     let heard = listen(&mut port, LISTEN_FIRST)?;
-    if !heard.is_empty() {
+    // NOTE: frames of our own protocol are an accelcal board still ending what an earlier run, cut
+    // short, asked of it: greeted, and its job cancelled, never taken for a sketch's stream.
+    let leftovers = holds_accelcal_frame(&heard);
+    if !heard.is_empty() && !leftovers {
         return Ok(Opened::Talking(TalkingPort { path: path.to_owned(), port, heard, greeted: false }));
     }
     match Client::connect_keeping(port) {
+        Ok((mut client, info)) if leftovers => {
+            client.call(Request::Cancel)?;
+            Ok(Opened::Board(Box::new(Connection { client, info })))
+        }
         Ok((client, info)) => Ok(Opened::Board(Box::new(Connection { client, info }))),
         Err((LinkError::NotAccelcal { seconds, seen }, port)) => started_late(path, port, seconds, seen),
         Err((LinkError::Silent { seconds, .. }, _)) => Err(LinkError::Silent { seconds, at_open: true }),

@@ -10,7 +10,7 @@ mod probe;
 mod requests;
 mod tally;
 
-pub use accelcal_core::link::{describe, explain, LinkError};
+pub use accelcal_core::link::{describe, explain, holds_accelcal_frame, LinkError};
 pub use client::Client;
 pub use connect::{listen, open_listening, open_port, Connection, Opened as PortOpened, TalkingPort};
 pub use discovery::{resolve_port, serial_ports, SerialPortEntry};
