@@ -1,4 +1,9 @@
-//! accelcal's host library, one module per concept:
+//! accelcal's host library: what touches files, ports, the clock, threads and the terminal, feeding
+//! the I/O-free core ([`accelcal_core`]). The core's modules are re-exported here under their own
+//! names (`fit`, `report`, `export`, `calibration`, `limits`, `orientation`, `shown`); where the host
+//! adds I/O to one of the core's concepts, its module of that name re-exports the core's and adds
+//! only that (`session`, `data`, `certificate`, `stream`, `noise`, `selftest`, `part`, `link`).
+//! One module per concept:
 //!
 //! - [`link`]: the byte transports, the protocol client with one method per request, board discovery;
 //! - [`sim`]: the host side of the simulation (the simulated board served over a port);
