@@ -9,9 +9,9 @@ mod explain;
 mod listening;
 
 pub use error::LinkError;
-pub use exchange::{Call, Exchange, Step};
+pub use exchange::{holds_accelcal_frame, Call, Exchange, Step};
 pub use explain::explain;
-pub use listening::{describe, holds_accelcal_frame, Listening};
+pub use listening::{describe, Listening};
 
 use shared::protocol::Request;
 

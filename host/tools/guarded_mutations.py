@@ -10,6 +10,7 @@ Exits 1 when a named mutation is not in the source exactly once (in the file lis
 with no mutation active, or when a guard test stays green with its mutation (the guard is gone). Run from anywhere;
 it runs `cargo test --no-run` in the target directory cargo would use (CARGO_TARGET_DIR is honoured).
 """
+import functools
 import json
 import os
 import pathlib
@@ -158,6 +159,7 @@ def mutants_in_source():
     return found
 
 
+@functools.lru_cache(maxsize=None)
 def crate_of(test):
     """The crate whose unit tests hold `test`: the one whose source defines the test's function (the
     core and the host both have modules such as `selftest`, so the module path alone cannot tell)."""

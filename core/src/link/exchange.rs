@@ -51,12 +51,8 @@ impl Exchange {
     pub fn received(&mut self, bytes: &[u8]) {
         self.listening.bytes(bytes);
         for &byte in bytes {
-            let Feed::Frame(frame) = self.accumulator.feed(byte) else { continue };
-            match protocol::decode::<Response>(frame) {
-                Ok(answer) => self.heard.push_back(Ok(answer)),
-                Err(protocol::FrameError::Version { got }) => self.heard.push_back(Err(LinkError::version(got))),
-                // NOTE: a broken frame is line noise: the silence limit judges a port that sends only those.
-                Err(_) => {}
+            if let Feed::Frame(frame) = self.accumulator.feed(byte) {
+                self.heard.extend(heard(frame));
             }
         }
     }
@@ -70,6 +66,29 @@ impl Exchange {
         }
         self.listening.check(SILENCE_LIMIT, now).map(|()| None)
     }
+}
+
+/// What a whole frame says: an answer, a frame of another protocol version (named as such, never
+/// misread), or `None` for a broken frame, which is line noise (the silence limit judges a port that
+/// sends only those).
+fn heard(frame: &mut [u8]) -> Option<Result<(u16, Response), LinkError>> {
+    match protocol::decode::<Response>(frame) {
+        Ok(answer) => Some(Ok(answer)),
+        Err(protocol::FrameError::Version { got }) => Some(Err(LinkError::version(got))),
+        Err(_) => None,
+    }
+}
+
+/// Whether `bytes` hold a whole frame of accelcal's protocol (of any version): what a board of ours
+/// still sends for an earlier run's request (Ctrl-C or a kill ended that run before its last
+/// frames were read). A sketch's text holds no 0x00, so never a frame; the first bytes may be the
+/// end of a frame begun before the port was opened, which decodes to nothing.
+pub fn holds_accelcal_frame(bytes: &[u8]) -> bool {
+    let mut accumulator = FrameAccumulator::new();
+    bytes.iter().any(|&byte| match accumulator.feed(byte) {
+        Feed::Frame(frame) => heard(frame).is_some(),
+        _ => false,
+    })
 }
 
 /// What an answer means to the call waiting for it.

@@ -4,8 +4,6 @@
 
 use std::time::Duration;
 
-use shared::protocol::{self, Feed, FrameAccumulator, Response};
-
 use super::error::LinkError;
 
 /// Bytes of foreign traffic kept to show the user what the port sent.
@@ -52,20 +50,6 @@ impl Listening {
     }
 }
 
-/// Whether `bytes` hold a whole frame of accelcal's protocol (of any version): what a board of ours
-/// still sends for an earlier run's request (Ctrl-C or a kill ended that run before its last
-/// frames were read). A sketch's text holds no 0x00, so never a frame; the first bytes may be the
-/// end of a frame begun before the port was opened, which decodes to nothing.
-pub fn holds_accelcal_frame(bytes: &[u8]) -> bool {
-    let mut accumulator = FrameAccumulator::new();
-    bytes.iter().any(|&byte| match accumulator.feed(byte) {
-        Feed::Frame(frame) => {
-            matches!(protocol::decode::<Response>(frame), Ok(_) | Err(protocol::FrameError::Version { .. }))
-        }
-        _ => false,
-    })
-}
-
 /// What the port sent, in words: a quote of its text, or a count of its bytes.
 pub fn describe(evidence: &[u8], total: usize) -> String {
     let printable = evidence.iter().filter(|b| b.is_ascii_graphic() || b.is_ascii_whitespace()).count();
@@ -82,21 +66,6 @@ pub fn describe(evidence: &[u8], total: usize) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn leftover_frames_of_our_protocol_are_told_from_a_sketch_s_text_and_from_noise() {
-        let mut frames = Vec::new();
-        for (id, response) in [(7, Response::Error(shared::protocol::DeviceError::Cancelled)), (8, Response::Done)] {
-            let mut frame = [0u8; shared::protocol::MAX_FRAME_LEN];
-            let len = protocol::encode(id, &response, &mut frame).unwrap();
-            frames.extend_from_slice(&frame[..len]);
-        }
-        // NOTE: the port opened in the middle of the first frame: its first 3 bytes were read before.
-        assert!(holds_accelcal_frame(&frames[3..]), "{:02x?}", &frames[3..]);
-        assert!(!holds_accelcal_frame(b"ax,ay,az\r\n0.01,0.02,1.00\r\n"));
-        // Zero bytes in line noise delimit chunks that are no valid frame (their CRC-32 fails).
-        assert!(!holds_accelcal_frame(&[0x81, 0x00, 0x02, 0x10, 0x7f, 0x03, 0x00, 0x05, 0x11, 0x22, 0x33, 0x00]));
-    }
 
     #[test]
     fn text_is_quoted_and_binary_is_counted() {

@@ -107,3 +107,18 @@ fn a_frame_of_another_protocol_version_is_heard_as_the_version_mismatch() {
     exchange.received(&answer);
     assert!(matches!(exchange.answer(MS), Err(LinkError::Version { .. })));
 }
+
+#[test]
+fn leftover_frames_of_our_protocol_are_told_from_a_sketch_s_text_and_from_noise() {
+    let mut frames = Vec::new();
+    for (id, response) in [(7, Response::Error(shared::protocol::DeviceError::Cancelled)), (8, Response::Done)] {
+        let mut frame = [0u8; shared::protocol::MAX_FRAME_LEN];
+        let len = protocol::encode(id, &response, &mut frame).unwrap();
+        frames.extend_from_slice(&frame[..len]);
+    }
+    // NOTE: the port opened in the middle of the first frame: its first 3 bytes were read before.
+    assert!(holds_accelcal_frame(&frames[3..]), "{:02x?}", &frames[3..]);
+    assert!(!holds_accelcal_frame(b"ax,ay,az\r\n0.01,0.02,1.00\r\n"));
+    // Zero bytes in line noise delimit chunks that are no valid frame (their CRC-32 fails).
+    assert!(!holds_accelcal_frame(&[0x81, 0x00, 0x02, 0x10, 0x7f, 0x03, 0x00, 0x05, 0x11, 0x22, 0x33, 0x00]));
+}
