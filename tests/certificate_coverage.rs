@@ -28,7 +28,7 @@ const FRESH: usize = 50;
 fn session(seed: u64) -> (Session, SimBoard) {
     let (mut connection, board) = SimBoard::in_process_part((seed, SimSensor::Drawn, SimPart::mpu6050())).unwrap();
     let how = SimulatedSession { placement_deg: PLACEMENT_DEG, hand_seed: seed, target_mg: 0.2 };
-    (how.collect(&mut connection, &board).unwrap(), board)
+    (board.collect_session(&how, &mut connection).unwrap(), board)
 }
 
 /// The true value of every parameter the certificate may state, at the die temperature TEMP_OUT

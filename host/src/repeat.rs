@@ -82,7 +82,7 @@ pub fn run(options: &RepeatOptions, cycle: u64) -> Result<Run, Error> {
     let sensor = (options.seed, options.sensor, SimPart::mpu6050());
     let (mut connection, board) = SimBoard::in_process_powered(sensor, power)?;
     let hand_seed = options.session.hand_seed.wrapping_add(cycle);
-    let session = SimulatedSession { hand_seed, ..options.session }.collect(&mut connection, &board)?;
+    let session = board.collect_session(&SimulatedSession { hand_seed, ..options.session }, &mut connection)?;
     let certificate = Certificate::issue(&session)?;
     let reading_c = drift::mean_temp_c(&session.dataset()) as f32;
     let true_offset_g = board.truth_at(reading_c).offset_g.map(f64::from);

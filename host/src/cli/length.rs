@@ -14,7 +14,11 @@ impl LengthArgs {
     /// The stop rule of each capture at `rate_hz`.
     pub fn rule(&self, rate_hz: u16) -> Result<StopRule, ProcedureError> {
         let noise = match &self.noise_report {
-            Some(path) => noise_from_report(path)?,
+            Some(path) => {
+                let unreadable =
+                    |e: std::io::Error| ProcedureError::NoiseReport { path: path.clone(), reason: e.to_string() };
+                noise_from_report(path, &std::fs::read_to_string(path).map_err(unreadable)?)?
+            }
             None => Noise::Measured,
         };
         Ok(StopRule { target_mg: self.target_mg, noise, rate_hz })

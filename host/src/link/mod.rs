@@ -7,14 +7,12 @@ mod connect;
 mod discovery;
 pub mod port;
 mod probe;
-mod requests;
-mod tally;
 
-pub use accelcal_core::link::{describe, explain, holds_accelcal_frame, LinkError};
-pub use client::Client;
+pub use accelcal_core::link::{
+    describe, explain, holds_accelcal_frame, ChipOrtho9, Link, LinkError, StreamRequest, Tally, Transport,
+};
+pub use client::{Client, PortTransport};
 pub use connect::{listen, open_listening, open_port, Connection, Opened as PortOpened, TalkingPort};
 pub use discovery::{resolve_port, serial_ports, SerialPortEntry};
 pub use port::{open_serial, pipe, PipeEnd, Port};
 pub use probe::{ask, find_board, find_boards, is_worth_asking, Answer};
-pub use requests::{ChipOrtho9, StreamRequest};
-pub use tally::Tally;

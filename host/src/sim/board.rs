@@ -16,10 +16,13 @@ use shared::Calibration;
 
 use super::clock::Pace;
 use super::serve::serve;
-use super::sim_command::SimCommand;
 use super::Port;
 use crate::link::{pipe, Connection, LinkError};
 use crate::report::TruthJson;
+use crate::session::Session;
+use accelcal_core::run::ProcedureError;
+use accelcal_core::sim::SimCommand;
+use accelcal_core::sim::{SimulatedBoard, SimulatedSession};
 
 /// Orientations [`SimBoard::true_error_mg`] averages over.
 pub const TRUE_ERROR_ORIENTATIONS: usize = 200;
@@ -129,6 +132,18 @@ impl SimBoard {
         Ok((Connection::over(Box::new(host_end))?, board))
     }
 
+    /// Collects `how`'s simulated session on this board over `connection` (the core's
+    /// `SimulatedSession::collect`, each request blocking on the pipe).
+    pub fn collect_session(
+        &self,
+        how: &SimulatedSession,
+        connection: &mut Connection,
+    ) -> Result<Session, ProcedureError> {
+        let link = connection.client.link();
+        let (controls, clock) = (Box::new(self.controls()), Arc::new(self.clock()));
+        block_on(how.collect(SimulatedBoard { link, info: &connection.info, controls, clock }))
+    }
+
     /// A handle that turns the board: for the procedure's simulated hand, and for tests.
     pub fn controls(&self) -> Sender<SimCommand> {
         self.commands.clone()
@@ -212,5 +227,24 @@ impl Drop for SimBoard {
         if let Some(thread) = self.thread.take() {
             let _ = thread.join();
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::limits::DEFAULT_TARGET_MG;
+
+    #[test]
+    fn the_board_in_this_process_and_the_threaded_board_give_one_calibration_bit_for_bit() {
+        let how = SimulatedSession { placement_deg: 3.0, hand_seed: 11, target_mg: DEFAULT_TARGET_MG };
+        let (mut connection, board) = SimBoard::in_process(11, SimSensor::Realistic).unwrap();
+        let threaded = board.collect_session(&how, &mut connection).unwrap();
+        let in_process = how.in_process(11).unwrap();
+        let config = connection.info.config;
+        let calibration = |session: &Session| session.outcome(config).unwrap().calibration;
+        assert!(threaded.captures.len() >= 11, "{} captures", threaded.captures.len());
+        assert_eq!(threaded.captures.len(), in_process.captures.len());
+        assert_eq!(calibration(&threaded), calibration(&in_process));
     }
 }

@@ -2,7 +2,7 @@
 
 use firmware::sim::physics::Motion;
 
-use super::sim_command::SimCommand;
+use accelcal_core::sim::SimCommand;
 
 /// Every command stdin takes: how to write it, and what it does.
 pub(super) const COMMANDS: &[(&str, &str)] = &[

@@ -9,24 +9,20 @@ mod board;
 mod clock;
 mod commands;
 mod emulated;
-mod hand;
 pub mod noise;
 mod outgoing;
 mod parts;
 mod pty;
 pub mod replay;
 mod serve;
-mod sim_command;
 mod truth;
-pub mod turn;
 
-pub use accelcal_core::sim::{person, random, sessions, sketch, synthetic};
+pub use accelcal_core::sim::{person, random, sessions, sketch, synthetic, turn, SimCommand};
 
 pub use board::{PowerOn, SensorChoice, SimBoard, SimSensor};
 pub use clock::Pace;
 pub use emulated::{serve_emulated, EmulatorError};
 pub use parts::{FaultyAxis, SimPartChoice};
 pub use pty::{serve_pty, SimError};
-pub use sim_command::SimCommand;
 
 use crate::link::Port;

@@ -8,7 +8,7 @@ use firmware::sim::SimFlash;
 use super::board::{SimBoard, SimSensor};
 use super::clock::Pace;
 use super::commands::{help, parse, Line};
-use super::sim_command::SimCommand;
+use accelcal_core::sim::SimCommand;
 
 /// Why the pseudo-terminal server could not start.
 #[derive(Debug, thiserror::Error)]

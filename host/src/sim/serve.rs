@@ -16,10 +16,10 @@ use firmware::server::Server;
 use firmware::sim::{SimFlash, SimMpu6050, SIM_FLASH_RANGE};
 
 use super::clock::{Clock, Pace};
-use super::hand::Hand;
 use super::outgoing::Outgoing;
-use super::sim_command::SimCommand;
 use super::Port;
+use accelcal_core::sim::OwnerHand;
+use accelcal_core::sim::SimCommand;
 
 type SimServer = Server<SimMpu6050, SimFlash>;
 
@@ -33,7 +33,7 @@ struct Service {
     clock: Clock,
     outgoing: Outgoing,
     /// The owner's hand on the sensor.
-    hand: Hand,
+    hand: OwnerHand,
     /// The simulated time now, in microseconds, for the board's owner.
     now_us: Arc<AtomicU64>,
 }
@@ -47,7 +47,7 @@ pub(super) fn serve<P: Port>(
     now_us: Arc<AtomicU64>,
 ) -> SimFlash {
     let (clock, outgoing) = (Clock::new(pace), Outgoing::default());
-    let mut service = Service { clock, outgoing, hand: Hand::default(), now_us };
+    let mut service = Service { clock, outgoing, hand: OwnerHand::default(), now_us };
     let mut buffer = [0u8; 256];
     'serving: while let Some(received) = service.read(&mut port, &server, &mut buffer) {
         // NOTE: the owner's commands are applied after the read and before the bytes are handled, so

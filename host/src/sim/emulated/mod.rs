@@ -24,8 +24,8 @@ use port::HostPort;
 
 use super::board::SimSensor;
 use super::commands::{help, parse, Line};
-use super::hand::Hand;
-use super::sim_command::SimCommand;
+use accelcal_core::sim::OwnerHand;
+use accelcal_core::sim::SimCommand;
 
 /// Where the emulator harness and its `node_modules` live in the repository.
 const EMULATOR_DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../boards/pico/emulator");
@@ -40,7 +40,7 @@ enum Order {
 /// The world around the emulated chip: its sensor, the person's hand, the USB port, the wall clock.
 struct Bridge {
     sensor: SimMpu6050,
-    hand: Hand,
+    hand: OwnerHand,
     bus: BytewiseTarget,
     port: HostPort,
     started: Instant,
@@ -69,7 +69,8 @@ pub fn serve_emulated(uf2: &Path, seed: u64, kind: SimSensor) -> Result<(), Emul
         sensor.physics.drawn_part(seed);
     }
     let mut harness = Harness::start(dir, uf2)?;
-    let (bus, hand, port, started) = (BytewiseTarget::default(), Hand::default(), HostPort::plugged()?, Instant::now());
+    let (bus, hand, port, started) =
+        (BytewiseTarget::default(), OwnerHand::default(), HostPort::plugged()?, Instant::now());
     let mut bridge = Bridge { sensor, hand, bus, port, started, orders: read_orders(), fits: FitTimer::default() };
     loop {
         let event = harness.next()?;

@@ -9,7 +9,7 @@ use shared::Position;
 
 use super::{Feedback, ProcedureError};
 use crate::limits::{GOAL_SETTLE_SECONDS, MAX_CAPTURE_SECONDS, MIN_CAPTURE_SECONDS, SETTLE_SECONDS};
-use crate::link::{Client, LinkError, Port};
+use crate::link::{Link, LinkError, Transport};
 
 /// Captures a default session plans for, for the share of the target each mean gets: its fourteen
 /// positions and the first one again (it stops sooner once the fit predicts the target: on the
@@ -29,15 +29,15 @@ pub enum CaptureLength {
 
 impl CaptureLength {
     /// Runs the capture, showing its progress.
-    pub(super) fn capture<P: Port>(
+    pub(super) async fn capture<T: Transport>(
         self,
-        client: &mut Client<P>,
+        link: &mut Link<T>,
         feedback: &mut dyn Feedback,
     ) -> Result<(CaptureStats, Option<Position>), LinkError> {
         let mut progress = |p: &shared::protocol::CaptureProgress| feedback.progress(p.samples, p.total_samples);
         match self {
-            CaptureLength::Seconds(seconds) => client.capture(seconds, &mut progress),
-            CaptureLength::Goal(goal) => client.capture_until(goal, &mut progress),
+            CaptureLength::Seconds(seconds) => link.capture(seconds, &mut progress).await,
+            CaptureLength::Goal(goal) => link.capture_until(goal, &mut progress).await,
         }
     }
 
@@ -145,11 +145,10 @@ impl StopRule {
 }
 
 /// The accelerometer's noise from an `accelcal noise --json` report: white noise per axis (ug/sqrt(Hz)
-/// there, one-sided as datasheets give it) and the capture limit.
-pub fn noise_from_report(path: &Path) -> Result<Noise, ProcedureError> {
+/// there, one-sided as datasheets give it) and the capture limit; `text` is the report read from `path`.
+pub fn noise_from_report(path: &Path, text: &str) -> Result<Noise, ProcedureError> {
     let unreadable = |reason: String| ProcedureError::NoiseReport { path: path.to_owned(), reason };
-    let text = std::fs::read_to_string(path).map_err(|e| unreadable(e.to_string()))?;
-    let report = crate::noise::json::read(&text).map_err(unreadable)?;
+    let report = crate::noise::json::read(text).map_err(unreadable)?;
     let mut white_noise_g = [0.0; 3];
     for (axis, name) in ["accel_x", "accel_y", "accel_z"].iter().enumerate() {
         let density = report.axis(name).ok().and_then(|a| a.white_noise_density).filter(|d| *d > 0.0 && d.is_finite());
@@ -211,9 +210,7 @@ mod tests {
 
     #[test]
     fn a_noise_report_is_read_from_noise_json_or_refused_by_name() {
-        let dir = std::env::temp_dir().join(format!("accelcal-stop-rule-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let path = dir.join("noise.json");
+        let path = Path::new("noise.json");
         let axis = |n: f64| format!("{{\"white_noise_density\": {n}}}");
         let json = format!(
             "{{\"accel_x\": {}, \"accel_y\": {}, \"accel_z\": {}, \"calibration\": {{\"capture_limit_s\": 40.0}}}}",
@@ -221,18 +218,16 @@ mod tests {
             axis(290.0),
             axis(300.0)
         );
-        std::fs::write(&path, &json).unwrap();
-        let Noise::Report { white_noise_g, capture_limit_s } = noise_from_report(&path).unwrap() else { panic!() };
+        let Noise::Report { white_noise_g, capture_limit_s } = noise_from_report(path, &json).unwrap() else {
+            panic!()
+        };
         let two_sided = [280e-6, 290e-6, 300e-6].map(|d: f64| d / std::f64::consts::SQRT_2);
         assert!(white_noise_g.iter().zip(two_sided).all(|(n, e)| (n - e).abs() < 1e-12), "{white_noise_g:?}");
         assert_eq!(capture_limit_s, Some(40.0));
         let bound = json.replace("40.0}", "40.0, \"capture_limit_is_lower_bound\": true}");
-        std::fs::write(&path, bound).unwrap();
-        let Noise::Report { capture_limit_s, .. } = noise_from_report(&path).unwrap() else { panic!() };
+        let Noise::Report { capture_limit_s, .. } = noise_from_report(path, &bound).unwrap() else { panic!() };
         assert_eq!(capture_limit_s, None, "a lower bound caps nothing");
-        std::fs::write(&path, "{\"accel_x\": {}}").unwrap();
-        let error = noise_from_report(&path).unwrap_err().to_string();
-        assert!(error.contains("it has no accel_x.white_noise_density"), "{error}");
-        std::fs::remove_dir_all(&dir).unwrap();
+        let error = noise_from_report(path, "{\"accel_x\": {}}").unwrap_err().to_string();
+        assert!(error.contains("noise.json cannot be used (it has no accel_x.white_noise_density)"), "{error}");
     }
 }

@@ -11,7 +11,7 @@ use super::stop_rule::CaptureLength;
 use super::wait::{wait_for_fresh, Rest, LIVE_WINDOW};
 use super::{Feedback, Hand, ProcedureError};
 use crate::limits::CAPTURE_ATTEMPTS;
-use crate::link::{explain, Client, LinkError, Port, StreamRequest};
+use crate::link::{explain, Link, LinkError, StreamRequest, Transport};
 use crate::session::Check;
 pub use crate::session::Verification;
 use crate::session::CHIP_SAMPLES;
@@ -20,20 +20,20 @@ use crate::session::CHIP_SAMPLES;
 pub const VERIFY_SECONDS: u8 = 5;
 
 /// Checks the active calibration at `positions` fresh orientations.
-pub fn verify<P: Port>(
-    client: &mut Client<P>,
+pub async fn verify<T: Transport>(
+    link: &mut Link<T>,
     hand: &mut dyn Hand,
     positions: usize,
     wait_limit: Option<Duration>,
     feedback: &mut dyn Feedback,
 ) -> Result<Verification, ProcedureError> {
-    verify_clear_of(client, hand, positions, wait_limit, feedback, &[])
+    verify_clear_of(link, hand, positions, wait_limit, feedback, &[]).await
 }
 
 /// [`verify`] at orientations that are also new against `calibrated`, the directions (any length)
 /// the calibration was captured at: a check where the fit was made proves nothing new.
-pub fn verify_clear_of<P: Port>(
-    client: &mut Client<P>,
+pub async fn verify_clear_of<T: Transport>(
+    link: &mut Link<T>,
     hand: &mut dyn Hand,
     positions: usize,
     wait_limit: Option<Duration>,
@@ -41,12 +41,12 @@ pub fn verify_clear_of<P: Port>(
     calibrated: &[[f64; 3]],
 ) -> Result<Verification, ProcedureError> {
     let length = CaptureLength::Seconds(VERIFY_SECONDS);
-    verify_with(client, hand, positions, wait_limit, feedback, calibrated, length)
+    verify_with(link, hand, positions, wait_limit, feedback, calibrated, length).await
 }
 
 /// [`verify_clear_of`] with captures of `length` (an adaptive session's: as long as its target needs).
-pub fn verify_with<P: Port>(
-    client: &mut Client<P>,
+pub async fn verify_with<T: Transport>(
+    link: &mut Link<T>,
     hand: &mut dyn Hand,
     positions: usize,
     wait_limit: Option<Duration>,
@@ -54,14 +54,16 @@ pub fn verify_with<P: Port>(
     calibrated: &[[f64; 3]],
     length: CaptureLength,
 ) -> Result<Verification, ProcedureError> {
-    let calibration = client.calibration(CalibrationSlot::Active)?.ok_or(ProcedureError::NoActiveCalibration)?;
+    let calibration = link.calibration(CalibrationSlot::Active).await?.ok_or(ProcedureError::NoActiveCalibration)?;
     hand.avoid(calibrated);
     let mut checks = Vec::with_capacity(positions);
     // NOTE: `used` holds the calibration's directions first, then each one verified.
     let mut used = calibrated.to_vec();
     for index in 0..positions {
-        let fresh = hand.fresh(index, feedback);
-        let check = fresh.and_then(|()| check_fresh(client, &calibration, &mut used, wait_limit, length, feedback));
+        let check = match hand.fresh(index, feedback) {
+            Ok(()) => check_fresh(link, &calibration, &mut used, wait_limit, length, feedback).await,
+            Err(error) => Err(error),
+        };
         let check = check.map_err(|source| stopped(source, &checks, positions))?;
         feedback.say(&format!(
             "verification {}: | |a| - 1 g | {:.2} mg raw, {:.3} mg calibrated",
@@ -77,8 +79,8 @@ pub fn verify_with<P: Port>(
 /// A check at a fresh orientation, which only a capture that ran still uses up: after a capture the
 /// board moved during, the wait for a fresh orientation starts again (the board may be anywhere now,
 /// and the orientation it was brought to is still fresh).
-fn check_fresh<P: Port>(
-    client: &mut Client<P>,
+async fn check_fresh<T: Transport>(
+    link: &mut Link<T>,
     calibration: &Calibration,
     used: &mut Vec<[f64; 3]>,
     wait_limit: Option<Duration>,
@@ -87,8 +89,8 @@ fn check_fresh<P: Port>(
 ) -> Result<Check, ProcedureError> {
     for _ in 0..CAPTURE_ATTEMPTS {
         let rest = Rest { limit: wait_limit, settle_seconds: length.settle_seconds(), rested_s: 0.0 };
-        let direction = wait_for_fresh(client, used, rest, feedback)?;
-        match check(client, calibration, length, feedback) {
+        let direction = wait_for_fresh(link, used, rest, feedback).await?;
+        match check(link, calibration, length, feedback).await {
             Err(ProcedureError::Link(LinkError::Device(error @ DeviceError::Moved { .. }))) => {
                 feedback.say(&format!("{}; hold it still at a fresh orientation again", explain(&error)));
             }
@@ -118,18 +120,18 @@ fn stopped(source: ProcedureError, checks: &[Check], positions: usize) -> Proced
 
 /// One capture at the board's orientation (not retried: [`check_fresh`] waits again), and the
 /// chip's corrected samples there.
-fn check<P: Port>(
-    client: &mut Client<P>,
+async fn check<T: Transport>(
+    link: &mut Link<T>,
     calibration: &Calibration,
     length: CaptureLength,
     feedback: &mut dyn Feedback,
 ) -> Result<Check, ProcedureError> {
-    let result = length.capture(client, feedback);
+    let result = length.capture(link, feedback).await;
     feedback.progress_done();
     let (stats, _) = result?;
     // NOTE: at the capture's temperature, as the chip corrects it (a session's drift model moves o).
     let corrected = calibration.apply_at(stats.mean_g, stats.temp_c);
-    let chip_mean = chip_corrected_mean(client, sample_rate_hz(&stats))?;
+    let chip_mean = chip_corrected_mean(link, sample_rate_hz(&stats)).await?;
     Ok(Check {
         before_mg: (f64::from(linalg::norm(stats.mean_g)) - 1.0) * 1000.0,
         after_mg: (f64::from(linalg::norm(corrected)) - 1.0) * 1000.0,
@@ -174,13 +176,14 @@ fn sample_rate_hz(stats: &CaptureStats) -> u16 {
 /// Mean of samples corrected by the chip itself, streamed at the sensor's rate.
 // NOTE: at the sensor's rate rather than the live window's 20 Hz, the 20 samples take a fifth of a
 // second of the person's time instead of a whole one, for the same noise.
-fn chip_corrected_mean<P: Port>(client: &mut Client<P>, rate_hz: u16) -> Result<[f32; 3], ProcedureError> {
+async fn chip_corrected_mean<T: Transport>(link: &mut Link<T>, rate_hz: u16) -> Result<[f32; 3], ProcedureError> {
     let request = StreamRequest { kind: StreamKind::Calibrated, rate_hz, count: CHIP_SAMPLES };
     let (mut sum, mut count) = ([0.0f32; 3], 0u32);
-    client.stream(request, |sample| {
+    link.stream(request, |sample| {
         sum = linalg::add(sum, sample.accel_g);
         count += 1;
-    })?;
+    })
+    .await?;
     Ok(linalg::scale(sum, 1.0 / count.max(1) as f32))
 }
 

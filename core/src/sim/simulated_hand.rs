@@ -4,17 +4,15 @@
 //! as a hand does (a real rotation at a smoothly rising and falling rate), so that the gyro sees
 //! the turn.
 
-use std::sync::mpsc::Sender;
-
 use rand_xoshiro::rand_core::SeedableRng;
 use rand_xoshiro::Xoshiro256PlusPlus;
 use shared::linalg::{add, cross, norm, scale};
 
-use super::{Feedback, Hand, Orientation, ProcedureError};
+use super::command::SimCommand;
+use super::random::{gaussian, random_unit};
+use super::turn::{turn_between, turning};
 use crate::limits::FRESH_DEG;
-use crate::sim::random::{gaussian, random_unit};
-use crate::sim::turn::{turn_between, turning};
-use crate::sim::SimCommand;
+use crate::run::{Feedback, Hand, Orientation, ProcedureError};
 
 /// How far beyond [`FRESH_DEG`], in degrees, the hand keeps its verification orientations apart,
 /// so that its own placement error never makes one look like a repeat.
@@ -24,9 +22,32 @@ const FRESH_TRIES: usize = 1000;
 /// A verification turn, in degrees: the quarter turn the user is shown.
 pub const VERIFICATION_TURN_DEG: f64 = 90.0;
 
+/// The simulated board has stopped: it takes no more commands.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Stopped;
+
+/// How the hand reaches the simulated board: a channel to the host's threaded board, or the core's
+/// board in this process.
+pub trait Controls {
+    /// Applies `command` to the board.
+    fn send(&mut self, command: SimCommand) -> Result<(), Stopped>;
+}
+
+impl Controls for std::sync::mpsc::Sender<SimCommand> {
+    fn send(&mut self, command: SimCommand) -> Result<(), Stopped> {
+        std::sync::mpsc::Sender::send(self, command).map_err(|_| Stopped)
+    }
+}
+
+impl Controls for Box<dyn Controls> {
+    fn send(&mut self, command: SimCommand) -> Result<(), Stopped> {
+        self.as_mut().send(command)
+    }
+}
+
 /// The tool's hand on a simulated board.
 pub struct SimulatedHand {
-    controls: Sender<SimCommand>,
+    controls: Box<dyn Controls>,
     rng: Xoshiro256PlusPlus,
     placement_deg: f64,
     verified: Vec<[f64; 3]>,
@@ -37,9 +58,9 @@ pub struct SimulatedHand {
 impl SimulatedHand {
     /// A hand on the board behind `controls`, off by about `placement_deg` (random axis, normal
     /// angle), repeatable by `seed`.
-    pub fn new(controls: Sender<SimCommand>, placement_deg: f64, seed: u64) -> Self {
+    pub fn new(controls: impl Controls + 'static, placement_deg: f64, seed: u64) -> Self {
         let rng = Xoshiro256PlusPlus::seed_from_u64(seed);
-        SimulatedHand { controls, rng, placement_deg, verified: Vec::new(), resting: None }
+        SimulatedHand { controls: Box::new(controls), rng, placement_deg, verified: Vec::new(), resting: None }
     }
 
     /// Brings the board to rest with `up` up: turned there from where it rests, else put there.

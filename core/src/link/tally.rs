@@ -18,14 +18,14 @@ pub struct Tally {
 
 impl Tally {
     /// A sample with sequence number `index` arrived.
-    pub(super) fn arrived(&mut self, index: u32) {
+    pub fn arrived(&mut self, index: u32) {
         self.received += 1;
         self.gaps += index.saturating_sub(self.next_index);
         self.next_index = self.next_index.max(index.saturating_add(1));
     }
 
     /// The board ended the stream having sent `samples` and dropped `dropped`.
-    pub(super) fn ended(mut self, samples: u32, dropped: u32) -> Self {
+    pub fn ended(mut self, samples: u32, dropped: u32) -> Self {
         self.expected = samples.saturating_add(dropped);
         self.dropped = dropped;
         self

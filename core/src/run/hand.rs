@@ -59,8 +59,8 @@ fn describe(target: &Orientation) -> String {
 mod tests {
     use super::*;
     use crate::orientation::Orientation;
-    use crate::procedure::drift::closing;
-    use crate::procedure::Told;
+    use crate::run::drift::closing;
+    use crate::run::Told;
 
     #[test]
     fn the_closing_capture_of_a_face_is_described_as_that_face_not_as_a_corner() {

@@ -1,14 +1,14 @@
 //! Waiting for the board: one mechanism (a deadline, live windows of raw samples, two accepted
 //! windows in a row) serves both the wait for a wanted orientation and the wait for a fresh one.
 
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use shared::orientation::angle_between_deg;
 use shared::protocol::StreamKind;
 
 use super::{Feedback, Orientation, ProcedureError};
 use crate::limits::{FRESH_DEG, MAX_GRAVITY_ERROR_G, STILL_ACCEL_STD_G, ZERO_READING_G};
-use crate::link::{Client, Port, StreamRequest};
+use crate::link::{Link, StreamRequest, Transport};
 
 /// The live window: half a second of raw samples.
 pub(super) const LIVE_WINDOW: StreamRequest = StreamRequest { kind: StreamKind::Raw, rate_hz: 20, count: 10 };
@@ -34,8 +34,8 @@ pub(super) struct Rest {
 
 /// Waits until the board rests within tolerance of one of the `remaining` targets; says how far it
 /// is and refuses a position already captured (`done`). Returns the index in `remaining`.
-pub(super) fn wait_for_target<P: Port>(
-    client: &mut Client<P>,
+pub(super) async fn wait_for_target<T: Transport>(
+    link: &mut Link<T>,
     remaining: &[Orientation],
     done: &[Orientation],
     rest: Rest,
@@ -45,7 +45,7 @@ pub(super) fn wait_for_target<P: Port>(
         let wanted: Vec<&str> = remaining.iter().map(|t| t.name.as_str()).collect();
         ProcedureError::NeverAtTarget { wanted: wanted.join(", ") }
     };
-    wait_for_rest(client, rest, feedback, gave_up, |window| judge_target(window, remaining, done))
+    wait_for_rest(link, rest, feedback, gave_up, |window| judge_target(window, remaining, done)).await
 }
 
 /// What a window says about the remaining targets: a line for the user, and the index of the
@@ -80,14 +80,14 @@ fn judge_target(window: Window, remaining: &[Orientation], done: &[Orientation])
 
 /// Waits until the board rests for `rest`'s settling time at an orientation at least [`FRESH_DEG`] from
 /// every one in `used`; returns it.
-pub(super) fn wait_for_fresh<P: Port>(
-    client: &mut Client<P>,
+pub(super) async fn wait_for_fresh<T: Transport>(
+    link: &mut Link<T>,
     used: &[[f64; 3]],
     rest: Rest,
     feedback: &mut dyn Feedback,
 ) -> Result<[f64; 3], ProcedureError> {
     wait_for_rest(
-        client,
+        link,
         rest,
         feedback,
         || ProcedureError::NeverFresh,
@@ -101,24 +101,25 @@ pub(super) fn wait_for_fresh<P: Port>(
             (line.to_owned(), (window.still && fresh).then_some(window.mean))
         },
     )
+    .await
 }
 
 /// Streams live windows, showing what `judge` says of each, until two windows in a row are accepted
 /// (`judge` returns a value only for a window that is still and where it should be) over `rest`'s
 /// settling time; gives up after its limit with the error `gave_up` makes.
-fn wait_for_rest<P: Port, R>(
-    client: &mut Client<P>,
+async fn wait_for_rest<T: Transport, R>(
+    link: &mut Link<T>,
     rest: Rest,
     feedback: &mut dyn Feedback,
     gave_up: impl Fn() -> ProcedureError,
     mut judge: impl FnMut(Window) -> (String, Option<R>),
 ) -> Result<R, ProcedureError> {
-    let (started, mut streak) = (Instant::now(), Streak::over(rest.settle_seconds).after_rest(rest.rested_s));
+    let (started, mut streak) = (link.now(), Streak::over(rest.settle_seconds).after_rest(rest.rested_s));
     loop {
-        if rest.limit.is_some_and(|l| started.elapsed() > l) {
+        if rest.limit.is_some_and(|l| link.now().saturating_sub(started) > l) {
             return Err(gave_up());
         }
-        let window = live_window(client)?;
+        let window = live_window(link).await?;
         let (line, verdict) = match not_gravity(&window) {
             Some(line) => (line, None),
             None => judge(window),
@@ -191,9 +192,9 @@ impl Streak {
 }
 
 /// One live window of raw samples: their mean direction and whether the board was still.
-fn live_window<P: Port>(client: &mut Client<P>) -> Result<Window, ProcedureError> {
+async fn live_window<T: Transport>(link: &mut Link<T>) -> Result<Window, ProcedureError> {
     let mut samples = Vec::with_capacity(LIVE_WINDOW.count as usize);
-    client.stream(LIVE_WINDOW, |sample| samples.push(sample.accel_g.map(f64::from)))?;
+    link.stream(LIVE_WINDOW, |sample| samples.push(sample.accel_g.map(f64::from))).await?;
     Ok(window_of(&samples))
 }
 

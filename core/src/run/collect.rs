@@ -8,12 +8,12 @@ use super::stop_rule::CaptureLength;
 use super::wait::{wait_for_target, Rest};
 use super::{CollectOptions, Feedback, Hand, Moves, Orientation, ProcedureError, Turning};
 use crate::limits::{CAPTURE_ATTEMPTS, SETTLE_SECONDS};
-use crate::link::{explain, Client, LinkError, Port};
+use crate::link::{explain, Link, LinkError, Transport};
 use crate::session::{Session, SessionError};
 
 /// Captures every target, in whatever order the board arrives at them.
-pub fn collect<P: Port>(
-    client: &mut Client<P>,
+pub async fn collect<T: Transport>(
+    link: &mut Link<T>,
     hand: &mut dyn Hand,
     targets: &[Orientation],
     options: &CollectOptions,
@@ -21,14 +21,14 @@ pub fn collect<P: Port>(
 ) -> Result<Session, ProcedureError> {
     let mut session = Session::default();
     let turning = Turning { hand, moves: &mut Moves::off() };
-    collect_into(client, turning, targets, options, feedback, &mut session, &mut |_| Ok(()))?;
+    collect_into(link, turning, targets, options, feedback, &mut session, &mut |_| Ok(())).await?;
     Ok(session)
 }
 
 /// Captures the targets `session` lacks into it, handing it to `keep` after every capture, so that
 /// an interruption loses nothing captured; the moves between captures go to `turning`'s record.
-pub fn collect_into<P: Port>(
-    client: &mut Client<P>,
+pub async fn collect_into<T: Transport>(
+    link: &mut Link<T>,
     turning: Turning<'_>,
     targets: &[Orientation],
     options: &CollectOptions,
@@ -36,18 +36,18 @@ pub fn collect_into<P: Port>(
     session: &mut Session,
     keep: &mut dyn FnMut(&Session) -> Result<(), SessionError>,
 ) -> Result<(), ProcedureError> {
-    client.clear_positions()?;
+    link.clear_positions().await?;
     let captured = |t: &Orientation| session.has_capture(&t.name);
     let (mut done, mut remaining): (Vec<Orientation>, Vec<Orientation>) = targets.iter().cloned().partition(captured);
     let mut moved_in_a_row = 0;
     while !remaining.is_empty() {
-        turning.moves.present(client, turning.hand, &remaining[0], feedback)?;
+        turning.moves.present(link, turning.hand, &remaining[0], feedback).await?;
         let rest =
             Rest { limit: options.wait_limit, settle_seconds: SETTLE_SECONDS, rested_s: turning.moves.rested_s() };
-        let index = wait_for_target(client, &remaining, &done, rest, feedback)?;
+        let index = wait_for_target(link, &remaining, &done, rest, feedback).await?;
         feedback.say(&format!("{} found; averaging for {} s", remaining[index].name, options.seconds));
         let length = CaptureLength::Seconds(options.seconds);
-        let Some((stats, face)) = capture_at(client, &remaining[index], length, feedback)? else {
+        let Some((stats, face)) = capture_at(link, &remaining[index], length, feedback).await? else {
             moved_in_a_row += 1;
             if moved_in_a_row >= CAPTURE_ATTEMPTS {
                 return Err(ProcedureError::KeptMoving { attempts: CAPTURE_ATTEMPTS });
@@ -56,7 +56,13 @@ pub fn collect_into<P: Port>(
         };
         moved_in_a_row = 0;
         let target = remaining.remove(index);
-        session.captures.push(crate::session::capture_now(&target.name, Some(target.clone()), face, stats));
+        session.captures.push(crate::session::CaptureRecord::at(
+            &target.name,
+            Some(target.clone()),
+            face,
+            stats,
+            link.unix_time_s(),
+        ));
         turning.moves.captured(session);
         keep(session)?;
         done.push(target);
@@ -68,13 +74,13 @@ pub fn collect_into<P: Port>(
 /// One capture at `target`; `None` when the board moved during it or its mean lies outside the
 /// target's tolerance (the person turned it elsewhere and held it there): the wait starts again, so
 /// a capture is never kept under the name of an orientation it was not taken at.
-pub(super) fn capture_at<P: Port>(
-    client: &mut Client<P>,
+pub(super) async fn capture_at<T: Transport>(
+    link: &mut Link<T>,
     target: &Orientation,
     length: CaptureLength,
     feedback: &mut dyn Feedback,
 ) -> Result<Option<(CaptureStats, Option<Position>)>, ProcedureError> {
-    let result = length.capture(client, feedback);
+    let result = length.capture(link, feedback).await;
     feedback.progress_done();
     let (stats, face) = match result {
         Err(LinkError::Device(error @ DeviceError::Moved { .. })) => {

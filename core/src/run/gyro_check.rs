@@ -14,14 +14,14 @@ use super::{Feedback, Hand, ProcedureError};
 use crate::fit::gyro::{rotate_up, GyroFit, Turn};
 use crate::limits::MAX_CHECK_AXIS_ELEVATION_DEG;
 use crate::limits::{MAX_MOVE_SECONDS, TURN_CHECK_ATTEMPTS, TURN_CHECK_REST_SECONDS};
-use crate::link::{Client, Port, StreamRequest};
+use crate::link::{Link, StreamRequest, Transport};
 use crate::session::TurnCheck;
 
 /// Streams the board at rest, asks `hand` for a quarter turn, and streams until it rests again;
 /// a turn that cannot be measured (about a tilted line, never at rest) is asked for again, said
 /// why, up to [`TURN_CHECK_ATTEMPTS`] times. `Ok(Err(why))` when none could be measured.
-pub fn check_turn<P: Port>(
-    client: &mut Client<P>,
+pub async fn check_turn<T: Transport>(
+    link: &mut Link<T>,
     hand: &mut dyn Hand,
     rate_hz: u16,
     fit: Option<&GyroFit>,
@@ -32,7 +32,7 @@ pub fn check_turn<P: Port>(
         if attempt > 1 {
             feedback.say(&format!("{why}; once more ({attempt} of {TURN_CHECK_ATTEMPTS})"));
         }
-        let (head, recorded) = stream_turn(client, hand, rate_hz, feedback)?;
+        let (head, recorded) = stream_turn(link, hand, rate_hz, feedback).await?;
         match recorded.map_err(|problem| problem.to_string()).and_then(|r| measure(&head, &r.samples, rate_hz, fit)) {
             Ok(check) => return Ok(Ok(check)),
             Err(problem) => why = format!("gyro check: {problem}"),
@@ -42,8 +42,8 @@ pub fn check_turn<P: Port>(
 }
 
 /// The rest before the turn (its samples), and the turn with the rest after it, or why not.
-fn stream_turn<P: Port>(
-    client: &mut Client<P>,
+async fn stream_turn<T: Transport>(
+    link: &mut Link<T>,
     hand: &mut dyn Hand,
     rate_hz: u16,
     feedback: &mut dyn Feedback,
@@ -54,16 +54,18 @@ fn stream_turn<P: Port>(
     // last instants of the turn (below the stillness threshold, not yet zero) stay out of it.
     let mut watch = Watch::new([0.0; 3], rest + rest / 4);
     let (mut head, mut asked) = (Vec::with_capacity(rest), None);
-    let tally = client.stream_while(request, |sample| {
-        if head.len() == rest {
-            return watch.push(sample);
-        }
-        head.push(*sample);
-        if head.len() == rest {
-            asked = Some(hand.turn_quarter(feedback));
-        }
-        true
-    })?;
+    let tally = link
+        .stream_while(request, |sample| {
+            if head.len() == rest {
+                return watch.push(sample);
+            }
+            head.push(*sample);
+            if head.len() == rest {
+                asked = Some(hand.turn_quarter(feedback));
+            }
+            true
+        })
+        .await?;
     asked.transpose()?;
     Ok((head, watch.finish(tally.lost(), "the verification turn")))
 }
@@ -207,8 +209,8 @@ mod tests {
     /// A hand whose first quarter turn goes about the vertical (nothing for the accelerometer to
     /// see), and whose later ones go over an edge as asked.
     struct SlipsOnce {
-        hand: crate::procedure::SimulatedHand,
-        controls: std::sync::mpsc::Sender<crate::sim::SimCommand>,
+        hand: crate::sim::SimulatedHand,
+        controls: crate::sim::BoardControls,
         slipped: bool,
     }
 
@@ -228,19 +230,22 @@ mod tests {
                 return self.hand.turn_quarter(f);
             }
             let about_the_vertical = crate::sim::turn::turning([0.0, 0.0, 1.0], 90.0);
+            use crate::sim::Controls;
             self.controls.send(about_the_vertical).map_err(|_| ProcedureError::SimulatedBoardStopped)
         }
     }
 
     #[test]
     fn a_turn_that_cannot_be_measured_is_asked_for_again_and_the_next_one_is_checked() {
-        use crate::sim::{SimBoard, SimSensor};
-        let (mut connection, board) = SimBoard::in_process(3, SimSensor::Realistic).unwrap();
-        let hand = crate::procedure::SimulatedHand::new(board.controls(), 0.0, 3);
+        let board = crate::sim::InProcess::realistic(3);
+        let hand = crate::sim::SimulatedHand::new(board.controls(), 0.0, 3);
         let mut hand = SlipsOnce { hand, controls: board.controls(), slipped: false };
-        let mut told = crate::procedure::Told(Vec::new());
-        let rate_hz = connection.info.config.sample_rate_hz;
-        let check = check_turn(&mut connection.client, &mut hand, rate_hz, None, &mut told).unwrap();
+        let mut link = crate::link::Link::new(board);
+        let mut told = crate::run::Told(Vec::new());
+        let check = embassy_futures::block_on(async {
+            let rate_hz = link.hello().await.unwrap().config.sample_rate_hz;
+            check_turn(&mut link, &mut hand, rate_hz, None, &mut told).await.unwrap()
+        });
         let check = check.unwrap_or_else(|why| panic!("{why}; told {:?}", told.0));
         // NOTE: the board holds no calibration: its raw accelerometer reads the quarter turn a few degrees off.
         assert!((check.accel_deg - 90.0).abs() < 5.0 && (check.gyro_deg - 90.0).abs() < 5.0, "{check:?}");

@@ -11,7 +11,7 @@ use super::stop_rule::{CaptureLength, StopRule};
 use super::wait::{wait_for_target, Rest};
 use super::{Feedback, Orientation, ProcedureError, Turning};
 use crate::limits::{CAPTURE_ATTEMPTS, MAX_CAPTURE_SECONDS, MIN_ADAPTIVE_POSITIONS};
-use crate::link::{Client, Port};
+use crate::link::{Link, Transport};
 use crate::session::{Session, SessionError, SessionKind};
 
 /// A reader of the board's clock, in seconds (the simulated board's own time).
@@ -38,8 +38,8 @@ pub struct Collected {
 /// Captures positions of `targets` in drift-cancelling order until the fit predicts `rule`'s target
 /// (or every target is taken), then the first position again; hands the session to `keep` after
 /// every capture.
-pub fn collect_adaptive<P: Port>(
-    client: &mut Client<P>,
+pub async fn collect_adaptive<T: Transport>(
+    link: &mut Link<T>,
     mut turning: Turning<'_>,
     targets: &[Orientation],
     options: &AdaptiveOptions,
@@ -47,7 +47,7 @@ pub fn collect_adaptive<P: Port>(
     session: &mut Session,
     keep: &mut dyn FnMut(&Session) -> Result<(), SessionError>,
 ) -> Result<Collected, ProcedureError> {
-    client.clear_positions()?;
+    link.clear_positions().await?;
     session.kind = SessionKind::Adaptive;
     let order = drift::order(targets);
     let (mut collected, mut reached) = (Collected::default(), false);
@@ -59,7 +59,7 @@ pub fn collect_adaptive<P: Port>(
         if reached {
             break;
         }
-        take(client, &mut turning, target, options, feedback, session, &mut collected)?;
+        take(link, &mut turning, target, options, feedback, session, &mut collected).await?;
         keep(session)?;
     }
     if !reached {
@@ -67,7 +67,7 @@ pub fn collect_adaptive<P: Port>(
     }
     let closing = drift::closing(&order[0]);
     if !session.captures.iter().any(|c| c.closing) {
-        take(client, &mut turning, &closing, options, feedback, session, &mut collected)?;
+        take(link, &mut turning, &closing, options, feedback, session, &mut collected).await?;
         session.captures.last_mut().into_iter().for_each(|c| c.closing = true);
         keep(session)?;
     }
@@ -126,8 +126,8 @@ fn prediction_line(session: &Session, predicted_mg: f64, target_mg: f64) -> Stri
 
 /// One position: presented, waited for, captured until its rule stops it (again while the board
 /// moves), recorded with why it stopped.
-fn take<P: Port>(
-    client: &mut Client<P>,
+async fn take<T: Transport>(
+    link: &mut Link<T>,
     turning: &mut Turning<'_>,
     target: &Orientation,
     options: &AdaptiveOptions,
@@ -137,18 +137,24 @@ fn take<P: Port>(
 ) -> Result<(), ProcedureError> {
     let length = CaptureLength::Goal(options.rule.goal());
     for _ in 0..CAPTURE_ATTEMPTS {
-        turning.moves.present(client, turning.hand, target, feedback)?;
+        turning.moves.present(link, turning.hand, target, feedback).await?;
         if !turning.moves.rests_at(target, length.settle_seconds()) {
             let (limit, settle_seconds, rested_s) =
                 (options.wait_limit, length.settle_seconds(), turning.moves.rested_s());
             let rest = Rest { limit, settle_seconds, rested_s };
-            wait_for_target(client, std::slice::from_ref(target), &[], rest, feedback)?;
+            wait_for_target(link, std::slice::from_ref(target), &[], rest, feedback).await?;
         }
         let started = options.clock.as_ref().map(|clock| clock());
         collected.first_capture_s = collected.first_capture_s.or(started);
-        if let Some((stats, face)) = capture_at(client, target, length, feedback)? {
+        if let Some((stats, face)) = capture_at(link, target, length, feedback).await? {
             feedback.say(&format!("{}: {}", target.name, options.rule.why_stopped(&stats)));
-            session.captures.push(crate::session::capture_now(&target.name, Some(target.clone()), face, stats));
+            session.captures.push(crate::session::CaptureRecord::at(
+                &target.name,
+                Some(target.clone()),
+                face,
+                stats,
+                link.unix_time_s(),
+            ));
             turning.moves.captured(session);
             return Ok(());
         }
@@ -175,7 +181,7 @@ mod tests {
             clipped: 0,
             range: AccelRange::G2,
         };
-        crate::session::capture_now(name, None, None, stats)
+        crate::session::CaptureRecord::at(name, None, None, stats, 0.0)
     }
 
     #[test]
@@ -227,7 +233,7 @@ mod tests {
 
     #[test]
     fn a_prediction_ends_the_session_only_from_ten_positions_on() {
-        let mut said = crate::procedure::Silent { yes: true };
+        let mut said = crate::run::Silent { yes: true };
         assert!(!enough(&positions_of_a_good_sensor(9), 1.0, &mut said), "nine positions are one too few");
         assert!(enough(&positions_of_a_good_sensor(10), 1.0, &mut said), "ten positions that predict the target");
     }

@@ -6,7 +6,7 @@ use firmware::sim::physics::Motion;
 use shared::linalg::{cross, norm, scale};
 use shared::orientation::angle_between_deg;
 
-use super::SimCommand;
+use super::command::SimCommand;
 
 /// How long a hand takes for a turn: this many seconds, plus one per [`HAND_TURN_DPS`] degrees.
 ///

@@ -1,23 +1,24 @@
 //! The owner's commands on the simulated sensor itself (placing, turning, tipping, motion, the
 //! surroundings, the wire), wherever the sensor is served: beside the firmware library in this
-//! process (`serve`), or on the emulated Pico's I2C bus (`emulated`).
+//! process (the host's threaded `serve`, the core's [`super::board`]), or on the emulated Pico's I2C
+//! bus (the host's `emulated`).
 
 use firmware::sim::SimMpu6050;
 
-use super::sim_command::SimCommand;
+use super::command::SimCommand;
 use super::turn::{tip, turn_between};
 
 /// The hand on the simulated sensor: what it was told, and when a timed motion ends.
 #[derive(Debug, Default)]
-pub(super) struct Hand {
+pub struct OwnerHand {
     /// Sensor time at which a timed motion stops, in microseconds.
     motion_ends_us: Option<u64>,
 }
 
-impl Hand {
+impl OwnerHand {
     /// Applies a command to the sensor; `false` for one that is not the sensor's (the link's, the
     /// board's), which the caller handles.
-    pub(super) fn obey(&mut self, sensor: &mut SimMpu6050, command: SimCommand) -> bool {
+    pub fn obey(&mut self, sensor: &mut SimMpu6050, command: SimCommand) -> bool {
         // NOTE: only a new motion replaces a timed one; a change of the surroundings during a turn
         // leaves the turn to end where it would have.
         if starts_motion(&command) {
@@ -40,7 +41,7 @@ impl Hand {
     }
 
     /// Lets `microseconds` of sensor time pass, ending a timed motion when it is due.
-    pub(super) fn advance(&mut self, sensor: &mut SimMpu6050, microseconds: u64) {
+    pub fn advance(&mut self, sensor: &mut SimMpu6050, microseconds: u64) {
         sensor.advance_us(microseconds);
         if self.motion_ends_us.is_some_and(|end| sensor.now_us() >= end) {
             self.motion_ends_us = None;

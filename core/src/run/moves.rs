@@ -11,7 +11,7 @@ use crate::limits::{
     GYRO_CLIPPED_FRACTION, MAX_MOVE_SECONDS, MOVED_AFTER_TURN_DEG, MOVE_STARTED_DPS, MOVE_STILL_DPS,
     MOVE_STILL_SECONDS, MOVE_TILTED_DEG,
 };
-use crate::link::{Client, Port, StreamRequest};
+use crate::link::{Link, StreamRequest, Transport};
 use crate::session::Session;
 
 /// Who turns the board between captures, and the moves recorded meanwhile (the gyro's G is fitted
@@ -76,9 +76,9 @@ impl Moves {
     }
 
     /// Asks `hand` for `target` and, when the board rests at a captured pose, records the move.
-    pub fn present<P: Port>(
+    pub async fn present<T: Transport>(
         &mut self,
-        client: &mut Client<P>,
+        link: &mut Link<T>,
         hand: &mut dyn Hand,
         target: &Orientation,
         feedback: &mut dyn Feedback,
@@ -90,7 +90,7 @@ impl Moves {
         hand.present(target, feedback)?;
         let Some((from, pose)) = start.filter(|_| self.rate_hz > 0) else { return Ok(()) };
         feedback.live(&format!("recording the gyro while you turn the board to {}, until it rests", target.name));
-        match record(client, self.rate_hz, pose, &target.name)? {
+        match record(link, self.rate_hz, pose, &target.name).await? {
             Ok(recording) => self.pending = Some((from, recording)),
             Err(problem) => self.dropped.push(format!("move to {}: {problem}; dropped", target.name)),
         }
@@ -171,8 +171,8 @@ impl std::fmt::Display for Problem {
 }
 
 /// Streams raw samples from now until the board has turned and rested [`MOVE_STILL_SECONDS`].
-fn record<P: Port>(
-    client: &mut Client<P>,
+async fn record<T: Transport>(
+    link: &mut Link<T>,
     rate_hz: u16,
     pose: Pose,
     target: &str,
@@ -180,7 +180,7 @@ fn record<P: Port>(
     let request = StreamRequest { kind: StreamKind::Raw, rate_hz, count: MAX_MOVE_SECONDS * u32::from(rate_hz) };
     let mut watch = Watch::new(pose.bias_dps, (MOVE_STILL_SECONDS * f64::from(rate_hz)).ceil() as usize);
     watch.rest_g = Some(pose.mean_g);
-    let tally = client.stream_while(request, |sample| watch.push(sample))?;
+    let tally = link.stream_while(request, |sample| watch.push(sample)).await?;
     Ok(watch.finish(tally.lost(), target))
 }
 
