@@ -21,13 +21,12 @@ pub mod stop_rule;
 mod turns;
 mod verify;
 mod wait;
-
-use std::time::Duration;
+mod wanted;
 
 pub use crate::orientation::{corners, faces, quick_set, Orientation};
 pub use crate::session::{TargetVerdict, TurnCheck};
-pub use adaptive::{collect_adaptive, AdaptiveOptions, BoardClock, Collected};
-pub use collect::{collect, collect_into};
+pub use adaptive::{AdaptiveOptions, BoardClock};
+pub use collect::{collect, collect_adaptive, collect_into, gather, CollectOptions, Collected, Plan};
 pub use error::ProcedureError;
 pub use feedback::{Feedback, Silent, Told};
 pub use gyro_check::check_turn;
@@ -35,15 +34,6 @@ pub use hand::{Hand, PersonHand};
 pub use moves::{Moves, RecordedMove, Turning};
 pub use turns::{fit_moves, turn_summaries, turns_of};
 pub use verify::{verify, verify_clear_of, verify_with, Verification, VERIFY_SECONDS};
-
-/// How the captures of [`collect`] run.
-#[derive(Debug, Clone)]
-pub struct CollectOptions {
-    /// Capture length, in seconds.
-    pub seconds: u8,
-    /// Give up waiting for a position after this long (`None`: wait for the person).
-    pub wait_limit: Option<Duration>,
-}
 
 /// Capture length of a quick calibration, in seconds: the shortest the board takes.
 ///

@@ -5,15 +5,12 @@
 pub mod exports;
 
 use accelcal_core::calibration::CalibrationJson;
-use accelcal_core::sim::sessions;
+use accelcal_core::limits::DEFAULT_TARGET_MG;
+use accelcal_core::sim::SimulatedSession;
 use serde::Serialize;
-use shared::protocol::SensorConfig;
 
-/// How much the simulated board warms over its session, in degC: enough for the drift to be fitted.
-const WARMING_C: f64 = 2.0;
-
-/// The simulated sensor's noise per raw sample, in g (2.8 mg, the one `limits` takes at 100 Hz).
-const NOISE_STD_G: f32 = 0.0028;
+/// The hand's placement error, in degrees: `calibrate --sim`'s default (`--sim-placement-deg`).
+const PLACEMENT_DEG: f64 = 3.0;
 
 /// What a simulated session yields, as JSON: its calibration, or why there is none.
 #[derive(Serialize)]
@@ -35,21 +32,23 @@ struct Calibrations {
     fit: CalibrationJson,
 }
 
-/// The JSON text of the calibration the core computes from a made-up adaptive session drawn from
-/// `seed`. Every number is printed in its shortest form that reads back to the same bits, so two
-/// texts are equal exactly when the numbers are.
-///
-/// NOTE: a stand-in. The real run replaces this body: a whole simulated adaptive session through the
-/// core's run and the firmware's simulated board.
+/// The JSON text of the calibration of a whole default simulated session: the realistic simulated
+/// MPU-6050 of `seed` behind the firmware's own serve step, in this process, turned by the simulated
+/// hand of `seed` through the core's adaptive run, fitted as `calibrate --sim --seed SEED` fits it.
+/// Every number is printed in its shortest form that reads back to the same bits, so two texts are
+/// equal exactly when the numbers are.
 pub fn simulated_session_json(seed: u64) -> String {
-    let session = sessions::adaptive(seed, WARMING_C, NOISE_STD_G);
-    // NOTE: the made-up session has no board record, so the board's default settings stand in.
-    let yielded = match session.outcome(SensorConfig::default()) {
+    let how = SimulatedSession { placement_deg: PLACEMENT_DEG, hand_seed: seed, target_mg: DEFAULT_TARGET_MG };
+    let outcome = how.in_process(seed).map_err(|e| e.to_string()).and_then(|session| {
+        let config = session.board.as_ref().map(|board| board.config).unwrap_or_default();
+        session.outcome(config).map_err(|e| e.to_string())
+    });
+    let yielded = match outcome {
         Ok(outcome) => Yielded::Calibration(Box::new(Calibrations {
             device: CalibrationJson::from_device(&outcome.calibration),
             fit: CalibrationJson::from_fit(&outcome.fit, 1.0),
         })),
-        Err(e) => Yielded::Error(e.to_string()),
+        Err(why) => Yielded::Error(why),
     };
     // NOTE: cannot fail: these types have no maps, so no key that JSON could not take.
     serde_json::to_string(&yielded).expect("a calibration's JSON form has only string keys")

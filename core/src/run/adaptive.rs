@@ -1,18 +1,17 @@
 //! A calibration that stops when it knows enough: positions in drift-cancelling order (A ... Z ... A),
 //! each averaged until its mean is known well enough ([`StopRule`]), and no more positions once the
-//! fit predicts the target accuracy at a fresh orientation.
+//! fit predicts the target accuracy at a fresh orientation. The collection loop is `collect`'s; this
+//! is the order it asks in.
 
 use std::sync::Arc;
 use std::time::Duration;
 
-use super::collect::capture_at;
 use super::drift;
-use super::stop_rule::{CaptureLength, StopRule};
-use super::wait::{wait_for_target, Rest};
-use super::{Feedback, Orientation, ProcedureError, Turning};
-use crate::limits::{CAPTURE_ATTEMPTS, MAX_CAPTURE_SECONDS, MIN_ADAPTIVE_POSITIONS};
-use crate::link::{Link, Transport};
-use crate::session::{Session, SessionError, SessionKind};
+use super::stop_rule::StopRule;
+use super::wanted::Wanted;
+use super::{Feedback, Hand, Orientation};
+use crate::limits::{MAX_CAPTURE_SECONDS, MIN_ADAPTIVE_POSITIONS};
+use crate::session::Session;
 
 /// A reader of the board's clock, in seconds (the simulated board's own time).
 pub type BoardClock = Arc<dyn Fn() -> f64 + Send + Sync>;
@@ -28,50 +27,47 @@ pub struct AdaptiveOptions {
     pub clock: Option<BoardClock>,
 }
 
-/// What an adaptive collection measured besides its captures.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct Collected {
-    /// The board's clock when the first capture started, in seconds.
-    pub first_capture_s: Option<f64>,
+/// Where an adaptive collection is in its order: the positions, the rule, and whether it has
+/// stopped asking for new ones (the fit predicts the target, or none is left).
+pub(super) struct AdaptiveOrder {
+    order: Vec<Orientation>,
+    rule: StopRule,
+    stopped: bool,
 }
 
-/// Captures positions of `targets` in drift-cancelling order until the fit predicts `rule`'s target
-/// (or every target is taken), then the first position again; hands the session to `keep` after
-/// every capture.
-pub async fn collect_adaptive<T: Transport>(
-    link: &mut Link<T>,
-    mut turning: Turning<'_>,
-    targets: &[Orientation],
-    options: &AdaptiveOptions,
-    feedback: &mut dyn Feedback,
-    session: &mut Session,
-    keep: &mut dyn FnMut(&Session) -> Result<(), SessionError>,
-) -> Result<Collected, ProcedureError> {
-    link.clear_positions().await?;
-    session.kind = SessionKind::Adaptive;
-    let order = drift::order(targets);
-    let (mut collected, mut reached) = (Collected::default(), false);
-    for target in &order {
-        if session.has_capture(&target.name) {
-            continue;
+impl AdaptiveOrder {
+    /// `targets` in drift-cancelling order under `rule`.
+    pub(super) fn new(targets: &[Orientation], rule: StopRule) -> Self {
+        AdaptiveOrder { order: drift::order(targets), rule, stopped: false }
+    }
+
+    /// The rule each capture stops by.
+    pub(super) fn rule(&self) -> &StopRule {
+        &self.rule
+    }
+
+    /// The next position not yet captured while the fit does not predict the target (the hand
+    /// judges that for every board it turns), then the first position again; `None` once closed.
+    pub(super) fn next(
+        &mut self,
+        session: &Session,
+        hand: &mut dyn Hand,
+        feedback: &mut dyn Feedback,
+    ) -> Option<Wanted> {
+        if !self.stopped {
+            if let Some(target) = self.order.iter().find(|t| !session.has_capture(&t.name)) {
+                if !hand.all_have_enough(enough(session, self.rule.target_mg, feedback)) {
+                    return Some(Wanted { positions: vec![target.clone()], done: Vec::new(), closing: false });
+                }
+            } else {
+                say_prediction(session, self.rule.target_mg, feedback);
+            }
+            self.stopped = true;
         }
-        reached = turning.hand.all_have_enough(enough(session, options.rule.target_mg, feedback));
-        if reached {
-            break;
-        }
-        take(link, &mut turning, target, options, feedback, session, &mut collected).await?;
-        keep(session)?;
+        let closing = drift::closing(&self.order[0]);
+        let closed = session.captures.iter().any(|c| c.closing);
+        (!closed).then(|| Wanted { positions: vec![closing], done: Vec::new(), closing: true })
     }
-    if !reached {
-        say_prediction(session, options.rule.target_mg, feedback);
-    }
-    let closing = drift::closing(&order[0]);
-    if !session.captures.iter().any(|c| c.closing) {
-        take(link, &mut turning, &closing, options, feedback, session, &mut collected).await?;
-        session.captures.last_mut().into_iter().for_each(|c| c.closing = true);
-        keep(session)?;
-    }
-    Ok(collected)
 }
 
 /// Whether the session's fit already predicts the target at a fresh orientation (said when it does),
@@ -124,48 +120,11 @@ fn prediction_line(session: &Session, predicted_mg: f64, target_mg: f64) -> Stri
     format!("{head}, not the {target_mg} mg wanted: every position is taken{why}; a larger --target-mg ends sooner")
 }
 
-/// One position: presented, waited for, captured until its rule stops it (again while the board
-/// moves), recorded with why it stopped.
-async fn take<T: Transport>(
-    link: &mut Link<T>,
-    turning: &mut Turning<'_>,
-    target: &Orientation,
-    options: &AdaptiveOptions,
-    feedback: &mut dyn Feedback,
-    session: &mut Session,
-    collected: &mut Collected,
-) -> Result<(), ProcedureError> {
-    let length = CaptureLength::Goal(options.rule.goal());
-    for _ in 0..CAPTURE_ATTEMPTS {
-        turning.moves.present(link, turning.hand, target, feedback).await?;
-        if !turning.moves.rests_at(target, length.settle_seconds()) {
-            let (limit, settle_seconds, rested_s) =
-                (options.wait_limit, length.settle_seconds(), turning.moves.rested_s());
-            let rest = Rest { limit, settle_seconds, rested_s };
-            wait_for_target(link, std::slice::from_ref(target), &[], rest, feedback).await?;
-        }
-        let started = options.clock.as_ref().map(|clock| clock());
-        collected.first_capture_s = collected.first_capture_s.or(started);
-        if let Some((stats, face)) = capture_at(link, target, length, feedback).await? {
-            feedback.say(&format!("{}: {}", target.name, options.rule.why_stopped(&stats)));
-            session.captures.push(crate::session::CaptureRecord::at(
-                &target.name,
-                Some(target.clone()),
-                face,
-                stats,
-                link.unix_time_s(),
-            ));
-            turning.moves.captured(session);
-            return Ok(());
-        }
-    }
-    Err(ProcedureError::KeptMoving { attempts: CAPTURE_ATTEMPTS })
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::session::CaptureRecord;
+    use crate::session::SessionKind;
     use shared::protocol::CaptureStats;
     use shared::AccelRange;
 
