@@ -8,11 +8,14 @@
 //! board is where it should be and still ([`wait`]), the moves between captures ([`moves`]).
 
 mod adaptive;
+pub mod board;
+mod choice;
 mod collect;
 pub mod drift;
 pub mod ending;
 mod error;
 mod feedback;
+mod gyro;
 mod gyro_check;
 mod hand;
 mod moves;
@@ -26,6 +29,7 @@ mod wanted;
 pub use crate::orientation::{corners, faces, quick_set, Orientation};
 pub use crate::session::{TargetVerdict, TurnCheck};
 pub use adaptive::{AdaptiveOptions, BoardClock};
+pub use choice::{outcome, Fitted};
 pub use collect::{collect, collect_adaptive, collect_into, gather, CollectOptions, Collected, Plan};
 pub use error::ProcedureError;
 pub use feedback::{Feedback, Silent, Told};

@@ -33,6 +33,11 @@ impl<T: Transport> Link<T> {
         self.transport.now()
     }
 
+    /// Whether the person asked to stop (Ctrl-C), as the transport says.
+    pub fn interrupted(&self) -> bool {
+        self.transport.interrupted()
+    }
+
     /// The date now, as the transport gives it, in seconds since the Unix epoch.
     pub fn unix_time_s(&self) -> f64 {
         self.transport.unix_time_s()

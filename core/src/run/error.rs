@@ -35,3 +35,12 @@ pub enum ProcedureError {
     #[error(transparent)]
     Calibration(crate::calibration::CalibrationRecordError),
 }
+
+impl From<crate::session::OutcomeError> for ProcedureError {
+    fn from(error: crate::session::OutcomeError) -> Self {
+        match error {
+            crate::session::OutcomeError::Fit(e) => ProcedureError::Fit(e),
+            crate::session::OutcomeError::Calibration(e) => ProcedureError::Calibration(e),
+        }
+    }
+}

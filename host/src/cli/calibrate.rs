@@ -1,26 +1,26 @@
-//! `accelcal calibrate`: captures (kept in a session after each one, resumable), fit, upload, save,
-//! verification.
+//! `accelcal calibrate` on one board: the session begun (or resumed) and kept in its files, the
+//! core's run driven on the board (`run::board::calibrate`: captures, fit, upload, verification, the
+//! gyro's turn), then the certificate and the report beside the session.
 
 use crate::session::SessionFiles;
 use std::path::Path;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
 
-use shared::Calibration;
+use embassy_futures::block_on;
 
 use super::adaptive;
 use super::args::CalibrateArgs;
-use super::choice::{fit_with_gyro, show_choice, Fitted};
 use super::device::Opened;
 use super::kept::{self, Kept};
 use crate::calibration;
 use crate::certificate::Certificate;
 use crate::error::Error;
-use crate::link::{Client, LinkError, Port};
-use crate::procedure::{self, CollectOptions, Feedback, Moves, ProcedureError, TurnCheck, Turning, Verification};
+use crate::link::LinkError;
+use crate::procedure::{Feedback, Fitted, ProcedureError, TurnCheck, Verification};
 use crate::report::{self, CalibrateReport};
-use crate::session::{stem_file, Session, SessionError, SessionKind, TargetVerdict};
-use accelcal_core::run::resume;
+use crate::session::{stem_file, Session, SessionKind, TargetVerdict};
+use accelcal_core::run::board::{self, Around, BoardPlan, Calibrated, RunError};
 
 /// One board's session, from its first capture to its verified report (`None`: the upload was
 /// declined); the same for a board alone and for each board on a fixture.
@@ -37,27 +37,51 @@ pub(super) fn calibrate_board(
     }
     opened.hand_seed = args.sim_hand_seed.unwrap_or(args.device.seed);
     let learned = adaptive::learned_model(args, &mut opened.connection.client, feedback)?;
-    let mut kept = kept::start(args, &opened.connection.info, learned, feedback)?;
-    opened.connection.client.interrupt_on(interrupt.clone());
-    let (moves, first_capture_s) = collect(args, &mut opened, &mut kept, feedback)?;
-    let fitted = fit_with_gyro(&mut opened, &kept, &moves, feedback)?;
-    show_choice(feedback, &fitted);
-    let client = &mut opened.connection.client;
-    // NOTE: the captures are all kept by now: a Ctrl-C or a lost board here is resumed from them.
-    let stopped = |source: LinkError| stopped_at(args, kept.path.as_deref(), source.into());
-    if interrupt.load(Ordering::SeqCst) {
-        return Err(stopped(LinkError::Interrupted));
-    }
-    if !upload_if_confirmed(client, &fitted.chosen, &interrupt, feedback).map_err(stopped)? {
-        return Ok(None);
-    }
-    // NOTE: kept before the verification, so that a Ctrl-C or a pulled cable during it still leaves
-    // the session saying what the board holds.
-    if let Some(path) = kept.path.as_deref() {
-        resume::kept_before_verifying(&fitted.session, fitted.chosen).save(path)?;
-    }
-    let first_capture_s = resume::board_time_start(first_capture_s, kept.resumed);
-    finish(args, &mut opened, &fitted, kept.path.as_deref(), first_capture_s, feedback).map(Some)
+    let kept = kept::start(args, &opened.connection.info, learned, feedback)?;
+    opened.connection.client.interrupt_on(interrupt);
+    let plan = plan_of(args, &opened, &kept)?;
+    let Some(calibrated) = run(args, &mut opened, &plan, &kept, feedback)? else { return Ok(None) };
+    finish(args, &opened, calibrated, kept.path.as_deref(), feedback).map(Some)
+}
+
+/// How the core's run goes on this board: the capture length or stop rule of the session's kind,
+/// the verification asked for, the wait, the board's clock.
+fn plan_of(args: &CalibrateArgs, opened: &Opened, kept: &Kept) -> Result<BoardPlan, Error> {
+    let rate_hz = opened.connection.info.config.sample_rate_hz;
+    let rule = match kept.session.kind {
+        SessionKind::Adaptive => {
+            Some(args.length.rule(rate_hz).map_err(|e| stopped_at(args, kept.path.as_deref(), e))?)
+        }
+        _ => None,
+    };
+    let wait_limit = opened.hand(args.sim_placement_deg).1;
+    let (seconds, verify_positions, clock, resumed) = (args.seconds, args.verify, opened.clock(), kept.resumed);
+    Ok(BoardPlan { seconds, rule, verify_positions, wait_limit, clock, resumed })
+}
+
+/// The core's run on the board, its session kept in its files after every capture; its errors as
+/// the command line names them, each with the way on.
+fn run(
+    args: &CalibrateArgs,
+    opened: &mut Opened,
+    plan: &BoardPlan,
+    kept: &Kept,
+    feedback: &mut dyn Feedback,
+) -> Result<Option<Calibrated>, Error> {
+    let path = kept.path.clone();
+    let mut keep = |session: &Session| path.as_deref().map_or(Ok(()), |p| session.save(p));
+    let Opened { connection, sim, seat, hand_seed, .. } = opened;
+    let mut hands = || super::device::hand_for(sim.as_ref(), seat, *hand_seed, args.sim_placement_deg).0;
+    let around = Around { feedback, hands: &mut hands, keep: &mut keep };
+    let info = connection.info.clone();
+    let result = block_on(board::calibrate(connection.client.link(), &info, plan, around, kept.session.clone()));
+    result.map_err(|error| match error {
+        RunError::Stopped(source) => stopped_at(args, kept.path.as_deref(), source),
+        RunError::NotKept(source) => source.into(),
+        RunError::AfterUpload(source) => {
+            Error::AfterUpload { source: Box::new(source), check_later: check_later(args) }
+        }
+    })
 }
 
 /// Prints a board's report; an error when it missed its target (exit status 2).
@@ -67,28 +91,6 @@ pub(super) fn show(report: &CalibrateReport, json: bool) -> Result<(), Error> {
         Some(target) if target.missed => Err(Error::TargetMissed { line: target.line.clone() }),
         _ => Ok(()),
     }
-}
-
-/// The captures the session lacks, written after each one, and the moves between them; an error
-/// names where the captures are kept. Also the board's clock when the first capture started (when
-/// collection started, with fixed lengths).
-fn collect(
-    args: &CalibrateArgs,
-    opened: &mut Opened,
-    kept: &mut Kept,
-    feedback: &mut dyn Feedback,
-) -> Result<(Moves, Option<f64>), Error> {
-    let (mut hand, wait_limit) = opened.hand(args.sim_placement_deg);
-    let path = kept.path.clone();
-    let mut keep = |session: &Session| path.as_deref().map_or(Ok(()), |p| session.save(p));
-    let mut moves = Moves::at(opened.connection.info.config.sample_rate_hz);
-    let (turning, session) = (Turning { hand: hand.as_mut(), moves: &mut moves }, &mut kept.session);
-    let result = if session.kind == SessionKind::Adaptive {
-        adaptive::collect(args, opened, turning, wait_limit, session, &mut keep, feedback)
-    } else {
-        collect_fixed(args, opened, turning, wait_limit, session, &mut keep, feedback)
-    };
-    result.map(|first| (moves, first)).map_err(|source| stopped_at(args, kept.path.as_deref(), source))
 }
 
 /// Why a run stopped, with the command that resumes its session when the session file holds a
@@ -110,53 +112,20 @@ fn kept_on_disk(stem: &Path) -> (std::path::PathBuf, usize) {
     (json, captures)
 }
 
-/// Collects with a fixed capture length (`--seconds`, or `--quick`'s); the board's clock when the
-/// collection started.
-fn collect_fixed(
-    args: &CalibrateArgs,
-    opened: &mut Opened,
-    turning: Turning<'_>,
-    wait_limit: Option<std::time::Duration>,
-    session: &mut Session,
-    keep: &mut dyn FnMut(&Session) -> Result<(), SessionError>,
-    feedback: &mut dyn Feedback,
-) -> Result<Option<f64>, ProcedureError> {
-    let seconds = args.seconds.unwrap_or_else(|| procedure::capture_seconds(session.kind == SessionKind::Quick));
-    let options = CollectOptions { seconds, wait_limit };
-    let (targets, started) = (procedure::targets(session.kind == SessionKind::Quick), opened.clock()());
-    let client = &mut opened.connection.client;
-    procedure::collect_into(client, turning, &targets, &options, feedback, session, keep).map(|()| Some(started))
-}
-
-/// The verification, the session kept with it and its report beside it, then the result.
+/// The verified run's certificate, the session kept with it and its report beside it, then the
+/// report of the run.
 fn finish(
     args: &CalibrateArgs,
-    opened: &mut Opened,
-    fitted: &Fitted,
+    opened: &Opened,
+    calibrated: Calibrated,
     kept_at: Option<&Path>,
-    first_capture_s: Option<f64>,
     feedback: &mut dyn Feedback,
 ) -> Result<CalibrateReport, Error> {
-    let kind = fitted.session.kind;
-    let (mut hand, wait_limit) = opened.hand(args.sim_placement_deg);
-    let (positions, length) = adaptive::verification(args, kind, opened.connection.info.config.sample_rate_hz)?;
-    let (rate_hz, clock) = (opened.connection.info.config.sample_rate_hz, opened.clock());
-    let client = &mut opened.connection.client;
-    let calibrated: Vec<[f64; 3]> = fitted.session.captures.iter().map(|c| c.stats.mean_g.map(f64::from)).collect();
-    let on_board = |source| Error::AfterUpload { source: Box::new(source), check_later: check_later(args) };
-    let verification =
-        procedure::verify_with(client, hand.as_mut(), positions, wait_limit, feedback, &calibrated, length)
-            .map_err(on_board)?;
-    let board_seconds = first_capture_s.map(|first| clock() - first);
-    let check = super::gyro::check(client, hand.as_mut(), rate_hz, &fitted.gyro, feedback).map_err(on_board)?;
-    let uploaded = Some(fitted.chosen);
-    let target = verification.against((kind == SessionKind::Adaptive).then_some(args.length.target_mg));
-    let verified = Session { verification: Some(verification.clone()), uploaded, ..fitted.session.clone() };
-    let certificate = certify(&verified, &target, kept_at, args, feedback)?;
-    let mut report = report_of(opened, fitted, verification, check);
-    report.board_seconds = board_seconds;
+    let certificate = certify(&calibrated.verified, &calibrated.target, kept_at, args, feedback)?;
+    let mut report = report_of(opened, &calibrated.fitted, calibrated.verification, calibrated.check);
+    report.board_seconds = calibrated.board_seconds;
     report.certificate = certificate;
-    report.target = Some(target);
+    report.target = Some(calibrated.target);
     Ok(report)
 }
 
@@ -243,27 +212,6 @@ fn check_later(args: &CalibrateArgs) -> String {
                  then `accelcal verify --port PTY`"
             .to_owned(),
     }
-}
-
-/// Uploads and saves the calibration if the user agrees; whether it did. Ctrl-C at the question
-/// ends the run at once (`Interrupted`).
-fn upload_if_confirmed<P: Port>(
-    client: &mut Client<P>,
-    calibration: &Calibration,
-    interrupt: &AtomicBool,
-    feedback: &mut dyn Feedback,
-) -> Result<bool, LinkError> {
-    if !feedback.confirm("Upload this calibration to the board and save it in flash?") {
-        if interrupt.load(Ordering::SeqCst) {
-            return Err(LinkError::Interrupted);
-        }
-        feedback.say("not uploaded; the board keeps its previous calibration");
-        return Ok(false);
-    }
-    client.set_calibration(*calibration)?;
-    client.save_calibration()?;
-    feedback.say("uploaded and saved; now checking it at fresh orientations");
-    Ok(true)
 }
 
 fn print_report(report: &CalibrateReport, json: bool) {

@@ -88,13 +88,24 @@ impl Opened {
     /// tool's own hand on the simulated board, off by `placement_deg`, seeded by `hand_seed`,
     /// turning it as a person does; on a fixture of several boards, one hand for all.
     pub(super) fn hand(&self, placement_deg: f64) -> (Box<dyn Hand>, Option<Duration>) {
-        match &self.sim {
-            Some(board) => {
-                let hand = SimulatedHand::new(board.controls(), placement_deg, self.hand_seed);
-                (Box::new(self.seat.hand(Box::new(hand), false)), Some(SIM_WAIT_LIMIT))
-            }
-            None => (Box::new(self.seat.hand(Box::new(PersonHand), true)), None),
+        hand_for(self.sim.as_ref(), &self.seat, self.hand_seed, placement_deg)
+    }
+}
+
+/// [`Opened::hand`] from the parts of an opened device it needs, for a caller that holds its
+/// connection meanwhile.
+pub(super) fn hand_for(
+    sim: Option<&SimBoard>,
+    seat: &Seat,
+    hand_seed: u64,
+    placement_deg: f64,
+) -> (Box<dyn Hand>, Option<Duration>) {
+    match sim {
+        Some(board) => {
+            let hand = SimulatedHand::new(board.controls(), placement_deg, hand_seed);
+            (Box::new(seat.hand(Box::new(hand), false)), Some(SIM_WAIT_LIMIT))
         }
+        None => (Box::new(seat.hand(Box::new(PersonHand), true)), None),
     }
 }
 

@@ -5,10 +5,7 @@ use super::args::LengthArgs;
 use crate::procedure::stop_rule::{noise_from_report, Noise, StopRule};
 use crate::procedure::ProcedureError;
 
-/// Verification positions of an adaptive session: enough for an RMS, each as long as the target needs.
-pub const ADAPTIVE_VERIFY_POSITIONS: u8 = 3;
-/// Verification positions with fixed capture lengths (the guided procedure's classic count).
-pub const FIXED_VERIFY_POSITIONS: u8 = 6;
+pub use accelcal_core::run::board::ADAPTIVE_VERIFY_POSITIONS;
 
 impl LengthArgs {
     /// The stop rule of each capture at `rate_hz`.

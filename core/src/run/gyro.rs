@@ -1,15 +1,15 @@
-//! The gyro's part of `accelcal calibrate`: G fitted to the moves recorded between the positions
-//! and put into the calibration to upload, and after the upload the verification turn.
+//! The gyro's part of a board's run: G fitted to the moves recorded between the positions and put
+//! into the calibration to upload, and after the upload the verification turn.
 
 use shared::Calibration;
 
+use super::{check_turn, fit_moves, turn_summaries, Feedback, Hand, Moves, ProcedureError, TurnCheck};
 use crate::calibration;
 use crate::fit::gyro::TurnSummary;
-use crate::link::{Client, Port};
-use crate::procedure::{self, Feedback, Hand, Moves, ProcedureError, TurnCheck};
+use crate::link::{Link, Transport};
 use crate::report::gyro::GyroOutcome;
+use crate::run::resume;
 use crate::session::Session;
-use accelcal_core::run::resume;
 
 /// `chosen` with G fitted to the recorded moves when they allow it, and what the fit gave; every
 /// dropped move and the reason for no fit (with the turns to add) are said.
@@ -22,7 +22,7 @@ pub(super) fn fit(
 ) -> (Calibration, GyroOutcome) {
     let mut outcome = GyroOutcome { dropped_moves: moves.dropped.clone(), ..GyroOutcome::default() };
     moves.dropped.iter().for_each(|d| feedback.say(&format!("gyro: {d}")));
-    let result = procedure::fit_moves(&moves.recorded, session, chosen)
+    let result = fit_moves(&moves.recorded, session, chosen)
         .map_err(|e| e.to_string())
         .and_then(|fit| calibration::with_gyro(chosen, &fit).map(|c| (c, fit)).map_err(|e| e.to_string()));
     match result {
@@ -48,20 +48,20 @@ pub(super) fn summaries(
     outcome: &GyroOutcome,
 ) -> Option<Vec<TurnSummary>> {
     let g = outcome.fit.as_ref().map_or(shared::linalg::identity(), |f| f.matrix);
-    let summaries = procedure::turn_summaries(&moves.recorded, session, chosen, &g);
+    let summaries = turn_summaries(&moves.recorded, session, chosen, &g);
     (!summaries.is_empty()).then_some(summaries)
 }
 
 /// The verification turn on the uploaded calibration; `None` (said) when it could not be measured.
-pub(super) fn check<P: Port>(
-    client: &mut Client<P>,
+pub(super) async fn check<T: Transport>(
+    link: &mut Link<T>,
     hand: &mut dyn Hand,
     rate_hz: u16,
     outcome: &GyroOutcome,
     feedback: &mut dyn Feedback,
 ) -> Result<Option<TurnCheck>, ProcedureError> {
     // NOTE: a measured turn is shown with the report at the end; only why there is none is said here.
-    let result = procedure::check_turn(client, hand, rate_hz, outcome.fit.as_ref(), feedback)?;
+    let result = check_turn(link, hand, rate_hz, outcome.fit.as_ref(), feedback).await?;
     if let Err(why) = &result {
         feedback.say(why);
     }
