@@ -270,6 +270,11 @@ mod tests {
 
     /// A default adaptive run of the simulated board of `seed`, with one verification position.
     fn run(seed: u64, yes: bool, ctrl_c_at_question: bool) -> Ran {
+        run_session(seed, yes, ctrl_c_at_question, None)
+    }
+
+    /// As [`run`], going on with `resumed` when given (a session kept by an earlier run).
+    fn run_session(seed: u64, yes: bool, ctrl_c_at_question: bool, resumed: Option<Session>) -> Ran {
         let board = InProcess::realistic(seed);
         let mut controls = vec![board.controls(), board.controls()];
         let clock = board.clock();
@@ -288,10 +293,11 @@ mod tests {
                 verify_positions: Some(1),
                 wait_limit: Some(SIM_WAIT_LIMIT),
                 clock,
-                resumed: false,
+                resumed: resumed.is_some(),
             };
-            let session =
+            let begun =
                 Session { board: Some(BoardRecord::of(&info)), kind: SessionKind::Adaptive, ..Session::default() };
+            let session = resumed.unwrap_or(begun);
             let mut hands = || -> Box<dyn Hand> { Box::new(SimulatedHand::new(controls.remove(0), 3.0, seed)) };
             let mut keep = |session: &Session| {
                 kept.push(session.clone());
@@ -336,5 +342,18 @@ mod tests {
         assert!(matches!(ran.result, Err(RunError::Stopped(ProcedureError::Link(LinkError::Interrupted)))));
         assert_eq!(ran.active, None);
         assert!(!ran.person.told.iter().any(|l| l.starts_with("not uploaded")), "{:?}", ran.person.told);
+    }
+
+    #[test]
+    fn a_resumed_run_takes_no_capture_again_claims_no_board_time_and_keeps_the_g_it_uploaded() {
+        let first = run(6, true, false);
+        let uploaded = first.result.unwrap().expect("uploaded").fitted.chosen;
+        let kept = first.kept.last().cloned().expect("kept");
+        let again = run_session(6, true, false, Some(kept.clone()));
+        let calibrated = again.result.unwrap().expect("uploaded again");
+        assert_eq!(calibrated.verified.captures.len(), kept.captures.len(), "no capture taken again");
+        assert_eq!(calibrated.board_seconds, None, "its first capture was taken in another run");
+        assert_eq!(calibrated.fitted.chosen.gyro.matrix, uploaded.gyro.matrix, "nothing turned: the G uploaded stays");
+        assert_eq!(calibrated.fitted.chosen.matrix, uploaded.matrix, "the same captures fit the same M");
     }
 }
