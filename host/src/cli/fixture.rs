@@ -51,10 +51,11 @@ pub(super) fn calibrate_together(args: &CalibrateArgs) -> Result<(), Error> {
         return Err(Error::NoSuchBoard { board: pull.board + 1, boards });
     }
     let mut boards = open_all(args)?;
-    let fixture = Fixture::new(
-        boards.iter().map(|b| b.opened.as_ref().ok().and_then(Opened::as_member)).collect(),
-        args.fixture.sim_pull,
-    );
+    let members = boards
+        .iter()
+        .enumerate()
+        .map(|(index, b)| b.opened.as_ref().ok().and_then(|opened| opened.as_member(index, args.fixture.sim_pull)));
+    let fixture = Fixture::new(members.collect());
     for (index, board) in boards.iter_mut().enumerate() {
         // NOTE: a board that could not be opened leaves the fixture at once (its seat dropped here).
         let seat = fixture.seat(index);

@@ -11,7 +11,7 @@ use embassy_futures::block_on;
 
 pub use accelcal_core::run::*;
 pub use accelcal_core::sim::{SimulatedHand, SimulatedSession};
-pub use fixture::{Fixture, FixtureHand, Pull, Seat, SimulatedMember};
+pub use fixture::{Fixture, FixtureHand, Seat, TimedMember};
 
 use crate::link::{Client, Port};
 use crate::session::{Session, SessionError};

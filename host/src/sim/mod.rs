@@ -9,6 +9,7 @@ mod board;
 mod clock;
 mod commands;
 mod emulated;
+mod fixture;
 pub mod noise;
 mod outgoing;
 mod parts;
@@ -22,6 +23,7 @@ pub use accelcal_core::sim::{person, random, sessions, sketch, synthetic, turn, 
 pub use board::{PowerOn, SensorChoice, SimBoard, SimSensor};
 pub use clock::Pace;
 pub use emulated::{serve_emulated, EmulatorError};
+pub use fixture::{Pull, SimulatedMember};
 pub use parts::{FaultyAxis, SimPartChoice};
 pub use pty::{serve_pty, SimError};
 
