@@ -77,8 +77,6 @@ pub enum Error {
     BoardsFailed { failed: String, calibrated: usize, boards: usize },
     #[error("--sim-pull names board {board}, but the fixture holds {boards}: give a board from 1 to {boards}")]
     NoSuchBoard { board: usize, boards: usize },
-    #[error("a board's session stopped on an internal fault; its captures so far are in its session file: calibrate it again")]
-    BoardThreadFailed,
     #[error("--json cannot ask whether to upload the calibration: add --yes to upload and save it, or leave out --json to be asked")]
     JsonCannotAsk,
     #[error("{port} prints its own stream, which names no board the lot could key its certificate by: give the board's serial or label with --serial LABEL, or leave out --lot")]
