@@ -38,8 +38,6 @@ pub enum Error {
     Stream { path: PathBuf, source: crate::stream::StreamError },
     #[error("{}: read as a sensor's stream, its still periods cannot be fitted: {source}", .path.display())]
     StreamFit { path: PathBuf, source: crate::report::stream::StreamFitError },
-    #[error("cannot fit the temperature model: {0}; learn over a wider span and run again")]
-    ThermalFit(#[from] crate::fit::thermal::ThermalFitError),
     #[error("{}: cannot report this session: {source}", .path.display())]
     CannotReport { path: PathBuf, source: FitError },
     #[error(
@@ -79,8 +77,6 @@ pub enum Error {
     BoardsFailed { failed: String, calibrated: usize, boards: usize },
     #[error("--sim-pull names board {board}, but the fixture holds {boards}: give a board from 1 to {boards}")]
     NoSuchBoard { board: usize, boards: usize },
-    #[error("a board's session stopped on an internal fault; its captures so far are in its session file: calibrate it again")]
-    BoardThreadFailed,
     #[error("--json cannot ask whether to upload the calibration: add --yes to upload and save it, or leave out --json to be asked")]
     JsonCannotAsk,
     #[error("{port} prints its own stream, which names no board the lot could key its certificate by: give the board's serial or label with --serial LABEL, or leave out --lot")]
@@ -101,10 +97,8 @@ pub enum Error {
     NothingToDownload,
     #[error("the board holds no active calibration, so --calibrated would print its raw readings: calibrate it first (accelcal calibrate), upload one (accelcal upload), or stream without --calibrated")]
     NothingToApply,
-    #[error("{source}; the bins learned so far (a span of {span_c:.1} degC) are kept in {}: go on from them with `accelcal thermal --port {device} --bins {}`", .path.display(), .path.display())]
-    ThermalStopped { source: Box<Error>, span_c: f64, path: PathBuf, device: String },
     #[error(transparent)]
-    KeptBins(#[from] crate::procedure::thermal::kept::KeptBinsError),
+    Thermal(#[from] crate::procedure::thermal::error::ThermalError),
     #[error(transparent)]
     Export(#[from] crate::export::ExportError),
     #[error(transparent)]

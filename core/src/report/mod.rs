@@ -9,6 +9,7 @@ pub mod allan;
 mod calibrate;
 mod comparison;
 mod figure;
+pub mod fixture;
 pub mod gyro;
 pub mod html;
 mod html_sections;

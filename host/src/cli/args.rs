@@ -13,7 +13,7 @@ use crate::export::Target;
 use crate::fit::ModelChoice;
 use crate::limits::{DEFAULT_TARGET_MG, FACE_TOLERANCE_DEG, MAX_BOARDS, MAX_RECORD_SECONDS, MAX_VERIFY_POSITIONS};
 use crate::link::port::DEFAULT_BAUD;
-use crate::procedure::Pull;
+use crate::sim::Pull;
 use crate::sim::{FaultyAxis, SimPartChoice, SimSensor};
 
 /// Calibrates the accelerometer of an MPU-6050.

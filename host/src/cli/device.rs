@@ -11,8 +11,8 @@ use crate::link::{
     find_board, open_listening, open_port, resolve_port, serial_ports, Connection, PortOpened, SerialPortEntry,
     TalkingPort,
 };
-use crate::procedure::{BoardClock, Fixture, Hand, PersonHand, Seat, SimulatedHand, SimulatedMember};
-use crate::sim::SimBoard;
+use crate::procedure::{BoardClock, Fixture, Hand, PersonHand, Seat, SimulatedHand, TimedMember};
+use crate::sim::{Pull, SimBoard, SimulatedMember};
 
 /// An open device, and the simulated board behind it when there is one.
 pub(super) struct Opened {
@@ -67,9 +67,11 @@ impl Opened {
         Opened { connection, sim, opened_at: Instant::now(), hand_seed: seed, seat: Fixture::alone().seat(0) }
     }
 
-    /// This board's time and controls as its fixture keeps them (none for a real board).
-    pub(super) fn as_member(&self) -> Option<SimulatedMember> {
-        self.sim.as_ref().map(|board| SimulatedMember { clock: self.clock(), controls: board.controls() })
+    /// This board, board `index` of its fixture, as the fixture keeps its time (none for a real
+    /// board), its cable pulled when `pull` names it.
+    pub(super) fn as_member(&self, index: usize, pull: Option<Pull>) -> Option<Box<dyn TimedMember>> {
+        let member = |board: &SimBoard| SimulatedMember::new(index, self.clock(), board.controls(), pull);
+        self.sim.as_ref().map(|board| Box::new(member(board)) as Box<dyn TimedMember>)
     }
 
     /// The board's clock: the simulated board's own time, or for a real one the wall clock since

@@ -3,7 +3,7 @@
 use shared::protocol::{SensorConfig, MAX_CAPTURE_SECONDS, MIN_CAPTURE_SECONDS};
 
 use crate::limits::{BAUD_RANGE, MAX_PLACEMENT_DEG, MAX_THERMAL_SPAN_C, MIN_THERMAL_SPAN_C};
-use crate::procedure::Pull;
+use crate::sim::Pull;
 
 /// The capture lengths the device accepts, refused when parsed.
 pub(super) fn seconds() -> clap::builder::RangedI64ValueParser<u8> {

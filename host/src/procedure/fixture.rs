@@ -5,37 +5,33 @@
 //! Where they meet: before every turn (each board's hand call), and at the adaptive session's
 //! question whether to ask for another position (the hand goes on while any board needs one). A
 //! board that stops (done, failed, pulled) leaves the fixture and the others go on without it.
-//! Simulated boards keep one time: when they meet, a board that finished its work early lets the
-//! time it waited pass ([`SimCommand::Wait`]), as a real board on the fixture would have waited.
+//! Boards whose time passes only when they are told (simulated ones) keep one time: when they
+//! meet, a board that finished its work early lets the time it waited pass ([`TimedMember::wait`]),
+//! as a real board on the fixture would have waited.
 
-use std::sync::mpsc::Sender;
 use std::sync::{Arc, Condvar, Mutex, MutexGuard};
 
-use super::{BoardClock, Feedback, Hand, Orientation, ProcedureError};
-use crate::sim::SimCommand;
+use super::{Feedback, Hand, Orientation, ProcedureError};
 
-/// Shorter waits than this (seconds) are not passed on to a simulated board.
+/// Shorter waits than this (seconds) are not passed on to a board whose time the fixture keeps.
 const LEAST_WAIT_S: f64 = 1e-4;
 
-/// A simulated board of the fixture, as the fixture keeps its time: its clock and its controls.
-pub struct SimulatedMember {
-    pub clock: BoardClock,
-    pub controls: Sender<SimCommand>,
-}
-
-/// A simulated pulled cable: `board` (0-based) is unplugged right after its `turn`-th turn (1-based).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Pull {
-    pub board: usize,
-    pub turn: usize,
+/// A board whose time the fixture keeps: one whose time passes only when it is told (a simulated
+/// board, `sim::SimulatedMember`); a real board keeps its own time and is no such member.
+pub trait TimedMember: Send + Sync {
+    /// The board's own time, in seconds.
+    fn now_s(&self) -> f64;
+    /// Lets `seconds` pass on the board: the time it waited for the others on the fixture.
+    fn wait(&self, seconds: f64);
+    /// The board has just been turned for the `turns`-th time (from 1).
+    fn turned(&self, turns: usize);
 }
 
 /// The boards on one fixture and where they meet.
 pub struct Fixture {
     state: Mutex<Meeting>,
     met: Condvar,
-    simulated: Vec<Option<SimulatedMember>>,
-    pull: Option<Pull>,
+    timed: Vec<Option<Box<dyn TimedMember>>>,
 }
 
 /// Who is on the fixture, who has arrived at this meeting, and what they said.
@@ -47,15 +43,15 @@ struct Meeting {
     held: u64,
     /// The last meeting's answer: whether every board had enough.
     answer: bool,
-    /// The time, in seconds, each simulated board was last told to wait until: its clock may not
-    /// show it yet, as the board takes its commands in its own thread.
+    /// The time, in seconds, each timed board was last told to wait until: its clock may not show
+    /// it yet, as the board takes its commands in its own thread.
     waited_until_s: Vec<f64>,
 }
 
 impl Fixture {
     /// A fixture of these boards (`None` for a real board, which keeps its own time).
-    pub fn new(simulated: Vec<Option<SimulatedMember>>, pull: Option<Pull>) -> Arc<Self> {
-        let boards = simulated.len();
+    pub fn new(timed: Vec<Option<Box<dyn TimedMember>>>) -> Arc<Self> {
+        let boards = timed.len();
         let meeting = Meeting {
             on_fixture: vec![true; boards],
             arrived: 0,
@@ -64,12 +60,12 @@ impl Fixture {
             answer: true,
             waited_until_s: vec![f64::NEG_INFINITY; boards],
         };
-        Arc::new(Fixture { state: Mutex::new(meeting), met: Condvar::new(), simulated, pull })
+        Arc::new(Fixture { state: Mutex::new(meeting), met: Condvar::new(), timed })
     }
 
     /// A board alone.
     pub fn alone() -> Arc<Self> {
-        Fixture::new(vec![None], None)
+        Fixture::new(vec![None])
     }
 
     /// The seat of board `index`; the board leaves the fixture when its seat is dropped.
@@ -112,7 +108,7 @@ impl Fixture {
         }
     }
 
-    /// Everyone is here: the answer, one time for the simulated boards, and the next meeting.
+    /// Everyone is here: the answer, one time for the timed boards, and the next meeting.
     fn hold(&self, meeting: &mut Meeting) {
         meeting.answer = meeting.all_enough;
         (meeting.arrived, meeting.all_enough, meeting.held) = (0, true, meeting.held + 1);
@@ -120,23 +116,22 @@ impl Fixture {
         self.met.notify_all();
     }
 
-    /// Lets each simulated board on the fixture wait until the latest one's time.
+    /// Lets each timed board on the fixture wait until the latest one's time.
     fn keep_one_time(&self, meeting: &mut Meeting) {
         // NOTE: a board's time is the later of its clock and the time it was already told to wait
         // until: a Wait sent at the last meeting may not have reached its clock yet (the board runs
         // in its own thread), and telling it again would make it wait twice (seen under load: 71 s
         // on the fixture for 56 s alone).
-        let members: Vec<(usize, &SimulatedMember, f64)> = (self.simulated.iter().enumerate())
+        let members: Vec<(usize, &dyn TimedMember, f64)> = (self.timed.iter().enumerate())
             .filter(|(index, _)| meeting.on_fixture[*index])
-            .filter_map(|(index, member)| member.as_ref().map(|m| (index, m)))
-            .map(|(index, member)| (index, member, (member.clock)().max(meeting.waited_until_s[index])))
+            .filter_map(|(index, member)| member.as_deref().map(|m| (index, m)))
+            .map(|(index, member)| (index, member, member.now_s().max(meeting.waited_until_s[index])))
             .collect();
         let latest_s = members.iter().map(|(_, _, now_s)| *now_s).fold(f64::NEG_INFINITY, f64::max);
         for (index, member, now_s) in members {
             let waited_s = latest_s - now_s;
             if waited_s > LEAST_WAIT_S {
-                // NOTE: a board that stopped is found by its own session; nothing to do here.
-                let _ = member.controls.send(SimCommand::Wait(waited_s as f32));
+                member.wait(waited_s);
                 meeting.waited_until_s[index] = latest_s;
             }
         }
@@ -193,7 +188,7 @@ pub struct FixtureHand {
 
 impl FixtureHand {
     /// Meets the other boards, then lets `act` turn this board (once for all when it speaks to a
-    /// person); a simulated cable pulled at this turn is pulled after it.
+    /// person), then tells a timed board it was turned.
     fn turn(
         &mut self,
         feedback: &mut dyn Feedback,
@@ -205,10 +200,8 @@ impl FixtureHand {
         if !self.speaks_for_all || fixture.leads(index) {
             act(self.own.as_mut(), feedback)?;
         }
-        if fixture.pull == Some(Pull { board: index, turn: self.turns }) {
-            if let Some(member) = &fixture.simulated[index] {
-                let _ = member.controls.send(SimCommand::Stop);
-            }
+        if let Some(member) = &fixture.timed[index] {
+            member.turned(self.turns);
         }
         Ok(())
     }
@@ -242,7 +235,7 @@ mod tests {
 
     #[test]
     fn the_boards_go_on_while_any_needs_a_position_and_wait_for_none_that_left() {
-        let fixture = Fixture::new(vec![None, None, None], None);
+        let fixture = Fixture::new(vec![None, None, None]);
         let mut seats: Vec<Option<Seat>> = (0..3).map(|index| Some(fixture.seat(index))).collect();
         let answers = std::thread::scope(|scope| {
             let first = scope.spawn(|| fixture.meet(0, true));
@@ -270,27 +263,40 @@ mod tests {
         assert!(fixture.leads(0) && !fixture.leads(2));
     }
 
+    /// A board whose clock stands still, as when its thread has not yet taken the waits it was
+    /// told; it records them.
+    struct StandingClock {
+        now_s: f64,
+        waits_s: Arc<Mutex<Vec<f64>>>,
+    }
+
+    impl TimedMember for StandingClock {
+        fn now_s(&self) -> f64 {
+            self.now_s
+        }
+        fn wait(&self, seconds: f64) {
+            self.waits_s.lock().unwrap().push(seconds);
+        }
+        fn turned(&self, _: usize) {}
+    }
+
     #[test]
     fn a_board_told_to_wait_is_not_told_again_before_its_clock_shows_the_wait() {
-        // Two simulated boards whose clocks stand still: the commands are never applied, as when
-        // a board's thread has not yet taken them.
         let member = |now_s: f64| {
-            let (controls, commands) = std::sync::mpsc::channel();
-            (SimulatedMember { clock: Arc::new(move || now_s), controls }, commands)
+            let waits_s = Arc::new(Mutex::new(Vec::new()));
+            (Box::new(StandingClock { now_s, waits_s: waits_s.clone() }) as Box<dyn TimedMember>, waits_s)
         };
-        let ((ahead, _ahead_commands), (behind, behind_commands)) = (member(10.0), member(4.0));
-        let fixture = Fixture::new(vec![Some(ahead), Some(behind)], None);
+        let ((ahead, ahead_waits), (behind, behind_waits)) = (member(10.0), member(4.0));
+        let fixture = Fixture::new(vec![Some(ahead), Some(behind)]);
         for _ in 0..3 {
             let mut meeting = fixture.lock();
             fixture.hold(&mut meeting);
         }
-        let waits: Vec<f32> = behind_commands
-            .try_iter()
-            .map(|command| match command {
-                SimCommand::Wait(seconds) => seconds,
-                _ => f32::NAN,
-            })
-            .collect();
-        assert_eq!(waits, vec![6.0], "one wait of the 6 s between the boards, however often they meet");
+        assert_eq!(
+            *behind_waits.lock().unwrap(),
+            vec![6.0],
+            "one wait of the 6 s between the boards, however often they meet"
+        );
+        assert!(ahead_waits.lock().unwrap().is_empty(), "the latest board waits for none");
     }
 }

@@ -1,9 +1,11 @@
 //! The guided run on a port: the core's run (`accelcal_core::run`), each step blocking on the
 //! board's [`Client`]; and what only a host has: the simulated hand and session on a board of this
-//! process, several boards on one fixture turned by threads, the thermal run's bins.
+//! process, several boards on one fixture turned by threads (where they meet: `fixture.rs`; each
+//! board's session on its own thread: [`together`]), the thermal run.
 
 mod fixture;
 pub mod thermal;
+pub mod together;
 
 use std::time::Duration;
 
@@ -11,7 +13,7 @@ use embassy_futures::block_on;
 
 pub use accelcal_core::run::*;
 pub use accelcal_core::sim::{SimulatedHand, SimulatedSession};
-pub use fixture::{Fixture, FixtureHand, Pull, Seat, SimulatedMember};
+pub use fixture::{Fixture, FixtureHand, Seat, TimedMember};
 
 use crate::link::{Client, Port};
 use crate::session::{Session, SessionError};

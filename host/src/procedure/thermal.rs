@@ -1,7 +1,9 @@
 //! Learning how the sensor drifts: the board rests while its temperature changes (warm-up, a cool
 //! or warm place), the chip averages every sample of its captures into 1 degC bins, the host keeps
 //! them per orientation, and learning stops when the span is enough or the temperature stalls. The bins belong to the caller, so a run that is
-//! interrupted keeps what it learned; [`kept`] keeps them on disk as they are learned.
+//! interrupted keeps what it learned; [`kept`] keeps them on disk as they are learned. [`learned`]
+//! shows the learning and fits the model it learned on any board; [`resting`] is a person's run
+//! (`accelcal thermal --port`); the simulated story (`--sim`) is `sim::thermal`'s.
 
 use std::collections::BTreeMap;
 
@@ -216,6 +218,9 @@ pub fn capture_now(connection: &mut Connection, seconds: u8) -> Result<CaptureSt
     connection.client.capture(seconds, |_| {}).map(|(stats, _)| stats)
 }
 
+pub mod error;
 pub mod kept;
+pub mod learned;
+pub mod resting;
 #[cfg(test)]
 mod tests;
