@@ -6,8 +6,8 @@
 
 use accelcal::certificate::Certificate;
 use accelcal::fit::drift;
-use accelcal::procedure::SimulatedSession;
 use accelcal::session::Session;
+use accelcal::sim::SimulatedSession;
 use accelcal::sim::{SimBoard, SimSensor};
 use firmware::sim::part::SimPart;
 use firmware::sim::physics::TrueErrors;

@@ -5,8 +5,9 @@ use std::sync::mpsc::Sender;
 use std::time::Duration;
 
 use accelcal::link::{open_serial, pipe, Client, LinkError, Port};
-use accelcal::procedure::{self, CollectOptions, Feedback, Hand, Orientation, ProcedureError, Silent, SimulatedHand};
+use accelcal::procedure::{self, CollectOptions, Feedback, Hand, Orientation, ProcedureError, Silent};
 use accelcal::session::SessionFiles;
+use accelcal::sim::SimulatedHand;
 use accelcal::sim::{SimBoard, SimCommand};
 use firmware::sim::physics::Motion;
 use firmware::sim::SimFlash;

@@ -7,10 +7,11 @@ use accelcal::calibration;
 use accelcal::fit::gyro::GyroFitError;
 use accelcal::procedure::stop_rule::{Noise, StopRule};
 use accelcal::procedure::{
-    self, AdaptiveOptions, CollectOptions, Feedback, Hand, Moves, Orientation, ProcedureError, Silent, SimulatedHand,
-    TurnCheck, Turning,
+    self, AdaptiveOptions, CollectOptions, Feedback, Hand, Moves, Orientation, ProcedureError, Silent, TurnCheck,
+    Turning,
 };
 use accelcal::session::Session;
+use accelcal::sim::SimulatedHand;
 use accelcal::sim::{SimBoard, SimCommand, SimSensor};
 use nalgebra::Matrix3;
 use std::time::Duration;

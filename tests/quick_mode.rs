@@ -9,7 +9,8 @@
 use std::time::Duration;
 
 use accelcal::link::{pipe, Client, PipeEnd};
-use accelcal::procedure::{self, CollectOptions, Silent, SimulatedHand};
+use accelcal::procedure::{self, CollectOptions, Silent};
+use accelcal::sim::SimulatedHand;
 use accelcal::sim::{Pace, SimBoard, SimSensor};
 use firmware::sim::thermal::Environment;
 use firmware::sim::SimFlash;

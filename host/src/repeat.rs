@@ -10,7 +10,7 @@ use serde::Serialize;
 use crate::certificate::{Certificate, Component};
 use crate::error::Error;
 use crate::fit::drift;
-use crate::procedure::SimulatedSession;
+use crate::sim::SimulatedSession;
 use crate::sim::{PowerOn, SimBoard, SimSensor};
 use firmware::sim::part::SimPart;
 

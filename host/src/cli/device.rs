@@ -11,7 +11,8 @@ use crate::link::{
     find_board, open_listening, open_port, resolve_port, serial_ports, Connection, PortOpened, SerialPortEntry,
     TalkingPort,
 };
-use crate::procedure::{BoardClock, Fixture, Hand, PersonHand, Seat, SimulatedHand, TimedMember};
+use crate::procedure::{BoardClock, Fixture, Hand, PersonHand, Seat, TimedMember};
+use crate::sim::SimulatedHand;
 use crate::sim::{Pull, SimBoard, SimulatedMember};
 
 /// An open device, and the simulated board behind it when there is one.

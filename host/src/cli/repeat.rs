@@ -6,8 +6,8 @@ use indicatif::{ProgressBar, ProgressStyle};
 use super::args::RepeatArgs;
 use crate::error::Error;
 use crate::limits::DEFAULT_TARGET_MG;
-use crate::procedure::SimulatedSession;
 use crate::repeat::{self, RepeatOptions, RepeatReport};
+use crate::sim::SimulatedSession;
 
 /// Runs `accelcal repeat`.
 pub(super) fn repeat(args: &RepeatArgs) -> Result<(), Error> {

@@ -12,7 +12,6 @@ use std::time::Duration;
 use embassy_futures::block_on;
 
 pub use accelcal_core::run::*;
-pub use accelcal_core::sim::{SimulatedHand, SimulatedSession};
 pub use fixture::{Fixture, FixtureHand, Seat, TimedMember};
 
 use crate::link::{Client, Port};

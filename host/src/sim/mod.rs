@@ -20,7 +20,9 @@ mod serve;
 pub mod thermal;
 mod truth;
 
-pub use accelcal_core::sim::{person, random, sessions, sketch, synthetic, turn, SimCommand};
+pub use accelcal_core::sim::{
+    person, random, sessions, sketch, synthetic, turn, SimCommand, SimulatedHand, SimulatedSession,
+};
 
 pub use board::{PowerOn, SensorChoice, SimBoard, SimSensor};
 pub use clock::Pace;
