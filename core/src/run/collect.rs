@@ -182,18 +182,7 @@ async fn take<T: Transport>(
     let (asked, length) = (&wanted.positions[0], plan.length);
     for _ in 0..CAPTURE_ATTEMPTS {
         turning.moves.present(link, turning.hand, asked, feedback).await?;
-        let index = match turning.moves.rests_at(asked, length.settle_seconds()) {
-            true => 0,
-            false => {
-                let rest = Rest {
-                    limit: plan.wait_limit,
-                    settle_seconds: length.settle_seconds(),
-                    rested_s: turning.moves.rested_s(),
-                };
-                wait_for_target(link, &wanted.positions, &wanted.done, rest, feedback).await?
-            }
-        };
-        let target = &wanted.positions[index];
+        let target = &wanted.positions[arrived(link, turning, wanted, plan, feedback).await?];
         if let CaptureLength::Seconds(seconds) = length {
             feedback.say(&format!("{} found; averaging for {seconds} s", target.name));
         }
@@ -212,6 +201,23 @@ async fn take<T: Transport>(
         }
     }
     Err(ProcedureError::KeptMoving { attempts: CAPTURE_ATTEMPTS })
+}
+
+/// Which of `wanted`'s positions the board came to rest at: the one asked for at once when the move
+/// just recorded ended there, still, long enough; else as the live windows see it.
+async fn arrived<T: Transport>(
+    link: &mut Link<T>,
+    turning: &Turning<'_>,
+    wanted: &Wanted,
+    plan: &Plan,
+    feedback: &mut dyn Feedback,
+) -> Result<usize, ProcedureError> {
+    let settle_seconds = plan.length.settle_seconds();
+    if turning.moves.rests_at(&wanted.positions[0], settle_seconds) {
+        return Ok(0);
+    }
+    let rest = Rest { limit: plan.wait_limit, settle_seconds, rested_s: turning.moves.rested_s() };
+    wait_for_target(link, &wanted.positions, &wanted.done, rest, feedback).await
 }
 
 /// One capture at `target`; `None` when the board moved during it or its mean lies outside the
