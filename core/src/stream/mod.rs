@@ -2,7 +2,8 @@
 //! lines ([`dialect`]), the units ([`units`]) and the rate ([`timing`]), every line that is not a
 //! sample counted with its reason, the still periods found and averaged ([`segment`]), and what the
 //! stream costs the calibration ([`cost`]). A saved log (`accelcal fit LOG`, `noise LOG`) and a
-//! port that talks on its own go through the same reader.
+//! port that talks on its own go through the same reader. What a stream session keeps of the log,
+//! and the rows its calibration is fitted to ([`kept`]).
 
 pub mod arrival;
 mod columns;
@@ -12,6 +13,7 @@ pub mod dialect;
 mod dropped;
 pub mod guide;
 mod heard;
+pub mod kept;
 mod line;
 mod log;
 pub mod plausible;

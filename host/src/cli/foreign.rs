@@ -17,7 +17,7 @@ use super::foreign_status::{status, Progress};
 use super::terminal::interrupt_on_ctrl_c;
 use super::terminal::Terminal;
 use crate::error::Error;
-use crate::fit::{FitOptions, Model, ModelChoice};
+use crate::fit::FitOptions;
 use crate::limits::LIVE_DETECTION_LINES;
 use crate::link::TalkingPort;
 use crate::procedure::Feedback;
@@ -136,16 +136,13 @@ fn data_lines(live: &LiveStream, options: &StreamOptions) -> Vec<usize> {
 fn report(args: &CalibrateArgs, kept: &Kept, options: &StreamOptions, complete: bool) -> Result<(), Error> {
     let path = &kept.source.log;
     let log = read_log(path, options)?;
-    kept.save(&log, None)?;
-    let report =
-        StreamReport::new(&log, ModelChoice::Only(Model::Ortho9), &FitOptions::default()).map_err(|source| {
-            eprintln!(
-                "the session is kept in {}: `{}` goes on with it",
-                kept.json().display(),
-                resume_command(args, kept)
-            );
-            Error::StreamFit { path: path.clone(), source }
-        })?;
+    // NOTE: fitted as the session kept fits (`Session::model`), to the rows it keeps: its outcome,
+    // which its certificate, export and report take, is the calibration printed here.
+    let kept_so_far = kept.save(&log, None)?;
+    let report = StreamReport::new(&log, kept_so_far.model(), &FitOptions::default()).map_err(|source| {
+        eprintln!("the session is kept in {}: `{}` goes on with it", kept.json().display(), resume_command(args, kept));
+        Error::StreamFit { path: path.clone(), source }
+    })?;
     let session = kept.save(&log, report.verification.clone())?;
     match complete {
         true => certify(args, kept, &session)?,

@@ -6,17 +6,13 @@
 use crate::session::SessionFiles;
 use std::path::{Path, PathBuf};
 
-use shared::protocol::CaptureStats;
-
 use super::args::CalibrateArgs;
 use super::kept::{default_name, first_free, hold, holder, new_session_path};
-use crate::data::Row;
 use crate::error::Error;
 use crate::files::lock::Held;
-use crate::session::{stem_file, stem_of, unix_time_s, CaptureRecord, Session, SessionError, SessionKind};
+use crate::session::{stem_file, stem_of, unix_time_s, Session, SessionError, SessionKind};
 use crate::session::{StreamSource, Verification};
-use crate::stream::guide::nearest_name;
-use crate::stream::{StillPeriods, StreamLog};
+use crate::stream::{kept, StillPeriods, StreamLog};
 
 /// A stream session being kept.
 pub(super) struct Kept {
@@ -66,42 +62,9 @@ impl Kept {
     /// Saves the session of `log` so far: its training still periods as captures, and the
     /// verification once made; the session saved.
     pub fn save(&self, log: &StreamLog, verification: Option<Verification>) -> Result<Session, SessionError> {
-        let still = StillPeriods::of(log);
-        let source = StreamSource {
-            dialect: log.layout.dialect.name().to_owned(),
-            input_unit: log.accel_unit.name().to_owned(),
-            gyro_unit: log.gyro_unit.map(|(unit, _)| unit.name().to_owned()),
-            rate_hz: log.rate.map(|r| r.hz),
-            ..self.source.clone()
-        };
-        // NOTE: the periods held out at fresh orientations are in the verification, not the captures:
-        // the session's fit is the stream's.
-        let captures = still.dataset.rows.iter().map(|row| self.capture(row, log)).collect();
-        let session =
-            Session { kind: SessionKind::Stream, captures, verification, stream: Some(source), ..Session::default() };
+        let session = kept::session(log, &StillPeriods::of(log), &self.source, self.began_unix_s, verification);
         session.save(&self.stem)?;
         Ok(session)
-    }
-
-    /// A still period as a capture, in g.
-    fn capture(&self, row: &Row, log: &StreamLog) -> CaptureRecord {
-        let per_g = log.accel_unit.per_g();
-        let mean_g = row.reading.map(|v| v / per_g);
-        let samples = row.count.unwrap_or(0);
-        let stats = CaptureStats {
-            samples,
-            seconds: log.rate.map_or(0.0, |r| f64::from(samples) / r.hz) as f32,
-            mean_g: mean_g.map(|v| v as f32),
-            std_g: row.std.unwrap_or([0.0; 3]).map(|v| (v / per_g) as f32),
-            gyro_mean_dps: row.gyro_mean_dps.unwrap_or([0.0; 3]).map(|v| v as f32),
-            gyro_std_dps: [0.0; 3],
-            // NOTE: a stream carries no temperature; `Session::dataset` leaves it out of the rows.
-            temp_c: 0.0,
-            clipped: 0,
-            range: log.accel_unit.range(),
-        };
-        let name = format!("{} from line {}", nearest_name(mean_g), row.line);
-        CaptureRecord { name, target: None, face: None, unix_time_s: self.began_unix_s, stats, closing: false }
     }
 }
 
