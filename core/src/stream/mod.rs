@@ -2,8 +2,8 @@
 //! lines ([`dialect`]), the units ([`units`]) and the rate ([`timing`]), every line that is not a
 //! sample counted with its reason, the still periods found and averaged ([`segment`]), and what the
 //! stream costs the calibration ([`cost`]). A saved log (`accelcal fit LOG`, `noise LOG`) and a
-//! port that talks on its own go through the same reader. What a stream session keeps of the log,
-//! and the rows its calibration is fitted to ([`kept`]).
+//! port that talks on its own go through the same reader. A live stream session's status once a
+//! second and when it is done ([`status`]), and what its session keeps of the log ([`kept`]).
 
 pub mod arrival;
 mod columns;
@@ -18,6 +18,7 @@ mod line;
 mod log;
 pub mod plausible;
 pub mod segment;
+pub mod status;
 mod still;
 pub mod timing;
 pub mod turns;

@@ -13,8 +13,6 @@ mod export;
 mod fit;
 mod fixture;
 mod foreign;
-mod foreign_session;
-mod foreign_status;
 mod gyro;
 mod kept;
 mod length;
