@@ -34,8 +34,10 @@ pub enum Error {
     CannotFit { path: PathBuf, model: ModelChoice, source: FitError },
     #[error(transparent)]
     Fit(#[from] FitError),
+    // NOTE: the core's error, named where it lives: through the host's `stream` (which uses this
+    // error to run a stream's session) it would read as a circle between the two.
     #[error("{}: read as a sensor's stream: {source}", .path.display())]
-    Stream { path: PathBuf, source: crate::stream::StreamError },
+    Stream { path: PathBuf, source: accelcal_core::stream::StreamError },
     #[error("{}: read as a sensor's stream, its still periods cannot be fitted: {source}", .path.display())]
     StreamFit { path: PathBuf, source: crate::report::stream::StreamFitError },
     #[error("{}: cannot report this session: {source}", .path.display())]

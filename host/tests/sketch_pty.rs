@@ -3,7 +3,7 @@
 //! MicroPython-style board stops its program on 0x03), `ports` and `info` leave it running, and
 //! `calibrate --port` with no flag calibrates from each of the eight sketches' streams, keeping a log
 //! that `fit LOG` turns into the same calibration and verification, and a session that `accelcal
-//! report` takes.
+//! report` takes, whose outcome is the calibration printed, certified and exported, bit for bit.
 //!
 //! Real pace: the eight replays run side by side, about three minutes in all. The accuracy over ten
 //! sessions per sketch runs on a simulated clock in tests/sketch_streams.rs.
@@ -12,9 +12,13 @@ mod common;
 
 use std::time::Duration;
 
+use accelcal::export::Source;
+use accelcal::session::Session;
 use accelcal::sim::replay::Replay;
 use accelcal::sim::sketch::Sketch;
+use accelcal::stream::AccelUnit;
 use common::accelcal_within;
+use shared::protocol::SensorConfig;
 use std::sync::atomic::Ordering;
 
 /// Longer than a session (three minutes) and the silence that ends it.
@@ -121,7 +125,38 @@ fn every_sketchs_stream_is_calibrated_live_with_no_flag_and_no_byte_written() {
         let certificate = std::fs::read_to_string(&certificate).unwrap_or_else(|e| panic!("{sketch:?}: {e}"));
         let serial = json(certificate.as_bytes())["board"]["serial"].clone();
         assert_eq!(serial.as_str(), Some(format!("{sketch:?}").as_str()), "the certificate keyed by --serial");
+        one_calibration(sketch, &live, &session, &json(certificate.as_bytes()));
     }
     let (lot, _) = accelcal_within(&["lot", "show", dir.join("lot.sqlite").to_str().unwrap(), "--json"], LIMIT);
     assert_eq!(json(&lot.stdout)["boards"].as_u64(), Some(Sketch::ALL.len() as u64), "every board in the lot");
+}
+
+/// The calibration `calibrate --port --json` printed (in the sketch's unit) is the one the session
+/// it kept gives (`Session::outcome`), bit for bit; its certificate states that outcome's parameters;
+/// and the printed calibration, as `export` reads it, is the session's record.
+fn one_calibration(
+    sketch: Sketch,
+    live: &serde_json::Value,
+    session: &serde_json::Value,
+    certificate: &serde_json::Value,
+) {
+    let session = Session::from_json_text(&session.to_string()).unwrap();
+    let outcome = session.outcome(SensorConfig::default()).unwrap();
+    let unit: AccelUnit = session.stream.as_ref().unwrap().input_unit.parse().unwrap();
+    let kept = outcome.fit.clone().in_unit(unit.per_g());
+    let matrix: [[f64; 3]; 3] = serde_json::from_value(live["matrix"].clone()).unwrap();
+    let offset: [f64; 3] = serde_json::from_value(live["offset"].clone()).unwrap();
+    assert_eq!((matrix, offset), (kept.matrix, kept.offset), "{sketch:?}: printed and kept calibrations differ");
+    for parameter in &outcome.fit.parameters {
+        let certified = certificate["parameters"][parameter.name]["value"].as_f64();
+        assert_eq!(certified, Some(parameter.value), "{sketch:?}: {} certified", parameter.name);
+    }
+    // NOTE: only where the unit restates exactly (a power of two of them a g): elsewhere the printed
+    // M times the unit's g can be an ulp off the kept M before both are rounded to the record's f32.
+    if unit.per_g().log2().fract() == 0.0 {
+        let printed = Source::from_text(&live.to_string(), "printed").unwrap();
+        let kept = Source::from_session(&session, "session").unwrap();
+        let record = |source: &Source| (source.calibration.matrix, source.calibration.offset_g);
+        assert_eq!(record(&printed), record(&kept), "{sketch:?}: the printed calibration exports another record");
+    }
 }

@@ -136,6 +136,34 @@ pub struct Fit {
     pub prediction: Option<Prediction>,
 }
 
+impl Fit {
+    /// The fit of readings in g restated for the same readings in a unit of which `per_g` make a g:
+    /// a = M (m - o) with m in g is (M / per_g) (m' - o per_g) with m' in the unit. M, `M11` ...
+    /// `M33` and `s_x` ... `s_z` are divided by `per_g`, the offset `o_x` ... `o_z` multiplied, each
+    /// with its standard errors; T's `a_*` and every figure in g (cost, residuals, prediction) stay.
+    pub fn in_unit(mut self, per_g: f64) -> Fit {
+        self.matrix = self.matrix.map(|row| row.map(|v| v / per_g));
+        self.offset = self.offset.map(|v| v * per_g);
+        for p in &mut self.parameters {
+            let restate = |v: f64| restated(p.name, v, per_g);
+            (p.value, p.std_error) = (restate(p.value), p.std_error.map(restate));
+            (p.scatter_std_error, p.noise_std_error) =
+                (p.scatter_std_error.map(restate), p.noise_std_error.map(restate));
+        }
+        self
+    }
+}
+
+/// The value (or standard error) of the parameter `name` of a fit in g, for readings in a unit of
+/// which `per_g` make a g: an offset's times `per_g`, a scale's divided by it, T's angles as they are.
+fn restated(name: &str, value: f64, per_g: f64) -> f64 {
+    match () {
+        _ if name.starts_with("o_") => value * per_g,
+        _ if name.starts_with("a_") => value,
+        _ => value / per_g,
+    }
+}
+
 /// Parameter list of a full 12-parameter calibration, with scatter- and noise-based standard errors
 /// (the latter scaled by `inflation` where reported).
 pub(super) fn full_parameters(
@@ -157,4 +185,38 @@ pub(super) fn full_parameters(
         parameters.push(Parameter::new(name(9 + k), value, [a, b], inflation));
     }
     parameters
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fit::ModelChoice;
+    use shared::linalg::{mul_vec, sub};
+
+    #[test]
+    fn a_fit_restated_in_counts_corrects_counts_as_it_corrects_g_with_its_offset_and_scales_in_counts() {
+        // NOTE: 16384 counts a g at +-2 g (MPU-6050 Product Specification 6.2).
+        let per_g = 16384.0;
+        let dataset = crate::sim::synthetic::random_positions(3, 18, 1e-4, true);
+        for model in [Model::Ortho9, Model::Linear12] {
+            let in_g = crate::fit::fit(&dataset, ModelChoice::Only(model), &FitOptions::default()).unwrap();
+            let in_counts = in_g.clone().in_unit(per_g);
+            for row in &dataset.rows {
+                let a_g = mul_vec(&in_g.matrix, sub(row.reading, in_g.offset));
+                let a_counts = mul_vec(&in_counts.matrix, sub(row.reading.map(|v| v * per_g), in_counts.offset));
+                (0..3).for_each(|k| assert!((a_g[k] - a_counts[k]).abs() < 1e-12, "{model:?}: {a_g:?} {a_counts:?}"));
+            }
+            for (g, counts) in in_g.parameters.iter().zip(&in_counts.parameters) {
+                let factor = match g.name {
+                    "o_x" | "o_y" | "o_z" => per_g,
+                    "a_yz" | "a_zy" | "a_zx" => 1.0,
+                    _ => 1.0 / per_g,
+                };
+                assert!((counts.value - g.value * factor).abs() <= 1e-12 * (g.value * factor).abs(), "{}", g.name);
+                let error = |p: &Parameter| p.std_error.unwrap();
+                assert!((error(counts) - error(g) * factor).abs() <= 1e-12 * error(g) * factor, "{}", g.name);
+            }
+            assert_eq!((in_counts.cost, &in_counts.lines_used), (in_g.cost, &in_g.lines_used));
+        }
+    }
 }

@@ -52,9 +52,14 @@ impl FitReport {
     /// Fits `choice` to the data set and evaluates it; for `auto`, compares every model, reusing
     /// this fit for the model it chose.
     pub fn new(dataset: &Dataset, choice: ModelChoice, options: &FitOptions) -> Result<Self, FitError> {
-        let fit = fit::fit(dataset, choice, options)?;
+        Ok(FitReport::of(dataset, fit::fit(dataset, choice, options)?, choice, options))
+    }
+
+    /// The report of `fit`, made with `choice` and `options`, on the data set: evaluated at its
+    /// rows and, for `auto`, compared with every model on them.
+    pub fn of(dataset: &Dataset, fit: Fit, choice: ModelChoice, options: &FitOptions) -> Self {
         let evaluation = fit::evaluate(dataset, &fit.matrix, &fit.offset, options.g, &fit.lines_used);
         let comparison = (choice == ModelChoice::Auto).then(|| Comparison::new(dataset, options, &fit, &evaluation));
-        Ok(FitReport { fit, evaluation, g: options.g, rows: dataset.rows.len(), comparison })
+        FitReport { fit, evaluation, g: options.g, rows: dataset.rows.len(), comparison }
     }
 }

@@ -9,9 +9,10 @@ use serde::Serialize;
 use super::json::FitJson;
 use super::FitReport;
 use crate::fit::gyro::GyroFit;
-use crate::fit::{FitError, FitOptions, ModelChoice};
+use crate::fit::{self, FitError, FitOptions, ModelChoice};
 use crate::session::Verification;
 use crate::stream::cost::{costs, Cost};
+use crate::stream::kept;
 use crate::stream::plausible::gyro_doubt;
 use crate::stream::timing::Rate;
 use crate::stream::turns::{self, TurnsFit};
@@ -60,16 +61,20 @@ pub struct StreamReport {
 }
 
 impl StreamReport {
-    /// Finds the still periods of `log` and fits `choice` to their means.
+    /// Finds the still periods of `log` and fits `choice` to their means, shown in the stream's unit.
     /// A gyro whose values are not in the unit they are read in is named before the periods are.
     pub fn new(log: &StreamLog, choice: ModelChoice, options: &FitOptions) -> Result<Self, StreamFitError> {
         let still = StillPeriods::of(log);
         let options = FitOptions { g: 1.0, ..options.clone() };
         let doubt = gyro_doubt(log);
-        let fit = FitReport::new(&still.dataset, choice, &options).map_err(|fit| match doubt.clone() {
-            Some(doubt) => StreamFitError::GyroUnit(doubt),
-            None => StreamFitError::Periods(fit),
-        })?;
+        // NOTE: fitted to the rows the stream's session keeps (in g), so that the session's outcome
+        // (its certificate, export and report) is this very fit, here restated in the stream's unit.
+        let fitted =
+            fit::fit(&kept::fitted_rows(log, &still), choice, &options).map_err(|fit| match doubt.clone() {
+                Some(doubt) => StreamFitError::GyroUnit(doubt),
+                None => StreamFitError::Periods(fit),
+            })?;
+        let fit = FitReport::of(&still.dataset, fitted.in_unit(log.accel_unit.per_g()), choice, &options);
         let verification = verify::verification(&fit.fit, &still.held_out.rows, log.accel_unit.per_g());
         let gyro_turns = log.gyro_unit.map(|(unit, assumed)| match doubt {
             Some(doubt) => TurnsFit { fit: Err(doubt), range: None },

@@ -2,7 +2,8 @@
 //! lines ([`dialect`]), the units ([`units`]) and the rate ([`timing`]), every line that is not a
 //! sample counted with its reason, the still periods found and averaged ([`segment`]), and what the
 //! stream costs the calibration ([`cost`]). A saved log (`accelcal fit LOG`, `noise LOG`) and a
-//! port that talks on its own go through the same reader.
+//! port that talks on its own go through the same reader. A live stream session's status once a
+//! second and when it is done ([`status`]), and what its session keeps of the log ([`kept`]).
 
 pub mod arrival;
 mod columns;
@@ -12,10 +13,12 @@ pub mod dialect;
 mod dropped;
 pub mod guide;
 mod heard;
+pub mod kept;
 mod line;
 mod log;
 pub mod plausible;
 pub mod segment;
+pub mod status;
 mod still;
 pub mod timing;
 pub mod turns;

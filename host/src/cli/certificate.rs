@@ -87,6 +87,25 @@ pub(super) fn unless_contradicted(
     }
 }
 
+/// Issues a session's certificate beside it (at `path`), and adds it to the `lot` when one is given,
+/// unless its verification contradicts the certificate's prediction (said why).
+pub(super) fn issue_beside(
+    session: &Session,
+    path: &Path,
+    lot: Option<&Path>,
+    feedback: &mut dyn Feedback,
+) -> Result<(), Error> {
+    let Some(certificate) = unless_contradicted(session, path, feedback)? else {
+        return Ok(());
+    };
+    let (json, _) = written(&certificate, path)?;
+    feedback.say(&format!("certificate: {}", json.display()));
+    if let Some(lot) = lot {
+        feedback.say(&super::lot::add_issued(lot, &certificate)?);
+    }
+    Ok(())
+}
+
 /// Writes a certificate's JSON and page beside the session at `session_path`; their paths.
 pub(super) fn written(certificate: &Certificate, session_path: &Path) -> Result<(PathBuf, PathBuf), Error> {
     let [json, page] = beside(session_path);

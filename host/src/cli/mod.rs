@@ -12,8 +12,6 @@ mod export;
 mod fit;
 mod fixture;
 mod foreign;
-mod foreign_session;
-mod foreign_status;
 mod kept;
 mod length;
 mod lot;

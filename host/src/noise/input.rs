@@ -11,7 +11,9 @@ use shared::protocol::Sample;
 use super::RateSeries;
 use crate::limits::NOISE_MIN_SAMPLES;
 use crate::recording::{self, read::is_npy, RecordingError, SAMPLE_COLUMNS, STREAM_COLUMNS};
-use crate::stream::timing::agrees;
+// NOTE: the core's, named where it lives: the host's `stream` runs a session with the top error,
+// which wraps this module's.
+use accelcal_core::stream::timing::agrees;
 
 /// The six columns the analysis needs, in [`super::AXES`] order: a recording's sample columns
 /// without the temperature.
