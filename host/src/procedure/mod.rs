@@ -1,7 +1,7 @@
 //! The guided run on a port: the core's run (`accelcal_core::run`), each step blocking on the
-//! board's [`Client`]; and what only a host has: the simulated hand and session on a board of this
-//! process, several boards on one fixture turned by threads (where they meet: `fixture.rs`; each
-//! board's session on its own thread: [`together`]), the thermal run.
+//! board's [`Client`]; and what only a host has: several boards on one fixture turned by threads
+//! (where they meet: `fixture.rs`; each board's session on its own thread: [`together`]), the thermal
+//! run. The simulated hand and session are the core's, reached through `sim`.
 
 mod fixture;
 pub mod thermal;
