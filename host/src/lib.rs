@@ -7,6 +7,7 @@
 //!
 //! - [`link`]: the byte transports, the protocol client with one method per request, board discovery;
 //! - [`sim`]: the host side of the simulation (the simulated board served over a port);
+//! - [`opened`]: a board opened for a run (its connection, simulated board, seat, clock, hand);
 //! - [`procedure`]: the guided procedure (wanted orientations, the person's and the simulated hand,
 //!   collecting captures, verification);
 //! - [`still`]: the mean of a raw stream from a board that must rest, or why it counts as moved;
@@ -23,11 +24,15 @@
 //! - [`calibration`]: the device's calibration record on the host (its JSON form, from a fit);
 //! - [`export`]: the calibration in other programs' formats, with what each loses;
 //! - [`certificate`]: a board's calibration certificate, its uncertainty budget and its seal;
+//! - [`ended`]: what a session leaves when its run ends (verified: its certificate, report page and
+//!   row in a lot; stopped: the command that goes on with it);
 //! - [`lot`]: every board's certificates in one SQLite file, and the lot's summary;
 //! - [`repeat`]: N calibrations of one simulated board, the spread beside the predicted errors;
+//! - [`sections`]: a session report's sections read from other commands' files;
 //! - [`report`]: what a fit or a calibration reports, computed once, rendered as text, JSON or HTML;
 //! - [`shown`]: how a number, a date or a text is shown to a person;
 //! - [`error`]: the library's top error, wrapping each layer's own;
+//! - [`terminal`]: a person at a terminal (progress, questions, Ctrl-C, spinners);
 //! - [`cli`]: the command line; the `accelcal` binary only calls [`cli::main`].
 //!
 //! `mutant!` (the core's) is the switch CI's guarded mutations break lines through
@@ -40,20 +45,24 @@ extern crate accelcal_core;
 pub mod certificate;
 pub mod cli;
 pub mod data;
+pub mod ended;
 pub mod error;
 pub mod files;
 pub mod link;
 pub mod lot;
 pub mod noise;
+pub mod opened;
 pub mod part;
 pub mod procedure;
 pub mod recording;
 pub mod repeat;
+pub mod sections;
 pub mod selftest;
 pub mod session;
 pub mod sim;
 pub mod still;
 pub mod stream;
+pub mod terminal;
 
 pub use accelcal_core::{calibration, export, fit, limits, orientation, report, shown};
 pub use error::Error;

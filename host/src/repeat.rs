@@ -110,6 +110,26 @@ impl RepeatReport {
             runs,
         }
     }
+
+    /// The report as a table: per parameter mean, spread, predicted spread, their ratio and the excess.
+    pub fn text(&self) -> String {
+        let mut out = format!(
+            "{} calibrations of one board, a power cycle before each (turn-on bias injected: {} mg)\n",
+            self.sessions, self.turn_on_bias_injected_mg
+        );
+        out.push_str(&format!(
+            "{:<6} {:>12} {:>11} {:>11} {:>13} {:>11}\n",
+            "", "mean", "std", "predicted", "ratio", "excess"
+        ));
+        for (name, p) in &self.parameters {
+            out.push_str(&format!(
+                "{name:<6} {:>12.6} {:>11.3e} {:>11.3e} {:>6.2} +- {:<4.2} {:>11.3e} {}\n",
+                p.mean, p.std, p.predicted_std, p.ratio, p.ratio_sampling_error, p.excess, p.unit
+            ));
+        }
+        out.push_str("ratio = std / predicted: 1 within its +- when the model leaves nothing out; excess = sqrt(std^2 - predicted^2)\n");
+        out
+    }
 }
 
 impl Repeatability {

@@ -7,6 +7,9 @@ use std::path::Path;
 pub use accelcal_core::session::*;
 
 pub use crate::files::unix_time_s;
+pub use keeping::{default_name, first_free, hold, holder, new_session_path, KeptSession};
+
+mod keeping;
 
 /// A session's files: what the host adds to the core's [`Session`].
 pub trait SessionFiles: Sized {

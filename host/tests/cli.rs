@@ -477,7 +477,7 @@ fn a_reader_that_goes_away_ends_the_command_quietly_with_the_closed_pipe_s_statu
         .output()
         .expect("accelcal runs");
     let stderr = String::from_utf8_lossy(&output.stderr);
-    assert_eq!(output.status.code(), Some(accelcal::cli::READER_GONE_EXIT), "{stderr}");
+    assert_eq!(output.status.code(), Some(accelcal::terminal::READER_GONE_EXIT), "{stderr}");
     assert!(stderr.is_empty(), "nothing said when nobody reads: {stderr}");
 }
 

@@ -7,7 +7,7 @@ use shared::linalg::{identity, Mat3};
 use shared::Calibration;
 
 use crate::report::gyro::GyroOutcome;
-use crate::session::Session;
+use crate::session::{Session, SessionKind};
 
 /// The calibration to upload when no G could be fitted to this run's moves (`why`), and the line
 /// to tell the person: with the G this session uploaded in an earlier run when it was `resumed`
@@ -57,6 +57,29 @@ pub fn kept_before_verifying(session: &Session, uploaded: Calibration) -> Sessio
         uploaded: mutant!("kept-before-verifying-without-upload", Some(uploaded), session.uploaded),
         ..session.clone()
     }
+}
+
+/// What a resumed session makes of `--quick` (`asked_quick`) and `--seconds` given differently
+/// from when it was begun, in words: it goes on as it was begun (its captures, fit and report must
+/// agree).
+pub fn resumed_as_begun(begun: SessionKind, asked_quick: bool, asked_seconds: Option<u8>) -> Vec<String> {
+    let kind = |quick: bool| if quick { "a quick calibration" } else { "a full calibration" };
+    let begun_quick = begun == SessionKind::Quick;
+    let mut lines = Vec::new();
+    if asked_quick != begun_quick {
+        lines.push(format!(
+            "this session was begun as {}; it goes on as one ({} is not used: start a new session for the other)",
+            kind(begun_quick),
+            if asked_quick { "--quick" } else { "leaving out --quick" }
+        ));
+    }
+    if let (SessionKind::Adaptive, Some(seconds)) = (begun, asked_seconds) {
+        lines.push(format!(
+            "this session was begun adaptive (each position captured until its mean is known); it goes on so and \
+             --seconds {seconds} is not used (start a new session for captures of a fixed length)"
+        ));
+    }
+    lines
 }
 
 #[cfg(test)]

@@ -23,6 +23,17 @@ pub enum SessionKind {
 }
 
 impl SessionKind {
+    /// What a new session is asked to be: quick (`--quick`), of fixed-length captures (`--seconds`),
+    /// or adaptive. A resumed session keeps what it was begun as, so that its collection, its fit and
+    /// its report agree.
+    pub fn asked(quick: bool, seconds: Option<u8>) -> Self {
+        match (quick, seconds) {
+            (true, _) => SessionKind::Quick,
+            (false, Some(_)) => SessionKind::Fixed,
+            (false, None) => SessionKind::Adaptive,
+        }
+    }
+
     /// The kind a session file written with the two booleans of before meant.
     pub fn from_flags(quick: bool, adaptive: bool) -> Self {
         match (quick, adaptive) {

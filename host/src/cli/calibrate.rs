@@ -8,19 +8,23 @@ use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
 
 use embassy_futures::block_on;
+use shared::protocol::DeviceInfo;
+use shared::Calibration;
 
-use super::adaptive;
 use super::args::CalibrateArgs;
-use super::device::Opened;
-use super::kept::{self, Kept};
-use crate::calibration;
 use crate::certificate::Certificate;
+use crate::ended;
 use crate::error::Error;
 use crate::link::LinkError;
-use crate::procedure::{Feedback, Fitted, ProcedureError, TurnCheck, Verification};
+use crate::opened::Opened;
+use crate::procedure::thermal::learned::kept_by_new_session;
+use crate::procedure::Feedback;
 use crate::report::{self, CalibrateReport};
-use crate::session::{stem_file, Session, SessionKind, TargetVerdict};
+use crate::session::{
+    holder, new_session_path, stem_file, BoardRecord, KeptSession, Session, SessionKind, TargetVerdict,
+};
 use accelcal_core::run::board::{self, Around, BoardPlan, Calibrated, RunError};
+use accelcal_core::run::resume::resumed_as_begun;
 
 /// One board's session, from its first capture to its verified report (`None`: the upload was
 /// declined); the same for a board alone and for each board on a fixture.
@@ -36,21 +40,61 @@ pub(super) fn calibrate_board(
         return Err(Error::SerialOfItsOwn { reported });
     }
     opened.hand_seed = args.sim_hand_seed.unwrap_or(args.device.seed);
-    let learned = adaptive::learned_model(args, &mut opened.connection.client, feedback)?;
-    let kept = kept::start(args, &opened.connection.info, learned, feedback)?;
+    let learned = match args.resume.is_none() && SessionKind::asked(args.quick, args.seconds) == SessionKind::Adaptive {
+        true => kept_by_new_session(&mut opened.connection.client, feedback)?,
+        false => None,
+    };
+    let kept = kept(args, &opened.connection.info, learned, feedback)?;
     opened.connection.client.interrupt_on(interrupt);
     let plan = plan_of(args, &opened, &kept)?;
     let Some(calibrated) = run(args, &mut opened, &plan, &kept, feedback)? else { return Ok(None) };
     finish(args, &opened, calibrated, kept.path.as_deref(), feedback).map(Some)
 }
 
+/// The session to continue (`--resume`, checked against the board) or a new one, written at once
+/// so that an unwritable path fails before the first capture.
+fn kept(
+    args: &CalibrateArgs,
+    info: &DeviceInfo,
+    learned: Option<Calibration>,
+    feedback: &mut dyn Feedback,
+) -> Result<KeptSession, Error> {
+    let board = BoardRecord::of(info);
+    let holder = holder(&format!("board {}", board.serial));
+    let kept = match &args.resume {
+        Some(path) => {
+            let (kept, said) = KeptSession::resume(path, &board, &holder)?;
+            feedback.say(&said);
+            resumed_as_begun(kept.session.kind, args.quick, args.seconds).iter().for_each(|line| feedback.say(line));
+            kept
+        }
+        None => {
+            // NOTE: a simulated board in this process is gone after the run: nothing to keep by default.
+            let place =
+                new_session_path(args.session.as_deref(), args.device.port.is_some(), Some(&board.serial), &holder)?;
+            let session = Session {
+                board: Some(board),
+                kind: SessionKind::asked(args.quick, args.seconds),
+                learned,
+                ..Session::default()
+            };
+            KeptSession::new(session, place)
+        }
+    };
+    if let Some(path) = &kept.path {
+        kept.session.save(path)?;
+        feedback.say(&format!("the captures are kept in {} as they are taken", stem_file(path, "json").display()));
+    }
+    Ok(kept)
+}
+
 /// How the core's run goes on this board: the capture length or stop rule of the session's kind,
 /// the verification asked for, the wait, the board's clock.
-fn plan_of(args: &CalibrateArgs, opened: &Opened, kept: &Kept) -> Result<BoardPlan, Error> {
+fn plan_of(args: &CalibrateArgs, opened: &Opened, kept: &KeptSession) -> Result<BoardPlan, Error> {
     let rate_hz = opened.connection.info.config.sample_rate_hz;
     let rule = match kept.session.kind {
         SessionKind::Adaptive => {
-            Some(args.length.rule(rate_hz).map_err(|e| stopped_at(args, kept.path.as_deref(), e))?)
+            Some(args.length.rule(rate_hz).map_err(|e| ended::stopped(e, kept.path.as_deref(), device_flags(args)))?)
         }
         _ => None,
     };
@@ -65,18 +109,18 @@ fn run(
     args: &CalibrateArgs,
     opened: &mut Opened,
     plan: &BoardPlan,
-    kept: &Kept,
+    kept: &KeptSession,
     feedback: &mut dyn Feedback,
 ) -> Result<Option<Calibrated>, Error> {
     let path = kept.path.clone();
     let mut keep = |session: &Session| path.as_deref().map_or(Ok(()), |p| session.save(p));
     let Opened { connection, sim, seat, hand_seed, .. } = opened;
-    let mut hands = || super::device::hand_for(sim.as_ref(), seat, *hand_seed, args.sim_placement_deg).0;
+    let mut hands = || crate::opened::hand_for(sim.as_ref(), seat, *hand_seed, args.sim_placement_deg).0;
     let around = Around { feedback, hands: &mut hands, keep: &mut keep };
     let info = connection.info.clone();
     let result = block_on(board::calibrate(connection.client.link(), &info, plan, around, kept.session.clone()));
     result.map_err(|error| match error {
-        RunError::Stopped(source) => stopped_at(args, kept.path.as_deref(), source),
+        RunError::Stopped(source) => ended::stopped(source, kept.path.as_deref(), device_flags(args)),
         RunError::NotKept(source) => source.into(),
         RunError::AfterUpload(source) => {
             Error::AfterUpload { source: Box::new(source), check_later: check_later(args) }
@@ -93,25 +137,6 @@ pub(super) fn show(report: &CalibrateReport, json: bool) -> Result<(), Error> {
     }
 }
 
-/// Why a run stopped, with the command that resumes its session when the session file holds a
-/// capture.
-fn stopped_at(args: &CalibrateArgs, kept_at: Option<&Path>, source: ProcedureError) -> Error {
-    match kept_at.map(kept_on_disk) {
-        Some((path, captures)) if captures > 0 => {
-            Error::Stopped { source: Box::new(source), captures, path, device: device_flags(args) }
-        }
-        _ => source.into(),
-    }
-}
-
-/// The session's JSON file and how many captures it holds as written (not as in memory: a capture
-/// whose write failed, on a full disk say, is not in it); none when it cannot be read.
-fn kept_on_disk(stem: &Path) -> (std::path::PathBuf, usize) {
-    let json = stem_file(stem, "json");
-    let captures = Session::load(&json).map_or(0, |session| session.captures.len());
-    (json, captures)
-}
-
 /// The verified run's certificate, the session kept with it and its report beside it, then the
 /// report of the run.
 fn finish(
@@ -122,29 +147,11 @@ fn finish(
     feedback: &mut dyn Feedback,
 ) -> Result<CalibrateReport, Error> {
     let certificate = certify(&calibrated.verified, &calibrated.target, kept_at, args, feedback)?;
-    let mut report = report_of(opened, &calibrated.fitted, calibrated.verification, calibrated.check);
+    let mut report = opened.report(&calibrated.fitted, calibrated.verification, calibrated.check);
     report.board_seconds = calibrated.board_seconds;
     report.certificate = certificate;
     report.target = Some(calibrated.target);
     Ok(report)
-}
-
-/// The run's report: the calibration chosen, the fits beside it, the verification and the gyro's
-/// check, and with `--sim` the simulated sensor's truth at the calibration's temperature.
-fn report_of(
-    opened: &Opened,
-    fitted: &Fitted,
-    verification: Verification,
-    check: Option<TurnCheck>,
-) -> CalibrateReport {
-    let session_temp_c = calibration::thermal_reference(&fitted.chosen).ref_temp_c;
-    let truth = opened.sim.as_ref().map(|board| board.truth_json(session_temp_c));
-    let captures = fitted.session.captures.len();
-    let chip = fitted.chip.as_ref().map(|c| &c.calibration);
-    let mut report = CalibrateReport::new(&fitted.chosen, chip, fitted.host.as_ref(), truth, verification, captures)
-        .with_gyro(&fitted.gyro, check);
-    report.true_error_mg = opened.sim.as_ref().map(|board| board.true_error_mg(&fitted.chosen, session_temp_c));
-    report
 }
 
 /// The verified session's certificate, kept with the session (`kept_at`) and its report, and added
@@ -158,40 +165,14 @@ fn certify(
     feedback: &mut dyn Feedback,
 ) -> Result<Option<Certificate>, Error> {
     let path = kept_at.unwrap_or(Path::new("the session"));
-    let certificate = super::certificate::unless_failed(verified, target, path, feedback)?;
-    if let Some(stem) = kept_at {
-        let not_kept = |source| Error::VerificationNotKept {
-            source: Box::new(source),
-            path: stem_file(stem, "json"),
-            device: device_flags(args),
-        };
-        verified.save(stem).map_err(not_kept)?;
-        keep_with_report(verified, certificate.as_ref(), stem, feedback)?;
-    }
-    if let (Some(lot), Some(certificate)) = (args.lot.as_deref(), &certificate) {
-        feedback.say(&super::lot::add_issued(lot, certificate)?);
-    }
-    Ok(certificate)
-}
-
-/// Writes the verified session's report and certificate beside it, and says where.
-fn keep_with_report(
-    session: &Session,
-    certificate: Option<&Certificate>,
-    stem: &Path,
-    feedback: &mut dyn Feedback,
-) -> Result<(), Error> {
-    let json = stem_file(stem, "json");
-    let page = super::report::beside(&json);
-    super::report::write_page(&super::report::build(session, &json)?, &page)?;
-    let certificate = match certificate {
-        Some(certificate) => {
-            format!("; certificate to {}", super::certificate::written(certificate, &json)?.0.display())
-        }
-        None => String::new(),
+    let certificate = ended::unless_failed(verified, target, path, feedback)?;
+    let not_kept = |source| Error::VerificationNotKept {
+        source: Box::new(source),
+        path: stem_file(path, "json"),
+        device: device_flags(args),
     };
-    feedback.say(&format!("session kept in {}; report written to {}{certificate}", json.display(), page.display()));
-    Ok(())
+    ended::keep_verified(verified, certificate.as_ref(), (kept_at, args.lot.as_deref()), not_kept, feedback)?;
+    Ok(certificate)
 }
 
 /// The device flags that reach the same board again, for the resume hint.

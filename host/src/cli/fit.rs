@@ -17,7 +17,7 @@ pub(super) fn fit(args: &FitArgs) -> Result<(), Error> {
     }
     let text =
         crate::stream::read_text(&args.file).map_err(|source| Error::ReadFile { path: args.file.clone(), source })?;
-    let text = without_board_column(text);
+    let text = crate::recording::csv::without_board_column(text);
     match Dataset::from_reader(text.as_bytes(), args.g) {
         Ok(dataset) if !dataset.looks_like_samples() => fit_dataset(args, &dataset),
         Ok(_) => fit_stream(args, &text).map_err(|e| stream_refused(args, e, None)),
@@ -25,19 +25,8 @@ pub(super) fn fit(args: &FitArgs) -> Result<(), Error> {
     }
 }
 
-/// `accelcal stream`'s own CSV without its last column, the board's serial, which no stream
-/// dialect reads as a number: its samples then read as any CSV log's. Any other text as it is.
-fn without_board_column(text: String) -> String {
-    let header = crate::recording::stream_csv_columns().join(",");
-    if text.lines().next().map(str::trim_end) != Some(header.as_str()) {
-        return text;
-    }
-    let line = |line: &str| line.rsplit_once(',').map_or(line, |(kept, _board)| kept).to_owned();
-    text.lines().map(|l| line(l) + "\n").collect()
-}
-
 fn fit_dataset(args: &FitArgs, dataset: &Dataset) -> Result<(), Error> {
-    let spinner = super::terminal::working(format!("fitting {} rows (--model {})", dataset.rows.len(), args.model));
+    let spinner = crate::terminal::working(format!("fitting {} rows (--model {})", dataset.rows.len(), args.model));
     let report = FitReport::new(dataset, args.model, &options(args));
     spinner.finish_and_clear();
     let report = report.map_err(|source| Error::CannotFit { path: args.file.clone(), model: args.model, source })?;

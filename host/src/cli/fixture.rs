@@ -4,15 +4,14 @@
 
 use super::args::CalibrateArgs;
 use super::calibrate::calibrate_board;
-use super::device::Opened;
-use super::terminal::interrupt_on_ctrl_c;
 use crate::error::Error;
 use crate::link::{find_boards, serial_ports};
+use crate::opened::{seat_together, Opened};
 use crate::procedure::together::{make_session_folder, run_together, session_path};
-use crate::procedure::Fixture;
 use crate::report::fixture::FixtureReport;
 use crate::session::{unix_time_s, BoardRecord};
 use crate::sim::SimSensor;
+use crate::terminal::interrupt_on_ctrl_c;
 
 /// Whether `calibrate` was given a fixture (several boards, or a list of ports) rather than one board.
 pub(super) fn holds_several(args: &CalibrateArgs) -> bool {
@@ -38,17 +37,7 @@ pub(super) fn calibrate_together(args: &CalibrateArgs) -> Result<(), Error> {
         return Err(Error::NoSuchBoard { board: pull.board + 1, boards });
     }
     let mut boards = open_all(args)?;
-    let members = boards.iter().enumerate().map(|(index, (_, b))| {
-        b.opened.as_ref().ok().and_then(|opened| opened.as_member(index, args.fixture.sim_pull))
-    });
-    let fixture = Fixture::new(members.collect());
-    for (index, (_, board)) in boards.iter_mut().enumerate() {
-        // NOTE: a board that could not be opened leaves the fixture at once (its seat dropped here).
-        let seat = fixture.seat(index);
-        if let Ok(opened) = &mut board.opened {
-            opened.seat = seat;
-        }
-    }
+    seat_together(boards.iter_mut().map(|(_, board)| board.opened.as_mut().ok()).collect(), args.fixture.sim_pull);
     let interrupt = interrupt_on_ctrl_c();
     let report = run_together(boards, args.json && args.device.sim, |board: Board, lines| {
         calibrate_board(&board.args, board.opened?, interrupt.clone(), lines)

@@ -2,15 +2,14 @@
 //! the session it keeps and the options of [`crate::stream::calibrate`], which runs it.
 
 use super::args::CalibrateArgs;
-use super::kept::{default_name, first_free, hold, holder, new_session_path};
 use super::length::ADAPTIVE_VERIFY_POSITIONS;
-use super::terminal::{interrupt_on_ctrl_c, Terminal};
 use crate::error::Error;
 use crate::link::TalkingPort;
 use crate::procedure::Feedback;
-use crate::session::{stem_file, stem_of, Session};
+use crate::session::{default_name, first_free, hold, holder, new_session_path, stem_file, stem_of, Session};
 use crate::stream::calibrate::{self, CalibrateOptions};
 use crate::stream::session::Kept;
+use crate::terminal::{interrupt_on_ctrl_c, Terminal};
 
 /// Calibrates from the stream of `talking`.
 pub(super) fn calibrate_from_stream(args: &CalibrateArgs, talking: TalkingPort) -> Result<(), Error> {
@@ -26,7 +25,7 @@ pub(super) fn calibrate_from_stream(args: &CalibrateArgs, talking: TalkingPort) 
     // NOTE: unlike a board's session, a stream's does not fail on a missed --target-mg (the sketch's
     // rate and digits bound what it reaches), so only a contradiction withholds the certificate.
     let mut certify = |session: &Session, feedback: &mut dyn Feedback| {
-        super::certificate::issue_beside(session, &kept.json(), args.lot.as_deref(), feedback)
+        crate::ended::issue_beside(session, &kept.json(), args.lot.as_deref(), feedback)
     };
     let interrupt = interrupt_on_ctrl_c();
     print!("{}", calibrate::calibrate(talking, &kept, &options, &interrupt, &mut Terminal::new(true), &mut certify)?);
@@ -41,7 +40,7 @@ fn kept(args: &CalibrateArgs, port: &str) -> Result<Kept, Error> {
     if let Some(path) = &args.resume {
         return Kept::resume(path, hold(&stem_of(path), &holder)?, port, serial);
     }
-    let (stem, held) = match new_session_path(args, serial, &holder)? {
+    let (stem, held) = match new_session_path(args.session.as_deref(), args.device.port.is_some(), serial, &holder)? {
         Some(new) => new,
         None => first_free(&default_name(serial), &holder)?,
     };

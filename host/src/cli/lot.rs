@@ -2,18 +2,11 @@
 //! spec file, and one board's calibrations by serial.
 
 use std::path::{Path, PathBuf};
-use std::time::Duration;
-
-use indicatif::{ProgressBar, ProgressStyle};
 
 use super::args::{LotAction, LotArgs};
 use crate::certificate::{self, Certificate};
 use crate::error::Error;
 use crate::lot::{self, Added, Lot, LotError, LotSummary, Spec};
-
-/// The environment variable that makes every write pause inside its transaction (seconds): only
-/// for the tests that kill a writer, or read beside one, mid-transaction.
-pub const PAUSE_IN_WRITE_VARIABLE: &str = "ACCELCAL_TEST_LOT_PAUSE_S";
 
 /// Runs `accelcal lot`.
 pub(super) fn lot(args: &LotArgs) -> Result<(), Error> {
@@ -35,11 +28,8 @@ pub(super) fn lot(args: &LotArgs) -> Result<(), Error> {
 /// names the serial the lot keys it by: a bad file among many adds none of them.
 fn add_files(path: &Path, files: &[PathBuf]) -> Result<(), Error> {
     let checked: Vec<Certificate> = files.iter().map(|file| checked_for_lot(file)).collect::<Result<_, _>>()?;
-    let mut lot = open_for_writing(path)?;
-    let bar = ProgressBar::new(checked.len() as u64).with_style(
-        ProgressStyle::with_template("adding certificates {bar:30} {pos}/{len}")
-            .unwrap_or(ProgressStyle::default_bar()),
-    );
+    let mut lot = Lot::open_for_writing(path)?;
+    let bar = crate::terminal::counting("adding certificates {bar:30} {pos}/{len}", checked.len() as u64);
     let mut already = 0;
     for certificate in &checked {
         already += usize::from(lot.add(certificate)? == Added::AlreadyThere);
@@ -57,21 +47,6 @@ fn checked_for_lot(file: &Path) -> Result<Certificate, Error> {
         Some(_) => Ok(certificate),
         None => Err(LotError::NoSerialIn { file: file.into() }.into()),
     }
-}
-
-/// Opens the lot for writing, with the test pause when its variable is set.
-pub(super) fn open_for_writing(path: &Path) -> Result<Lot, Error> {
-    let mut lot = Lot::create_or_open(path)?;
-    lot.pause_in_write =
-        std::env::var(PAUSE_IN_WRITE_VARIABLE).ok().and_then(|s| s.parse().ok()).map(Duration::from_secs_f64);
-    Ok(lot)
-}
-
-/// Adds one freshly issued certificate to the lot and says so.
-pub(super) fn add_issued(path: &Path, certificate: &Certificate) -> Result<String, Error> {
-    open_for_writing(path)?.add(certificate)?;
-    let serial = certificate.board.serial.as_deref().unwrap_or("");
-    Ok(format!("certificate of board {serial} added to the lot {}", path.display()))
 }
 
 /// The lot's summary against the spec, as text or JSON.

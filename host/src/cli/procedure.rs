@@ -2,15 +2,15 @@
 //! `calibrate`, is in [`super::calibrate`]).
 
 use super::args::{CaptureArgs, Device};
-use super::device::Opened;
-use super::terminal::interrupt_on_ctrl_c;
-use super::terminal::Terminal;
 use crate::error::Error;
 use crate::link::LinkError;
+use crate::opened::Opened;
 use crate::orientation::Orientation;
 use crate::procedure::{self, Feedback};
 use crate::session::SessionFiles;
 use crate::session::{stem_of, Session};
+use crate::terminal::interrupt_on_ctrl_c;
+use crate::terminal::Terminal;
 
 /// How far off, in degrees, the tool's hand places the simulated board for `verify --sim`.
 const VERIFY_PLACEMENT_DEG: f64 = 3.0;

@@ -1,37 +1,18 @@
 //! `accelcal selftest`: the datasheet self-test, beside the board's previous one.
 
 use std::io::Write;
-use std::path::PathBuf;
 
-use serde::Serialize;
 use shared::selftest::StoredSelfTest;
 
 use super::args::SelftestArgs;
-use super::board::family_check;
+use crate::part::info::family_check;
 
 use crate::error::Error;
-use crate::part::check::{FamilyCheck, FamilyCheckJson};
 use crate::selftest::history::{self, History, HistoryEntry};
-use crate::selftest::report::{text, SelfTestJson};
-use crate::selftest::{run, PhaseName, SelfTest, Watcher};
+use crate::selftest::report::SelfTestJson;
+use crate::selftest::shown::Shown;
+use crate::selftest::{run, PhaseName, Watcher};
 use crate::session::BoardRecord;
-
-/// What `selftest --json` prints: the result's fields, the board's previous self-test and where
-/// they are kept.
-#[derive(Serialize)]
-struct SelftestOutput<'a> {
-    #[serde(flatten)]
-    result: &'a SelfTestJson,
-    /// The board's previous self-test (`date_utc`, `result`): the newer of the one in its flash and the
-    /// history file's last; null for the first.
-    previous: Option<&'a HistoryEntry>,
-    /// The history file; null when none is kept.
-    history: Option<PathBuf>,
-    /// What confirmed the family the self-test ran as ("offset registers"), or null (as `info`).
-    family_confirmed_by: Option<&'static str>,
-    /// The offset-register check of the family (as `info`); null with no sensor.
-    family_check: Option<FamilyCheckJson>,
-}
 
 /// What the procedure shows a person on stderr (nothing with `--json`).
 struct Lines {
@@ -67,12 +48,13 @@ pub(super) fn selftest(args: &SelftestArgs) -> Result<(), Error> {
         eprintln!("rest the board on a table and keep your hands off it (about 3 s)");
     }
     let connection = &mut opened.connection;
-    connection.client.interrupt_on(super::terminal::interrupt_on_ctrl_c());
+    connection.client.interrupt_on(crate::terminal::interrupt_on_ctrl_c());
     let check = family_check(&mut connection.client, &connection.info)?;
     let test = run(&mut connection.client, &connection.info, &mut Lines { quiet: args.json })?;
     let result = SelfTestJson::of(&test);
     let shown = Shown { test: &test, result: &result, previous: previous.as_ref(), check: check.as_ref() };
-    shown.print(args.json, history.as_ref().map(|h| h.path().to_path_buf()));
+    // NOTE: a reader that went away (`| head`) is no reason to lose the history entry after it.
+    let _ = write!(std::io::stdout(), "{}", shown.output(args.json, history.as_ref().map(|h| h.path().to_path_buf())));
     if let Some(history) = &history {
         history.append(HistoryEntry::at(&result, crate::files::unix_time_s()))?;
     }
@@ -82,34 +64,6 @@ pub(super) fn selftest(args: &SelftestArgs) -> Result<(), Error> {
         Ok(())
     } else {
         Err(Error::SelfTestFailed)
-    }
-}
-
-/// What a self-test run shows.
-struct Shown<'a> {
-    test: &'a SelfTest,
-    result: &'a SelfTestJson,
-    previous: Option<&'a HistoryEntry>,
-    check: Option<&'a FamilyCheck>,
-}
-
-impl Shown<'_> {
-    /// On stdout, as JSON (with the history file) or as text.
-    fn print(&self, json: bool, history: Option<PathBuf>) {
-        // NOTE: a reader that went away (`| head`) is no reason to lose the history entry after it.
-        if json {
-            let output = SelftestOutput {
-                result: self.result,
-                previous: self.previous,
-                history,
-                family_confirmed_by: self.check.and_then(FamilyCheck::confirmed_by),
-                family_check: self.check.map(FamilyCheckJson::of),
-            };
-            let _ = writeln!(std::io::stdout(), "{}", serde_json::to_string_pretty(&output).unwrap_or_default());
-        } else {
-            let family = self.check.map_or(String::new(), |c| format!("family: {}\n", c.summary()));
-            let _ = write!(std::io::stdout(), "{}{family}", text(self.test, self.previous));
-        }
     }
 }
 

@@ -3,11 +3,11 @@
 //! (`procedure::thermal::resting`), or with `--sim` the whole simulated story (`sim::thermal`).
 
 use super::args::ThermalArgs;
-use super::terminal::interrupt_on_ctrl_c;
 use crate::error::Error;
 use crate::link::LinkError;
 use crate::procedure::thermal::resting::{learn_at_rest, RestingOptions};
 use crate::sim::thermal::{story, StoryOptions};
+use crate::terminal::interrupt_on_ctrl_c;
 
 /// Runs `accelcal thermal`.
 pub(super) fn thermal(args: &ThermalArgs) -> Result<(), Error> {

@@ -19,6 +19,23 @@ pub enum Answer {
     NoBoard(LinkError),
 }
 
+impl Answer {
+    /// What `accelcal ports` shows after the port: the board found by its handshake, or what it is not.
+    pub fn shown(&self) -> String {
+        match self {
+            Answer::Board(connection) => format!(
+                "  <- accelcal board (found by its handshake), board serial {}",
+                String::from_utf8_lossy(&connection.info.serial.hex())
+            ),
+            Answer::Talks(heard) => format!("  (prints on its own: {heard}; nothing was written to it)"),
+            Answer::NoBoard(LinkError::Silent { .. }) => {
+                "  (no accelcal board: silent, and no answer to its hello)".into()
+            }
+            Answer::NoBoard(error) => format!("  (not an accelcal board, or not reachable: {error})"),
+        }
+    }
+}
+
 /// Whether a port is asked: a USB serial port without accelcal's ids. A port that is no USB device
 /// (a computer's own UART, with a modem or a console behind it) is never written to.
 pub fn is_worth_asking(entry: &SerialPortEntry) -> bool {

@@ -60,7 +60,27 @@ pub enum Added {
     AlreadyThere,
 }
 
+/// Names a pause in seconds inside each write (`Lot::pause_in_write`) of a command that writes a
+/// lot: only the tests that kill a writer or read beside one mid-transaction set it.
+pub const PAUSE_IN_WRITE_VARIABLE: &str = "ACCELCAL_TEST_LOT_PAUSE_S";
+
 impl Lot {
+    /// Opens the lot at `path` for a command to write, pausing in each write when the tests ask
+    /// for it ([`PAUSE_IN_WRITE_VARIABLE`]).
+    pub fn open_for_writing(path: &Path) -> Result<Self, LotError> {
+        let mut lot = Lot::create_or_open(path)?;
+        lot.pause_in_write =
+            std::env::var(PAUSE_IN_WRITE_VARIABLE).ok().and_then(|s| s.parse().ok()).map(Duration::from_secs_f64);
+        Ok(lot)
+    }
+
+    /// Adds a certificate just issued to the lot at `path`; what to tell the person.
+    pub fn add_issued(path: &Path, certificate: &Certificate) -> Result<String, LotError> {
+        Lot::open_for_writing(path)?.add(certificate)?;
+        let serial = certificate.board.serial.as_deref().unwrap_or("");
+        Ok(format!("certificate of board {serial} added to the lot {}", path.display()))
+    }
+
     /// Opens the lot at `path` for writing, creating the file and its tables when it is new.
     pub fn create_or_open(path: &Path) -> Result<Self, LotError> {
         let connection = Connection::open(path).map_err(|source| LotError::from_sqlite(path, source, open_failed))?;

@@ -1,9 +1,10 @@
 //! The sensor a board found, named for a person: the part its WHO_AM_I names, the family it
 //! behaves as, and a contradiction between the two when there is one; the family confirmed by what
-//! its offset registers do ([`check`]).
+//! its offset registers do ([`check`]); a board described as `accelcal info` shows it ([`info`]).
 
 pub mod check;
 mod check_text;
+pub mod info;
 pub mod offsets;
 
 use firmware::sensor::registers::FIFO_R_W;

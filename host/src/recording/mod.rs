@@ -1,9 +1,12 @@
 //! Recordings: long raw sample series in a NumPy `.npy` file of one structured record per sample,
 //! written as they stream, the header's count brought up to date after each block
 //! (`np.load("rec.npy")` in Python; [`read::read_path`] here, exactly the samples the header states).
+//! `accelcal stream`'s CSV rows are here too ([`csv`]).
 
+pub mod csv;
 pub mod header;
 pub mod read;
+pub mod record;
 pub mod write;
 
 pub use read::{read_path, read_samples, Recording};

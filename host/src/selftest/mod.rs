@@ -12,6 +12,7 @@
 mod error;
 pub mod history;
 mod phase;
+pub mod shown;
 pub use accelcal_core::selftest::{report, SelfTest};
 
 use shared::part::Family;

@@ -89,6 +89,13 @@ fn count_written(mut reader: TTYPort, state: &ReplayState) {
     }
 }
 
+/// Prints the whole log a person's session with `sketch` gives, at once, on stdout.
+pub fn print_log(sketch: Sketch, seed: u64) -> std::io::Result<()> {
+    let session = PersonSession::new(seed, sketch.reading());
+    let mut out = std::io::stdout().lock();
+    sketch.lines(&session).iter().try_for_each(|line| out.write_all(line.text.as_bytes()))
+}
+
 /// Serves the replay until killed, printing its path first and, on stderr, what was written to it.
 pub fn serve_replay(sketch: Sketch, seed: u64) -> Result<(), SimError> {
     let replay = Replay::spawn(sketch, seed, 1.0)?;

@@ -43,3 +43,23 @@ fn the_session_kept_before_verifying_holds_the_upload_and_every_capture() {
     assert_eq!(kept.uploaded, Some(uploaded));
     assert_eq!((kept.captures.len(), &kept.captures), (15, &session.captures));
 }
+
+#[test]
+fn a_resumed_session_goes_on_as_begun_and_says_which_arguments_it_does_not_use() {
+    assert!(resumed_as_begun(SessionKind::Adaptive, false, None).is_empty());
+    assert!(resumed_as_begun(SessionKind::Quick, true, Some(4)).is_empty(), "a quick session's --seconds");
+    let quick = resumed_as_begun(SessionKind::Quick, false, None);
+    assert_eq!(quick.len(), 1);
+    assert!(quick[0].contains("begun as a quick calibration") && quick[0].contains("leaving out --quick"), "{quick:?}");
+    let full = resumed_as_begun(SessionKind::Adaptive, true, Some(6));
+    assert_eq!(full.len(), 2, "{full:?}");
+    assert!(full[0].contains("begun as a full calibration") && full[0].contains("(--quick is not used"), "{full:?}");
+    assert!(full[1].contains("--seconds 6 is not used"), "{full:?}");
+}
+
+#[test]
+fn a_new_session_is_quick_fixed_or_adaptive_as_asked() {
+    assert_eq!(SessionKind::asked(true, Some(4)), SessionKind::Quick);
+    assert_eq!(SessionKind::asked(false, Some(4)), SessionKind::Fixed);
+    assert_eq!(SessionKind::asked(false, None), SessionKind::Adaptive);
+}

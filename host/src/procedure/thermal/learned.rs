@@ -5,15 +5,17 @@
 use std::io::IsTerminal;
 
 use shared::linalg::Vec3;
+use shared::protocol::CalibrationSlot;
 use shared::Calibration;
 
 use super::error::ThermalError;
 use super::{learn, LearnEnd, LearnOptions, LearnStatus, ThermalBins, ThermalBoard};
 use crate::calibration as record;
+use crate::fit::drift;
 use crate::fit::hysteresis::{self, Hysteresis};
 use crate::fit::thermal::fit_temperature;
-use crate::link::Connection;
-use crate::procedure::ProcedureError;
+use crate::link::{Client, Connection, LinkError, Port};
+use crate::procedure::{Feedback, ProcedureError};
 use crate::report::thermal::ThermalFitJson;
 
 /// Capture length while learning and verifying, in seconds.
@@ -102,4 +104,21 @@ fn end_text(end: LearnEnd) -> &'static str {
         LearnEnd::Stalled => "the temperature stalled",
         LearnEnd::RoundLimit => "the round limit was reached",
     }
+}
+
+/// The board's active calibration when it carries a learned temperature model, which a new
+/// adaptive session keeps (said), else none.
+pub fn kept_by_new_session<P: Port>(
+    client: &mut Client<P>,
+    feedback: &mut dyn Feedback,
+) -> Result<Option<Calibration>, LinkError> {
+    let learned = drift::learned::kept(client.calibration(CalibrationSlot::Active)?);
+    if let Some(model) = learned.and_then(|c| c.temperature) {
+        feedback.say(&format!(
+            "the board has a learned temperature model (around {:.1} degC): the captures are corrected by it and it \
+             stays with the new calibration",
+            model.ref_temp_c
+        ));
+    }
+    Ok(learned)
 }

@@ -1,4 +1,5 @@
-//! Feedback for a person at a terminal: progress bars, a live line, and questions.
+//! A person at a terminal: the run's feedback drawn as progress bars and a live line, questions
+//! read from stdin, Ctrl-C turned into a flag the run heeds, and spinners for work of unknown length.
 
 use std::io::{BufRead, IsTerminal, Write};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -43,7 +44,7 @@ impl Terminal {
 
 /// A flag that Ctrl-C sets (instead of ending the process), so that the capture is cancelled on
 /// the board and the session stays as written; one for the process, its handler set once.
-pub(super) fn interrupt_on_ctrl_c() -> Arc<AtomicBool> {
+pub fn interrupt_on_ctrl_c() -> Arc<AtomicBool> {
     CTRL_C
         .get_or_init(|| {
             let flag = Arc::new(AtomicBool::new(false));
@@ -133,7 +134,7 @@ impl Drop for Terminal {
 }
 
 /// Feedback for a command: none with `--json`, else the terminal.
-pub(super) fn feedback(json: bool, yes: bool) -> Box<dyn Feedback> {
+pub fn feedback(json: bool, yes: bool) -> Box<dyn Feedback> {
     if json {
         Box::new(Silent { yes })
     } else {
@@ -141,9 +142,16 @@ pub(super) fn feedback(json: bool, yes: bool) -> Box<dyn Feedback> {
     }
 }
 
+/// A bar on stderr counting `len` steps, drawn by `template` (indicatif's); clear it with
+/// `finish_and_clear`.
+pub fn counting(template: &str, len: u64) -> ProgressBar {
+    let style = ProgressStyle::with_template(template).unwrap_or_else(|_| ProgressStyle::default_bar());
+    ProgressBar::new(len).with_style(style)
+}
+
 /// A spinner on stderr with the time so far, for work of unknown length that can take seconds (drawn
 /// only where stderr is a terminal); clear it with `finish_and_clear`.
-pub(super) fn working(message: String) -> ProgressBar {
+pub fn working(message: String) -> ProgressBar {
     let spinner = ProgressBar::new_spinner();
     let style = ProgressStyle::with_template("{spinner} {msg} ({elapsed})")
         .unwrap_or_else(|_| ProgressStyle::default_spinner());
@@ -151,4 +159,26 @@ pub(super) fn working(message: String) -> ProgressBar {
     spinner.set_message(message);
     spinner.enable_steady_tick(std::time::Duration::from_millis(100));
     spinner
+}
+
+/// Exit status when whoever read the output went away (`| head`): 128 + SIGPIPE, what a shell
+/// reports for a Unix tool that a closed pipe ended.
+pub const READER_GONE_EXIT: i32 = 141;
+
+/// Ends the process at once, with [`READER_GONE_EXIT`] and no message, when printing to standard
+/// output fails because its reader closed the pipe: `println!` panics then, which is no fault of
+/// the command's. Every file a command writes is written before it prints, and a session file
+/// after each capture, so nothing is lost that was not already going to the closed pipe.
+// NOTE: Rust ignores SIGPIPE so that a write fails instead; restoring the signal's default would
+// also end the process silently when a child it pipes to (the emulated Pico) dies, which must be
+// named instead.
+pub fn end_quietly_when_the_reader_goes_away() {
+    let default = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let message = info.payload_as_str().unwrap_or_default();
+        if message.starts_with("failed printing to stdout") && message.contains("Broken pipe") {
+            std::process::exit(READER_GONE_EXIT);
+        }
+        default(info);
+    }));
 }
