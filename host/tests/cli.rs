@@ -526,3 +526,17 @@ fn a_sketch_s_fit_exports_in_g_with_its_own_gyro_counts_its_turns_g_and_no_inven
     assert!(header.contains("#define ACCELCAL_GYRO_LSB_PER_DPS 131.0f"), "{header}");
     assert!(header.contains("made at: die temperature not measured"), "{header}");
 }
+
+#[test]
+fn a_simulator_s_setting_given_with_a_real_port_is_refused_before_the_port_is_opened() {
+    for setting in
+        [&["--seed", "3"][..], &["--sim-sensor", "settled"], &["--sim-part", "mpu6500"], &["--sim-faulty-axis", "x"]]
+    {
+        let args = [&["info", "--port", "/dev/accelcal-no-such-port"][..], setting].concat();
+        let output = accelcal(&args);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(2), "{setting:?}: {stderr}");
+        assert!(stderr.contains(setting[0]) && stderr.contains("cannot be used with"), "{setting:?}: {stderr}");
+        assert!(!stderr.contains("no-such-port"), "{setting:?}: the port was tried first: {stderr}");
+    }
+}

@@ -342,18 +342,18 @@ pub struct Device {
     #[arg(long)]
     pub sim: bool,
     /// With --sim: seed of the simulated sensor's noise and of the hand's placement.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, conflicts_with = "port")]
     pub seed: u64,
     /// With --sim: the simulated sensor, realistic (warming and drifting; the default for one board),
     /// settled (one temperature) or drawn (realistic, a part drawn by the seed from the datasheet's
     /// spreads; the default for `calibrate --boards N`).
-    #[arg(long, value_enum)]
+    #[arg(long, value_enum, conflicts_with = "port")]
     pub sim_sensor: Option<SimSensor>,
     /// With --sim: the simulated part (its register map, temperature formula and self-test).
-    #[arg(long, value_enum, default_value_t = SimPartChoice::Mpu6050)]
+    #[arg(long, value_enum, default_value_t = SimPartChoice::Mpu6050, conflicts_with = "port")]
     pub sim_part: SimPartChoice,
     /// With --sim: this axis' self-test response is 20 % off its factory trim.
-    #[arg(long, value_enum)]
+    #[arg(long, value_enum, conflicts_with = "port")]
     pub sim_faulty_axis: Option<FaultyAxis>,
 }
 
@@ -383,7 +383,7 @@ pub struct ExportArgs {
 pub struct FixtureArgs {
     /// With --sim: how many simulated boards one fixture holds, calibrated together by one hand, each
     /// its own part (seeds --seed, --seed + 1, ...; --sim-sensor drawn unless given).
-    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u16).range(1..=MAX_BOARDS), requires = "sim")]
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u16).range(1..=MAX_BOARDS), conflicts_with = "port")]
     pub boards: u16,
     /// Several boards on one fixture, calibrated together: their ports (or serial numbers), comma-separated.
     #[arg(long, value_delimiter = ',', num_args = 1.., conflicts_with_all = ["sim", "port"])]
