@@ -5,7 +5,7 @@ use std::io::{BufRead, IsTerminal, Write};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::RecvTimeoutError;
 use std::sync::{Arc, OnceLock};
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 
@@ -20,6 +20,40 @@ pub struct Terminal {
     /// The live line and the capture's bar drawn as one block.
     // NOTE: drawn apart, each redraw of one left a stale copy of the other in the scrollback.
     lines: MultiProgress,
+    /// Where stderr is no terminal (a log, a pipe), the live line is drawn nowhere: it is written
+    /// as a line of its own, at this pace.
+    plain_live: Option<Pacing>,
+}
+
+/// How often a line that a terminal would redraw in place is written where nothing is redrawn: at
+/// once after each instruction, then every [`PLAIN_LIVE_EVERY`], so that a log of a long wait
+/// says what is awaited without a line per window.
+pub struct Pacing {
+    every: Duration,
+    last: Option<Instant>,
+}
+
+/// A wait seen in a log says what it waits for at least this often.
+pub const PLAIN_LIVE_EVERY: Duration = Duration::from_secs(10);
+
+impl Pacing {
+    pub fn new(every: Duration) -> Self {
+        Pacing { every, last: None }
+    }
+
+    /// Whether a line is due at `now`; if so, it counts as written.
+    pub fn due(&mut self, now: Instant) -> bool {
+        let due = self.last.is_none_or(|last| now.saturating_duration_since(last) >= self.every);
+        if due {
+            self.last = Some(now);
+        }
+        due
+    }
+
+    /// The next line is due at once (a new instruction was given).
+    pub fn restart(&mut self) {
+        self.last = None;
+    }
 }
 
 impl Terminal {
@@ -30,7 +64,8 @@ impl Terminal {
         live.set_style(
             ProgressStyle::with_template("{spinner} {msg}").unwrap_or_else(|_| ProgressStyle::default_spinner()),
         );
-        Terminal { assume_yes, bar: None, live, lines }
+        let plain_live = (!std::io::stderr().is_terminal()).then(|| Pacing::new(PLAIN_LIVE_EVERY));
+        Terminal { assume_yes, bar: None, live, lines, plain_live }
     }
 
     fn ask(&mut self, question: &str) -> bool {
@@ -88,9 +123,18 @@ const CTRL_C_POLL: Duration = Duration::from_millis(50);
 impl Feedback for Terminal {
     fn say(&mut self, line: &str) {
         self.lines.suspend(|| eprintln!("{line}"));
+        if let Some(pacing) = &mut self.plain_live {
+            pacing.restart();
+        }
     }
 
     fn live(&mut self, line: &str) {
+        if let Some(pacing) = &mut self.plain_live {
+            if pacing.due(Instant::now()) {
+                eprintln!("waiting: {line}");
+            }
+            return;
+        }
         self.live.set_message(line.to_owned());
         self.live.tick();
     }
@@ -181,4 +225,22 @@ pub fn end_quietly_when_the_reader_goes_away() {
         }
         default(info);
     }));
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_line_drawn_nowhere_is_written_after_each_instruction_then_every_ten_seconds() {
+        let start = Instant::now();
+        let at = |s: f64| start + Duration::from_secs_f64(s);
+        let mut pacing = Pacing::new(PLAIN_LIVE_EVERY);
+        let written: Vec<f64> =
+            [0.0, 0.5, 9.9, 10.0, 12.0, 19.9, 20.1].into_iter().filter(|&s| pacing.due(at(s))).collect();
+        assert_eq!(written, [0.0, 10.0, 20.1]);
+        pacing.restart();
+        assert!(pacing.due(at(21.0)), "the first line after an instruction waits for nothing");
+        assert!(!pacing.due(at(22.0)));
+    }
 }

@@ -3,6 +3,8 @@
 //! would; it declines, presses Ctrl-C, pulls the cable and resumes.
 
 use std::process::{Command, Output};
+
+use libtest_mimic::{Arguments, Failed, Trial};
 use std::time::Duration;
 
 mod common;
@@ -45,7 +47,6 @@ fn temp_stem(name: &str) -> std::path::PathBuf {
     std::env::temp_dir().join(format!("accelcal-person-{}-{name}", std::process::id()))
 }
 
-#[test]
 fn declining_the_upload_leaves_the_active_and_stored_calibration_as_they_were() {
     let mut sim = board_on_the_desk("11");
     let kept = r#"{"model": "six-position", "matrix": [[1.01,0,0],[0,0.99,0],[0,0,1]], "offset": [0.02, -0.01, 0.03]}"#;
@@ -62,7 +63,6 @@ fn declining_the_upload_leaves_the_active_and_stored_calibration_as_they_were() 
     assert_eq!(calibrations(&sim), before, "declining changed the board");
 }
 
-#[test]
 fn ctrl_c_keeps_the_captures_so_far_and_resume_completes_them_to_a_verified_calibration() {
     let mut sim = board_on_the_desk("12");
     let session = temp_stem("interrupted");
@@ -89,7 +89,6 @@ fn ctrl_c_keeps_the_captures_so_far_and_resume_completes_them_to_a_verified_cali
     assert_eq!(session_captures(&session), 10);
 }
 
-#[test]
 fn a_pulled_cable_keeps_the_captures_so_far_and_resume_on_another_board_is_refused_by_serial() {
     let mut sim = board_on_the_desk("13");
     let session = temp_stem("pulled");
@@ -110,7 +109,6 @@ fn a_pulled_cable_keeps_the_captures_so_far_and_resume_on_another_board_is_refus
     assert_eq!(session_captures(&session), 3, "the refused resume changed the session");
 }
 
-#[test]
 fn a_session_in_a_missing_directory_is_refused_before_the_first_capture() {
     let sim = board_on_the_desk("15");
     let output = accelcal(&["calibrate", "--port", &sim.path, "--session", "/nonexistent-dir/s", "--yes"]);
@@ -120,7 +118,6 @@ fn a_session_in_a_missing_directory_is_refused_before_the_first_capture() {
     assert!(!stderr.contains("found; averaging"), "{stderr}");
 }
 
-#[test]
 fn ctrl_c_during_the_verification_says_the_calibration_is_already_uploaded_and_saved() {
     let mut sim = board_on_the_desk("16");
     let session = temp_stem("verifying");
@@ -157,7 +154,6 @@ fn upload_and_save(sim: &SimPty, name: &str) {
     assert!(accelcal(&["upload", "--port", &sim.path, file.to_str().unwrap(), "--save"]).status.success());
 }
 
-#[test]
 fn ctrl_c_during_verify_says_what_was_verified_and_leaves_the_board_as_it_was() {
     let mut sim = board_on_the_desk("17");
     upload_and_save(&sim, "verified");
@@ -176,7 +172,6 @@ fn ctrl_c_during_verify_says_what_was_verified_and_leaves_the_board_as_it_was() 
     assert_eq!(calibrations(&sim), before, "verify changed the board");
 }
 
-#[test]
 fn a_verification_capture_the_board_moved_during_waits_for_a_fresh_orientation_again() {
     let mut sim = board_on_the_desk("18");
     upload_and_save(&sim, "moved");
@@ -199,7 +194,6 @@ fn a_verification_capture_the_board_moved_during_waits_for_a_fresh_orientation_a
     assert!(stdout.contains("| |a| - 1 g | rms"), "{stdout}");
 }
 
-#[test]
 fn a_session_resumed_after_ctrl_c_in_its_verification_keeps_the_gyro_g_it_uploaded() {
     let mut sim = board_on_the_desk("17");
     let session = temp_stem("resumed-g");
@@ -220,4 +214,74 @@ fn a_session_resumed_after_ctrl_c_in_its_verification_keeps_the_gyro_g_it_upload
     assert_eq!(g_of(&calibrations(&sim).0), fitted, "the resumed run dropped the board's G");
     let kept: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     assert!(kept["gyro_turns"].as_array().is_some_and(|t| !t.is_empty()), "the session lost its turns");
+}
+
+fn a_wait_written_to_a_log_says_what_it_waits_for_at_once_and_then_every_ten_seconds() {
+    let mut sim = board_on_the_desk("17");
+    let session = temp_stem("log-wait");
+    let mut run = quick_run(&sim.path.clone(), &["--session", session.to_str().unwrap()]);
+    // The board lies at no wanted orientation: nothing but the wait happens for these 25 s.
+    let lines = run.lines_for(Duration::from_secs(25));
+    let waits: Vec<&String> = lines.iter().filter(|l| l.starts_with("waiting: ")).collect();
+    assert!((2..=4).contains(&waits.len()), "{} waiting lines in 25 s: {lines:#?}", waits.len());
+    assert!(waits.iter().all(|l| l.contains("degrees from")), "{waits:#?}");
+    run.interrupt();
+    let (status, _, stderr) = run.finish(&mut sim);
+    assert!(!status.success(), "{stderr}");
+}
+
+/// Every scenario, each on its own thread: they wait on a board that runs in real time (about 3 %
+/// of one core all together), so running them side by side takes the time of the longest alone.
+fn main() -> std::process::ExitCode {
+    let mut arguments = Arguments::from_args();
+    let scenarios: Vec<(&str, fn())> = vec![
+        (
+            "declining_the_upload_leaves_the_active_and_stored_calibration_as_they_were",
+            declining_the_upload_leaves_the_active_and_stored_calibration_as_they_were,
+        ),
+        (
+            "ctrl_c_keeps_the_captures_so_far_and_resume_completes_them_to_a_verified_calibration",
+            ctrl_c_keeps_the_captures_so_far_and_resume_completes_them_to_a_verified_calibration,
+        ),
+        (
+            "a_pulled_cable_keeps_the_captures_so_far_and_resume_on_another_board_is_refused_by_serial",
+            a_pulled_cable_keeps_the_captures_so_far_and_resume_on_another_board_is_refused_by_serial,
+        ),
+        (
+            "a_session_in_a_missing_directory_is_refused_before_the_first_capture",
+            a_session_in_a_missing_directory_is_refused_before_the_first_capture,
+        ),
+        (
+            "ctrl_c_during_the_verification_says_the_calibration_is_already_uploaded_and_saved",
+            ctrl_c_during_the_verification_says_the_calibration_is_already_uploaded_and_saved,
+        ),
+        (
+            "ctrl_c_during_verify_says_what_was_verified_and_leaves_the_board_as_it_was",
+            ctrl_c_during_verify_says_what_was_verified_and_leaves_the_board_as_it_was,
+        ),
+        (
+            "a_verification_capture_the_board_moved_during_waits_for_a_fresh_orientation_again",
+            a_verification_capture_the_board_moved_during_waits_for_a_fresh_orientation_again,
+        ),
+        (
+            "a_session_resumed_after_ctrl_c_in_its_verification_keeps_the_gyro_g_it_uploaded",
+            a_session_resumed_after_ctrl_c_in_its_verification_keeps_the_gyro_g_it_uploaded,
+        ),
+        (
+            "a_wait_written_to_a_log_says_what_it_waits_for_at_once_and_then_every_ten_seconds",
+            a_wait_written_to_a_log_says_what_it_waits_for_at_once_and_then_every_ten_seconds,
+        ),
+    ];
+    arguments.test_threads = arguments.test_threads.or(Some(scenarios.len()));
+    let trials = scenarios.into_iter().map(|(name, run)| Trial::test(name, move || catch(run))).collect();
+    libtest_mimic::run(&arguments, trials).exit_code()
+}
+
+/// A scenario's panic as the failure libtest-mimic reports (its own harness does not catch them).
+fn catch(run: fn()) -> Result<(), Failed> {
+    std::panic::catch_unwind(run).map_err(|panic| {
+        let message =
+            panic.downcast_ref::<String>().cloned().or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()));
+        Failed::from(message.unwrap_or_else(|| "panicked".to_owned()))
+    })
 }

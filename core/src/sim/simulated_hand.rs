@@ -17,7 +17,8 @@ use crate::run::{Feedback, Hand, Orientation, ProcedureError};
 /// How far beyond [`FRESH_DEG`], in degrees, the hand keeps its verification orientations apart,
 /// so that its own placement error never makes one look like a repeat.
 const FRESH_MARGIN_DEG: f64 = 10.0;
-/// Random orientations tried for one clear of those verified before (14 of them fit easily).
+/// Random orientations tried for one clear of those verified before (12 fit easily beside the 14
+/// calibration positions; past that the farthest of them is taken).
 const FRESH_TRIES: usize = 1000;
 /// A verification turn, in degrees: the quarter turn the user is shown.
 pub const VERIFICATION_TURN_DEG: f64 = 90.0;
@@ -100,19 +101,25 @@ impl SimulatedHand {
     }
 
     /// A new random orientation, well clear of those verified before (a person turns the board
-    /// somewhere new; the procedure insists on it).
+    /// somewhere new; the procedure insists on it): clear by [`FRESH_DEG`] and a margin; when none
+    /// of the tries is (many verification positions fill the sphere), the one farthest from them all.
     fn new_orientation(&mut self) -> [f64; 3] {
-        let clear = |up: [f64; 3], verified: &[[f64; 3]]| {
-            verified.iter().all(|v| shared::orientation::angle_between_deg(up, *v) >= FRESH_DEG + FRESH_MARGIN_DEG)
+        let nearest_deg = |up: [f64; 3], verified: &[[f64; 3]]| {
+            verified.iter().map(|v| shared::orientation::angle_between_deg(up, *v)).fold(f64::INFINITY, f64::min)
         };
         let mut up = random_unit(&mut self.rng);
+        let mut farthest = (up, f64::NEG_INFINITY);
         for _ in 0..FRESH_TRIES {
-            if clear(up, &self.verified) {
-                break;
+            let nearest = nearest_deg(up, &self.verified);
+            if nearest >= FRESH_DEG + FRESH_MARGIN_DEG {
+                return up;
+            }
+            if nearest > farthest.1 {
+                farthest = (up, nearest);
             }
             up = random_unit(&mut self.rng);
         }
-        up
+        farthest.0
     }
 }
 
@@ -134,5 +141,42 @@ impl Hand for SimulatedHand {
 
     fn avoid(&mut self, orientations: &[[f64; 3]]) {
         self.verified.extend(orientations.iter().map(|&up| scale(up, 1.0 / norm(up))));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::run::targets;
+
+    /// Takes every command and does nothing with it.
+    struct Anywhere;
+
+    impl Controls for Anywhere {
+        fn send(&mut self, _: SimCommand) -> Result<(), Stopped> {
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn sixteen_verification_orientations_beside_the_calibration_s_are_each_fresh() {
+        for seed in 1..=5 {
+            let mut hand = SimulatedHand::new(Anywhere, 3.0, seed);
+            let calibrated: Vec<[f64; 3]> = targets(false).iter().map(|t| t.up).collect();
+            hand.avoid(&calibrated);
+            let mut used = calibrated;
+            for k in 1..=16 {
+                hand.fresh(k, &mut crate::run::Silent { yes: true }).unwrap();
+                let up = hand.resting.unwrap();
+                let nearest =
+                    used.iter().map(|u| shared::orientation::angle_between_deg(up, *u)).fold(f64::MAX, f64::min);
+                // NOTE: the procedure wants FRESH_DEG; 5 degrees more leave room for the hand's own error.
+                assert!(
+                    nearest >= FRESH_DEG + 5.0,
+                    "seed {seed}, verification {k}: {nearest:.1} degrees from one used"
+                );
+                used.push(up);
+            }
+        }
     }
 }
