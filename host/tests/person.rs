@@ -3,8 +3,6 @@
 //! would; it declines, presses Ctrl-C, pulls the cable and resumes.
 
 use std::process::{Command, Output};
-
-use libtest_mimic::{Arguments, Failed, Trial};
 use std::time::Duration;
 
 mod common;
@@ -230,58 +228,16 @@ fn a_wait_written_to_a_log_says_what_it_waits_for_at_once_and_then_every_ten_sec
     assert!(!status.success(), "{stderr}");
 }
 
-/// Every scenario, each on its own thread: they wait on a board that runs in real time (about 3 %
-/// of one core all together), so running them side by side takes the time of the longest alone.
 fn main() -> std::process::ExitCode {
-    let mut arguments = Arguments::from_args();
-    let scenarios: Vec<(&str, fn())> = vec![
-        (
-            "declining_the_upload_leaves_the_active_and_stored_calibration_as_they_were",
-            declining_the_upload_leaves_the_active_and_stored_calibration_as_they_were,
-        ),
-        (
-            "ctrl_c_keeps_the_captures_so_far_and_resume_completes_them_to_a_verified_calibration",
-            ctrl_c_keeps_the_captures_so_far_and_resume_completes_them_to_a_verified_calibration,
-        ),
-        (
-            "a_pulled_cable_keeps_the_captures_so_far_and_resume_on_another_board_is_refused_by_serial",
-            a_pulled_cable_keeps_the_captures_so_far_and_resume_on_another_board_is_refused_by_serial,
-        ),
-        (
-            "a_session_in_a_missing_directory_is_refused_before_the_first_capture",
-            a_session_in_a_missing_directory_is_refused_before_the_first_capture,
-        ),
-        (
-            "ctrl_c_during_the_verification_says_the_calibration_is_already_uploaded_and_saved",
-            ctrl_c_during_the_verification_says_the_calibration_is_already_uploaded_and_saved,
-        ),
-        (
-            "ctrl_c_during_verify_says_what_was_verified_and_leaves_the_board_as_it_was",
-            ctrl_c_during_verify_says_what_was_verified_and_leaves_the_board_as_it_was,
-        ),
-        (
-            "a_verification_capture_the_board_moved_during_waits_for_a_fresh_orientation_again",
-            a_verification_capture_the_board_moved_during_waits_for_a_fresh_orientation_again,
-        ),
-        (
-            "a_session_resumed_after_ctrl_c_in_its_verification_keeps_the_gyro_g_it_uploaded",
-            a_session_resumed_after_ctrl_c_in_its_verification_keeps_the_gyro_g_it_uploaded,
-        ),
-        (
-            "a_wait_written_to_a_log_says_what_it_waits_for_at_once_and_then_every_ten_seconds",
-            a_wait_written_to_a_log_says_what_it_waits_for_at_once_and_then_every_ten_seconds,
-        ),
-    ];
-    arguments.test_threads = arguments.test_threads.or(Some(scenarios.len()));
-    let trials = scenarios.into_iter().map(|(name, run)| Trial::test(name, move || catch(run))).collect();
-    libtest_mimic::run(&arguments, trials).exit_code()
-}
-
-/// A scenario's panic as the failure libtest-mimic reports (its own harness does not catch them).
-fn catch(run: fn()) -> Result<(), Failed> {
-    std::panic::catch_unwind(run).map_err(|panic| {
-        let message =
-            panic.downcast_ref::<String>().cloned().or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()));
-        Failed::from(message.unwrap_or_else(|| "panicked".to_owned()))
-    })
+    common::side_by_side::run(common::side_by_side::scenarios![
+        declining_the_upload_leaves_the_active_and_stored_calibration_as_they_were,
+        ctrl_c_keeps_the_captures_so_far_and_resume_completes_them_to_a_verified_calibration,
+        a_pulled_cable_keeps_the_captures_so_far_and_resume_on_another_board_is_refused_by_serial,
+        a_session_in_a_missing_directory_is_refused_before_the_first_capture,
+        ctrl_c_during_the_verification_says_the_calibration_is_already_uploaded_and_saved,
+        ctrl_c_during_verify_says_what_was_verified_and_leaves_the_board_as_it_was,
+        a_verification_capture_the_board_moved_during_waits_for_a_fresh_orientation_again,
+        a_session_resumed_after_ctrl_c_in_its_verification_keeps_the_gyro_g_it_uploaded,
+        a_wait_written_to_a_log_says_what_it_waits_for_at_once_and_then_every_ten_seconds,
+    ])
 }

@@ -4,6 +4,7 @@
 #![allow(dead_code)]
 
 pub mod person;
+pub mod side_by_side;
 
 use std::io::{BufRead, Read};
 use std::process::{Child, Command, Output, Stdio};
