@@ -25,12 +25,12 @@ pub struct Terminal {
     plain_live: Option<Pacing>,
 }
 
-/// How often a line that a terminal would redraw in place is written where nothing is redrawn: at
-/// once after each instruction, then every [`PLAIN_LIVE_EVERY`], so that a log of a long wait
-/// says what is awaited without a line per window.
+/// How often a line that a terminal would redraw in place is written where nothing is redrawn:
+/// every [`PLAIN_LIVE_EVERY`] from the first such line after an instruction, so that a log of a
+/// long wait says what is awaited, and a short one adds no line.
 pub struct Pacing {
     every: Duration,
-    last: Option<Instant>,
+    since: Option<Instant>,
 }
 
 /// A wait seen in a log says what it waits for at least this often.
@@ -38,21 +38,22 @@ pub const PLAIN_LIVE_EVERY: Duration = Duration::from_secs(10);
 
 impl Pacing {
     pub fn new(every: Duration) -> Self {
-        Pacing { every, last: None }
+        Pacing { every, since: None }
     }
 
     /// Whether a line is due at `now`; if so, it counts as written.
     pub fn due(&mut self, now: Instant) -> bool {
-        let due = self.last.is_none_or(|last| now.saturating_duration_since(last) >= self.every);
+        let since = *self.since.get_or_insert(now);
+        let due = now.saturating_duration_since(since) >= self.every;
         if due {
-            self.last = Some(now);
+            self.since = Some(now);
         }
         due
     }
 
-    /// The next line is due at once (a new instruction was given).
+    /// A new instruction was given: its wait is counted from its first line.
     pub fn restart(&mut self) {
-        self.last = None;
+        self.since = None;
     }
 }
 
@@ -232,15 +233,15 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_line_drawn_nowhere_is_written_after_each_instruction_then_every_ten_seconds() {
+    fn a_line_drawn_nowhere_is_written_every_ten_seconds_of_a_wait_and_not_for_a_short_one() {
         let start = Instant::now();
         let at = |s: f64| start + Duration::from_secs_f64(s);
         let mut pacing = Pacing::new(PLAIN_LIVE_EVERY);
-        let written: Vec<f64> =
-            [0.0, 0.5, 9.9, 10.0, 12.0, 19.9, 20.1].into_iter().filter(|&s| pacing.due(at(s))).collect();
-        assert_eq!(written, [0.0, 10.0, 20.1]);
+        let lines = [0.0, 0.5, 9.9, 10.0, 12.0, 19.9, 20.1, 25.0];
+        let written: Vec<f64> = lines.into_iter().filter(|&s| pacing.due(at(s))).collect();
+        assert_eq!(written, [10.0, 20.1]);
         pacing.restart();
-        assert!(pacing.due(at(21.0)), "the first line after an instruction waits for nothing");
-        assert!(!pacing.due(at(22.0)));
+        let after_instruction: Vec<f64> = [21.0, 30.9, 31.0].into_iter().filter(|&s| pacing.due(at(s))).collect();
+        assert_eq!(after_instruction, [31.0], "a new instruction's wait is counted from its own first line");
     }
 }
