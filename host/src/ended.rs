@@ -167,6 +167,32 @@ fn kept_on_disk(stem: &Path) -> (std::path::PathBuf, usize) {
     (json, captures)
 }
 
+/// What a person who just calibrated one board is told last: that the board was simulated and
+/// where its session went (nowhere, unless `kept`), and what to run next.
+pub fn what_next(simulated: bool, kept: bool) -> Vec<String> {
+    let mut lines = Vec::new();
+    if simulated && !kept {
+        lines.push(
+            "this was a simulated board (the firmware's own code on a simulated MPU-6050): nothing was kept; add \
+             --session NAME to keep its session, report page and certificate"
+                .to_owned(),
+        );
+    }
+    lines.push(
+        match simulated {
+            true => {
+                "next: with your board plugged in, `accelcal calibrate --port PORT` (`accelcal ports` lists the ports)"
+            }
+            false => {
+                "next: the board applies this calibration to every sample; for your own code, `accelcal export \
+                  SESSION.json --to c` (or another --to) writes it there"
+            }
+        }
+        .to_owned(),
+    );
+    lines
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -540,3 +540,16 @@ fn a_simulator_s_setting_given_with_a_real_port_is_refused_before_the_port_is_op
         assert!(!stderr.contains("no-such-port"), "{setting:?}: the port was tried first: {stderr}");
     }
 }
+
+#[test]
+fn a_first_simulated_run_says_it_was_simulated_that_nothing_was_kept_and_what_to_run_next() {
+    let output = accelcal(&["calibrate", "--sim", "--yes", "--seed", "2"]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{stderr}");
+    assert!(stderr.contains("this was a simulated board") && stderr.contains("nothing was kept"), "{stderr}");
+    assert!(stderr.contains("next: with your board plugged in, `accelcal calibrate --port PORT`"), "{stderr}");
+    let stem = std::env::temp_dir().join(format!("accelcal-cli-{}-first-kept", std::process::id()));
+    let kept = accelcal(&["calibrate", "--sim", "--yes", "--seed", "2", "--session", stem.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&kept.stderr);
+    assert!(kept.status.success() && !stderr.contains("nothing was kept"), "{stderr}");
+}

@@ -59,7 +59,11 @@ impl Verification {
         let head = format!("target {target_mg} mg: {rms:.3} mg verified (noise floor {floor:.3} mg, {judged})");
         let line = match (reached, missed) {
             (true, _) => format!("{head}: reached"),
-            (false, false) => format!("{head}: above the target by less than its noise explains"),
+            (false, false) => format!(
+                "{head}: accepted: its error without the check's noise, {:.3} mg, is within one noise floor of the \
+                 target, closer than this check can tell apart",
+                self.after_rms_without_noise_mg
+            ),
             (false, true) => format!("{head}: missed; {}", why_missed(trusted, floor > target_mg)),
         };
         TargetVerdict { target_mg: Some(target_mg), reached, trusted, missed, line }
@@ -112,6 +116,8 @@ mod tests {
         // 0.26 mg with a 0.1 mg floor is 0.24 mg without it: above 0.2 mg by less than the floor.
         let near = verified(0.26, 0.1).against(Some(0.2));
         assert!(!near.reached && !near.missed, "{near:?}");
+        let said = "accepted: its error without the check's noise, 0.240 mg, is within one noise floor of the target";
+        assert!(near.line.contains(said), "{}", near.line);
         // The person's session over sim --pty: 0.673 mg, floor 0.190 mg (0.646 mg without it).
         let person = verified(0.673, 0.190).against(Some(0.2));
         assert!(person.missed && !person.trusted, "{person:?}");

@@ -102,8 +102,13 @@ fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
     // board still needs the instructions, which go to stderr, leaving stdout to the JSON.
     let simulated = opened.sim.is_some();
     let mut feedback = crate::terminal::feedback(args.json && simulated, args.yes || (args.json && simulated));
-    match calibrate::calibrate_board(args, opened, crate::terminal::interrupt_on_ctrl_c(), feedback.as_mut())? {
-        Some(report) => calibrate::show(&report, args.json),
-        None => Ok(()),
-    }
+    let Some(report) =
+        calibrate::calibrate_board(args, opened, crate::terminal::interrupt_on_ctrl_c(), feedback.as_mut())?
+    else {
+        return Ok(());
+    };
+    calibrate::show(&report, args.json)?;
+    let kept = args.session.is_some() || !simulated;
+    crate::ended::what_next(simulated, kept).iter().for_each(|line| feedback.say(line));
+    Ok(())
 }
