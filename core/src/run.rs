@@ -2,7 +2,9 @@
 //! resumed and interrupted, free of I/O. Its steps are `async` functions over the board's
 //! [`Link`](crate::link::Link), which the host gives its bytes and its time through a
 //! [`Transport`](crate::link::Transport); the person is a [`Feedback`] (what to tell, what to ask) and
-//! a [`Hand`] (who turns the board); what to keep goes to the host's `keep`. The decisions: the
+//! a [`Hand`] (who turns the board); what to keep goes to the host's `keep`. One board's run is
+//! [`board`]; a calibration from a board that prints its own stream is [`stream`], over the host's
+//! [`StreamPort`](stream::StreamPort) rather than a link. The decisions: the
 //! order that measures a drift ([`drift`]), how a run ended and whether it certifies ([`ending`]),
 //! what a resumed run keeps and claims ([`resume`]), when a capture stops ([`stop_rule`]), when the
 //! board is where it should be and still ([`wait`]), the moves between captures ([`moves`]).
@@ -21,6 +23,7 @@ mod hand;
 mod moves;
 pub mod resume;
 pub mod stop_rule;
+pub mod stream;
 mod turns;
 mod verify;
 mod wait;

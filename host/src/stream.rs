@@ -1,11 +1,12 @@
 //! A board's own stream as its sketch prints it: reading its lines, dialects, units and still periods,
 //! the status of a live session and what its session keeps are the core's ([`accelcal_core::stream`],
-//! re-exported here); this module adds the live reader that keeps a log ([`live`]), reading a saved
-//! log's file, and a calibration from a live stream ([`calibrate`]: the port read until the session
-//! is done, its session kept on disk ([`session`]), its log fitted, certified and printed).
+//! re-exported here), and so is the live session's run (`accelcal_core::run::stream`: listened to
+//! until done, its log fitted, what to print); this module adds the port read with the clock and
+//! Ctrl-C into a log ([`live`]), reading a saved log's file, the session kept on disk ([`session`]),
+//! and the wiring of a calibration from a live stream ([`calibrate`], which certifies when the run
+//! says it may).
 
 pub mod calibrate;
-mod listen;
 pub mod live;
 pub mod session;
 

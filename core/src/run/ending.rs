@@ -1,5 +1,5 @@
 //! How a run ended: complete, or cut short and why. Only a complete run is certified; one cut short
-//! (Ctrl-C, a pulled cable, a stream that stopped) is kept to resume.
+//! (Ctrl-C, a pulled cable, a stream that stopped or was refused as read in another unit) is kept to resume.
 
 /// Why a run ended, and whether it is complete (every position rested and enough fresh orientations
 /// held) rather than cut short.
@@ -17,7 +17,7 @@ impl Ended {
         Ended { why: why.into(), complete: true }
     }
 
-    /// Cut short (the port gone, the stream stopped or unreadable): kept to resume, never certified.
+    /// Cut short (the port gone, the stream stopped, unreadable or refused): kept, never certified.
     pub fn short(why: impl Into<String>) -> Self {
         Ended { why: why.into(), complete: false }
     }

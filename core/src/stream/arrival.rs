@@ -18,10 +18,13 @@ pub struct Arrivals {
 }
 
 impl Arrivals {
-    /// Starts from the lines `before` (a resumed session's log), at arrival 0 (unknown: kept out of
-    /// the rate).
-    pub fn resumed(before: &str) -> Self {
-        Arrivals { lines: before.lines().map(|line| (line.to_owned(), 0.0)).collect(), ..Default::default() }
+    /// Starts from the lines `before` (a resumed session's log) and the bytes `heard` while the port
+    /// was listened to, all at arrival 0 (unknown: kept out of the rate).
+    pub fn begun(before: &str, heard: &[u8]) -> Self {
+        let lines = before.lines().map(|line| (line.to_owned(), 0.0)).collect();
+        let mut arrivals = Arrivals { lines, ..Default::default() };
+        arrivals.take(heard, 0.0);
+        arrivals
     }
 
     /// Takes `bytes` that came at `now_s` (seconds since listening began); the number of new lines.
@@ -43,12 +46,6 @@ impl Arrivals {
             }
         }
         self.lines.len() - before
-    }
-
-    /// Forgets when the lines so far came (those heard while listening came at unknown times: 0
-    /// keeps them out of the rate).
-    pub fn forget_times(&mut self) {
-        self.lines.iter_mut().for_each(|line| line.1 = 0.0);
     }
 
     /// What the stream's silence says at `now_s`.

@@ -2,8 +2,9 @@
 //! the board rests and which way is up, how much longer to hold the current position (until its
 //! mean is known to what the target needs, from the scatter measured in it), and which way to
 //! turn next; whether a still period was added since the session was last kept, and whether the
-//! run is done: every face and corner rested and enough fresh orientations held to verify the fit.
-//! The host reads the port and the clock, tells the person and keeps the session.
+//! run is done (every face and corner rested and enough fresh orientations held to verify the fit)
+//! or refused (its values not in the unit they are read in). The run (`run::stream`) tells the
+//! person and keeps the session.
 
 use super::guide::{all_rested, nearest_name, next_turn};
 use super::heard::read_heard;
@@ -34,7 +35,16 @@ pub struct Look {
     /// kept: the session to keep again.
     pub keep: Option<StreamLog>,
     /// Why the run ends now, when it does.
-    pub ends: Option<String>,
+    pub ends: Option<Ends>,
+}
+
+/// Why a live stream session ends now: done, or refused as not the stream it is read as.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Ends {
+    /// Every face and corner rested and enough fresh orientations held: complete, to be certified.
+    Done(String),
+    /// Its values are not in the unit they are read in: nothing it holds may be certified.
+    Refused(String),
 }
 
 impl Progress {
@@ -49,20 +59,20 @@ impl Progress {
         let log = match read_heard(lines, options) {
             Ok(log) => log,
             Err(unit @ (StreamError::OtherAccelUnit { .. } | StreamError::BeyondReach { .. })) => {
-                return Look { ends: Some(unit.to_string()), ..Look::default() }
+                return Look { ends: Some(Ends::Refused(unit.to_string())), ..Look::default() }
             }
             Err(_) => return Look::default(),
         };
         let still = StillPeriods::of(&log);
         // NOTE: only while no period rests: a gyro read in the wrong unit rests nowhere.
         if let Some(doubt) = still.segments.is_empty().then(|| gyro_doubt(&log)).flatten() {
-            return Look { ends: Some(doubt), ..Look::default() };
+            return Look { ends: Some(Ends::Refused(doubt)), ..Look::default() };
         }
         let line = Some(status_line(&log, &still, self.want_g));
         let trained: Vec<[f64; 3]> = still.dataset.rows.iter().map(|r| r.reading).collect();
         let fresh = still.held_out.rows.len();
         let ends = (all_rested(&trained) && fresh >= self.verify)
-            .then(|| format!("every face and corner rested and {fresh} fresh orientations held"));
+            .then(|| Ends::Done(format!("every face and corner rested and {fresh} fresh orientations held")));
         let added = still.segments.len() != self.kept_periods;
         self.kept_periods = still.segments.len();
         Look { line, keep: added.then_some(log), ends }
@@ -143,7 +153,7 @@ mod tests {
         let line = first.line.expect("a status line");
         assert!(line.starts_with("csv 100.0 Hz: ") && line.contains("4 fresh"), "{line}");
         assert!(first.keep.is_some(), "the still periods found were not kept");
-        let done = Some("every face and corner rested and 4 fresh orientations held".to_owned());
+        let done = Some(Ends::Done("every face and corner rested and 4 fresh orientations held".to_owned()));
         assert_eq!(first.ends, done);
         // The same lines again: no still period more, nothing to keep again.
         let again = progress.look(&lines, &options);
@@ -153,10 +163,11 @@ mod tests {
     }
 
     #[test]
-    fn a_stream_read_in_another_unit_ends_the_run_naming_it_and_keeps_nothing() {
+    fn a_stream_read_in_another_unit_is_refused_naming_it_and_keeps_nothing() {
         let options = StreamOptions { accel_unit: Some(AccelUnit::G), ..StreamOptions::default() };
         let look = Progress::new(1e-4, 4).look(&heard(), &options);
         assert!(look.line.is_none() && look.keep.is_none(), "{look:?}");
-        assert!(look.ends.is_some_and(|why| why.contains("give --input-unit counts-2g")));
+        let Some(Ends::Refused(why)) = look.ends else { panic!("not refused: {:?}", look.ends) };
+        assert!(why.contains("give --input-unit counts-2g"), "{why}");
     }
 }

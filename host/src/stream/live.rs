@@ -1,73 +1,64 @@
-//! A port that talks on its own, read line by line with each line's arrival time, every line kept
-//! in a log file as it comes (so Ctrl-C or a pulled cable loses nothing, and `accelcal fit LOG`
-//! reads exactly what the live session read). Nothing is ever written to the port. The lines and
-//! the silence are judged by the core ([`Arrivals`]); this reads the port and the clock.
+//! A port that talks on its own, read as the core's stream run asks ([`StreamPort`]): its bytes
+//! with the time they came, each kept in a log file as it comes (so Ctrl-C or a pulled cable loses
+//! nothing, and `accelcal fit LOG` reads exactly what the live session read), and the Ctrl-C flag.
+//! Nothing is ever written to the port. The lines and the silence are judged by the core
+//! (`accelcal_core::run::stream`); this reads the port and the clock and writes the log.
 
 use std::io::{ErrorKind, Read, Write};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
-pub use accelcal_core::stream::arrival::{arrival_hz, Arrivals, Silence};
-use accelcal_core::stream::ARRIVAL_RATE_TAG;
+use accelcal_core::run::stream::StreamPort;
 
 use crate::link::{Port, TalkingPort};
 
+/// How long one read waits: short enough that Ctrl-C and the status once a second are heeded promptly.
+const READ_WAIT: Duration = Duration::from_millis(200);
+
 /// A live stream and its log.
-pub struct LiveStream {
+pub struct LiveStream<'a> {
     port: Box<dyn Port>,
-    /// The lines so far, each with its arrival.
-    pub arrivals: Arrivals,
     start: Instant,
     log: std::fs::File,
+    interrupt: &'a AtomicBool,
 }
 
-impl LiveStream {
-    /// Starts from the lines `before` (a resumed session's log, already in `log`) and what was
-    /// heard while listening, keeping lines in `log`.
-    pub fn new(talking: TalkingPort, log: std::fs::File, before: &str) -> std::io::Result<Self> {
-        let mut live =
-            LiveStream { port: talking.port, arrivals: Arrivals::resumed(before), start: Instant::now(), log };
-        live.take(&talking.heard)?;
-        live.arrivals.forget_times();
-        Ok(live)
+impl<'a> LiveStream<'a> {
+    /// Reads `talking`'s port, keeping in `log` what was heard while it was listened to and every
+    /// byte from now on; stopped when `interrupt` is set (Ctrl-C).
+    pub fn new(talking: TalkingPort, mut log: std::fs::File, interrupt: &'a AtomicBool) -> std::io::Result<Self> {
+        log.write_all(&talking.heard)?;
+        Ok(LiveStream { port: talking.port, start: Instant::now(), log, interrupt })
     }
 
-    /// Every complete line so far, with its arrival in seconds since listening began.
-    pub fn lines(&self) -> &[(String, f64)] {
-        &self.arrivals.lines
+    /// Closes the log with `closing` (the line not yet ended, ended, and the rate the lines arrived at).
+    pub fn finish(mut self, closing: &str) -> std::io::Result<()> {
+        self.log.write_all(closing.as_bytes())?;
+        self.log.flush()
+    }
+}
+
+// NOTE: every future here is ready when first polled: the port blocks, as the command line wants.
+impl StreamPort for LiveStream<'_> {
+    type Error = std::io::Error;
+
+    async fn read(&mut self, buffer: &mut [u8]) -> std::io::Result<usize> {
+        self.port.set_read_timeout(READ_WAIT)?;
+        let count = match self.port.read(buffer) {
+            Ok(count) => count,
+            // NOTE: Ctrl-C interrupts the read: the run sees it in its flag, not as a port gone.
+            Err(e) if matches!(e.kind(), ErrorKind::TimedOut | ErrorKind::WouldBlock | ErrorKind::Interrupted) => 0,
+            Err(e) => return Err(e),
+        };
+        self.log.write_all(&buffer[..count])?;
+        Ok(count)
     }
 
-    /// Reads what the port has sent within `wait`; the number of new lines.
-    pub fn poll(&mut self, wait: Duration) -> std::io::Result<usize> {
-        self.port.set_read_timeout(wait)?;
-        let mut buffer = [0u8; 1024];
-        match self.port.read(&mut buffer) {
-            Ok(n) => self.take(&buffer[..n]),
-            // NOTE: Ctrl-C interrupts the read: the caller sees it in its flag, not as a port gone.
-            Err(e) if matches!(e.kind(), ErrorKind::TimedOut | ErrorKind::WouldBlock | ErrorKind::Interrupted) => Ok(0),
-            Err(e) => Err(e),
-        }
+    fn now_s(&self) -> f64 {
+        self.start.elapsed().as_secs_f64()
     }
 
-    fn take(&mut self, bytes: &[u8]) -> std::io::Result<usize> {
-        self.log.write_all(bytes)?;
-        Ok(self.arrivals.take(bytes, self.start.elapsed().as_secs_f64()))
-    }
-
-    /// What the stream's silence says now.
-    pub fn silence(&self) -> Silence {
-        self.arrivals.silence(self.start.elapsed().as_secs_f64())
-    }
-
-    /// Closes the log with the rate of the lines `data` (indices) by their arrival, when known.
-    pub fn finish(mut self, data: &[usize]) -> std::io::Result<Option<f64>> {
-        let rate = self.arrivals.rate_hz(data);
-        if self.arrivals.has_pending() {
-            self.log.write_all(b"\n")?;
-        }
-        if let Some(hz) = rate {
-            writeln!(self.log, "{ARRIVAL_RATE_TAG} {hz:.4} Hz")?;
-        }
-        self.log.flush()?;
-        Ok(rate)
+    fn interrupted(&self) -> bool {
+        self.interrupt.load(Ordering::SeqCst)
     }
 }

@@ -1,16 +1,17 @@
 //! A stream session kept on disk: at the stem the command line chose, held by this run, its log
-//! beside it as `SESSION.log` unless given; what it holds is the core's ([`super::kept`]: the
-//! still periods as captures in g, the verification once made); going on with one (`--resume`):
+//! beside it as `SESSION.log` unless given; what it holds is the core's (`run::stream::Keeping`,
+//! [`super::kept`]: the still periods as captures in g, the verification once made), saved as the
+//! core's run hands it over; going on with one (`--resume`):
 //! its log is read again and appended to, so the session's every line stays in one log.
 
 use std::path::{Path, PathBuf};
 
-use super::kept;
+use accelcal_core::run::stream::Keeping;
+
 use crate::error::Error;
 use crate::files::lock::Held;
+use crate::session::StreamSource;
 use crate::session::{stem_file, stem_of, unix_time_s, Session, SessionError, SessionFiles, SessionKind};
-use crate::session::{StreamSource, Verification};
-use crate::stream::{StillPeriods, StreamLog};
 
 /// A stream session being kept.
 pub struct Kept {
@@ -71,11 +72,13 @@ impl Kept {
         stem_file(&self.stem, "json")
     }
 
-    /// Saves the session of `log` so far: its training still periods as captures, and the
-    /// verification once made; the session saved.
-    pub fn save(&self, log: &StreamLog, verification: Option<Verification>) -> Result<Session, SessionError> {
-        let session = kept::session(log, &StillPeriods::of(log), &self.source, self.began_unix_s, verification);
-        session.save(&self.stem)?;
-        Ok(session)
+    /// What the core's stream run keeps of it: its file, its stream and when it began.
+    pub fn keeping(&self) -> Keeping {
+        Keeping { json: self.json(), source: self.source.clone(), began_unix_s: self.began_unix_s }
+    }
+
+    /// Saves `session` (the core's run made it) as this session's files.
+    pub fn save(&self, session: &Session) -> Result<(), SessionError> {
+        session.save(&self.stem)
     }
 }
