@@ -4,8 +4,9 @@
 //! [`Transport`](crate::link::Transport); the person is a [`Feedback`] (what to tell, what to ask) and
 //! a [`Hand`] (who turns the board); what to keep goes to the host's `keep`. The decisions: the
 //! order that measures a drift ([`drift`]), how a run ended and whether it certifies ([`ending`]),
-//! what a resumed run keeps and claims ([`resume`]), when a capture stops ([`stop_rule`]), when the
-//! board is where it should be and still ([`wait`]), the moves between captures ([`moves`]).
+//! what a resumed run keeps and claims ([`resume`]), where several boards on one fixture meet
+//! ([`fixture`]), when a capture stops ([`stop_rule`]), when the board is where it should be and
+//! still ([`wait`]), the moves between captures ([`moves`]).
 
 mod adaptive;
 pub mod board;
@@ -15,6 +16,7 @@ pub mod drift;
 pub mod ending;
 mod error;
 mod feedback;
+pub mod fixture;
 mod gyro;
 mod gyro_check;
 mod hand;
@@ -33,6 +35,7 @@ pub use choice::{outcome, Fitted};
 pub use collect::{collect, collect_adaptive, collect_into, gather, CollectOptions, Collected, Plan};
 pub use error::ProcedureError;
 pub use feedback::{Feedback, Silent, Told};
+pub use fixture::{FixtureHand, MeetingPlace};
 pub use gyro_check::check_turn;
 pub use hand::{Hand, PersonHand};
 pub use moves::{Moves, RecordedMove, Turning};
