@@ -6,8 +6,9 @@
 //! [`board`]; a calibration from a board that prints its own stream is [`stream`], over the host's
 //! [`StreamPort`](stream::StreamPort) rather than a link. The decisions: the
 //! order that measures a drift ([`drift`]), how a run ended and whether it certifies ([`ending`]),
-//! what a resumed run keeps and claims ([`resume`]), when a capture stops ([`stop_rule`]), when the
-//! board is where it should be and still ([`wait`]), the moves between captures ([`moves`]).
+//! what a resumed run keeps and claims ([`resume`]), where several boards on one fixture meet
+//! ([`fixture`]), when a capture stops ([`stop_rule`]), when the board is where it should be and
+//! still ([`wait`]), the moves between captures ([`moves`]).
 
 mod adaptive;
 pub mod board;
@@ -17,6 +18,7 @@ pub mod drift;
 pub mod ending;
 mod error;
 mod feedback;
+pub mod fixture;
 mod gyro;
 mod gyro_check;
 mod hand;
@@ -36,6 +38,7 @@ pub use choice::{outcome, Fitted};
 pub use collect::{collect, collect_adaptive, collect_into, gather, CollectOptions, Collected, Plan};
 pub use error::ProcedureError;
 pub use feedback::{Feedback, Silent, Told};
+pub use fixture::{FixtureHand, MeetingPlace};
 pub use gyro_check::check_turn;
 pub use hand::{Hand, PersonHand};
 pub use moves::{Moves, RecordedMove, Turning};

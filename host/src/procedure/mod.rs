@@ -1,9 +1,10 @@
 //! The guided run on a port: the core's run (`accelcal_core::run`), each step blocking on the
 //! board's [`Client`]; and what only a host has: several boards on one fixture turned by threads
-//! (where they meet: `fixture.rs`; each board's session on its own thread: [`together`]), the thermal
-//! run. The simulated hand and session are the core's, reached through `sim`.
+//! (where their threads meet, the core's `run::fixture` held under a lock: [`fixture`]; each board's
+//! session on its own thread: [`together`]), the thermal run. The simulated hand and session are the
+//! core's, reached through `sim`.
 
-mod fixture;
+pub mod fixture;
 pub mod thermal;
 pub mod together;
 
@@ -12,7 +13,7 @@ use std::time::Duration;
 use embassy_futures::block_on;
 
 pub use accelcal_core::run::*;
-pub use fixture::{Fixture, FixtureHand, Seat, TimedMember};
+pub use fixture::{Fixture, Seat, TimedMember};
 
 use crate::link::{Client, Port};
 use crate::session::{Session, SessionError};
