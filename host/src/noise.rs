@@ -1,9 +1,8 @@
 //! Noise characterisation of a still recording: the analysis is the core's
-//! ([`accelcal_core::noise`], re-exported here); this module reads the recording's file (or a
-//! sketch's stream log, [`stream_log`]) and runs the six axes one thread each.
+//! ([`accelcal_core::noise`], re-exported here); this module reads the recording's file (a
+//! sketch's stream log is read by `stream::noise_input`) and runs the six axes one thread each.
 
 pub mod input;
-pub mod stream_log;
 
 pub use accelcal_core::noise::*;
 

@@ -3,11 +3,12 @@
 //! re-exported here), and so is the live session's run (`accelcal_core::run::stream`: listened to
 //! until done, its log fitted, what to print); this module adds the port read with the clock and
 //! Ctrl-C into a log ([`live`]), reading a saved log's file, the session kept on disk ([`session`]),
-//! and the wiring of a calibration from a live stream ([`calibrate`], which certifies when the run
-//! says it may).
+//! the wiring of a calibration from a live stream ([`calibrate`], which certifies when the run
+//! says it may), and a saved log read as a still recording for `accelcal noise` ([`noise_input`]).
 
 pub mod calibrate;
 pub mod live;
+pub mod noise_input;
 pub mod session;
 
 pub use accelcal_core::stream::*;

@@ -11,7 +11,7 @@ pub(super) fn noise(args: &NoiseArgs) -> Result<(), Error> {
     let reading = crate::terminal::working(format!("reading {}", args.file.display()));
     let series = match input::read_path(&args.file, args.rate) {
         Err(NoiseInputError::MissingColumn { .. } | NoiseInputError::BadLine { .. }) => {
-            noise::stream_log::series(&args.file, args.rate)
+            crate::stream::noise_input::series(&args.file, args.rate)
         }
         read => read.map_err(Error::from),
     };
