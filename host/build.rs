@@ -6,6 +6,7 @@ fn main() {
     tool_cfg("has_chromium", "chromium", &["--version"]);
     tool_cfg("has_numpy", "python3", &["-c", "import numpy"]);
     tool_cfg("has_gcc", "gcc", &["--version"]);
+    tool_cfg("has_gxx", "g++", &["--version"]);
     tool_cfg("has_octave", "octave", &["--version"]);
     tool_cfg("has_imufusion", "python3", &["-c", "import imufusion, numpy"]);
     tool_cfg("has_pyyaml", "python3", &["-c", "import yaml"]);

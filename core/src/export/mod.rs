@@ -84,11 +84,11 @@ pub(crate) fn example_source() -> Source {
     source
 }
 
-/// The three numbers of `name = {x, y, z};` in a C export (`1.5e0f` as 1.5).
+/// The three numbers of `name = {x, y, z};` (or `{{x, y, z}}`) in a C export (`1.5e0f` as 1.5).
 #[cfg(test)]
 pub(crate) fn c_vector_of(text: &str, name: &str) -> Option<[f64; 3]> {
     let line = text.lines().find(|l| l.contains(&format!(" {name} = ")))?;
-    let inside = line.split(['{', '}']).nth(1)?;
+    let inside = line.split(['{', '}']).find(|part| part.contains(','))?;
     let numbers: Vec<f64> = inside.split(',').filter_map(|v| v.trim().trim_end_matches('f').parse().ok()).collect();
     numbers.try_into().ok()
 }
