@@ -438,3 +438,90 @@ fn c_header_of_a_stream_in_m_s2_fed_the_printed_values_gives_the_calibrated_g_wi
         assert!(worst[1] <= FLOAT_TOLERANCE_DPS, "{binary:?}: {:.3e} deg/s from the calibrated rate", worst[1]);
     }
 }
+
+/// A complete minimal ESPHome node (an ESP32 board, its I2C bus) that includes the export as a package.
+const ESPHOME_NODE: &str = "esphome:\n  name: accelcal-check\nesp32:\n  board: esp32dev\ni2c:\n  sda: 21\n  scl: 22\n\
+                            packages:\n  accelcal: !include accelcal_esphome.yaml\n";
+
+#[test]
+#[cfg_attr(not(has_esphome), ignore = "needs ESPHome (pip install esphome); CI=true runs it")]
+fn esphome_config_accepts_a_node_that_includes_the_export() {
+    let found = Command::new("python3").args(["-m", "esphome", "version"]).output().is_ok_and(|o| o.status.success());
+    if !found {
+        assert!(std::env::var("CI").as_deref() != Ok("true"), "CI=true but ESPHome is missing (pip install esphome)");
+        eprintln!("SKIPPED: ESPHome is not installed (pip install esphome); CI=true makes this a failure");
+        return;
+    }
+    std::fs::create_dir_all(simulated().dir.join("esphome")).unwrap();
+    let fragment = export("esphome", "esphome/accelcal_esphome.yaml", &[]);
+    let node = fragment.parent().unwrap().join("node.yaml");
+    std::fs::write(&node, ESPHOME_NODE).unwrap();
+    let said = run(Command::new("python3").args(["-m", "esphome", "config"]).arg(&node));
+    // NOTE: `esphome config` prints the validated configuration: the filters and lambdas are in it.
+    assert!(said.contains("multiply:") && said.contains("id(accelcal_accel_z).state"), "{said}");
+}
+
+/// ESPHome's mpu6050 as its mpu6050.cpp publishes (m/s^2 = raw * 0.000061 * 9.80665, deg/s = raw *
+/// 0.060975), then the export's filters (multiply, offset, in order) on each axis and the template
+/// sensors' lambdas (C++ arithmetic on floats, evaluated here); per line: templates' accel, gyro, then the
+/// filtered accel.
+const ESPHOME_PY: &str = r#"
+import re, sys, yaml
+sensors = yaml.safe_load(open(sys.argv[1]))["sensor"]
+platform = next(s for s in sensors if s["platform"] == "mpu6050")
+templates = {s["id"]: s["lambda"] for s in sensors if s["platform"] == "template"}
+def filtered(value, filters):
+    for f in filters:
+        (name, number), = f.items()
+        value = value * number if name == "multiply" else value + number if name == "offset" else None
+    return value
+def evaluate(source, states):
+    body = re.fullmatch(r"\s*return (.*);\s*", source).group(1)
+    body = re.sub(r"id\((\w+)\)\.state", r"states['\1']", re.sub(r"(\d)f\b", r"\1", body))
+    return eval(body, {"states": states})
+axes = [k + "_" + a for k in ("accel", "gyro") for a in "xyz"]
+for line in sys.stdin:
+    raw = [float(v) for v in line.split()]
+    published = [r * 0.000061 * 9.80665 for r in raw[:3]] + [r * 0.060975 for r in raw[3:]]
+    states = {platform[k]["id"]: filtered(v, platform[k]["filters"]) for k, v in zip(axes, published)}
+    out = [evaluate(templates["accelcal_" + k + "_calibrated"], states) for k in axes]
+    print(" ".join("%.12e" % v for v in out + [states["accelcal_" + k] for k in axes[:3]]))
+"#;
+
+/// The counts ESPHome reads (+-2 g, +-2000 deg/s: 16384 per g, 16.4 per deg/s) where the calibrated
+/// sensor feels `u` (in g) and turns at 500 deg/s about `u`.
+fn esphome_raw(u: [f64; 3]) -> [f64; 6] {
+    let sim = simulated();
+    let m = correct(&inverse(&sim.matrix), &[0.0; 3], u);
+    let w = correct(&inverse(&sim.gyro_matrix), &[0.0; 3], u.map(|v| 500.0 * v));
+    let a = [0, 1, 2].map(|i| (m[i] + sim.offset[i]) * 16384.0);
+    let w = [0, 1, 2].map(|i| (w[i] + sim.gyro_bias[i]) * 16.4);
+    [a[0], a[1], a[2], w[0], w[1], w[2]]
+}
+
+#[test]
+#[cfg_attr(not(has_pyyaml), ignore = "needs PyYAML (pip install pyyaml); CI=true runs it")]
+fn esphome_templates_give_accelcal_s_correction_and_its_filters_alone_lose_what_the_file_states() {
+    let fragment = export("esphome", "accelcal_esphome.yaml", &[]);
+    let script = fragment.parent().unwrap().join("esphome.py");
+    std::fs::write(&script, ESPHOME_PY).unwrap();
+    let directions = directions(2000);
+    let input: String =
+        directions.iter().map(|u| esphome_raw(*u).map(|v| format!("{v:.6} ")).concat() + "\n").collect();
+    let rows = numbers(&run_with_input(Command::new("python3").arg(&script).arg(&fragment), &input));
+    let (mut worst, mut per_axis) = ([0.0f64; 2], Vec::new());
+    for (row, u) in rows.iter().zip(&directions) {
+        for i in 0..3 {
+            worst[0] = worst[0].max((row[i] / G - u[i]).abs());
+            worst[1] = worst[1].max((row[3 + i] - 500.0 * u[i]).abs());
+        }
+        per_axis.push((0..3).map(|i| (row[6 + i] / G - u[i]).powi(2)).sum::<f64>().sqrt());
+    }
+    assert!(worst[0] <= FLOAT_TOLERANCE_G, "templates: {:.3e} g from accelcal's correction", worst[0]);
+    assert!(worst[1] <= FLOAT_TOLERANCE_DPS, "templates: {:.3e} deg/s from accelcal's correction", worst[1]);
+    let rms_mg = (per_axis.iter().map(|e| e * e).sum::<f64>() / per_axis.len() as f64).sqrt() * 1e3;
+    let text = read(&fragment);
+    let line = text.lines().find(|l| l.contains("per-axis sensors alone (filters")).expect("a per-axis loss line");
+    let stated: f64 = line.split("): ").nth(1).unwrap().split(' ').next().unwrap().parse().unwrap();
+    assert!((stated - rms_mg).abs() <= 0.1 * rms_mg, "per-axis: stated {stated} mg rms, measured {rms_mg:.4}");
+}

@@ -4,6 +4,7 @@
 
 mod adafruit;
 mod code;
+mod esphome;
 mod fixed;
 mod flight;
 mod fusion;
@@ -53,6 +54,8 @@ pub enum Target {
     I2cdevlib,
     /// Kalibr imu.yaml with the noise terms of --noise NOISE.json (the calibration is stated, not carried).
     Kalibr,
+    /// ESPHome sensor: fragment for the mpu6050 platform: per-axis filters (offsets, scale) and template sensors carrying everything.
+    Esphome,
 }
 
 /// The export of `source` to `target`.
@@ -71,6 +74,7 @@ pub fn export(source: &Source, target: Target) -> Result<Export, ExportError> {
         Target::Matlab => Ok(matlab::matlab(source)),
         Target::I2cdevlib => Ok(i2cdevlib::i2cdevlib(source)),
         Target::Kalibr => kalibr::kalibr(source),
+        Target::Esphome => Ok(esphome::esphome(source)),
     }
 }
 
