@@ -6,9 +6,11 @@ fn main() {
     tool_cfg("has_chromium", "chromium", &["--version"]);
     tool_cfg("has_numpy", "python3", &["-c", "import numpy"]);
     tool_cfg("has_gcc", "gcc", &["--version"]);
+    tool_cfg("has_gxx", "g++", &["--version"]);
     tool_cfg("has_octave", "octave", &["--version"]);
     tool_cfg("has_imufusion", "python3", &["-c", "import imufusion, numpy"]);
     tool_cfg("has_pyyaml", "python3", &["-c", "import yaml"]);
+    tool_cfg("has_esphome", "python3", &["-m", "esphome", "version"]);
     // NOTE: the emulated Pico's tests also need dist/accelcal-pico.uf2, which they ask for by name.
     let emulator = "require.resolve('rp2040js', { paths: ['../boards/pico/emulator'] })";
     tool_cfg("has_pico_emulator", "node", &["-e", emulator]);

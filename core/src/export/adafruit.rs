@@ -41,6 +41,7 @@ fn statement(source: &Source, title: &str, loss: &Loss) -> Vec<String> {
         convention: CONVENTION,
         carries: "accelerometer and gyro offsets only",
         temperature: "the library has no temperature model: not carried",
+        lossy: true,
     };
     lines(source, &said, loss)
 }

@@ -12,8 +12,35 @@ use super::{float, text, Export, Source, C_BLOCK, SLASHES};
 const CONVENTION: &[&str] = &[
     "a = M (m - o): subtract the offset o from the reading m (in g), then multiply by M (3x3)",
     "column vectors: M[i][j] is row i (the output axis i), column j (the input axis j)",
-    "m = raw counts / ACCEL_LSB_PER_G; a in g (times the g below for m/s^2)",
-    "gyro: w = G (w_raw - b), w_raw = raw counts / GYRO_LSB_PER_DPS, in deg/s",
+    "m = raw counts / ACCEL_LSB_PER_G (from a stream in its own units: m = value / ACCEL_PER_G); a in g (times the g below for m/s^2)",
+    "gyro: w = G (w_raw - b), w_raw = raw counts / GYRO_LSB_PER_DPS (value / GYRO_PER_DPS), in deg/s",
+];
+
+/// How the functions read their input: what a stream printed in decimal takes floats and the
+/// stream's own units per g and per deg/s; the names and types a counts header has are its default.
+fn as_printed(source: &Source, code: &str, names: &[(&str, &str)]) -> String {
+    if source.takes_counts() {
+        return code.to_owned();
+    }
+    names.iter().fold(code.to_owned(), |code, (counts, printed)| code.replace(counts, printed))
+}
+
+/// What a C header's counts become for a stream's printed values.
+const C_PRINTED: &[(&str, &str)] = &[
+    ("LSB_PER_", "PER_"),
+    ("const int16_t raw[3]", "const float raw[3]"),
+    ("from raw accelerometer counts", "from the accelerometer's values as the sketch printed them"),
+    ("from raw gyro counts", "from the gyro's values as the sketch printed them"),
+];
+
+/// What a Rust module's counts become for a stream's printed values.
+const RUST_PRINTED: &[(&str, &str)] = &[
+    ("LSB_PER_", "PER_"),
+    ("raw: [i16; 3]", "raw: [f32; 3]"),
+    ("Raw accelerometer counts per g.", "The stream's accelerometer values per g."),
+    ("Raw gyro counts per deg/s.", "The stream's gyro values per deg/s."),
+    ("from raw accelerometer counts", "from the accelerometer's values as the sketch printed them"),
+    ("from raw gyro counts", "from the gyro's values as the sketch printed them"),
 ];
 
 const TEMPERATURE: &str = "not applied (M, o, G, b are the ones at the temperature above)";
@@ -23,6 +50,7 @@ const C_SAID: Said = Said {
     convention: CONVENTION,
     carries: "M, o, G, b in full (float32)",
     temperature: TEMPERATURE,
+    lossy: false,
 };
 
 /// The C header (float).
@@ -36,14 +64,14 @@ pub fn c(source: &Source) -> Export {
          static const float accelcal_accel_matrix[3][3] = {};\nstatic const float accelcal_accel_offset_g[3] = {};\n\
          static const float accelcal_gyro_matrix[3][3] = {};\nstatic const float accelcal_gyro_bias_dps[3] = {};\n\n{C_FUNCTIONS}\
          \n#endif /* ACCELCAL_CALIBRATION_H */\n",
-        source.lsb_per_g(),
-        source.gyro_lsb_per_dps() as f32,
+        source.accel_per_g(),
+        source.gyro_per_dps() as f32,
         c_matrix(&full.matrix),
         c_vector(&full.offset_g),
         c_matrix(&full.gyro_matrix),
         c_vector(&source.gyro_bias_dps()),
     );
-    text(lines(source, &C_SAID, &loss), &C_BLOCK, &body, loss)
+    text(lines(source, &C_SAID, &loss), &C_BLOCK, &as_printed(source, &body, C_PRINTED), loss)
 }
 
 /// The C apply functions (ours; the formula stated above).
@@ -80,6 +108,7 @@ const RUST_SAID: Said = Said {
     convention: CONVENTION,
     carries: "M, o, G, b in full (f32)",
     temperature: TEMPERATURE,
+    lossy: false,
 };
 
 /// The Rust module (no_std: core only).
@@ -94,14 +123,14 @@ pub fn rust(source: &Source) -> Export {
          /// o, in g.\npub const ACCEL_OFFSET_G: [f32; 3] = {};\n\
          /// G, row i = output axis i.\npub const GYRO_MATRIX: [[f32; 3]; 3] = {};\n\
          /// b, in deg/s.\npub const GYRO_BIAS_DPS: [f32; 3] = {};\n{RUST_FUNCTIONS}",
-        source.lsb_per_g(),
-        source.gyro_lsb_per_dps() as f32,
+        source.accel_per_g(),
+        source.gyro_per_dps() as f32,
         rust_matrix(&full.matrix),
         rust_vector(&full.offset_g),
         rust_matrix(&full.gyro_matrix),
         rust_vector(&source.gyro_bias_dps()),
     );
-    text(lines(source, &RUST_SAID, &loss), &SLASHES, &body, loss)
+    text(lines(source, &RUST_SAID, &loss), &SLASHES, &as_printed(source, &body, RUST_PRINTED), loss)
 }
 
 const RUST_FUNCTIONS: &str = "

@@ -29,11 +29,14 @@ struct Quantised {
 
 /// The C header (int16 Q14).
 pub fn c_fixed(source: &Source) -> Result<Export, ExportError> {
+    if let Some(printed) = source.readings.printed.as_ref().filter(|_| !source.takes_counts()) {
+        return Err(ExportError::FixedNeedsCounts { units: printed.units() });
+    }
     let full = source.full();
-    let accel = quantise(&full.matrix, &full.offset_g.map(|v| v * source.lsb_per_g()))?;
-    let gyro_lsb = source.gyro_lsb_per_dps();
+    let accel = quantise(&full.matrix, &full.offset_g.map(|v| v * source.accel_per_g()))?;
+    let gyro_lsb = source.gyro_per_dps();
     let gyro = quantise(&full.gyro_matrix, &source.gyro_bias_dps().map(|v| v * gyro_lsb))?;
-    let loss = loss(&full, &carried(&accel, &gyro, source.lsb_per_g(), gyro_lsb));
+    let loss = loss(&full, &carried(&accel, &gyro, source.accel_per_g(), gyro_lsb));
     let step = format!(
         "M, o, G, b rounded to Q14 and whole counts; over every int16 reading the result differs from the \
          float correction by at most {} counts per axis (accelerometer) and {} (gyro)",
@@ -41,7 +44,7 @@ pub fn c_fixed(source: &Source) -> Result<Export, ExportError> {
         list(&gyro.step_lsb)
     );
     let title = "C (int16 fixed point, Q14)";
-    let said = Said { title, convention: CONVENTION, carries: &step, temperature: "not applied" };
+    let said = Said { title, convention: CONVENTION, carries: &step, temperature: "not applied", lossy: false };
     Ok(text(lines(source, &said, &loss), &C_BLOCK, &body(source, &accel, &gyro), loss))
 }
 
@@ -65,8 +68,8 @@ fn body(source: &Source, accel: &Quantised, gyro: &Quantised) -> String {
          static const int16_t accelcal_accel_matrix_q14[3][3] = {};\nstatic const int16_t accelcal_accel_offset_lsb[3] = {};\n\
          static const int16_t accelcal_gyro_matrix_q14[3][3] = {};\nstatic const int16_t accelcal_gyro_bias_lsb[3] = {};\n\n{FUNCTIONS}\
          \n#endif /* ACCELCAL_CALIBRATION_Q14_H */\n",
-        source.lsb_per_g(),
-        source.gyro_lsb_per_dps() as f32,
+        source.accel_per_g(),
+        source.gyro_per_dps() as f32,
         float_list(&accel.step_lsb),
         float_list(&gyro.step_lsb),
         int_matrix(&accel.matrix),

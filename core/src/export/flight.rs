@@ -58,6 +58,7 @@ fn said<'a>(title: &'a str, convention: &'a [&'a str], source: &Source, carried_
         convention,
         carries: "accelerometer offsets and a scale per axis (no cross-axis terms); gyro offsets (no gyro scale)",
         temperature: if source.calibration.temperature.is_some() { carried_model } else { "none to carry" },
+        lossy: true,
     }
 }
 

@@ -20,14 +20,19 @@ const FUSION_SAID: Said = Said {
     convention: CONVENTION,
     carries: "M, o, G, b in full (float32)",
     temperature: "not applied",
+    lossy: false,
 };
 
 /// The Fusion values, as a C/C++ snippet that includes Fusion.h.
 pub fn fusion(source: &Source) -> Export {
     let full = source.full();
     let loss = loss(&full, &full);
-    let lsb = source.lsb_per_g();
-    let flat = |m: &[[f64; 3]; 3]| c_matrix(m).replace("}, {", ", ").replace("{{", "{").replace("}}", "}");
+    let lsb = source.accel_per_g();
+    // NOTE: FusionMatrix and FusionVector are unions whose first member is the float array (Fusion's
+    // FusionMath.h): the array's own braces inside the union's keep gcc's -Wmissing-braces quiet in C.
+    let flat =
+        |m: &[[f64; 3]; 3]| format!("{{{}}}", c_matrix(m).replace("}, {", ", ").replace("{{", "{").replace("}}", "}"));
+    let union = |v: &[f64; 3]| format!("{{{}}}", c_vector(v));
     let body = format!(
         "\n#include \"Fusion.h\"\n\n\
          static const FusionMatrix accelerometerMisalignment = {};\n\
@@ -37,13 +42,11 @@ pub fn fusion(source: &Source) -> Export {
          static const FusionVector gyroscopeSensitivity = {};\n\
          static const FusionVector gyroscopeOffset = {};\n",
         flat(&full.matrix),
-        c_vector(&[1.0 / lsb; 3]),
-        c_vector(&full.offset_g.map(|v| mutant!("fusion-offset-in-g", v * lsb, v))),
+        union(&[1.0 / lsb; 3]),
+        union(&full.offset_g.map(|v| mutant!("fusion-offset-in-g", v * lsb, v))),
         flat(&full.gyro_matrix),
-        c_vector(&[1.0 / source.gyro_lsb_per_dps(); 3]),
-        c_vector(
-            &source.gyro_bias_dps().map(|v| mutant!("fusion-gyro-offset-sign", v, -v) * source.gyro_lsb_per_dps())
-        ),
+        union(&[1.0 / source.gyro_per_dps(); 3]),
+        union(&source.gyro_bias_dps().map(|v| mutant!("fusion-gyro-offset-sign", v, -v) * source.gyro_per_dps())),
     );
     text(lines(source, &FUSION_SAID, &loss), &SLASHES, &body, loss)
 }
@@ -59,7 +62,7 @@ mod tests {
     fn fusion_s_offsets_are_the_biases_in_counts() {
         let source = example_source();
         let text = String::from_utf8(fusion(&source).bytes).unwrap();
-        let (lsb_g, lsb_dps) = (source.lsb_per_g(), source.gyro_lsb_per_dps());
+        let (lsb_g, lsb_dps) = (source.accel_per_g(), source.gyro_per_dps());
         let accel = c_vector_of(&text, "accelerometerOffset").unwrap();
         let gyro = c_vector_of(&text, "gyroscopeOffset").unwrap();
         for axis in 0..3 {

@@ -17,6 +17,7 @@ const KALIBR_SAID: Said = Said {
     convention: CONVENTION,
     carries: "the noise terms only; none of the calibration",
     temperature: "not carried",
+    lossy: true,
 };
 
 /// The imu.yaml.

@@ -23,6 +23,7 @@ const MATLAB_SAID: Said = Said {
     convention: CONVENTION,
     carries: "M, o, G, b in full",
     temperature: "not applied",
+    lossy: false,
 };
 
 /// The MATLAB/Octave script.
@@ -33,8 +34,8 @@ pub fn matlab(source: &Source) -> Export {
     let body = format!(
         "\naccel_lsb_per_g = {};\ngyro_lsb_per_dps = {};\nstandard_gravity = {STANDARD_GRAVITY};\n\n\
          A = {};\nb = {};\nc0 = {};\n\nAg = {};\nbg = {};\n",
-        source.lsb_per_g(),
-        source.gyro_lsb_per_dps(),
+        source.accel_per_g(),
+        source.gyro_per_dps(),
         matrix(&linalg::transpose(&full.matrix)),
         row(&full.offset_g),
         row(&c0),

@@ -4,6 +4,7 @@
 
 mod adafruit;
 mod code;
+mod esphome;
 mod fixed;
 mod flight;
 mod fusion;
@@ -53,6 +54,8 @@ pub enum Target {
     I2cdevlib,
     /// Kalibr imu.yaml with the noise terms of --noise NOISE.json (the calibration is stated, not carried).
     Kalibr,
+    /// ESPHome sensor: fragment for the mpu6050 platform: per-axis filters (offsets, scale) and template sensors carrying everything.
+    Esphome,
 }
 
 /// The export of `source` to `target`.
@@ -71,6 +74,7 @@ pub fn export(source: &Source, target: Target) -> Result<Export, ExportError> {
         Target::Matlab => Ok(matlab::matlab(source)),
         Target::I2cdevlib => Ok(i2cdevlib::i2cdevlib(source)),
         Target::Kalibr => kalibr::kalibr(source),
+        Target::Esphome => Ok(esphome::esphome(source)),
     }
 }
 
@@ -84,11 +88,11 @@ pub(crate) fn example_source() -> Source {
     source
 }
 
-/// The three numbers of `name = {x, y, z};` in a C export (`1.5e0f` as 1.5).
+/// The three numbers of `name = {x, y, z};` (or `{{x, y, z}}`) in a C export (`1.5e0f` as 1.5).
 #[cfg(test)]
 pub(crate) fn c_vector_of(text: &str, name: &str) -> Option<[f64; 3]> {
     let line = text.lines().find(|l| l.contains(&format!(" {name} = ")))?;
-    let inside = line.split(['{', '}']).nth(1)?;
+    let inside = line.split(['{', '}']).find(|part| part.contains(','))?;
     let numbers: Vec<f64> = inside.split(',').filter_map(|v| v.trim().trim_end_matches('f').parse().ok()).collect();
     numbers.try_into().ok()
 }

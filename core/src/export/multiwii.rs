@@ -40,6 +40,7 @@ const BETAFLIGHT_SAID: Said = Said {
     convention: BETAFLIGHT_CONVENTION,
     carries: "accelerometer offsets only (no scale, no gyro bias: Betaflight measures it at boot)",
     temperature: "Betaflight has no temperature model: not carried",
+    lossy: true,
 };
 
 /// The Betaflight CLI commands.
@@ -61,6 +62,7 @@ const INAV_SAID: Said = Said {
     convention: INAV_CONVENTION,
     carries: "accelerometer offsets and a scale per axis (no cross-axis terms, no gyro bias: INAV measures it at boot)",
     temperature: "INAV has no temperature model: not carried",
+    lossy: true,
 };
 
 /// The INAV CLI commands.

@@ -36,17 +36,42 @@ pub struct Source {
 pub struct Readings {
     /// The sensor part as the board named it, when recorded.
     pub sensor: Option<String>,
-    /// Raw gyro counts per deg/s of the readings the exported functions take.
-    pub gyro_lsb_per_dps: f64,
+    /// Gyro values per deg/s of the readings the exported functions take (raw counts, or a
+    /// stream's own unit).
+    pub gyro_per_dps: f64,
     /// The die temperature the calibration was made at, degC; none where none was measured (a
     /// board's own stream carries none).
     pub made_at_c: Option<f32>,
-    /// A board's own stream's units (`accelerometer counts-2g, gyro counts-250dps`), when the
-    /// calibration came from one.
-    pub stream_units: Option<String>,
+    /// What a board's own stream printed, when the calibration came from one: the exported code
+    /// takes its values as the sketch printed them.
+    pub printed: Option<Printed>,
     /// The die temperatures the temperature model was learned over, degC, when what it was read
     /// from records them (a session's own drift: its captures' span).
     pub drift_span_c: Option<(f64, f64)>,
+}
+
+/// The units and dialect of a board's own stream.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Printed {
+    /// The accelerometer's unit.
+    pub accel: AccelUnit,
+    /// The gyro's unit, when recorded.
+    pub gyro: Option<GyroUnit>,
+    /// The dialect, as `fit LOG --json` names it (`i2cdevlib`, `csv`, ...), when recorded.
+    pub dialect: Option<String>,
+}
+
+impl Printed {
+    /// `accelerometer counts-2g, gyro counts-250dps`.
+    pub fn units(&self) -> String {
+        let gyro = self.gyro.map_or("not recorded", GyroUnit::name);
+        format!("accelerometer {}, gyro {gyro}", self.accel.name())
+    }
+
+    /// Whether every value it prints is a whole count (an int16 holds it).
+    pub fn counts(&self) -> bool {
+        self.accel.is_counts() && self.gyro.is_none_or(GyroUnit::is_counts)
+    }
 }
 
 impl Readings {
@@ -54,24 +79,23 @@ impl Readings {
     pub fn board(sensor: Option<String>, made_at_c: f32) -> Self {
         Readings {
             sensor,
-            gyro_lsb_per_dps: GYRO_RANGE.lsb_per_dps(),
+            gyro_per_dps: GYRO_RANGE.lsb_per_dps(),
             made_at_c: Some(made_at_c),
-            stream_units: None,
+            printed: None,
             drift_span_c: None,
         }
     }
 
     /// A board's own stream's, its units by the names `fit --json` and a session give them: the
-    /// gyro's counts when it printed counts (else the exported functions take counts at +-1000 deg/s,
+    /// functions take the gyro in the unit it printed (at +-1000 deg/s counts where none is recorded,
     /// as the statement says).
-    pub fn stream(accel_unit: &str, gyro_unit: Option<&str>) -> Self {
+    pub fn stream(accel: AccelUnit, gyro_unit: Option<&str>, dialect: Option<&str>) -> Self {
         let gyro = gyro_unit.and_then(|name| name.parse::<GyroUnit>().ok());
-        let units = format!("accelerometer {accel_unit}, gyro {}", gyro_unit.unwrap_or("not recorded"));
         Readings {
             sensor: None,
-            gyro_lsb_per_dps: gyro.and_then(GyroUnit::counts_per_dps).unwrap_or(GYRO_RANGE.lsb_per_dps()),
+            gyro_per_dps: gyro.map_or(GYRO_RANGE.lsb_per_dps(), GyroUnit::per_dps),
             made_at_c: None,
-            stream_units: Some(units),
+            printed: Some(Printed { accel, gyro, dialect: dialect.map(str::to_owned) }),
             drift_span_c: None,
         }
     }
@@ -117,9 +141,7 @@ impl Source {
     /// What `fit LOG --json` wrote for a board's own stream: M and o in the stream's unit, turned
     /// into g; the gyro's G from the turns when they gave one.
     fn from_stream_fit(value: &serde_json::Value, unit_name: &str, from: &str) -> Result<Self, ExportError> {
-        let unit = unit_name
-            .parse::<AccelUnit>()
-            .map_err(|_| ExportError::NotJson { reason: format!("unknown input_unit {unit_name:?}") })?;
+        let unit = unit_name.parse::<AccelUnit>().map_err(|_| unknown_unit(unit_name))?;
         let mut record: CalibrationJson =
             serde_json::from_value(value.clone()).map_err(|e| ExportError::NotJson { reason: e.to_string() })?;
         let per_g = unit.per_g();
@@ -128,8 +150,8 @@ impl Source {
         record.offset = record.offset.map(|v| v / per_g);
         record.gyro_matrix = value.pointer("/gyro_fit/matrix").and_then(|m| serde_json::from_value(m.clone()).ok());
         let calibration = record.to_device(unit.range())?;
-        let gyro_unit = value.get("gyro_unit").and_then(serde_json::Value::as_str);
-        let readings = Readings::stream(unit_name, gyro_unit);
+        let (gyro_unit, dialect) = (value.get("gyro_unit"), value.get("dialect"));
+        let readings = Readings::stream(unit, gyro_unit.and_then(|v| v.as_str()), dialect.and_then(|v| v.as_str()));
         Ok(Source { calibration, serial: None, from: from.to_owned(), noise: None, readings })
     }
 
@@ -148,7 +170,11 @@ impl Source {
             calibration.gyro.matrix = uploaded.gyro.matrix;
         }
         let mut readings = match (&session.stream, session.kind) {
-            (Some(stream), SessionKind::Stream) => Readings::stream(&stream.input_unit, stream.gyro_unit.as_deref()),
+            (Some(stream), SessionKind::Stream) => Readings::stream(
+                stream.input_unit.parse().map_err(|_| unknown_unit(&stream.input_unit))?,
+                stream.gyro_unit.as_deref(),
+                Some(&stream.dialect),
+            ),
             _ => Readings::board(session.board.as_ref().and_then(|b| b.sensor.clone()), calibration.mean_temp_c),
         };
         // NOTE: a learned model (`accelcal thermal`) was learned over a sweep the session does not record.
@@ -170,14 +196,20 @@ impl Source {
         }
     }
 
-    /// Raw counts per g of the calibration's range.
-    pub fn lsb_per_g(&self) -> f64 {
-        f64::from(self.calibration.range.lsb_per_g())
+    /// Accelerometer values per g of the readings the exported functions take: raw counts of the
+    /// calibration's range, or what a stream printed (m/s^2: 9.80665 a g).
+    pub fn accel_per_g(&self) -> f64 {
+        self.readings.printed.as_ref().map_or(f64::from(self.calibration.range.lsb_per_g()), |p| p.accel.per_g())
     }
 
-    /// Raw gyro counts per deg/s of the readings the exported functions take.
-    pub fn gyro_lsb_per_dps(&self) -> f64 {
-        self.readings.gyro_lsb_per_dps
+    /// Gyro values per deg/s of the readings the exported functions take.
+    pub fn gyro_per_dps(&self) -> f64 {
+        self.readings.gyro_per_dps
+    }
+
+    /// Whether the exported functions take whole counts (int16), not a stream's decimal values.
+    pub fn takes_counts(&self) -> bool {
+        self.readings.printed.as_ref().is_none_or(Printed::counts)
     }
 
     /// The gyro bias in deg/s.
@@ -189,6 +221,11 @@ impl Source {
     pub fn has_gyro_matrix(&self) -> bool {
         self.calibration.gyro.matrix != linalg::identity::<f32>()
     }
+}
+
+/// An accelerometer unit accelcal does not name.
+fn unknown_unit(name: &str) -> ExportError {
+    ExportError::NotJson { reason: format!("unknown input_unit {name:?}") }
 }
 
 impl Noise {
@@ -227,7 +264,7 @@ mod tests {
     fn a_stream_session_exports_for_its_gyro_counts_and_claims_no_temperature() {
         let source = Source::from_session(&stream_session(Some("counts-250dps")), "s.json").unwrap();
         // NOTE: 131 LSB per deg/s at +-250 deg/s (MPU-6050 Product Specification 6.1).
-        assert_eq!(source.readings.gyro_lsb_per_dps, 131.0);
+        assert_eq!(source.readings.gyro_per_dps, 131.0);
         assert_eq!(source.readings.made_at_c, None);
         let text = String::from_utf8(crate::export::export(&source, crate::export::Target::C).unwrap().bytes).unwrap();
         assert!(text.contains("#define ACCELCAL_GYRO_LSB_PER_DPS 131.0f"), "{text}");
@@ -237,7 +274,7 @@ mod tests {
         let written = stream_session(Some("counts-250dps")).json_text();
         assert!(written.contains("\"temp_c\": null"), "{written}");
         let read = Source::from_text(&written, "s.json").unwrap();
-        assert_eq!((read.readings.gyro_lsb_per_dps, read.readings.made_at_c), (131.0, None));
+        assert_eq!((read.readings.gyro_per_dps, read.readings.made_at_c), (131.0, None));
     }
 
     #[test]
@@ -254,12 +291,13 @@ mod tests {
     }
 
     #[test]
-    fn a_stream_printing_its_gyro_in_deg_per_s_leaves_the_functions_at_the_firmware_s_counts() {
+    fn a_stream_printing_its_gyro_in_deg_per_s_exports_functions_that_take_deg_per_s_as_printed() {
         let source = Source::from_session(&stream_session(Some("deg/s")), "s.json").unwrap();
-        assert_eq!(
-            source.readings.gyro_lsb_per_dps, 32.8,
-            "+-1000 deg/s: 32.8 LSB per deg/s (Product Specification 6.1)"
-        );
+        assert_eq!(source.readings.gyro_per_dps, 1.0, "the stream's own deg/s, not the firmware's 32.8 counts");
+        let text = String::from_utf8(crate::export::export(&source, crate::export::Target::C).unwrap().bytes).unwrap();
+        assert!(text.contains("#define ACCELCAL_GYRO_PER_DPS 1.0f"), "{text}");
+        assert!(text.contains("accelcal_gyro_dps(const float raw[3], float out_dps[3])"), "{text}");
+        assert!(!text.contains("#define ACCELCAL_ACCEL_LSB"), "{text}");
         let board = Source::from_session(&crate::sim::sessions::adaptive(1, 0.0, 0.004), "b.json").unwrap();
         assert_eq!(board.readings.made_at_c, Some(board.calibration.mean_temp_c));
     }

@@ -18,7 +18,14 @@ pub struct Said<'a> {
     pub carries: &'a str,
     /// What the target does with the temperature model.
     pub temperature: &'a str,
+    /// Whether it leaves part of the calibration behind (then it names the targets that carry all of it).
+    pub lossy: bool,
 }
+
+/// What a lossy target says of the targets that lose nothing, so that a person who needs all of it
+/// knows where to go.
+pub const WHOLE: &str = "all of it: --to c carries M, o, G, b in full (float; --to c-fixed on a part with no \
+                         floating-point unit, such as an 8-bit AVR; --to rust, --to fusion and --to matlab too)";
 
 /// The lines every export states, with `said` for its target and `loss` on this unit.
 pub fn lines(source: &Source, said: &Said, loss: &Loss) -> Vec<String> {
@@ -38,6 +45,9 @@ pub fn lines(source: &Source, said: &Said, loss: &Loss) -> Vec<String> {
     lines.push(format!("g: {STANDARD_GRAVITY} m/s^2 per g (standard gravity) wherever a value is in m/s^2"));
     lines.push(format!("carries: {}", said.carries));
     lines.extend(lost(loss, source.has_gyro_matrix()));
+    if said.lossy {
+        lines.push(WHOLE.to_owned());
+    }
     lines
 }
 
@@ -51,15 +61,12 @@ fn serial(source: &Source) -> String {
 /// Sensor, range and filter: our firmware's setting, or a stream's units.
 fn sensor(source: &Source) -> String {
     let (calibration, readings) = (&source.calibration, &source.readings);
-    let counts = format!(
-        "what follows takes raw counts at {} LSB per g and {} LSB per deg/s",
-        calibration.range.lsb_per_g(),
-        readings.gyro_lsb_per_dps
-    );
-    if let Some(units) = &readings.stream_units {
+    if let Some(printed) = &readings.printed {
         return format!(
             "sensor: as the board's own code set it up (a stream records no part, range or filter); its stream \
-             printed {units}; {counts}; the calibration holds at that setting only"
+             printed {}; {}; the calibration holds at that setting only",
+            printed.units(),
+            takes(source)
         );
     }
     let part = readings
@@ -67,11 +74,26 @@ fn sensor(source: &Source) -> String {
         .as_deref()
         .unwrap_or("MPU-6050 family (the part is not recorded in what this was exported from)");
     format!(
-        "sensor: {part}, accelerometer +-{} g, low-pass filter {} Hz, gyro +-1000 deg/s; {counts}; the calibration \
+        "sensor: {part}, accelerometer +-{} g, low-pass filter {} Hz, gyro +-1000 deg/s; {}; the calibration \
          holds at this range and filter only",
         calibration.range.full_scale_g(),
-        calibration.filter.bandwidth_hz()
+        calibration.filter.bandwidth_hz(),
+        takes(source)
     )
+}
+
+/// What the exported code takes: raw counts, or the values a stream printed, in its units.
+pub fn takes(source: &Source) -> String {
+    let (per_g, per_dps) = (source.accel_per_g(), source.gyro_per_dps());
+    match &source.readings.printed {
+        Some(printed) if !source.takes_counts() => format!(
+            "what follows takes the values as the sketch printed them: accelerometer in {} ({per_g} per g), gyro in \
+             {} ({per_dps} per deg/s)",
+            printed.accel.name(),
+            printed.gyro.map_or("counts at +-1000 deg/s (the stream's gyro unit is not recorded)", |g| g.name())
+        ),
+        _ => format!("what follows takes raw counts at {per_g} LSB per g and {per_dps} LSB per deg/s"),
+    }
 }
 
 /// The die temperature it was made at, or that none was measured.

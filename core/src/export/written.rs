@@ -36,6 +36,8 @@ pub enum ExportError {
     NoiseOfAnotherBoard { calibrated: String, recorded: String },
     #[error("{target} is a binary file: give -o FILE")]
     BinaryNeedsFile { target: String },
+    #[error("the fixed-point header takes whole counts and this stream printed {units}: use --to c, which takes them as printed")]
+    FixedNeedsCounts { units: String },
     #[error("the fixed-point form would overflow int32 ({reason}); use --to c")]
     FixedPointOverflow { reason: String },
 }

@@ -111,7 +111,7 @@ impl AccelUnit {
     }
 
     /// Whether the unit is a range's raw counts.
-    fn is_counts(self) -> bool {
+    pub fn is_counts(self) -> bool {
         matches!(self, AccelUnit::Counts2g | AccelUnit::Counts4g | AccelUnit::Counts8g | AccelUnit::Counts16g)
     }
 
@@ -184,7 +184,7 @@ impl GyroUnit {
     }
 
     /// Whether the unit is a range's raw counts (what int16 readings are).
-    fn is_counts(self) -> bool {
+    pub fn is_counts(self) -> bool {
         matches!(self, GyroUnit::Counts250 | GyroUnit::Counts500 | GyroUnit::Counts1000 | GyroUnit::Counts2000)
     }
 

@@ -98,6 +98,35 @@ pub fn raw_readings(n: usize) -> Vec<[i16; 3]> {
     (0..n).map(|_| [next(), next(), next()]).collect()
 }
 
+/// Random unit vectors (xorshift64*, Box-Muller normals, normalised), a seed other than the exporter's lattice.
+pub fn directions(n: usize) -> Vec<[f64; 3]> {
+    let mut state: u64 = 0x1234_5678_9ABC_DEF1;
+    let mut uniform = move || {
+        state ^= state >> 12;
+        state ^= state << 25;
+        state ^= state >> 27;
+        ((state.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 + 0.5) / (1u64 << 53) as f64
+    };
+    let mut normal = move || (-2.0 * uniform().ln()).sqrt() * (std::f64::consts::TAU * uniform()).cos();
+    (0..n)
+        .map(|_| {
+            let v = [normal(), normal(), normal()];
+            let norm = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+            v.map(|x| x / norm)
+        })
+        .collect()
+}
+
+/// The inverse of a 3x3 matrix (cofactors).
+pub fn inverse(m: &Mat) -> Mat {
+    let c = |i: usize, j: usize| {
+        let (r0, r1, c0, c1) = ((i + 1) % 3, (i + 2) % 3, (j + 1) % 3, (j + 2) % 3);
+        m[r0][c0] * m[r1][c1] - m[r0][c1] * m[r1][c0]
+    };
+    let det = m[0][0] * c(0, 0) + m[0][1] * c(0, 1) + m[0][2] * c(0, 2);
+    [0, 1, 2].map(|i| [0, 1, 2].map(|j| c(j, i) / det))
+}
+
 /// Whether `program` runs (`program --version`); if not, a failure under CI=true, else a skip said on stderr.
 pub fn tool(program: &str, install: &str) -> bool {
     let found = Command::new(program).arg("--version").output().is_ok_and(|o| o.status.success());
@@ -134,9 +163,14 @@ pub fn run_with_input(command: &mut Command, input: &str) -> String {
         .stderr(std::process::Stdio::piped())
         .spawn()
         .expect("the program runs");
-    child.stdin.take().unwrap().write_all(input.as_bytes()).unwrap();
+    // NOTE: written from a thread, so that a program whose output fills the pipe before it has read all
+    // of its input does not wait on us while we wait on it.
+    let (mut stdin, input) = (child.stdin.take().unwrap(), input.to_owned());
+    let writer = std::thread::spawn(move || stdin.write_all(input.as_bytes()));
     let output = child.wait_with_output().unwrap();
+    let written = writer.join().unwrap();
     assert!(output.status.success(), "{command:?} failed: {}", String::from_utf8_lossy(&output.stderr));
+    written.unwrap();
     String::from_utf8(output.stdout).unwrap()
 }
 
