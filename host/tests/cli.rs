@@ -34,8 +34,41 @@ fn fit_json_has_the_fields_of_the_design_interface() {
     assert_eq!(json["offset"].as_array().unwrap().len(), 3);
     assert!(json["cost"].as_f64().unwrap() > 0.0);
     assert_eq!(json["iterations"], 0);
-    assert_eq!(json["std_errors"].as_object().unwrap().len(), 12);
-    assert!(json["std_errors"]["o_z"].as_f64().unwrap() > 0.0);
+    assert_eq!(json["parameters"].as_object().unwrap().len(), 12);
+    assert!(json["parameters"]["o_z"]["std_error"].as_f64().unwrap() > 0.0);
+}
+
+/// Issue 40: `fit --json` wrote `parameters` as name -> value (standard errors in three more maps),
+/// `report --json` as a list and `calibrate --json` only `std_errors`: each now writes the one form,
+/// an object keyed by name whose entries carry the same four fields, as a certificate's are keyed.
+#[test]
+fn fit_report_and_calibrate_json_write_parameters_in_one_form() {
+    let dir = std::env::temp_dir().join(format!("accelcal-cli-{}-forms", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let session = dir.join("s.json");
+    let run = accelcal(&["calibrate", "--sim", "--yes", "--json", "--session", session.to_str().unwrap()]);
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let json =
+        |output: &Output| -> serde_json::Value { serde_json::from_slice(&output.stdout).expect("one JSON object") };
+    let calibrated = json(&run)["host_fit"]["parameters"].clone();
+    let reported = json(&accelcal(&["report", session.to_str().unwrap(), "--json"]))["fit"]["parameters"].clone();
+    let fitted = json(&accelcal(&["fit", &phone_data(), "--g", "9.81", "--json"]))["parameters"].clone();
+    let fields = ["noise_std_error", "scatter_std_error", "std_error", "value"];
+    for (what, parameters) in [("calibrate", &calibrated), ("report", &reported), ("fit", &fitted)] {
+        let by_name = parameters.as_object().unwrap_or_else(|| panic!("{what}: parameters is {parameters}"));
+        assert!(by_name.len() >= 6, "{what}: {} parameters", by_name.len());
+        for (name, entry) in by_name {
+            let keys: Vec<&str> = entry.as_object().unwrap().keys().map(String::as_str).collect();
+            assert_eq!(keys, fields, "{what}: {name}");
+            assert!(entry["value"].is_f64(), "{what}: {name} = {entry}");
+        }
+    }
+    // The session's report refits the captures the run fitted: the same parameters.
+    assert_eq!(
+        calibrated.as_object().unwrap().keys().collect::<Vec<_>>(),
+        reported.as_object().unwrap().keys().collect::<Vec<_>>()
+    );
+    let _ = std::fs::remove_dir_all(dir);
 }
 
 #[test]

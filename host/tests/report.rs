@@ -161,8 +161,8 @@ fn required_pointers(json: &Value) -> BTreeSet<String> {
     {
         wanted.insert(format!("/verification/{key}"));
     }
-    for i in 0..json["fit"]["parameters"].as_array().unwrap().len() {
-        wanted.extend(["value", "std_error"].map(|key| format!("/fit/parameters/{i}/{key}")));
+    for name in json["fit"]["parameters"].as_object().expect("parameters keyed by name").keys() {
+        wanted.extend(["value", "std_error"].map(|key| format!("/fit/parameters/{name}/{key}")));
     }
     // The gyro's turns: a calibration on the simulated board records the 13 between its 14 positions.
     let turns = json["gyro_turns"].as_array().expect("the session records its gyro turns");
@@ -366,10 +366,8 @@ fn the_report_of_a_default_session_fits_as_the_upload_did_with_the_drift_taken_o
     assert!(output.status.success(), "{}", text(&output.stderr));
     let uploaded: Value = serde_json::from_slice(&output.stdout).unwrap();
     let json = report_json(&stem.with_extension("json"));
-    let parameter = |name: &str| {
-        let parameters = json.pointer("/fit/parameters").and_then(Value::as_array).unwrap();
-        parameters.iter().find(|p| p["name"] == name).and_then(|p| p["value"].as_f64()).unwrap()
-    };
+    let parameter =
+        |name: &str| json.pointer(&format!("/fit/parameters/{name}/value")).and_then(Value::as_f64).unwrap();
     let calibration = &uploaded["calibration"];
     for (k, axis) in ["x", "y", "z"].iter().enumerate() {
         // The uploaded record holds f32: its offsets agree with the report's f64 fit to f32 rounding.

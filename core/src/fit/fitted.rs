@@ -85,6 +85,27 @@ pub struct Parameter {
     pub noise_std_error: Option<f64>,
 }
 
+/// Parameters as every JSON report writes them (issue 40: `fit --json`, `report --json` and `calibrate
+/// --json` had three forms): an object keyed by name, each `value`, `std_error`, `scatter_std_error`,
+/// `noise_std_error`, as a certificate's `parameters` are keyed. Used with `#[serde(serialize_with)]`.
+pub fn parameters_by_name<S: serde::Serializer>(parameters: &[Parameter], serializer: S) -> Result<S::Ok, S::Error> {
+    /// One parameter's entry: its fields but the name, which is the key.
+    #[derive(Serialize)]
+    struct Entry {
+        value: f64,
+        std_error: Option<f64>,
+        scatter_std_error: Option<f64>,
+        noise_std_error: Option<f64>,
+    }
+    let entry = |p: &Parameter| Entry {
+        value: p.value,
+        std_error: p.std_error,
+        scatter_std_error: p.scatter_std_error,
+        noise_std_error: p.noise_std_error,
+    };
+    serializer.collect_map(parameters.iter().map(|p| (p.name, entry(p))))
+}
+
 impl Parameter {
     /// A parameter with its scatter- and noise-based standard errors; `inflation` scales the noise's
     /// for what the residuals show beyond the noise.

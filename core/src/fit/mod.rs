@@ -33,7 +33,7 @@ use crate::data::Dataset;
 
 pub use error::FitError;
 pub use evaluate::{evaluate, Evaluation, RowEvaluation};
-pub use fitted::{Fit, FitOptions, Parameter, Selection};
+pub use fitted::{parameters_by_name, Fit, FitOptions, Parameter, Selection};
 pub use left_out::leave_one_out_rms;
 pub use model::{Model, RICHEST_FIRST};
 use models::fit_model;

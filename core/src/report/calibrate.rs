@@ -1,15 +1,13 @@
 //! What a guided calibration reports: the calibration chosen, the simulator's truth when there is
 //! one, the verification, and the fits it was chosen from.
 
-use std::collections::BTreeMap;
-
 use serde::Serialize;
 use shared::Calibration;
 
 use super::gyro::{GyroJson, GyroOutcome, TruthGyroJson};
 use crate::calibration::CalibrationJson;
 use crate::certificate::Certificate;
-use crate::fit::Fit;
+use crate::fit::{parameters_by_name, Fit, Parameter};
 use crate::session::{TargetVerdict, TurnCheck, Verification};
 
 /// The object `accelcal calibrate --json` prints.
@@ -102,8 +100,9 @@ pub struct HostFitSummary {
     pub cost: f64,
     /// Solver iterations.
     pub iterations: usize,
-    /// Standard error of every parameter.
-    pub std_errors: BTreeMap<String, Option<f64>>,
+    /// Every parameter by name, with its standard errors (as `fit --json` writes them).
+    #[serde(serialize_with = "parameters_by_name")]
+    pub parameters: Vec<Parameter>,
 }
 
 impl CalibrateReport {
@@ -152,7 +151,7 @@ impl HostFitSummary {
             model: fit.model.name(),
             cost: fit.cost,
             iterations: fit.iterations,
-            std_errors: fit.parameters.iter().map(|p| (p.name.to_owned(), p.std_error)).collect(),
+            parameters: fit.parameters.clone(),
         }
     }
 }

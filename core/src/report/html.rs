@@ -109,14 +109,12 @@ fn parameters(out: &mut String, report: &SessionReport) {
         span("/fit/rms_mg", fit.rms_mg, 3)
     );
     out.push_str("<div class=\"table-wrap\"><table><tr><th>parameter</th><th>value</th><th>standard error</th></tr>");
-    for (i, p) in fit.parameters.iter().enumerate() {
-        let _ = write!(
-            out,
-            "<tr><td>{}</td>{}",
-            escape(p.name),
-            fixed_cell(&format!("/fit/parameters/{i}/value"), Some(p.value), 6)
-        );
-        let _ = write!(out, "{}</tr>", scientific_cell(&format!("/fit/parameters/{i}/std_error"), p.std_error, 3));
+    for p in &fit.parameters {
+        // NOTE: the JSON keys parameters by name (`fit::parameters_by_name`); the names need no escaping
+        // in a JSON pointer (no `~` or `/`).
+        let (name, at) = (p.name, format!("/fit/parameters/{}", p.name));
+        let _ = write!(out, "<tr><td>{}</td>{}", escape(name), fixed_cell(&format!("{at}/value"), Some(p.value), 6));
+        let _ = write!(out, "{}</tr>", scientific_cell(&format!("{at}/std_error"), p.std_error, 3));
     }
     out.push_str("</table></div>");
     for warning in &fit.warnings {

@@ -1,12 +1,10 @@
 //! The reports as the JSON objects of DESIGN.md ("Interfaces other programs rely on").
 
-use std::collections::BTreeMap;
-
 use serde::Serialize;
 
 use super::{CalibrateReport, Comparison, FitReport, SessionReport};
 use crate::calibration::CalibrationJson;
-use crate::fit::{axis_angles_deg, Evaluation, Model, NoiseTest, Prediction, Selection};
+use crate::fit::{axis_angles_deg, parameters_by_name, Evaluation, Model, NoiseTest, Parameter, Prediction, Selection};
 
 /// The object `accelcal fit --json` prints: the calibration (`model`, `matrix`, `offset`, `g`) and
 /// the fit's statistics.
@@ -19,14 +17,10 @@ pub struct FitJson<'a> {
     pub cost: f64,
     /// Solver iterations (see `Fit::iterations`).
     pub iterations: usize,
-    /// Standard error of every parameter (null without redundancy).
-    pub std_errors: BTreeMap<&'a str, Option<f64>>,
-    /// The standard error from the residual scatter alone, by parameter.
-    pub scatter_std_errors: BTreeMap<&'a str, Option<f64>>,
-    /// The standard error from the noise the captures measured, by parameter (null without it).
-    pub noise_std_errors: BTreeMap<&'a str, Option<f64>>,
-    /// Every parameter's value, by name.
-    pub parameters: BTreeMap<&'a str, f64>,
+    /// Every parameter by name: its value and standard errors (the reported one, from the residual
+    /// scatter alone, from the captures' noise; null without redundancy or noise).
+    #[serde(serialize_with = "parameters_by_name")]
+    pub parameters: &'a [Parameter],
     /// Data-file lines the fit used.
     pub lines_used: &'a [usize],
     /// The residuals against the captures' own noise, when the file carries it.
@@ -53,10 +47,7 @@ impl<'a> FitJson<'a> {
             calibration: CalibrationJson::from_fit(fit, report.g),
             cost: fit.cost,
             iterations: fit.iterations,
-            std_errors: fit.parameters.iter().map(|p| (p.name, p.std_error)).collect(),
-            scatter_std_errors: fit.parameters.iter().map(|p| (p.name, p.scatter_std_error)).collect(),
-            noise_std_errors: fit.parameters.iter().map(|p| (p.name, p.noise_std_error)).collect(),
-            parameters: fit.parameters.iter().map(|p| (p.name, p.value)).collect(),
+            parameters: &fit.parameters,
             lines_used: &fit.lines_used,
             noise_test: fit.noise_test.as_ref(),
             warnings: &fit.warnings,

@@ -13,7 +13,7 @@ use super::uploaded::Uploaded;
 use super::{Comparison, FitReport};
 use crate::data::Dataset;
 use crate::fit::gyro::TurnSummary;
-use crate::fit::{FitError, FitOptions, Parameter};
+use crate::fit::{parameters_by_name, FitError, FitOptions, Parameter};
 use crate::session::{Board, Session, Verification};
 
 /// Shown for what the session does not carry.
@@ -65,7 +65,8 @@ pub struct FitSummary {
     pub cost: f64,
     /// RMS of | |a| - 1 g | over the positions, in mg.
     pub rms_mg: f64,
-    /// Every parameter with its standard error.
+    /// Every parameter with its standard errors, written by name as `fit --json` writes them.
+    #[serde(serialize_with = "parameters_by_name")]
     pub parameters: Vec<Parameter>,
     /// What the fit warns about.
     pub warnings: Vec<String>,
