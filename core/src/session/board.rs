@@ -48,8 +48,10 @@ impl BoardRecord {
         if self.serial != board.serial {
             return Err(SessionError::OtherBoard { path, session: self.serial.clone(), board: board.serial.clone() });
         }
-        let setting =
-            |c: &SensorConfig| format!("{:?} with the {:?} filter at {} Hz", c.range, c.filter, c.sample_rate_hz);
+        let setting = |c: &SensorConfig| {
+            let (range, filter) = (c.range.full_scale_g(), c.filter.bandwidth_hz());
+            format!("+-{range} g with the {filter} Hz filter at {} Hz", c.sample_rate_hz)
+        };
         let (rate, other_rate) = (f64::from(self.config.sample_rate_hz), f64::from(board.config.sample_rate_hz));
         // NOTE: a rate the board achieves a little differently (99 for 100 Hz) measures the same; a
         // board left at 1000 Hz by `record` filters and averages otherwise.
@@ -139,7 +141,9 @@ mod tests {
         let error = other(board(&serial, AccelRange::G2, LowPassFilter::Hz21));
         assert!(matches!(error, SessionError::OtherSetting { .. }), "another filter: {error}");
         assert!(
-            error.to_string().contains("G2 with the Hz44 filter at 100 Hz, the board is set to G2 with the Hz21"),
+            error
+                .to_string()
+                .contains("+-2 g with the 44 Hz filter at 100 Hz, the board is set to +-2 g with the 21 Hz"),
             "{error}"
         );
         let error = other(board(&serial, AccelRange::G4, LowPassFilter::Hz44));
@@ -150,7 +154,7 @@ mod tests {
         fast.config.sample_rate_hz = 1000;
         let error = other(fast);
         assert!(
-            error.to_string().contains("at 100 Hz, the board is set to G2 with the Hz44 filter at 1000 Hz"),
+            error.to_string().contains("at 100 Hz, the board is set to +-2 g with the 44 Hz filter at 1000 Hz"),
             "{error}"
         );
     }

@@ -92,3 +92,34 @@ mod tests {
         assert!(written.contains(r#""kind":"quick""#) && !written.contains("adaptive"), "{written}");
     }
 }
+
+/// Issue 40: the session file spelled the sensor's settings and faces as Rust names ("G2", "Hz44",
+/// "HostFit", "PosX"). They are now spelled as a person reads them; files with the old names still read.
+#[cfg(test)]
+mod spelling {
+    use serde::de::DeserializeOwned;
+    use serde::Serialize;
+    use shared::calibration::{AccelRange, Procedure};
+    use shared::orientation::Position;
+    use shared::protocol::LowPassFilter;
+
+    /// `value` is written as `new` and read back from both `new` and `old`.
+    fn spelled<T: Serialize + DeserializeOwned + PartialEq + std::fmt::Debug>(value: T, new: &str, old: &str) {
+        assert_eq!(serde_json::to_string(&value).unwrap(), format!("\"{new}\""));
+        for text in [new, old] {
+            assert_eq!(serde_json::from_str::<T>(&format!("\"{text}\"")).unwrap(), value, "{text}");
+        }
+    }
+
+    #[test]
+    fn settings_and_faces_are_written_as_read_and_the_old_names_still_read() {
+        spelled(AccelRange::G2, "2g", "G2");
+        spelled(AccelRange::G16, "16g", "G16");
+        spelled(LowPassFilter::Hz44, "44Hz", "Hz44");
+        spelled(LowPassFilter::Hz260, "260Hz", "Hz260");
+        spelled(Procedure::HostFit, "host-fit", "HostFit");
+        spelled(Procedure::ChipFit, "chip-fit", "ChipFit");
+        spelled(Position::PosX, "+X", "PosX");
+        spelled(Position::NegZ, "-Z", "NegZ");
+    }
+}

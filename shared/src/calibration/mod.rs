@@ -16,15 +16,22 @@ pub use validate::{limits, CalibrationError};
 
 /// Full-scale range of the MPU-6050 accelerometer (register ACCEL_CONFIG, AFS_SEL).
 #[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq, Eq, Default)]
+// NOTE: a JSON file spells each variant as a person reads it (issue 40: sessions said "G2", "Hz44",
+// "HostFit"); the old spellings are still read. postcard (the wire and the flash) keeps the variant's
+// index, so the renames change no byte there.
 pub enum AccelRange {
     /// +-2 g, 16384 LSB/g (the default).
     #[default]
+    #[serde(rename = "2g", alias = "G2")]
     G2,
     /// +-4 g, 8192 LSB/g.
+    #[serde(rename = "4g", alias = "G4")]
     G4,
     /// +-8 g, 4096 LSB/g.
+    #[serde(rename = "8g", alias = "G8")]
     G8,
     /// +-16 g, 2048 LSB/g.
+    #[serde(rename = "16g", alias = "G16")]
     G16,
 }
 

@@ -7,14 +7,21 @@ pub const MODEL_TAG_LEN: usize = 16;
 
 /// Which procedure made a calibration.
 #[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq, Eq)]
+// NOTE: a JSON file spells each variant as a person reads it (issue 40: sessions said "G2", "Hz44",
+// "HostFit"); the old spellings are still read. postcard (the wire and the flash) keeps the variant's
+// index, so the renames change no byte there.
 pub enum Procedure {
     /// Nothing fitted: the identity, samples pass through.
+    #[serde(rename = "identity", alias = "Identity")]
     Identity,
     /// Fitted on the chip from its own captures (the six-position closed form or `ortho9`).
+    #[serde(rename = "chip-fit", alias = "ChipFit")]
     ChipFit,
     /// A fit made by the host tool from a guided session or a data file.
+    #[serde(rename = "host-fit", alias = "HostFit")]
     HostFit,
     /// Supplied from elsewhere (a file, another tool) and uploaded as it was.
+    #[serde(rename = "uploaded", alias = "Uploaded")]
     Uploaded,
 }
 

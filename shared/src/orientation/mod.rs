@@ -22,18 +22,27 @@ pub const DEFAULT_FACE_TOLERANCE_COS: f32 = 0.939_692_6;
 
 /// A position, named by the body axis that points up (so that axis reads +1 g).
 #[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+// NOTE: a JSON file spells each variant as a person reads it (issue 40: sessions said "G2", "Hz44",
+// "HostFit"); the old spellings are still read. postcard (the wire and the flash) keeps the variant's
+// index, so the renames change no byte there.
 pub enum Position {
     /// +x up.
+    #[serde(rename = "+X", alias = "PosX")]
     PosX,
     /// -x up.
+    #[serde(rename = "-X", alias = "NegX")]
     NegX,
     /// +y up.
+    #[serde(rename = "+Y", alias = "PosY")]
     PosY,
     /// -y up.
+    #[serde(rename = "-Y", alias = "NegY")]
     NegY,
     /// +z up.
+    #[serde(rename = "+Z", alias = "PosZ")]
     PosZ,
     /// -z up.
+    #[serde(rename = "-Z", alias = "NegZ")]
     NegZ,
 }
 

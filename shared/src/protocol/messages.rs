@@ -136,21 +136,31 @@ pub enum StreamKind {
 
 /// The MPU-6050 digital low-pass filter setting (register CONFIG, DLPF_CFG), by accelerometer bandwidth.
 #[derive(Serialize, Deserialize, Debug, Clone, Copy, PartialEq, Eq, Default)]
+// NOTE: a JSON file spells each variant as a person reads it (issue 40: sessions said "G2", "Hz44",
+// "HostFit"); the old spellings are still read. postcard (the wire and the flash) keeps the variant's
+// index, so the renames change no byte there.
 pub enum LowPassFilter {
     /// 260 Hz (filter off).
+    #[serde(rename = "260Hz", alias = "Hz260")]
     Hz260,
     /// 184 Hz.
+    #[serde(rename = "184Hz", alias = "Hz184")]
     Hz184,
     /// 94 Hz.
+    #[serde(rename = "94Hz", alias = "Hz94")]
     Hz94,
     /// 44 Hz (the default).
     #[default]
+    #[serde(rename = "44Hz", alias = "Hz44")]
     Hz44,
     /// 21 Hz.
+    #[serde(rename = "21Hz", alias = "Hz21")]
     Hz21,
     /// 10 Hz.
+    #[serde(rename = "10Hz", alias = "Hz10")]
     Hz10,
     /// 5 Hz.
+    #[serde(rename = "5Hz", alias = "Hz5")]
     Hz5,
 }
 
