@@ -17,7 +17,7 @@ use accelcal::link::{
 use accelcal::sim::replay::Replay;
 use accelcal::sim::sketch::Sketch;
 use common::SimPty;
-use shared::protocol::PROTOCOL_VERSION;
+use shared::protocol::{probe, PROTOCOL_VERSION};
 
 /// The ESP32-C3's USB-Serial-JTAG ids (Espressif's vendor id, its fixed product id).
 const ESPRESSIF_USB_SERIAL_JTAG: (u16, u16) = (0x303A, 0x1001);
@@ -56,18 +56,22 @@ fn a_port_that_prints_on_its_own_is_named_and_never_written_to() {
     assert_eq!(sketch.state.written.load(Ordering::SeqCst), 0, "bytes were written to a port that talks");
 }
 
+/// Issue 40: what accelcal writes to a silent port holds no byte a REPL or a bootloader acts on (the
+/// old hello held 0x03 and 0x01, which stop a silent MicroPython program and enter its raw REPL).
 #[test]
-fn a_silent_port_that_is_no_board_is_greeted_only_after_it_was_listened_to() {
+fn a_silent_port_that_is_no_board_is_greeted_only_after_it_was_listened_to_with_inert_bytes() {
     let (mut master, slave) = serialport::TTYPort::pair().unwrap();
     let path = serialport::SerialPort::name(&slave).unwrap();
     let first_byte_at: Arc<Mutex<Option<Instant>>> = Arc::default();
-    let seen = first_byte_at.clone();
+    let written: Arc<Mutex<Vec<u8>>> = Arc::default();
+    let (seen, kept) = (first_byte_at.clone(), written.clone());
     std::thread::spawn(move || {
         let _ = serialport::SerialPort::set_timeout(&mut master, Duration::from_millis(50));
         let mut buffer = [0u8; 64];
         loop {
-            if matches!(master.read(&mut buffer), Ok(n) if n > 0) {
+            if let Ok(n @ 1..) = master.read(&mut buffer) {
                 seen.lock().unwrap().get_or_insert_with(Instant::now);
+                kept.lock().unwrap().extend_from_slice(&buffer[..n]);
             }
         }
     });
@@ -79,6 +83,10 @@ fn a_silent_port_that_is_no_board_is_greeted_only_after_it_was_listened_to() {
     let first = first_byte_at.lock().unwrap().expect("the silent port was greeted");
     let listened = first - asked_at;
     assert!(listened >= LISTEN_FIRST, "written to after {listened:?}, before listening {LISTEN_FIRST:?}");
+    let written = written.lock().unwrap().clone();
+    assert!(written.len() >= 30 && written.ends_with(&[0]), "{written:02x?}");
+    let acted_on: Vec<u8> = written.iter().copied().filter(|&b| b != 0 && !probe::is_inert(b)).collect();
+    assert!(acted_on.is_empty(), "bytes a REPL or bootloader acts on: {acted_on:02x?} in {written:02x?}");
 }
 
 #[test]

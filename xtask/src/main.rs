@@ -5,10 +5,11 @@
 
 mod elf;
 mod esp;
+mod preflight;
 mod uf2;
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::process::{Command, ExitCode};
 
 use anyhow::{bail, Context, Result};
 
@@ -91,7 +92,19 @@ const BOARDS: [Board; 5] = [
     },
 ];
 
-fn main() -> Result<()> {
+// NOTE: the error is printed here, not returned from main: anyhow prints a backtrace under
+// RUST_BACKTRACE=1, and a missing tool or a board over budget is a message, not a crash (issue 40).
+fn main() -> ExitCode {
+    match run() {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(error) => {
+            eprintln!("error: {error:#}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn run() -> Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     match args.split_first() {
         Some((task, names)) if task == "dist" => dist(&chosen(names)?),
@@ -111,6 +124,11 @@ fn chosen(names: &[String]) -> Result<Vec<&'static Board>> {
 
 /// Builds the boards and writes their files into `dist/`; all budgets are checked before failing.
 fn dist(boards: &[&Board]) -> Result<()> {
+    let sysroot = preflight::sysroot();
+    let missing = preflight::missing(boards, |name| preflight::installed(name, sysroot.as_deref()));
+    if let Some(refusal) = preflight::refusal(&missing) {
+        bail!(refusal);
+    }
     let root = workspace_root();
     let dist = root.join("dist");
     std::fs::create_dir_all(&dist).with_context(|| format!("creating {}", dist.display()))?;

@@ -32,12 +32,17 @@ impl Exchange {
 
     /// The bytes to write for `request`, under the next id, with that id.
     pub fn send(&mut self, request: &Request) -> Result<(u16, Vec<u8>), LinkError> {
-        let id = self.next_id;
         let mut frame = [0u8; MAX_FRAME_LEN];
-        let len = protocol::encode(id, request, &mut frame)
-            .map_err(|e| LinkError::Encode { request: request_name(request), reason: format!("{e:?}") })?;
+        // NOTE: every hello is the probe's, whose bytes nothing on a port acts on: it is what accelcal
+        // writes to a port it does not know yet (issue 40), and its id may skip ahead for that.
+        let encoded = match request {
+            Request::Hello { .. } => protocol::probe::inert_hello(self.next_id, &mut frame),
+            _ => protocol::encode(self.next_id, request, &mut frame).map(|len| (self.next_id, len)),
+        };
+        let (id, len) =
+            encoded.map_err(|e| LinkError::Encode { request: request_name(request), reason: format!("{e:?}") })?;
         // NOTE: id 0 is reserved for answers to unreadable frames (DESIGN.md, the wire protocol).
-        self.next_id = self.next_id.checked_add(1).unwrap_or(1);
+        self.next_id = id.checked_add(1).unwrap_or(1);
         Ok((id, frame[..len].to_vec()))
     }
 

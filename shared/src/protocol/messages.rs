@@ -17,8 +17,6 @@ use super::FrameError;
 #[allow(clippy::large_enum_variant)]
 #[derive(Serialize, Deserialize, Debug, Clone, PartialEq)]
 pub enum Request {
-    /// Opens a session; answered with [`Response::Hello`]. Sent first.
-    Hello { protocol_version: u8 },
     /// Sets range, sample rate and filter; answered with [`Response::Configured`] (the rate achieved).
     Configure(SensorConfig),
     /// Averages the still sensor for `seconds` (see [`super::MIN_CAPTURE_SECONDS`]); progress, then
@@ -63,6 +61,10 @@ pub enum Request {
     /// while a capture or stream runs. Every [`Response::Hello`] carries it
     /// ([`DeviceInfo::self_test`]).
     StoreSelfTest(SelfTestRecord),
+    /// Opens a session; answered with [`Response::Hello`]. Sent first.
+    // NOTE: last, so that its index (postcard's first payload byte) is no byte a REPL acts on: the
+    // hello is what accelcal writes to a port it does not know yet (`crate::protocol::probe`).
+    Hello { protocol_version: u8 },
 }
 
 /// When a [`Request::CaptureUntil`] stops: once at least `min_samples` are averaged and the standard

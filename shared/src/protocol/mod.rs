@@ -5,9 +5,10 @@
 
 pub mod frame;
 mod messages;
+pub mod probe;
 mod temperature;
 
-pub use frame::{decode, encode, Feed, FrameAccumulator, FrameError};
+pub use frame::{decode, encode, encode_payload, Feed, FrameAccumulator, FrameError};
 pub use messages::*;
 pub use temperature::{TempBin, TEMP_BINS_PER_MESSAGE};
 
@@ -25,8 +26,11 @@ use crate::calibration::GyroRange;
 /// the chip behaves as (the part is named by its WHO_AM_I, [`crate::part`]). 6 from issue 27: register
 /// access ([`Request::Register`], [`Response::Register`]), through which the host runs the datasheet
 /// self-test and dumps an unknown part's registers. 7 from issue 27: the board keeps the latest
-/// self-test in flash ([`Request::StoreSelfTest`], [`DeviceInfo::self_test`]).
-pub const PROTOCOL_VERSION: u8 = 7;
+/// self-test in flash ([`Request::StoreSelfTest`], [`DeviceInfo::self_test`]). 8 from issue 40: the hello
+/// moved to the last request, so that no byte of the frame the host writes to a port it does not know
+/// yet is one a MicroPython REPL or a bootloader acts on (its index was 0, which COBS made 0x04, and
+/// request id 1 was 0x01 0x00).
+pub const PROTOCOL_VERSION: u8 = 8;
 
 /// Largest postcard payload of one message, in bytes.
 ///
