@@ -110,7 +110,8 @@ pub struct CalibrateArgs {
     /// Continue the session SESSION.json (same board, range and filter) with the positions it lacks.
     #[arg(long, value_name = "SESSION")]
     pub resume: Option<PathBuf>,
-    /// Add the board's certificate to this lot database (one SQLite file, created when new).
+    /// Add the board's certificate to this lot database: one SQLite file (created when new), or a
+    /// server, postgres://USER@HOST/DB, through this station's queue (ACCELCAL_LOT_QUEUE).
     #[arg(long, value_name = "LOT")]
     pub lot: Option<PathBuf>,
     /// On a board that prints its own stream: its serial or label, which its certificate and the
@@ -422,8 +423,11 @@ pub struct LotArgs {
 pub enum LotAction {
     /// Adds certificates (each checked against its hash) to the lot, creating the file when new.
     Add {
-        /// The lot database (one SQLite file).
+        /// The lot database: one SQLite file, or a server's postgres://USER@HOST[:PORT]/DB.
         lot: PathBuf,
+        /// The station the certificates are recorded from (default: ACCELCAL_STATION, else the host name).
+        #[arg(long)]
+        station: Option<String>,
         /// Certificate files (PATH.certificate.json written by calibrate --session).
         #[arg(required = true)]
         certificates: Vec<PathBuf>,
@@ -438,6 +442,18 @@ pub enum LotAction {
         /// Print one JSON object.
         #[arg(long)]
         json: bool,
+    },
+    /// Uploads the certificates waiting in this station's queue to the lot's server (each once, by
+    /// its hash); what the server did not take waits for the next sync.
+    Sync {
+        /// The lot's server, postgres://USER@HOST[:PORT]/DB.
+        lot: PathBuf,
+        /// The station's queue folder (default: ACCELCAL_LOT_QUEUE, else ~/.local/share/accelcal/lot-queue).
+        #[arg(long)]
+        queue: Option<PathBuf>,
+        /// The station the certificates are recorded from (default: ACCELCAL_STATION, else the host name).
+        #[arg(long)]
+        station: Option<String>,
     },
     /// Every calibration of one board, by its serial.
     Board {

@@ -6,12 +6,14 @@ use std::path::{Path, PathBuf};
 use super::args::{LotAction, LotArgs};
 use crate::certificate::{self, Certificate};
 use crate::error::Error;
+use crate::lot::queue::Queue;
 use crate::lot::{self, Added, Lot, LotError, LotSummary, Spec};
 
 /// Runs `accelcal lot`.
 pub(super) fn lot(args: &LotArgs) -> Result<(), Error> {
     match &args.action {
-        LotAction::Add { lot, certificates } => add_files(lot, certificates),
+        LotAction::Add { lot, certificates, station } => add_files(lot, certificates, station.as_deref()),
+        LotAction::Sync { lot, queue, station } => sync(lot, queue.as_deref(), station.as_deref()),
         LotAction::Show { lot, spec, json } => show(lot, spec.as_deref(), *json),
         LotAction::Board { lot, serial, json } => {
             let certificates = Lot::open_existing(lot)?.board(serial)?;
@@ -26,9 +28,12 @@ pub(super) fn lot(args: &LotArgs) -> Result<(), Error> {
 
 /// Adds certificate files, one transaction each, once every one is checked against its hash and
 /// names the serial the lot keys it by: a bad file among many adds none of them.
-fn add_files(path: &Path, files: &[PathBuf]) -> Result<(), Error> {
+fn add_files(path: &Path, files: &[PathBuf], station: Option<&str>) -> Result<(), Error> {
     let checked: Vec<Certificate> = files.iter().map(|file| checked_for_lot(file)).collect::<Result<_, _>>()?;
     let mut lot = Lot::open_for_writing(path)?;
+    if let Some(station) = station {
+        lot.station = station.to_owned();
+    }
     let bar = crate::terminal::counting("adding certificates {bar:30} {pos}/{len}", checked.len() as u64);
     let mut already = 0;
     for certificate in &checked {
@@ -36,8 +41,41 @@ fn add_files(path: &Path, files: &[PathBuf]) -> Result<(), Error> {
         bar.inc(1);
     }
     bar.finish_and_clear();
-    println!("{} added to {} ({already} already there)", checked.len() - already, path.display());
+    println!(
+        "{} added to {} ({already} already there)",
+        checked.len() - already,
+        lot::server::shown(&path.to_string_lossy()).display()
+    );
     Ok(())
+}
+
+/// Uploads this station's queue to the lot's server; a refused file or a server that stopped
+/// answering is an error, after what was sent is said.
+fn sync(path: &Path, queue: Option<&Path>, station: Option<&str>) -> Result<(), Error> {
+    let mut queue = match queue {
+        Some(dir) => Queue::at(dir),
+        None => Queue::of_station()?,
+    };
+    queue.station = station.map(str::to_owned);
+    let synced = queue.send(path)?;
+    println!(
+        "{} sent to {} ({} already there), {} waiting in {}",
+        synced.sent,
+        lot::server::shown(&path.to_string_lossy()).display(),
+        synced.already,
+        synced.waiting,
+        queue.dir.display()
+    );
+    for (file, why) in &synced.refused {
+        eprintln!("refused and set aside as {}: {why}", file.display());
+    }
+    match (synced.stopped, synced.refused.is_empty()) {
+        (Some(stopped), _) => Err(stopped.into()),
+        (None, false) => {
+            Err(LotError::RefusedInQueue { count: synced.refused.len(), dir: queue.dir.join("refused") }.into())
+        }
+        (None, true) => Ok(()),
+    }
 }
 
 /// A certificate file checked against its hash and for the board serial the lot keys it by.
@@ -83,13 +121,13 @@ mod tests {
         std::fs::write(&unkeyed, certificate.to_json()).unwrap();
         certificate.board.serial = Some("B1".into());
         std::fs::write(&keyed, certificate.resealed().to_json()).unwrap();
-        let refused = add_files(&lot, &[keyed.clone(), unkeyed.clone()]).unwrap_err().to_string();
+        let refused = add_files(&lot, &[keyed.clone(), unkeyed.clone()], None).unwrap_err().to_string();
         assert!(
             refused.contains(&*unkeyed.to_string_lossy()) && refused.contains("no certificate was added"),
             "{refused}"
         );
         assert!(!lot.exists(), "the lot was written before every certificate was checked");
-        add_files(&lot, &[keyed]).unwrap();
+        add_files(&lot, &[keyed], None).unwrap();
         let _ = std::fs::remove_dir_all(&dir);
     }
 }

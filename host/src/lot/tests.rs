@@ -292,9 +292,27 @@ fn a_lot_is_read_without_writing_even_where_its_shared_memory_file_cannot_be_mad
     std::os::unix::fs::symlink("/nonexistent/accelcal-lot-shm", &shm).unwrap();
     let lot = Lot::open_existing(&path).unwrap();
     assert_eq!(lot.latest().unwrap().len(), 2);
-    let write = lot.connection.execute("DELETE FROM parameters", []).map_err(|e| e.sqlite_error_code());
+    let write = lot.file_connection().execute("DELETE FROM parameters", []).map_err(|e| e.sqlite_error_code());
     assert_eq!(write, Err(Some(rusqlite::ErrorCode::ReadOnly)));
     drop(lot);
     assert!(std::fs::read(&path).unwrap() == before, "a read changed the lot file");
+    remove(&path);
+}
+
+#[test]
+fn a_version_1_lot_file_reads_as_it_was_and_is_migrated_to_version_2_when_written() {
+    let path = closed_lot("migrated");
+    // NOTE: a version 1 file as issue 28's accelcal left it: no station column.
+    sql(&path, "ALTER TABLE certificates DROP COLUMN station; PRAGMA user_version = 1;");
+    let read = Lot::open_existing(&path).unwrap();
+    assert_eq!((read.version, read.latest().unwrap().len()), (1, 2));
+    drop(read);
+    let mut lot = Lot::create_or_open(&path).unwrap();
+    lot.station = "st-2".into();
+    lot.add(&certificate(4, "B3", "2026-11-26 08:00")).unwrap();
+    let stations: Vec<String> = lot.all().unwrap().into_iter().map(|(_, station)| station).collect();
+    assert_eq!(stations, ["", "", "", "st-2"]);
+    let version: i64 = lot.file_connection().pragma_query_value(None, "user_version", |r| r.get(0)).unwrap();
+    assert_eq!(version, schema::LATEST);
     remove(&path);
 }
