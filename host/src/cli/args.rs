@@ -411,6 +411,15 @@ pub struct LengthArgs {
     pub noise_report: Option<PathBuf>,
 }
 
+/// A test executive's record format (`lot export --format`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum RecordFormat {
+    /// OpenHTF's JSON test record (`TestRecord` -> phases -> measurements), one `.openhtf.json` per certificate.
+    Openhtf,
+    /// OCP Test & Validation output artifacts, one JSON object a line, one `.ocp.jsonl` per certificate.
+    Ocp,
+}
+
 /// `accelcal lot`.
 #[derive(Args)]
 pub struct LotArgs {
@@ -454,6 +463,23 @@ pub enum LotAction {
         /// The station the certificates are recorded from (default: ACCELCAL_STATION, else the host name).
         #[arg(long)]
         station: Option<String>,
+    },
+    /// Each certificate of the lot as the factory's test executive reads a test run: an OpenHTF JSON
+    /// test record or OCP Test & Validation line-delimited JSON artifacts, one file per certificate.
+    Export {
+        lot: PathBuf,
+        /// The record's format.
+        #[arg(long, value_enum)]
+        format: RecordFormat,
+        /// The folder the records are written to (created when new).
+        #[arg(long)]
+        out: PathBuf,
+        /// The spec file whose limits become each measurement's validators.
+        #[arg(long)]
+        spec: Option<PathBuf>,
+        /// Only this board's certificates.
+        #[arg(long)]
+        serial: Option<String>,
     },
     /// Every calibration of one board, by its serial.
     Board {

@@ -3,11 +3,12 @@
 
 use std::path::{Path, PathBuf};
 
-use super::args::{LotAction, LotArgs};
+use super::args::{LotAction, LotArgs, RecordFormat};
 use crate::certificate::{self, Certificate};
 use crate::error::Error;
 use crate::lot::queue::Queue;
 use crate::lot::{self, Added, Lot, LotError, LotSummary, Spec};
+use crate::records::{self, RunRecord};
 
 /// Runs `accelcal lot`.
 pub(super) fn lot(args: &LotArgs) -> Result<(), Error> {
@@ -15,6 +16,9 @@ pub(super) fn lot(args: &LotArgs) -> Result<(), Error> {
         LotAction::Add { lot, certificates, station } => add_files(lot, certificates, station.as_deref()),
         LotAction::Sync { lot, queue, station } => sync(lot, queue.as_deref(), station.as_deref()),
         LotAction::Show { lot, spec, json } => show(lot, spec.as_deref(), *json),
+        LotAction::Export { lot, format, out, spec, serial } => {
+            export(lot, *format, out, spec.as_deref(), serial.as_deref())
+        }
         LotAction::Board { lot, serial, json } => {
             let certificates = Lot::open_existing(lot)?.board(serial)?;
             match json {
@@ -85,6 +89,35 @@ fn checked_for_lot(file: &Path) -> Result<Certificate, Error> {
         Some(_) => Ok(certificate),
         None => Err(LotError::NoSerialIn { file: file.into() }.into()),
     }
+}
+
+/// Writes each certificate of the lot (or of one board) as a test executive's record in `out`.
+fn export(
+    path: &Path,
+    format: RecordFormat,
+    out: &Path,
+    spec: Option<&Path>,
+    serial: Option<&str>,
+) -> Result<(), Error> {
+    let spec = spec.map(Spec::load).transpose()?.unwrap_or_default();
+    let all = Lot::open_existing(path)?.all()?;
+    let chosen: Vec<_> = all.iter().filter(|(c, _)| serial.is_none() || c.board.serial.as_deref() == serial).collect();
+    if let (true, Some(serial)) = (chosen.is_empty(), serial) {
+        return Err(LotError::UnknownBoard { path: path.into(), serial: serial.into() }.into());
+    }
+    let unwritable = |source| Error::Lot(LotError::Records { dir: out.into(), source });
+    std::fs::create_dir_all(out).map_err(unwritable)?;
+    for (certificate, station) in &chosen {
+        let run = RunRecord::of(certificate, station, &spec);
+        let stem = format!("{}-{}", run.dut_id, &certificate.sha256[..12.min(certificate.sha256.len())]);
+        let (name, text) = match format {
+            RecordFormat::Openhtf => (format!("{stem}.openhtf.json"), records::openhtf::record(&run).to_string()),
+            RecordFormat::Ocp => (format!("{stem}.ocp.jsonl"), records::ocp::artifacts(&run)),
+        };
+        crate::files::write_atomically(&out.join(name), text.as_bytes()).map_err(unwritable)?;
+    }
+    println!("{} records written to {}", chosen.len(), out.display());
+    Ok(())
 }
 
 /// The lot's summary against the spec, as text or JSON.

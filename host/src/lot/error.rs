@@ -37,6 +37,8 @@ pub enum LotError {
     Queue { dir: PathBuf, source: std::io::Error },
     #[error("{count} certificate file(s) in the station's queue were refused by their hash (altered or damaged) and set aside in {}; issue them again from their sessions (`accelcal certificate issue SESSION.json`)", .dir.display())]
     RefusedInQueue { count: usize, dir: PathBuf },
+    #[error("cannot write the records in {}: {source}; give a folder this user can write with --out", .dir.display())]
+    Records { dir: PathBuf, source: std::io::Error },
     #[error("cannot read the spec file {}: {reason}; write it as TOML, one `[limits.NAME]` table per parameter with `low` and/or `high` in the certificate's units (docs/production.md)", .path.display())]
     Spec { path: PathBuf, reason: String },
 }
