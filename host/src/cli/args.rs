@@ -420,6 +420,15 @@ pub enum RecordFormat {
     Ocp,
 }
 
+/// How `lot show --by` groups the boards.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum GroupBy {
+    /// The station that uploaded each board's latest certificate.
+    Station,
+    /// The UTC day of each board's latest calibration.
+    Day,
+}
+
 /// `accelcal lot`.
 #[derive(Args)]
 pub struct LotArgs {
@@ -451,6 +460,9 @@ pub enum LotAction {
         /// Print one JSON object.
         #[arg(long)]
         json: bool,
+        /// Each station's or each day's boards apart, with the stations that drift from the others.
+        #[arg(long, value_enum)]
+        by: Option<GroupBy>,
     },
     /// Uploads the certificates waiting in this station's queue to the lot's server (each once, by
     /// its hash); what the server did not take waits for the next sync.

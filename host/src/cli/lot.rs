@@ -3,10 +3,11 @@
 
 use std::path::{Path, PathBuf};
 
-use super::args::{LotAction, LotArgs, RecordFormat};
+use super::args::{GroupBy, LotAction, LotArgs, RecordFormat};
 use crate::certificate::{self, Certificate};
 use crate::error::Error;
 use crate::lot::queue::Queue;
+use crate::lot::stations::Grouping;
 use crate::lot::{self, Added, Lot, LotError, LotSummary, Spec};
 use crate::records::{self, RunRecord};
 
@@ -15,7 +16,8 @@ pub(super) fn lot(args: &LotArgs) -> Result<(), Error> {
     match &args.action {
         LotAction::Add { lot, certificates, station } => add_files(lot, certificates, station.as_deref()),
         LotAction::Sync { lot, queue, station } => sync(lot, queue.as_deref(), station.as_deref()),
-        LotAction::Show { lot, spec, json } => show(lot, spec.as_deref(), *json),
+        LotAction::Show { lot, spec, json, by: None } => show(lot, spec.as_deref(), *json),
+        LotAction::Show { lot, spec, json, by: Some(by) } => show_by(lot, spec.as_deref(), *json, *by),
         LotAction::Export { lot, format, out, spec, serial } => {
             export(lot, *format, out, spec.as_deref(), serial.as_deref())
         }
@@ -120,17 +122,34 @@ fn export(
     Ok(())
 }
 
+/// The spec at `spec_path` (none: no limits), its names checked against the certificates'.
+fn spec_for(spec_path: Option<&Path>, certificates: &[&Certificate]) -> Result<Spec, Error> {
+    let Some(spec_path) = spec_path else { return Ok(Spec::default()) };
+    let spec = Spec::load(spec_path)?;
+    spec.check_names(spec_path, certificates.iter().flat_map(|c| c.parameters.keys()))?;
+    Ok(spec)
+}
+
+/// The lot by station or day, with the drifting stations, as text or JSON.
+fn show_by(path: &Path, spec_path: Option<&Path>, json: bool, by: GroupBy) -> Result<(), Error> {
+    let all = Lot::open_existing(path)?.all()?;
+    let spec = spec_for(spec_path, &all.iter().map(|(c, _)| c).collect::<Vec<_>>())?;
+    let (grouping, name) = match by {
+        GroupBy::Station => (Grouping::Station, "station"),
+        GroupBy::Day => (Grouping::Day, "day"),
+    };
+    let grouped = lot::stations::grouped(&all, grouping, &spec);
+    match json {
+        true => println!("{}", serde_json::to_string_pretty(&grouped).unwrap_or_default()),
+        false => print!("{}", lot::text::grouped(&grouped, name)),
+    }
+    Ok(())
+}
+
 /// The lot's summary against the spec, as text or JSON.
 fn show(path: &Path, spec_path: Option<&Path>, json: bool) -> Result<(), Error> {
     let latest = Lot::open_existing(path)?.latest()?;
-    let spec = match spec_path {
-        Some(spec_path) => {
-            let spec = Spec::load(spec_path)?;
-            spec.check_names(spec_path, latest.iter().flat_map(|c| c.parameters.keys()))?;
-            spec
-        }
-        None => Spec::default(),
-    };
+    let spec = spec_for(spec_path, &latest.iter().collect::<Vec<_>>())?;
     let summary = LotSummary::of(&latest, &spec);
     match json {
         true => println!("{}", serde_json::to_string_pretty(&summary).unwrap_or_default()),

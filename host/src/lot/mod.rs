@@ -13,6 +13,7 @@ pub mod queue;
 mod schema;
 pub mod server;
 pub mod spec;
+pub mod stations;
 pub mod summary;
 pub mod text;
 mod verify;
