@@ -66,8 +66,20 @@ impl Server {
         self.dir.join("data").to_string_lossy().into_owned()
     }
 
-    /// Runs one of the server's programs, as `nobody` when this process is root.
+    /// Runs one of the server's programs, which must succeed.
     fn run(&self, program: &str, args: &[&str]) -> Output {
+        let output = self.command(program).args(args).output().unwrap();
+        assert!(
+            output.status.success(),
+            "{program} {args:?} failed: {}{}",
+            String::from_utf8_lossy(&output.stdout),
+            String::from_utf8_lossy(&output.stderr)
+        );
+        output
+    }
+
+    /// One of the server's programs, as `nobody` when this process is root.
+    fn command(&self, program: &str) -> Command {
         let program = self.bin.join(program);
         let mut command = match is_root() {
             true => {
@@ -78,29 +90,14 @@ impl Server {
             }
             false => Command::new(&program),
         };
-        let output = command.args(args).env("HOME", &self.dir).output().unwrap();
-        assert!(
-            output.status.success(),
-            "{} {args:?} failed: {}{}",
-            program.display(),
-            String::from_utf8_lossy(&output.stdout),
-            String::from_utf8_lossy(&output.stderr)
-        );
-        output
+        command.env("HOME", &self.dir);
+        command
     }
 }
 
 impl Drop for Server {
     fn drop(&mut self) {
-        let data = self.data();
-        let _ = Command::new(self.bin.join("pg_ctl")).args(["-D", &data, "-m", "immediate", "stop"]).output();
-        if is_root() {
-            let id = UNPRIVILEGED_ID.to_string();
-            let pg_ctl = self.bin.join("pg_ctl");
-            let stop = ["--reuid", &id, "--regid", &id, "--clear-groups"];
-            let _ =
-                Command::new("setpriv").args(stop).arg(pg_ctl).args(["-D", &data, "-m", "immediate", "stop"]).output();
-        }
+        let _ = self.command("pg_ctl").args(["-D", &self.data(), "-m", "immediate", "stop"]).output();
         let _ = std::fs::remove_dir_all(&self.dir);
     }
 }
