@@ -55,6 +55,7 @@ pub mod opened;
 pub mod part;
 pub mod procedure;
 pub mod recording;
+pub mod records;
 pub mod repeat;
 pub mod sections;
 pub mod selftest;

@@ -22,3 +22,12 @@ pub const BAUD_RANGE: std::ops::RangeInclusive<u32> = 300..=6_000_000;
 /// NOTE: a writer holds the database for one certificate's insert, milliseconds; half a minute
 /// covers a machine stalled for a while, and a writer holding it longer is stuck.
 pub const LOT_BUSY_WAIT: Duration = Duration::from_secs(30);
+
+/// How many standard errors a station's mean of a parameter may lie from the other stations' before
+/// the lot names it drifting (`lot show --by station`).
+///
+/// NOTE: 12 parameters on 8 stations are 96 comparisons; 4 standard errors of a normal mean are
+/// passed by chance with 6.3e-5 each, about 1 in 160 lots with no drift at all.
+pub const STATION_DRIFT_STANDARD_ERRORS: f64 = 4.0;
+/// The fewest boards a station (and the others together) need before its mean is judged.
+pub const STATION_DRIFT_MIN_BOARDS: usize = 5;

@@ -110,7 +110,8 @@ pub struct CalibrateArgs {
     /// Continue the session SESSION.json (same board, range and filter) with the positions it lacks.
     #[arg(long, value_name = "SESSION")]
     pub resume: Option<PathBuf>,
-    /// Add the board's certificate to this lot database (one SQLite file, created when new).
+    /// Add the board's certificate to this lot database: one SQLite file (created when new), or a
+    /// server, postgres://USER@HOST/DB, through this station's queue (ACCELCAL_LOT_QUEUE).
     #[arg(long, value_name = "LOT")]
     pub lot: Option<PathBuf>,
     /// On a board that prints its own stream: its serial or label, which its certificate and the
@@ -410,6 +411,24 @@ pub struct LengthArgs {
     pub noise_report: Option<PathBuf>,
 }
 
+/// A test executive's record format (`lot export --format`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum RecordFormat {
+    /// OpenHTF's JSON test record (`TestRecord` -> phases -> measurements), one `.openhtf.json` per certificate.
+    Openhtf,
+    /// OCP Test & Validation output artifacts, one JSON object a line, one `.ocp.jsonl` per certificate.
+    Ocp,
+}
+
+/// How `lot show --by` groups the boards.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum GroupBy {
+    /// The station that uploaded each board's latest certificate.
+    Station,
+    /// The UTC day of each board's latest calibration.
+    Day,
+}
+
 /// `accelcal lot`.
 #[derive(Args)]
 pub struct LotArgs {
@@ -422,8 +441,11 @@ pub struct LotArgs {
 pub enum LotAction {
     /// Adds certificates (each checked against its hash) to the lot, creating the file when new.
     Add {
-        /// The lot database (one SQLite file).
+        /// The lot database: one SQLite file, or a server's postgres://USER@HOST[:PORT]/DB.
         lot: PathBuf,
+        /// The station the certificates are recorded from (default: ACCELCAL_STATION, else the host name).
+        #[arg(long)]
+        station: Option<String>,
         /// Certificate files (PATH.certificate.json written by calibrate --session).
         #[arg(required = true)]
         certificates: Vec<PathBuf>,
@@ -438,6 +460,38 @@ pub enum LotAction {
         /// Print one JSON object.
         #[arg(long)]
         json: bool,
+        /// Each station's or each day's boards apart, with the stations that drift from the others.
+        #[arg(long, value_enum)]
+        by: Option<GroupBy>,
+    },
+    /// Uploads the certificates waiting in this station's queue to the lot's server (each once, by
+    /// its hash); what the server did not take waits for the next sync.
+    Sync {
+        /// The lot's server, postgres://USER@HOST[:PORT]/DB.
+        lot: PathBuf,
+        /// The station's queue folder (default: ACCELCAL_LOT_QUEUE, else ~/.local/share/accelcal/lot-queue).
+        #[arg(long)]
+        queue: Option<PathBuf>,
+        /// The station the certificates are recorded from (default: ACCELCAL_STATION, else the host name).
+        #[arg(long)]
+        station: Option<String>,
+    },
+    /// Each certificate of the lot as the factory's test executive reads a test run: an OpenHTF JSON
+    /// test record or OCP Test & Validation line-delimited JSON artifacts, one file per certificate.
+    Export {
+        lot: PathBuf,
+        /// The record's format.
+        #[arg(long, value_enum)]
+        format: RecordFormat,
+        /// The folder the records are written to (created when new).
+        #[arg(long)]
+        out: PathBuf,
+        /// The spec file whose limits become each measurement's validators.
+        #[arg(long)]
+        spec: Option<PathBuf>,
+        /// Only this board's certificates.
+        #[arg(long)]
+        serial: Option<String>,
     },
     /// Every calibration of one board, by its serial.
     Board {

@@ -9,7 +9,7 @@ pub enum LotError {
     Open { path: PathBuf, source: rusqlite::Error },
     #[error("{} is no lot database: there is no such file; add certificates to it first with `accelcal lot add {} CERT.json` or `accelcal calibrate --lot {}`", .path.display(), .path.display(), .path.display())]
     Missing { path: PathBuf },
-    #[error("{} is not an accelcal lot of this version (schema {found}, this accelcal reads 1); give the lot file `accelcal lot add` wrote, or a new path; a lot file that was altered or damaged reads so too: add its boards again from their certificate files to a new lot", .path.display())]
+    #[error("{} is not an accelcal lot of this version (schema {found}, this accelcal reads 1 and 2); give the lot file `accelcal lot add` wrote, or a new path; a lot file that was altered or damaged reads so too: add its boards again from their certificate files to a new lot", .path.display())]
     NotALot { path: PathBuf, found: i64 },
     #[error("the lot database {} failed: {source}; nothing of the board being written was kept, run the command again (a lot another process is writing is waited for up to 30 s)", .path.display())]
     Sql { path: PathBuf, source: rusqlite::Error },
@@ -27,6 +27,18 @@ pub enum LotError {
     NoSerialIn { file: PathBuf },
     #[error("the lot {} holds no board with serial {serial}; `accelcal lot show {}` lists its boards", .path.display(), .path.display())]
     UnknownBoard { path: PathBuf, serial: String },
+    #[error("the lot server {} failed: {reason}; nothing of the board being written was kept there. Certificates waiting in this station's queue are sent by `accelcal lot sync {}` once the server answers", .place.display(), .place.display())]
+    Server { place: PathBuf, reason: String },
+    #[error("{} is no lot server address ({reason}); write it as postgres://USER[:PASSWORD]@HOST[:PORT]/DATABASE", .place.display())]
+    Address { place: PathBuf, reason: String },
+    #[error("the server {} holds no accelcal lot yet; add certificates to it first (`accelcal lot add {} CERT.json`, `accelcal lot sync {}`)", .place.display(), .place.display(), .place.display())]
+    NoLotOnServer { place: PathBuf },
+    #[error("cannot keep the certificate in the station's queue {}: {source}; give a folder this user can write with --queue (or ACCELCAL_LOT_QUEUE)", .dir.display())]
+    Queue { dir: PathBuf, source: std::io::Error },
+    #[error("{count} certificate file(s) in the station's queue were refused by their hash (altered or damaged) and set aside in {}; issue them again from their sessions (`accelcal certificate issue SESSION.json`)", .dir.display())]
+    RefusedInQueue { count: usize, dir: PathBuf },
+    #[error("cannot write the records in {}: {source}; give a folder this user can write with --out", .dir.display())]
+    Records { dir: PathBuf, source: std::io::Error },
     #[error("cannot read the spec file {}: {reason}; write it as TOML, one `[limits.NAME]` table per parameter with `low` and/or `high` in the certificate's units (docs/production.md)", .path.display())]
     Spec { path: PathBuf, reason: String },
 }

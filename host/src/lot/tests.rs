@@ -292,9 +292,68 @@ fn a_lot_is_read_without_writing_even_where_its_shared_memory_file_cannot_be_mad
     std::os::unix::fs::symlink("/nonexistent/accelcal-lot-shm", &shm).unwrap();
     let lot = Lot::open_existing(&path).unwrap();
     assert_eq!(lot.latest().unwrap().len(), 2);
-    let write = lot.connection.execute("DELETE FROM parameters", []).map_err(|e| e.sqlite_error_code());
+    let write = lot.file_connection().execute("DELETE FROM parameters", []).map_err(|e| e.sqlite_error_code());
     assert_eq!(write, Err(Some(rusqlite::ErrorCode::ReadOnly)));
     drop(lot);
     assert!(std::fs::read(&path).unwrap() == before, "a read changed the lot file");
     remove(&path);
+}
+
+#[test]
+fn a_version_1_lot_file_reads_as_it_was_and_is_migrated_to_version_2_when_written() {
+    let path = closed_lot("migrated");
+    // NOTE: a version 1 file as issue 28's accelcal left it: no station column.
+    sql(&path, "ALTER TABLE certificates DROP COLUMN station; PRAGMA user_version = 1;");
+    let read = Lot::open_existing(&path).unwrap();
+    assert_eq!((read.version, read.latest().unwrap().len()), (1, 2));
+    drop(read);
+    let mut lot = Lot::create_or_open(&path).unwrap();
+    lot.station = "st-2".into();
+    lot.add(&certificate(4, "B3", "2026-11-26 08:00")).unwrap();
+    let stations: Vec<String> = lot.all().unwrap().into_iter().map(|(_, station)| station).collect();
+    assert_eq!(stations, ["", "", "", "st-2"]);
+    let version: i64 = lot.file_connection().pragma_query_value(None, "user_version", |r| r.get(0)).unwrap();
+    assert_eq!(version, schema::LATEST);
+    remove(&path);
+}
+
+#[test]
+fn the_station_whose_boards_lie_away_from_the_others_is_named_and_each_group_has_its_own_cpk() {
+    let made: Vec<Certificate> = (1..=6).map(|s| certificate(s, "B", "2026-11-24 10:00")).collect();
+    let mut all = Vec::new();
+    for (k, station) in ["st-a", "st-b", "st-c", "st-d"].into_iter().enumerate() {
+        for (n, base) in made.iter().enumerate() {
+            let mut c = base.clone();
+            c.board.serial = Some(format!("{station}-{n}"));
+            c.date_utc = Some(format!("2026-11-2{} 10:00", 4 + k % 2));
+            // NOTE: st-c's fixture sits 0.2 g off in x: every board's o_x moves with it.
+            if station == "st-c" {
+                c.parameters.get_mut("o_x").unwrap().value += 0.2;
+            }
+            all.push((c.resealed(), station.to_owned()));
+        }
+    }
+    let spec = Spec { limits: [("o_x".to_owned(), Limits { low: Some(-0.5), high: Some(0.5) })].into() };
+    let by_station = stations::grouped(&all, stations::Grouping::Station, &spec);
+    let named: Vec<(&str, &str)> =
+        by_station.drifting.iter().map(|d| (d.station.as_str(), d.parameter.as_str())).collect();
+    assert_eq!(named, [("st-c", "o_x")], "{:?}", by_station.drifting);
+    assert!((by_station.drifting[0].mean - by_station.drifting[0].others_mean - 0.2).abs() < 1e-12);
+    let st_a: Vec<Certificate> = all.iter().filter(|(_, s)| s == "st-a").map(|(c, _)| c.clone()).collect();
+    assert_eq!(by_station.groups[0].summary, LotSummary::of(&st_a, &spec));
+    let by_day = stations::grouped(&all, stations::Grouping::Day, &spec);
+    let days: Vec<(&str, usize)> = by_day.groups.iter().map(|g| (g.name.as_str(), g.summary.boards)).collect();
+    assert_eq!(days, [("2026-11-24", 12), ("2026-11-25", 12)]);
+    assert!(by_day.drifting.is_empty());
+    let said = text::grouped(&by_station, "station");
+    assert!(said.contains("station st-c drifts from the others: o_x"), "{said}");
+}
+
+#[test]
+fn a_difference_of_means_is_in_welch_s_standard_errors_and_needs_five_boards_a_side() {
+    let (a, b) = ([1.0, 2.0, 3.0, 4.0, 5.0], [0.0, 0.0, 1.0, 1.0, 3.0]);
+    // mean 3 vs 1; var/n 2.5/5 and 1.5/5: (3 - 1) / sqrt(0.8).
+    let z = stations::difference_in_standard_errors(&a, &b).unwrap();
+    assert!((z - 2.0 / 0.8f64.sqrt()).abs() < 1e-12, "{z}");
+    assert_eq!(stations::difference_in_standard_errors(&a[..4], &b), None);
 }

@@ -60,3 +60,24 @@ pub fn board(certificates: &[Certificate]) -> String {
     }
     out
 }
+
+/// The lot by station or day: each group's summary, then the drifting stations.
+pub fn grouped(grouped: &super::stations::Grouped, by: &str) -> String {
+    let mut out = String::new();
+    for group in &grouped.groups {
+        let _ = writeln!(out, "{by} {}:", group.name);
+        out.push_str(&summary(&group.summary));
+    }
+    for d in &grouped.drifting {
+        let unit = if d.unit == "1" { String::new() } else { format!(" {}", d.unit) };
+        let _ = writeln!(
+            out,
+            "station {} drifts from the others: {} mean {:.6}{unit} against {:.6}{unit} ({:+.1} standard errors)",
+            d.station, d.parameter, d.mean, d.others_mean, d.standard_errors
+        );
+    }
+    if by == "station" && grouped.drifting.is_empty() {
+        out.push_str("no station drifts from the others\n");
+    }
+    out
+}

@@ -1,36 +1,35 @@
-//! Every read of the lot re-checks what it is about to show (issue 40): SQLite's own integrity check,
-//! each stored certificate against its hash and against the serial and date it is keyed by, and the
-//! `parameters` rows against the certificates they come from. A lot file that was altered or damaged
-//! is refused naming the board, never shown with a changed figure.
+//! Every read of the lot re-checks what it is about to show (issue 40): SQLite's own integrity check
+//! (a file's), each stored certificate against its hash and against the serial and date it is keyed
+//! by, and the `parameters` rows against the certificates they come from. A lot that was altered or
+//! damaged, in a file or on a server, is refused naming the board, never shown with a changed figure.
 
 use std::collections::BTreeMap;
 
-use super::{Lot, LotError};
+use super::schema::{ParameterRow, Stored};
+use super::{file, server, Backend, Lot, LotError};
 use crate::certificate::{digest_of, Certificate};
 
-/// One row of `certificates` as stored.
-struct Stored {
-    id: i64,
-    serial: String,
-    date_utc: String,
-    sha256: String,
-    json: String,
-}
-
-/// One row of `parameters`: (value, u, U, unit).
-type ParameterRow = (f64, f64, f64, String);
-
 impl Lot {
-    /// Every certificate of the lot, by serial, then date, then the order added; each checked.
-    pub(super) fn verified(&self) -> Result<Vec<Certificate>, LotError> {
-        self.check_integrity()?;
-        let mut parameters = self.parameter_rows()?;
+    /// Every certificate of the lot with its station, by serial, then date, then the order added;
+    /// each checked.
+    pub(super) fn verified(&self) -> Result<Vec<(Certificate, String)>, LotError> {
+        match self.integrity()?.as_slice() {
+            [ok] if ok == "ok" => {}
+            found => return Err(self.damaged(format!("SQLite's integrity check found: {}", found.join("; ")))),
+        }
+        let (mut stored, rows) = self.rows()?;
+        // NOTE: sorted here, not by the SQL: the two dialects collate text differently.
+        stored.sort_by(|a, b| (&a.serial, &a.date_utc, a.id).cmp(&(&b.serial, &b.date_utc, b.id)));
+        let mut parameters: BTreeMap<i64, BTreeMap<String, ParameterRow>> = BTreeMap::new();
+        for (id, name, values) in rows {
+            parameters.entry(id).or_default().insert(name, values);
+        }
         let mut certificates = Vec::new();
-        for stored in self.stored()? {
+        for stored in stored {
             let certificate = self.checked(&stored)?;
             let rows = parameters.remove(&stored.id).unwrap_or_default();
             self.check_parameters(&stored, &certificate, &rows)?;
-            certificates.push(certificate);
+            certificates.push((certificate, stored.station));
         }
         match parameters.keys().next() {
             Some(id) => Err(self.damaged(format!("parameter rows of certificate {id}, which the lot does not hold"))),
@@ -38,43 +37,26 @@ impl Lot {
         }
     }
 
-    /// SQLite's integrity check: pages, records and indexes as SQLite wrote them.
-    fn check_integrity(&self) -> Result<(), LotError> {
-        let mut statement = self.connection.prepare("PRAGMA integrity_check").map_err(|e| self.read_failed(e))?;
-        let rows = statement.query_map([], |row| row.get::<_, String>(0)).map_err(|e| self.read_failed(e))?;
-        let found: Vec<String> = rows.collect::<Result<_, _>>().map_err(|e| self.read_failed(e))?;
-        match found.as_slice() {
-            [ok] if ok == "ok" => Ok(()),
-            _ => Err(self.damaged(format!("SQLite's integrity check found: {}", found.join("; ")))),
+    /// What SQLite's integrity check finds in a file ("ok" when intact); a server's lot is "ok".
+    pub(super) fn integrity(&self) -> Result<Vec<String>, LotError> {
+        match &self.backend {
+            Backend::File(connection) => file::integrity(connection, &self.path),
+            Backend::Server(_) => Ok(vec!["ok".to_owned()]),
         }
     }
 
-    /// The `certificates` rows, by serial, date and id.
-    fn stored(&self) -> Result<Vec<Stored>, LotError> {
-        let query = "SELECT id, serial, date_utc, sha256, json FROM certificates ORDER BY serial, date_utc, id";
-        let mut statement = self.connection.prepare(query).map_err(|e| self.read_failed(e))?;
-        let row = |row: &rusqlite::Row| {
-            let (id, serial, date_utc, sha256, json) =
-                (row.get(0)?, row.get(1)?, row.get(2)?, row.get(3)?, row.get(4)?);
-            Ok(Stored { id, serial, date_utc, sha256, json })
-        };
-        let rows = statement.query_map([], row).map_err(|e| self.read_failed(e))?;
-        rows.collect::<Result<_, _>>().map_err(|e| self.read_failed(e))
-    }
-
-    /// Every `parameters` row, by certificate id and name.
-    fn parameter_rows(&self) -> Result<BTreeMap<i64, BTreeMap<String, ParameterRow>>, LotError> {
-        let query = "SELECT certificate, name, value, u, expanded, unit FROM parameters";
-        let mut statement = self.connection.prepare(query).map_err(|e| self.read_failed(e))?;
-        let row =
-            |row: &rusqlite::Row| Ok((row.get(0)?, row.get(1)?, (row.get(2)?, row.get(3)?, row.get(4)?, row.get(5)?)));
-        let rows = statement.query_map([], row).map_err(|e| self.read_failed(e))?;
-        let mut by_certificate: BTreeMap<i64, BTreeMap<String, ParameterRow>> = BTreeMap::new();
-        for found in rows {
-            let (id, name, values) = found.map_err(|e| self.read_failed(e))?;
-            by_certificate.entry(id).or_default().insert(name, values);
+    /// The `certificates` rows and the `parameters` rows, as stored.
+    #[allow(clippy::type_complexity)]
+    fn rows(&self) -> Result<(Vec<Stored>, Vec<(i64, String, ParameterRow)>), LotError> {
+        match &self.backend {
+            Backend::File(connection) => {
+                Ok((file::stored(connection, &self.path, self.version)?, file::parameter_rows(connection, &self.path)?))
+            }
+            Backend::Server(client) => {
+                let client = &mut client.borrow_mut();
+                Ok((server::stored(client, &self.path)?, server::parameter_rows(client, &self.path)?))
+            }
         }
-        Ok(by_certificate)
     }
 
     /// The certificate a row holds, when its content hashes to the hash it states and the row
@@ -131,10 +113,5 @@ impl Lot {
 
     fn damaged(&self, reason: String) -> LotError {
         LotError::Damaged { path: self.path.clone(), reason }
-    }
-
-    /// A failed read: a lot another process holds is named as such, anything else as a damaged file.
-    pub(super) fn read_failed(&self, source: rusqlite::Error) -> LotError {
-        LotError::from_sqlite(&self.path, source, |path, source| LotError::Damaged { path, reason: source.to_string() })
     }
 }

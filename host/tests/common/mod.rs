@@ -5,6 +5,7 @@
 
 pub mod person;
 pub mod side_by_side;
+pub mod throwaway_postgres;
 
 use std::io::{BufRead, Read};
 use std::process::{Child, Command, Output, Stdio};
