@@ -453,10 +453,10 @@ fn a_resumed_session_goes_on_as_it_was_begun_and_says_which_flags_it_does_not_us
     assert!(first.status.success(), "{}", String::from_utf8_lossy(&first.stderr));
     let json = stem.with_extension("json");
     let again = ["calibrate", "--sim", "--seed", "4", "--resume", json.to_str().unwrap(), "--yes"];
-    let output = accelcal(&[&again[..], &["--seconds", "5", "--quick"]].concat());
+    let output = accelcal(&[&again[..], &["--seconds", "5", "--chip-fit"]].concat());
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(output.status.success(), "{stderr}");
-    assert!(stderr.contains("begun as a full calibration; it goes on as one (--quick is not used"), "{stderr}");
+    assert!(stderr.contains("begun as a full calibration; it goes on as one (--chip-fit is not used"), "{stderr}");
     assert!(stderr.contains("begun adaptive") && stderr.contains("--seconds 5 is not used"), "{stderr}");
     // Thirteen positions and +Z again: the closing capture is no fourteenth position.
     assert!(stderr.contains("13 of 14 positions captured") && stderr.contains("13 positions predict"), "{stderr}");
@@ -488,9 +488,9 @@ fn a_resumed_quick_session_says_it_stays_quick_and_a_fixed_length_one_is_not_cal
         assert!(output.status.success(), "{stderr}");
         stderr
     };
-    let quick = resumed(&["--quick"], &[], "quick");
+    let quick = resumed(&["--chip-fit"], &[], "quick");
     assert!(
-        quick.contains("begun as a quick calibration; it goes on as one (leaving out --quick is not used"),
+        quick.contains("begun as a quick calibration; it goes on as one (leaving out --chip-fit is not used"),
         "{quick}"
     );
     // A fixed-length session was not begun adaptive: its --seconds is not refused in those words.

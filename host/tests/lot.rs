@@ -30,7 +30,7 @@ fn text(path: &Path) -> &str {
 fn certificate(dir: &Path, seed: u64) -> PathBuf {
     let session = dir.join(format!("board{seed}"));
     let seed = seed.to_string();
-    let args = ["calibrate", "--sim", "--quick", "--yes", "--seed", &seed, "--session", text(&session)];
+    let args = ["calibrate", "--sim", "--chip-fit", "--yes", "--seed", &seed, "--session", text(&session)];
     let (output, _) = accelcal_within(&args, LIMIT);
     assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
     session.with_extension("certificate.json")
@@ -86,7 +86,7 @@ fn another_process_reads_the_lot_while_a_session_writes_to_it() {
     assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
     let session = dir.join("board2");
     let args =
-        ["calibrate", "--sim", "--quick", "--yes", "--seed", "2", "--session", text(&session), "--lot", text(&lot)];
+        ["calibrate", "--sim", "--chip-fit", "--yes", "--seed", "2", "--session", text(&session), "--lot", text(&lot)];
     let mut writer = writer_inside_its_transaction(&args);
     // The reader sees the lot as it was before the board being written, while the writer still
     // holds its transaction open (it pauses there for 60 s).

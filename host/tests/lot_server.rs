@@ -137,7 +137,7 @@ fn certificates_issued_while_the_server_is_stopped_wait_in_the_queue_and_sync_se
     // A calibration whose lot is down keeps its certificate in the queue and still succeeds.
     let session = dir.join("board7");
     let (output, _) = Command::new(env!("CARGO_BIN_EXE_accelcal"))
-        .args(["calibrate", "--sim", "--quick", "--yes", "--seed", "7", "--session"])
+        .args(["calibrate", "--sim", "--chip-fit", "--yes", "--seed", "7", "--session"])
         .arg(&session)
         .args(["--lot", &url])
         .env("ACCELCAL_LOT_QUEUE", &queue.dir)

@@ -21,7 +21,7 @@ fn folder(name: &str) -> PathBuf {
 }
 
 fn quick_session(session: &Path) -> Output {
-    accelcal(&["calibrate", "--sim", "--quick", "--yes", "--session", session.to_str().unwrap()])
+    accelcal(&["calibrate", "--sim", "--chip-fit", "--yes", "--session", session.to_str().unwrap()])
 }
 
 #[test]
@@ -77,7 +77,7 @@ fn a_simulated_capture_named_as_a_face_stores_that_face() {
 
 #[test]
 fn the_largest_values_the_parser_accepts_succeed_with_the_simulated_hand() {
-    for extra in [&["--quick", "--verify", "16"][..], &["--sim-placement-deg", "8"][..]] {
+    for extra in [&["--chip-fit", "--verify", "16"][..], &["--sim-placement-deg", "8"][..]] {
         let args = [&["calibrate", "--sim", "--yes", "--seed", "3"][..], extra].concat();
         // NOTE: --verify 20 and --sim-placement-deg 10 waited 60 s and failed: the parser refuses them now.
         let output = accelcal(&args);
@@ -91,7 +91,8 @@ fn a_second_run_into_a_session_another_run_is_writing_is_refused_naming_that_run
     let dir = folder("held");
     let stem = dir.join("z");
     let mut board = common::SimPty::start(&[]);
-    let mut first = Run::start(&board.path, &["--quick", "--yes", "--session", stem.to_str().unwrap()], Moves::Place);
+    let mut first =
+        Run::start(&board.path, &["--chip-fit", "--yes", "--session", stem.to_str().unwrap()], Moves::Place);
     // NOTE: the person has not moved the board yet: the first run waits at its first position.
     assert!(first.follow(&mut board, "the captures are kept in").is_some(), "{}", first.seen.join("\n"));
     let serial = serde_json::from_slice::<serde_json::Value>(&std::fs::read(dir.join("z.json")).unwrap()).unwrap()
@@ -139,7 +140,7 @@ fn kept_whole(dir: &Path) -> serde_json::Value {
     serde_json::from_slice(&std::fs::read(dir.join("z.json")).unwrap()).unwrap()
 }
 
-const QUICK: [&str; 6] = ["calibrate", "--sim", "--quick", "--yes", "--session", "z"];
+const QUICK: [&str; 6] = ["calibrate", "--sim", "--chip-fit", "--yes", "--session", "z"];
 
 #[test]
 fn on_a_full_disk_the_captures_said_to_be_kept_are_those_the_session_file_holds() {
@@ -230,7 +231,7 @@ fn ctrl_c_at_the_upload_question_ends_the_run_at_once_with_the_resume_line() {
     let (_master, stdin) =
         unsafe { (std::fs::File::from_raw_fd(terminal.master), std::fs::File::from_raw_fd(terminal.slave)) };
     let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_accelcal"))
-        .args(["calibrate", "--sim", "--quick", "--session", stem.to_str().unwrap()])
+        .args(["calibrate", "--sim", "--chip-fit", "--session", stem.to_str().unwrap()])
         .stdin(stdin)
         .stdout(std::process::Stdio::null())
         .stderr(std::process::Stdio::piped())

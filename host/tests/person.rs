@@ -29,9 +29,9 @@ fn calibrations(sim: &SimPty) -> (String, String) {
     (String::from_utf8(active.stdout).unwrap(), String::from_utf8(stored.stdout).unwrap())
 }
 
-/// `accelcal calibrate --quick` against the simulated board, the person placing it.
+/// `accelcal calibrate --chip-fit` against the simulated board, the person placing it.
 fn quick_run(port: &str, extra: &[&str]) -> Run {
-    let args = [&["--quick", "--seconds", "5", "--verify", "2"][..], extra].concat();
+    let args = [&["--chip-fit", "--seconds", "5", "--verify", "2"][..], extra].concat();
     Run::start(port, &args, Moves::Place)
 }
 
@@ -196,7 +196,7 @@ fn a_session_resumed_after_ctrl_c_in_its_verification_keeps_the_gyro_g_it_upload
     let mut sim = board_on_the_desk("17");
     let session = temp_stem("resumed-g");
     let json = session.with_extension("json");
-    let quick = ["--quick", "--seconds", "5", "--verify", "2", "--yes"];
+    let quick = ["--chip-fit", "--seconds", "5", "--verify", "2", "--yes"];
     let first = [&quick[..], &["--session", session.to_str().unwrap()]].concat();
     let mut run = Run::start(&sim.path.clone(), &first, Moves::Turn);
     assert!(run.follow(&mut sim, "uploaded and saved; now checking").is_some(), "{:?}", run.seen);

@@ -351,7 +351,7 @@ fn the_report_of_a_quick_session_shows_the_ortho9_calibration_the_chip_fitted() 
     let dir = scratch("quick");
     let stem = dir.join("quick");
     let output =
-        accelcal(&["calibrate", "--sim", "--quick", "--yes", "--seed", "3", "--session", stem.to_str().unwrap()]);
+        accelcal(&["calibrate", "--sim", "--chip-fit", "--yes", "--seed", "3", "--session", stem.to_str().unwrap()]);
     assert!(output.status.success(), "{}", text(&output.stderr));
     let json = report_json(&stem.with_extension("json"));
     assert_eq!(json.pointer("/fit/model").and_then(Value::as_str), Some("ortho9"), "{json:#}");

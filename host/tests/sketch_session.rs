@@ -98,7 +98,7 @@ fn a_lot_needs_the_serial_a_stream_cannot_name_and_a_board_of_our_own_takes_none
     for path in [lot, stem.with_extension("json"), stem.with_extension("log")] {
         assert!(!path.exists(), "{} was written before the refusal", path.display());
     }
-    let (refused, _) = accelcal_within(&["calibrate", "--sim", "--quick", "--yes", "--serial", "B1"], LIMIT);
+    let (refused, _) = accelcal_within(&["calibrate", "--sim", "--chip-fit", "--yes", "--serial", "B1"], LIMIT);
     let said = String::from_utf8_lossy(&refused.stderr);
     assert!(!refused.status.success() && said.contains("reports its own serial"), "{said}");
     let _ = std::fs::remove_dir_all(&dir);

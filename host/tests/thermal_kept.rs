@@ -22,7 +22,7 @@ fn temp_path(name: &str) -> PathBuf {
 fn calibrated_board(seed: &str) -> SimPty {
     let sim = SimPty::with_seed(seed, &["--fast"]);
     let file = temp_path(&format!("calibration-{seed}.json"));
-    let calibration = accelcal(&["calibrate", "--sim", "--quick", "--yes", "--json"]);
+    let calibration = accelcal(&["calibrate", "--sim", "--chip-fit", "--yes", "--json"]);
     std::fs::write(&file, calibration.stdout).unwrap();
     assert!(accelcal(&["upload", "--port", &sim.path, file.to_str().unwrap()]).status.success());
     sim

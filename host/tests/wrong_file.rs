@@ -60,7 +60,7 @@ fn upload_takes_the_session_file_export_takes_and_uploads_the_calibration_calibr
     let dir = scratch("upload");
     let stem = dir.join("board");
     let calibrated =
-        stdout_of(&["calibrate", "--sim", "--quick", "--yes", "--seed", "3", "--session", path(&stem), "--json"]);
+        stdout_of(&["calibrate", "--sim", "--chip-fit", "--yes", "--seed", "3", "--session", path(&stem), "--json"]);
     let calibrated: Value = serde_json::from_str(&calibrated).unwrap();
     let record = dir.join("calibration.json");
     std::fs::write(&record, calibrated["calibration"].to_string()).unwrap();

@@ -167,7 +167,7 @@ pub const TURN_CHECK_ATTEMPTS: usize = 3;
 /// Most fresh orientations a verification asks for.
 ///
 /// NOTE: each must be 20 degrees from the calibration's 14 positions and from the others, and the
-/// simulated hand keeps 30 degrees: measured, `calibrate --sim --quick --verify 20` waited 64 s and
+/// simulated hand keeps 30 degrees: measured, `calibrate --sim --chip-fit --verify 20` waited 64 s and
 /// failed (seed 1) while 16 and 17 passed in 2 s (16 on seeds 1-7); a person would not turn the board
 /// more often than that anyway.
 pub const MAX_VERIFY_POSITIONS: i64 = 16;

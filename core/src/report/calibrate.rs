@@ -24,7 +24,7 @@ pub struct CalibrateReport {
     pub verification: Verification,
     /// Positions captured.
     pub captures: usize,
-    /// The chip's own `ortho9` fit of the captures it kept (the calibration itself for `--quick`; absent
+    /// The chip's own `ortho9` fit of the captures it kept (the calibration itself for `--chip-fit`; absent
     /// for a resumed session: the chip holds only the captures of the last run).
     pub chip_fit: Option<CalibrationJson>,
     /// The host's fit, when it made the calibration.

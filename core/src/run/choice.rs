@@ -43,7 +43,7 @@ pub(super) async fn fit_with_gyro<T: Transport>(
 }
 
 /// The on-chip fit (of captures all taken in this run), and but for a quick session the host's fit,
-/// which is then the one chosen; a resumed `--quick` session is fitted by the same solver on the
+/// which is then the one chosen; a resumed `--chip-fit` session is fitted by the same solver on the
 /// host.
 async fn choose<T: Transport>(
     link: &mut Link<T>,

@@ -59,18 +59,18 @@ pub fn kept_before_verifying(session: &Session, uploaded: Calibration) -> Sessio
     }
 }
 
-/// What a resumed session makes of `--quick` (`asked_quick`) and `--seconds` given differently
+/// What a resumed session makes of `--chip-fit` (`asked_quick`) and `--seconds` given differently
 /// from when it was begun, in words: it goes on as it was begun (its captures, fit and report must
 /// agree).
 pub fn resumed_as_begun(begun: SessionKind, asked_quick: bool, asked_seconds: Option<u8>) -> Vec<String> {
-    let kind = |quick: bool| if quick { "a quick calibration" } else { "a full calibration" };
+    let kind = |chip: bool| if chip { "a calibration fitted on the chip" } else { "a full calibration" };
     let begun_quick = begun == SessionKind::Quick;
     let mut lines = Vec::new();
     if asked_quick != begun_quick {
         lines.push(format!(
             "this session was begun as {}; it goes on as one ({} is not used: start a new session for the other)",
             kind(begun_quick),
-            if asked_quick { "--quick" } else { "leaving out --quick" }
+            if asked_quick { "--chip-fit" } else { "leaving out --chip-fit" }
         ));
     }
     if let (SessionKind::Adaptive, Some(seconds)) = (begun, asked_seconds) {

@@ -8,7 +8,7 @@ use serde::{Deserialize, Serialize};
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum SessionKind {
-    /// `calibrate --quick`: ten positions of a fixed length, fitted on the chip (`ortho9`).
+    /// `calibrate --chip-fit`: ten positions of a fixed length, fitted on the chip (`ortho9`).
     Quick,
     /// Every position for a fixed length (`calibrate --seconds`, `accelcal capture`): the host's
     /// choice of model.
@@ -23,7 +23,7 @@ pub enum SessionKind {
 }
 
 impl SessionKind {
-    /// What a new session is asked to be: quick (`--quick`), of fixed-length captures (`--seconds`),
+    /// What a new session is asked to be: quick (`--chip-fit`), of fixed-length captures (`--seconds`),
     /// or adaptive. A resumed session keeps what it was begun as, so that its collection, its fit and
     /// its report agree.
     pub fn asked(quick: bool, seconds: Option<u8>) -> Self {

@@ -47,7 +47,7 @@ pub struct Outcome {
 }
 
 impl Session {
-    /// The model a session's calibration is fitted with: for a `--quick` session the chip's own,
+    /// The model a session's calibration is fitted with: for a `--chip-fit` session the chip's own,
     /// `ortho9` (the six-position closed form for a quick session of the six faces alone, as taken
     /// before the chip fitted `ortho9`), `ortho9` for an adaptive one, the host's choice otherwise.
     pub fn model(&self) -> ModelChoice {

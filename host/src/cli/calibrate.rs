@@ -40,10 +40,11 @@ pub(super) fn calibrate_board(
         return Err(Error::SerialOfItsOwn { reported });
     }
     opened.hand_seed = args.sim_hand_seed.unwrap_or(args.device.seed);
-    let learned = match args.resume.is_none() && SessionKind::asked(args.quick, args.seconds) == SessionKind::Adaptive {
-        true => kept_by_new_session(&mut opened.connection.client, feedback)?,
-        false => None,
-    };
+    let learned =
+        match args.resume.is_none() && SessionKind::asked(args.chip_fit, args.seconds) == SessionKind::Adaptive {
+            true => kept_by_new_session(&mut opened.connection.client, feedback)?,
+            false => None,
+        };
     let kept = kept(args, &opened.connection.info, learned, feedback)?;
     opened.connection.client.interrupt_on(interrupt);
     let plan = plan_of(args, &opened, &kept)?;
@@ -65,7 +66,7 @@ fn kept(
         Some(path) => {
             let (kept, said) = KeptSession::resume(path, &board, &holder)?;
             feedback.say(&said);
-            resumed_as_begun(kept.session.kind, args.quick, args.seconds).iter().for_each(|line| feedback.say(line));
+            resumed_as_begun(kept.session.kind, args.chip_fit, args.seconds).iter().for_each(|line| feedback.say(line));
             kept
         }
         None => {
@@ -74,7 +75,7 @@ fn kept(
                 new_session_path(args.session.as_deref(), args.device.port.is_some(), Some(&board.serial), &holder)?;
             let session = Session {
                 board: Some(board),
-                kind: SessionKind::asked(args.quick, args.seconds),
+                kind: SessionKind::asked(args.chip_fit, args.seconds),
                 learned,
                 ..Session::default()
             };

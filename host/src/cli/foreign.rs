@@ -17,7 +17,7 @@ pub(super) fn calibrate_from_stream(args: &CalibrateArgs, talking: TalkingPort) 
     let options = CalibrateOptions {
         stream: args.stream.options(None),
         baud: args.device.baud,
-        target_mg: args.length.target_mg,
+        target_mg: args.length.target_mg(),
         verify: usize::from(args.verify.unwrap_or(ADAPTIVE_VERIFY_POSITIONS)),
         lot: args.lot.clone(),
         json: args.json,

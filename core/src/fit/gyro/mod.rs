@@ -47,7 +47,7 @@ impl fmt::Display for GyroFitError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             GyroFitError::TooFewTurns { turns } => {
-                write!(f, "only {turns} usable turns between positions; the gyro fit needs {MIN_GYRO_TURNS}: turn the board from face to face between the positions (a full calibration, without --quick, has 13)")
+                write!(f, "only {turns} usable turns between positions; the gyro fit needs {MIN_GYRO_TURNS}: turn the board from face to face between the positions (a full calibration, without --chip-fit, has 13)")
             }
             GyroFitError::Unobservable { axes, turned_deg } => write!(f, "{}", observability::advice(axes, turned_deg)),
             GyroFitError::Diverged => write!(f, "the gyro fit did not converge: the turns do not agree with the positions (was the board moved during a capture?)"),

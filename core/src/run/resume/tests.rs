@@ -50,10 +50,13 @@ fn a_resumed_session_goes_on_as_begun_and_says_which_arguments_it_does_not_use()
     assert!(resumed_as_begun(SessionKind::Quick, true, Some(4)).is_empty(), "a quick session's --seconds");
     let quick = resumed_as_begun(SessionKind::Quick, false, None);
     assert_eq!(quick.len(), 1);
-    assert!(quick[0].contains("begun as a quick calibration") && quick[0].contains("leaving out --quick"), "{quick:?}");
+    assert!(
+        quick[0].contains("begun as a calibration fitted on the chip") && quick[0].contains("leaving out --chip-fit"),
+        "{quick:?}"
+    );
     let full = resumed_as_begun(SessionKind::Adaptive, true, Some(6));
     assert_eq!(full.len(), 2, "{full:?}");
-    assert!(full[0].contains("begun as a full calibration") && full[0].contains("(--quick is not used"), "{full:?}");
+    assert!(full[0].contains("begun as a full calibration") && full[0].contains("(--chip-fit is not used"), "{full:?}");
     assert!(full[1].contains("--seconds 6 is not used"), "{full:?}");
 }
 
