@@ -39,7 +39,7 @@ impl Default for FitOptions {
 
 impl FitOptions {
     /// The rows the fit sees: the training rows, with references only where they are to be used.
-    pub(super) fn training_set<'a>(&self, dataset: &'a Dataset) -> Result<Cow<'a, Dataset>, FitError> {
+    pub(crate) fn training_set<'a>(&self, dataset: &'a Dataset) -> Result<Cow<'a, Dataset>, FitError> {
         let count = dataset.rows.len();
         for &row in self.training_rows.iter().chain(&self.reference_rows).flatten() {
             if row == 0 || row > count {

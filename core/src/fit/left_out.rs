@@ -206,3 +206,34 @@ mod tests {
         }
     }
 }
+
+/// `fit`'s prediction with the misfit its rows show when each is left out (see
+/// [`super::Prediction::with_held_out`]); the prediction as it was where no row can be left out.
+pub fn with_misfit(fit: &Fit, training: &Dataset, options: &FitOptions) -> Option<super::Prediction> {
+    let prediction = fit.prediction?;
+    let chosen =
+        fit.selection.as_ref().and_then(|s| s.leave_one_out.iter().find(|(name, _)| *name == fit.model.name()));
+    let held_out = match chosen {
+        Some((_, figure)) => *figure,
+        None => leave_one_out_rms(training, fit.model, options),
+    };
+    let mg = |value: f64| value / options.g * 1000.0;
+    Some(match held_out {
+        Some(held_out) => prediction.with_held_out(mg(held_out), mg(row_noise(training))),
+        None => prediction,
+    })
+}
+
+/// The RMS noise of a row's mean along any one axis, in output units, from the rows' `count` and
+/// `std`; 0 where the rows do not carry them (the held-out error is then all taken as misfit).
+fn row_noise(training: &Dataset) -> f64 {
+    let variances: Vec<f64> = training
+        .rows
+        .iter()
+        .filter_map(|row| Some(row.std?.iter().map(|s| s * s).sum::<f64>() / 3.0 / f64::from(row.count?.max(1))))
+        .collect();
+    match variances.len() == training.rows.len() && !variances.is_empty() {
+        true => (variances.iter().sum::<f64>() / variances.len() as f64).sqrt(),
+        false => 0.0,
+    }
+}

@@ -34,7 +34,7 @@ use crate::data::Dataset;
 pub use error::FitError;
 pub use evaluate::{evaluate, Evaluation, RowEvaluation};
 pub use fitted::{parameters_by_name, Fit, FitOptions, Parameter, Selection};
-pub use left_out::leave_one_out_rms;
+pub use left_out::{leave_one_out_rms, with_misfit};
 pub use model::{Model, RICHEST_FIRST};
 use models::fit_model;
 pub use prediction::{axis_angles_deg, predict, Prediction, Quadratic};

@@ -57,7 +57,12 @@ impl FitReport {
 
     /// The report of `fit`, made with `choice` and `options`, on the data set: evaluated at its
     /// rows and, for `auto`, compared with every model on them.
-    pub fn of(dataset: &Dataset, fit: Fit, choice: ModelChoice, options: &FitOptions) -> Self {
+    pub fn of(dataset: &Dataset, mut fit: Fit, choice: ModelChoice, options: &FitOptions) -> Self {
+        // NOTE: here, not in `fit::fit`: a run's stop rule fits after each capture and needs only the
+        // parameters' figure, while a report states what a fresh orientation will meet.
+        if let Ok(training) = options.training_set(dataset) {
+            fit.prediction = fit::with_misfit(&fit, &training, options);
+        }
         let evaluation = fit::evaluate(dataset, &fit.matrix, &fit.offset, options.g, &fit.lines_used);
         let comparison = (choice == ModelChoice::Auto).then(|| Comparison::new(dataset, options, &fit, &evaluation));
         FitReport { fit, evaluation, g: options.g, rows: dataset.rows.len(), comparison }

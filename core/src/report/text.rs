@@ -39,13 +39,30 @@ fn write_fit(out: &mut String, fit: &Fit, rows: usize, g: f64) {
 
 /// What the uncertainty means at a fresh orientation, and the angles between the sensor's axes.
 fn write_meaning(out: &mut String, fit: &Fit) {
-    if let Some(p) = &fit.prediction {
-        let _ = writeln!(
-            out,
-            "at a fresh orientation the parameters' uncertainty predicts | |a| - g | of {:.4} mg and a tilt \
-             error of {:.4} degrees (RMS)",
-            p.norm_error_mg, p.tilt_error_deg
-        );
+    match &fit.prediction {
+        Some(p) if p.misfit_mg.is_some_and(|m| m > 0.0) => {
+            let _ = writeln!(
+                out,
+                "at a fresh orientation expect | |a| - g | of {:.4} mg (RMS): the parameters' uncertainty predicts \
+                 {:.4} mg, and the rows left out one at a time show {:.4} mg of misfit beyond it and their noise; \
+                 a tilt error of {:.4} degrees (RMS) from the parameters",
+                p.norm_error_mg,
+                p.from_parameters_mg(),
+                p.misfit_mg.unwrap_or(0.0),
+                p.tilt_error_deg
+            );
+        }
+        Some(p) => {
+            let _ = writeln!(
+                out,
+                "at a fresh orientation the parameters' uncertainty predicts | |a| - g | of {:.4} mg and a tilt \
+                 error of {:.4} degrees (RMS){}",
+                p.norm_error_mg,
+                p.tilt_error_deg,
+                if p.misfit_mg.is_some() { "; the rows left out one at a time show no misfit beyond it" } else { "" }
+            );
+        }
+        None => {}
     }
     if let Some([xy, xz, yz]) = axis_angles_deg(&fit.matrix).filter(|_| fit.model != Model::Diag6) {
         let _ = writeln!(out, "angles between the sensor's axes: x-y {xy:.3}, x-z {xz:.3}, y-z {yz:.3} degrees");
