@@ -490,7 +490,9 @@ fn a_resumed_chip_fit_session_says_it_stays_so_and_a_fixed_length_one_is_not_cal
     };
     let quick = resumed(&["--chip-fit"], &[], "quick");
     assert!(
-        quick.contains("begun as a calibration fitted on the chip; it goes on as one (leaving out --chip-fit is not used"),
+        quick.contains(
+            "begun as a calibration fitted on the chip; it goes on as one (leaving out --chip-fit is not used"
+        ),
         "{quick}"
     );
     // A fixed-length session was not begun adaptive: its --seconds is not refused in those words.

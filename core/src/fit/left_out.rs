@@ -177,36 +177,6 @@ fn rows_the_checks_hang_on(training: &Dataset, model: Model, shape: Shape, norma
     hangs
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::sim::synthetic::random_positions;
-
-    /// How many rows leave-one-out refits for `model`; the rest take one fit's influence.
-    fn refits(training: &Dataset, model: Model) -> usize {
-        let rows = left_out_rows(training, model, &FitOptions::default()).unwrap();
-        rows.iter().filter(|row| matches!(row, LeftOut::Refit)).count()
-    }
-
-    #[test]
-    fn leave_one_out_refits_only_the_rows_the_fit_hangs_on_however_many_rows_there_are() {
-        for positions in [200, 2000] {
-            let (with, without) =
-                (random_positions(7, positions, 1e-4, true), random_positions(7, positions, 1e-4, false));
-            let counted = [
-                refits(&with, Model::Linear12),
-                refits(&with, Model::ReferenceNorm12),
-                refits(&without, Model::Ortho9),
-                refits(&without, Model::Diag6),
-            ];
-            println!("{positions} rows: refitted {counted:?} (linear12, reference-norm12, ortho9, diag6)");
-            // NOTE: at most two rows per axis direction (up, down) pointing along it, or the pair
-            // reference-norm12 needs; high leverage does not occur among hundreds of rows.
-            assert!(counted.iter().all(|&n| n <= 12), "{positions} rows: {counted:?}");
-        }
-    }
-}
-
 /// `fit`'s prediction with the misfit its rows show when each is left out (see
 /// [`super::Prediction::with_held_out`]); the prediction as it was where no row can be left out.
 pub fn with_misfit(fit: &Fit, training: &Dataset, options: &FitOptions) -> Option<super::Prediction> {
@@ -235,5 +205,35 @@ fn row_noise(training: &Dataset) -> f64 {
     match variances.len() == training.rows.len() && !variances.is_empty() {
         true => (variances.iter().sum::<f64>() / variances.len() as f64).sqrt(),
         false => 0.0,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sim::synthetic::random_positions;
+
+    /// How many rows leave-one-out refits for `model`; the rest take one fit's influence.
+    fn refits(training: &Dataset, model: Model) -> usize {
+        let rows = left_out_rows(training, model, &FitOptions::default()).unwrap();
+        rows.iter().filter(|row| matches!(row, LeftOut::Refit)).count()
+    }
+
+    #[test]
+    fn leave_one_out_refits_only_the_rows_the_fit_hangs_on_however_many_rows_there_are() {
+        for positions in [200, 2000] {
+            let (with, without) =
+                (random_positions(7, positions, 1e-4, true), random_positions(7, positions, 1e-4, false));
+            let counted = [
+                refits(&with, Model::Linear12),
+                refits(&with, Model::ReferenceNorm12),
+                refits(&without, Model::Ortho9),
+                refits(&without, Model::Diag6),
+            ];
+            println!("{positions} rows: refitted {counted:?} (linear12, reference-norm12, ortho9, diag6)");
+            // NOTE: at most two rows per axis direction (up, down) pointing along it, or the pair
+            // reference-norm12 needs; high leverage does not occur among hundreds of rows.
+            assert!(counted.iter().all(|&n| n <= 12), "{positions} rows: {counted:?}");
+        }
     }
 }
