@@ -96,3 +96,64 @@ fn the_motion_adds_information_the_rests_lack() {
     });
     assert!(linked < 0.9 * rests && motion < 0.95 * linked, "rests {rests} mg, linked {linked} mg, motion {motion} mg");
 }
+
+/// A short noisy session at 100 Hz for the fallbacks (their reasons, not their statistics).
+fn fallback_session() -> MotionData {
+    simulate(&MotionPlan { rate_hz: 100.0, ..MotionPlan::one_minute() }, 5).data
+}
+
+/// The published part's offset, the simulated sessions' truth (`sim::motion::true_model`).
+fn true_offset_g() -> nalgebra::Vector3<f64> {
+    crate::sim::motion::true_model(&mut rand_xoshiro::rand_core::SeedableRng::seed_from_u64(0)).accel_offset_g
+}
+
+/// The fallback's reason, asserting that the still fit was made from the rests.
+fn fallback_reason(data: &MotionData) -> Unusable {
+    match fit_or_fall_back(data) {
+        MotionOutcome::Still { reason, fit } => {
+            // NOTE: twelve rests of 2 s: each offset's standard error is about 0.1 mg.
+            let fit = fit.expect("twelve rests make a still fit");
+            let error = nalgebra::Vector3::from(fit.offset) - true_offset_g();
+            assert!(fit.lines_used.len() == 12 && error.amax() < 1e-3, "the still fit of the rests: offset off by {error:?} g");
+            reason
+        }
+        MotionOutcome::Joint(_) => panic!("the joint fit was made of unusable data"),
+    }
+}
+
+#[test]
+fn a_session_without_its_gyro_falls_back_to_the_still_fit_and_says_why() {
+    let mut data = fallback_session();
+    data.gyro_dps.clear();
+    assert_eq!(fallback_reason(&data), Unusable::NoGyro);
+    assert!(Unusable::NoGyro.to_string().contains("stream the gyro"));
+}
+
+#[test]
+fn a_session_below_50_hz_falls_back_to_the_still_fit() {
+    let data = simulate(&MotionPlan { rate_hz: 40.0, ..MotionPlan::one_minute() }, 6).data;
+    assert_eq!(fallback_reason(&data), Unusable::TooSlow { rate_hz: 40.0 });
+}
+
+#[test]
+fn a_session_with_lost_samples_falls_back_and_counts_them() {
+    let mut data = fallback_session();
+    // Three samples lost after sample 1000, one after 2000.
+    data.indices.iter_mut().skip(1001).for_each(|i| *i += 3);
+    data.indices.iter_mut().skip(2001).for_each(|i| *i += 1);
+    assert_eq!(fallback_reason(&data), Unusable::Gaps { lost: 4, after: 1000 });
+}
+
+#[test]
+fn a_clipped_session_falls_back_and_counts_the_clipped_readings() {
+    let mut data = fallback_session();
+    data.accel_g[3000].x = 2.0;
+    data.gyro_dps[3001].z = -1000.0;
+    assert_eq!(fallback_reason(&data), Unusable::Clipped { samples: 2 });
+}
+
+#[test]
+fn a_usable_session_is_fitted_jointly() {
+    assert_eq!(usable(&fallback_session()), Ok(()));
+    assert!(matches!(fit_or_fall_back(&fallback_session()), MotionOutcome::Joint(_)));
+}
