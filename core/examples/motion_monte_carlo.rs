@@ -11,14 +11,16 @@ use rand_xoshiro::rand_core::SeedableRng;
 
 fn main() {
     let seeds: u64 = std::env::args().nth(1).and_then(|s| s.parse().ok()).unwrap_or(200);
+    let first: u64 = std::env::args().nth(2).and_then(|s| s.parse().ok()).unwrap_or(0);
     let plan = MotionPlan::one_minute();
-    let (mut chi, mut true_square, mut bound_square, mut worst) = (0.0, 0.0, 0.0, 0.0f64);
-    for seed in 0..seeds {
+    let (mut chi, mut true_square, mut bound_square, mut worst, mut fitted) = (0.0, 0.0, 0.0, 0.0f64, 0);
+    for seed in first..first + seeds {
         let session = simulate(&plan, seed);
         let Some(fit) = fit_joint(&session.data) else {
             println!("seed {seed}: the joint fit did not converge");
             continue;
         };
+        fitted += 1;
         let bounds = [Information::Rests, Information::GyroLinked, Information::Motion]
             .map(|i| bound(&session.truth, &session.orientations, &session.data, i).expect("bound"));
         let motion = &bounds[2];
@@ -28,14 +30,14 @@ fn main() {
         worst = worst.max(error_mg);
         true_square += error_mg.powi(2);
         bound_square += motion.prediction.norm_error_mg.powi(2);
-        if seed < 3 {
+        if seed < first + 3 {
             let [r, l, m] = bounds.map(|b| b.prediction.norm_error_mg);
             println!("seed {seed}: bound rests {r:.4} mg, gyro-linked {l:.4} mg, with motion {m:.4} mg; fit's own {:.4} mg, chi2/dof {:.3}, {} iterations, error {error_mg:.4} mg", fit.prediction.norm_error_mg, fit.chi2_per_dof, fit.iterations);
         }
     }
-    let n = seeds as f64;
+    let n = f64::from(fitted);
     println!(
-        "{seeds} seeds, 1 kHz, {} rests of {} s, {} s turns, hand {} g rms:",
+        "{fitted} of {seeds} seeds fitted (from seed {first}), 1 kHz, {} rests of {} s, {} s turns, hand {} g rms:",
         plan.rests, plan.rest_s, plan.turn_s, plan.linear_rms_g
     );
     println!(

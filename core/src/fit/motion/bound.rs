@@ -5,10 +5,10 @@
 
 use nalgebra::{DMatrix, Matrix3};
 
+use super::linearise::{linearise, State};
 use super::params::{orientation_column, ACCEL, ACCEL_ENTRIES, MODEL, OFFSET, SKEW};
 use super::residuals::{Prepared, Usage};
-use super::solve::{linearise, JointFit, State};
-use super::{JointModel, MotionData, Orientation};
+use super::{JointFit, JointModel, MotionData, Orientation};
 use crate::fit::prediction::{predict, Prediction, Quadratic};
 
 /// Which information a bound counts.

@@ -7,18 +7,21 @@
 mod bound;
 mod check;
 mod integrate;
+mod linearise;
 mod params;
 mod residuals;
 mod solve;
 
 use std::ops::Range;
 
-use nalgebra::{Matrix3, Rotation3, Vector3};
+use nalgebra::{DMatrix, Matrix3, Rotation3, Vector3};
+
+use crate::fit::prediction::Prediction;
 
 pub use bound::{bound, Bound, Information};
 pub use check::{fit_or_fall_back, usable, MotionOutcome, Unusable};
 pub use integrate::{integrate_turn, Integrated};
-pub use solve::{fit_joint, JointFit};
+pub use solve::fit_joint;
 
 /// A session recorded at a fixed rate: every accelerometer sample with its gyro sample.
 #[derive(Debug, Clone, PartialEq)]
@@ -114,6 +117,26 @@ impl JointModel {
         let corrected = raw_dps - self.gyro_bias_dps - self.g_sensitivity_dps_per_g * force_g;
         (self.gyro_matrix * corrected) * 1f64.to_radians()
     }
+}
+
+/// The joint fit's result.
+#[derive(Debug, Clone, PartialEq)]
+pub struct JointFit {
+    /// The fitted sensor model.
+    pub model: JointModel,
+    /// Each rest's orientation, body to world.
+    pub orientations: Vec<Orientation>,
+    /// The standard error of each of the model's 31 numbers (M's upper triangle, o, G, b, S, skew).
+    pub std_errors: Vec<f64>,
+    /// The accelerometer's covariance (M's six, o's three), for predictions.
+    pub accel_covariance: DMatrix<f64>,
+    /// The error the fit's own uncertainty predicts at a fresh orientation.
+    pub prediction: Prediction,
+    /// The whitened residuals' sum of squares over their degrees of freedom (1 when the noise is
+    /// what the data claim).
+    pub chi2_per_dof: f64,
+    /// Gauss-Newton steps taken.
+    pub iterations: usize,
 }
 
 /// The world's up, the direction the specific force points at rest (world z).

@@ -114,7 +114,10 @@ fn fallback_reason(data: &MotionData) -> Unusable {
             // NOTE: twelve rests of 2 s: each offset's standard error is about 0.1 mg.
             let fit = fit.expect("twelve rests make a still fit");
             let error = nalgebra::Vector3::from(fit.offset) - true_offset_g();
-            assert!(fit.lines_used.len() == 12 && error.amax() < 1e-3, "the still fit of the rests: offset off by {error:?} g");
+            assert!(
+                fit.lines_used.len() == 12 && error.amax() < 1e-3,
+                "the still fit of the rests: offset off by {error:?} g"
+            );
             reason
         }
         MotionOutcome::Joint(_) => panic!("the joint fit was made of unusable data"),
