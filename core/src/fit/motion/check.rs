@@ -51,7 +51,7 @@ pub enum MotionOutcome {
     /// The joint fit.
     Joint(Box<JointFit>),
     /// The still periods alone, fitted as a data file of their means would be.
-    Still { reason: Unusable, fit: Result<Fit, FitError> },
+    Still { reason: Unusable, fit: Box<Result<Fit, FitError>> },
 }
 
 /// Whether `data` can be fitted with its motion.
@@ -95,7 +95,7 @@ pub fn fit_or_fall_back(data: &MotionData) -> MotionOutcome {
         Ok(None) => Unusable::Diverged,
         Err(reason) => reason,
     };
-    MotionOutcome::Still { reason, fit: fit(&still_rows(data), ModelChoice::Auto, &FitOptions::default()) }
+    MotionOutcome::Still { reason, fit: Box::new(fit(&still_rows(data), ModelChoice::Auto, &FitOptions::default())) }
 }
 
 /// Each rest's mean reading as a data row with its sample count.

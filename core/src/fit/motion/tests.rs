@@ -112,7 +112,7 @@ fn fallback_reason(data: &MotionData) -> Unusable {
     match fit_or_fall_back(data) {
         MotionOutcome::Still { reason, fit } => {
             // NOTE: twelve rests of 2 s: each offset's standard error is about 0.1 mg.
-            let fit = fit.expect("twelve rests make a still fit");
+            let fit = (*fit).expect("twelve rests make a still fit");
             let error = nalgebra::Vector3::from(fit.offset) - true_offset_g();
             assert!(
                 fit.lines_used.len() == 12 && error.amax() < 1e-3,
