@@ -1,7 +1,7 @@
 //! The joint fit of issue 38 over many seeds of a simulated one-minute session at 1 kHz: the
 //! accelerometer's error against its Cramer-Rao bound, the bound with less information, and the
 //! error against the truth at fresh orientations. `cargo run --release -p accelcal-core --features sim
-//! --example motion_monte_carlo -- SEEDS`.
+//! --example motion_monte_carlo -- SEEDS [FIRST] [random]`.
 
 use accelcal_core::fit::motion::{bound, fit_joint, Information, JointModel};
 use accelcal_core::sim::motion::{simulate, MotionPlan};
@@ -12,7 +12,9 @@ use rand_xoshiro::rand_core::SeedableRng;
 fn main() {
     let seeds: u64 = std::env::args().nth(1).and_then(|s| s.parse().ok()).unwrap_or(200);
     let first: u64 = std::env::args().nth(2).and_then(|s| s.parse().ok()).unwrap_or(0);
-    let plan = MotionPlan::one_minute();
+    // NOTE: a third argument `random` turns about random axes in place of the designed rests.
+    let spread = std::env::args().nth(3).as_deref() != Some("random");
+    let plan = MotionPlan { spread, ..MotionPlan::one_minute() };
     let (mut chi, mut true_square, mut bound_square, mut worst, mut fitted) = (0.0, 0.0, 0.0, 0.0f64, 0);
     for seed in first..first + seeds {
         let session = simulate(&plan, seed);
@@ -37,7 +39,7 @@ fn main() {
     }
     let n = f64::from(fitted);
     println!(
-        "{fitted} of {seeds} seeds fitted (from seed {first}), 1 kHz, {} rests of {} s, {} s turns, hand {} g rms:",
+        "{fitted} of {seeds} seeds fitted (from seed {first}), designed rests {spread}, 1 kHz, {} rests of {} s, {} s turns, hand {} g rms:",
         plan.rests, plan.rest_s, plan.turn_s, plan.linear_rms_g
     );
     println!(

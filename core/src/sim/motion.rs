@@ -46,13 +46,25 @@ pub struct MotionPlan {
     pub linear_rms_g: f64,
     /// Whether white noise is added.
     pub noisy: bool,
+    /// Whether the rests are designed (the body's up at the twelve vertices of an icosahedron, each
+    /// turn carrying it to the next about the line perpendicular to both), else each turn is about a
+    /// random axis by 90 to 180 degrees.
+    pub spread: bool,
 }
 
 impl MotionPlan {
     /// A one-minute session at a person's pace: twelve rests of 2.1 s, eleven turns of 3 s, 1 kHz,
     /// a hand of 0.15 g rms (issue 38's design: 25 s of rest).
     pub fn one_minute() -> Self {
-        MotionPlan { rate_hz: 1000.0, rests: 12, rest_s: 2.1, turn_s: 3.0, linear_rms_g: 0.15, noisy: true }
+        MotionPlan {
+            rate_hz: 1000.0,
+            rests: 12,
+            rest_s: 2.1,
+            turn_s: 3.0,
+            linear_rms_g: 0.15,
+            noisy: true,
+            spread: true,
+        }
     }
 }
 
@@ -109,7 +121,11 @@ pub fn datasheet_noise() -> SensorNoise {
 pub fn simulate(plan: &MotionPlan, seed: u64) -> MotionSession {
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
     let truth = true_model(&mut rng);
-    let first = Rotation3::new(Vector3::from(random_unit(&mut rng)) * (TAU * uniform(&mut rng)));
+    let heading = Rotation3::from_axis_angle(&Vector3::z_axis(), TAU * uniform(&mut rng));
+    let first = match plan.spread {
+        true => heading * Rotation3::rotation_between(&spread_up(0), &world_up()).unwrap_or_else(Rotation3::identity),
+        false => Rotation3::new(Vector3::from(random_unit(&mut rng)) * (TAU * uniform(&mut rng))),
+    };
     let turns: Vec<HandTurn> = (0..plan.rests - 1).map(|k| hand_turn(plan, k, &mut rng)).collect();
     let orientations = rest_orientations(first, &turns);
     let samples = ((plan.rests as f64 * plan.rest_s + turns.len() as f64 * plan.turn_s) * plan.rate_hz) as usize;
@@ -144,8 +160,12 @@ pub fn simulate(plan: &MotionPlan, seed: u64) -> MotionSession {
 
 /// Turn `k`: a random body axis, 90 to 180 degrees, and a hand's acceleration of the plan's rms.
 fn hand_turn(plan: &MotionPlan, k: usize, rng: &mut Xoshiro256PlusPlus) -> HandTurn {
-    let axis = Unit::new_normalize(Vector3::from(random_unit(rng)));
-    let angle_rad = (90.0 + 90.0 * uniform(rng)).to_radians();
+    let (before, after) = (spread_up(k), spread_up(k + 1));
+    // NOTE: turning the body by q about a body axis turns its up by q^-1: about after x before.
+    let (axis, angle_rad) = match Unit::try_new(after.cross(&before), 1e-6).filter(|_| plan.spread) {
+        Some(axis) => (axis, before.angle(&after)),
+        None => (Unit::new_normalize(Vector3::from(random_unit(rng))), (90.0 + 90.0 * uniform(rng)).to_radians()),
+    };
     let [a, b] = [(); 2].map(|()| Vector3::from_fn(|_, _| gaussian(rng)));
     // NOTE: c1 = a, c2 = b - a, c3 = -b sum to zero; the mean square of sum c_k cos(k w t) is
     // sum |c_k|^2 / 2.
@@ -153,6 +173,18 @@ fn hand_turn(plan: &MotionPlan, k: usize, rng: &mut Xoshiro256PlusPlus) -> HandT
     let mean_square: f64 = amplitudes.iter().map(|c| c.norm_squared() / 2.0).sum();
     let amplitudes_g = amplitudes.map(|c| c * (plan.linear_rms_g / mean_square.sqrt()));
     HandTurn { start_s: (k + 1) as f64 * plan.rest_s + k as f64 * plan.turn_s, axis, angle_rad, amplitudes_g }
+}
+
+/// The body's up at designed rest `k`: the icosahedron's vertices (0, +-1, +-phi) and their cyclic
+/// shifts, in an order whose successive vertices are 116.6 degrees apart (the last pair 63.4), so
+/// every turn is a large one and no two rests repeat.
+fn spread_up(k: usize) -> Vector3<f64> {
+    const ORDER: [usize; 12] = [0, 3, 2, 5, 1, 4, 11, 6, 7, 8, 10, 9];
+    let phi = (1.0 + 5f64.sqrt()) / 2.0;
+    let i = ORDER[k % 12];
+    let (a, b) = (if i < 6 { 1.0 } else { -1.0 }, if (i / 3) % 2 == 0 { phi } else { -phi });
+    let v = [Vector3::new(0.0, a, b), Vector3::new(a, b, 0.0), Vector3::new(b, 0.0, a)][i % 3];
+    v.normalize()
 }
 
 /// Each rest's orientation: the first, then each turned by the turn before it.
@@ -222,4 +254,22 @@ fn gyro_reading_dps(truth: &JointModel, rate: &Vector3<f64>, force: &Vector3<f64
 /// White noise of `sigma` per axis.
 fn noise(rng: &mut Xoshiro256PlusPlus, sigma: f64) -> Vector3<f64> {
     Vector3::from_fn(|_, _| sigma * gaussian(rng))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_designed_session_rests_with_its_up_at_each_vertex_of_an_icosahedron() {
+        let plan = MotionPlan { rate_hz: 100.0, noisy: false, ..MotionPlan::one_minute() };
+        let session = simulate(&plan, 7);
+        let ups: Vec<Vector3<f64>> = session.orientations.iter().map(|r| r.inverse() * world_up()).collect();
+        for (k, up) in ups.iter().enumerate() {
+            assert!((up - spread_up(k)).norm() < 1e-9, "rest {k}: up {up:?}, designed {:?}", spread_up(k));
+            // Twelve distinct vertices: the nearest other rest is an icosahedron's edge away, 63.4 degrees.
+            let nearest = ups.iter().enumerate().filter(|&(j, _)| j != k).map(|(_, v)| up.angle(v).to_degrees());
+            assert!((nearest.fold(180.0, f64::min) - 63.43).abs() < 0.01, "rest {k} repeats another");
+        }
+    }
 }
