@@ -182,7 +182,7 @@ fn spread_up(k: usize) -> Vector3<f64> {
     const ORDER: [usize; 12] = [0, 3, 2, 5, 1, 4, 11, 6, 7, 8, 10, 9];
     let phi = (1.0 + 5f64.sqrt()) / 2.0;
     let i = ORDER[k % 12];
-    let (a, b) = (if i < 6 { 1.0 } else { -1.0 }, if (i / 3) % 2 == 0 { phi } else { -phi });
+    let (a, b) = (if i < 6 { 1.0 } else { -1.0 }, if (i / 3).is_multiple_of(2) { phi } else { -phi });
     let v = [Vector3::new(0.0, a, b), Vector3::new(a, b, 0.0), Vector3::new(b, 0.0, a)][i % 3];
     v.normalize()
 }
