@@ -160,3 +160,20 @@ fn a_usable_session_is_fitted_jointly() {
     assert_eq!(usable(&fallback_session()), Ok(()));
     assert!(matches!(fit_or_fall_back(&fallback_session()), MotionOutcome::Joint(_)));
 }
+
+#[test]
+fn the_bound_of_still_rests_at_an_icosahedron_is_the_still_capture_limit() {
+    // NOTE: the still-capture limit (docs/guide.md): a mean prediction variance of at least
+    // 9 N^2 / T, N^2 = n^2 / 2, T the seconds of averaging; twelve rests at an icosahedron's vertices
+    // spread the information as evenly as a design can, so they reach it (0.1732 mg at T = 24 s).
+    let session = simulate(&MotionPlan { rate_hz: 100.0, ..MotionPlan::one_minute() }, 8);
+    let seconds: f64 = session.data.rests.iter().map(|r| r.len() as f64 / session.data.rate_hz).sum();
+    let limit_mg = (9.0 * session.data.noise.accel_variance_g2s() / seconds).sqrt() * 1000.0;
+    let rests = bound(&session.truth, &session.orientations, &session.data, Information::Rests).expect("bound");
+    let ratio = rests.prediction.norm_error_mg / limit_mg;
+    assert!(
+        (ratio - 1.0).abs() < 0.01,
+        "rests alone {} mg against the limit {limit_mg} mg",
+        rests.prediction.norm_error_mg
+    );
+}
