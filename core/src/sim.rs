@@ -3,6 +3,7 @@
 
 pub mod board;
 mod command;
+pub mod motion;
 mod owner_hand;
 pub mod person;
 pub mod random;

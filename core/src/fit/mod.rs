@@ -14,6 +14,7 @@ mod linear;
 mod linearised;
 mod model;
 mod models;
+pub mod motion;
 mod nonlinear;
 mod normalization;
 mod observability;

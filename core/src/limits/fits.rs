@@ -56,3 +56,16 @@ pub const SAMPLE_FILE_ROWS: usize = 30;
 /// NOTE: 5 % of |a| is about 3 degrees of tilt: two positions lie further apart, two samples of a
 /// resting board far closer.
 pub const REPEAT_FRACTION: f64 = 0.05;
+
+/// Slowest sample rate, in Hz, a session is fitted with its motion (issue 38); below it the still
+/// periods alone are fitted.
+///
+/// NOTE: a hand's turn peaks at 150-200 deg/s (`sim::turn`); at 50 Hz a sample's rotation is up to
+/// 4 degrees, and the turn's integral, exact to the noise at 1 kHz, rests on the quadrature of a
+/// motion the samples barely resolve (a hand's motion reaches 10-20 Hz).
+pub const MOTION_MIN_RATE_HZ: f64 = 50.0;
+
+/// Fewest rests a session is fitted with its motion from: the rests' gyro means fix the gyro's bias
+/// and g-sensitivity (twelve numbers, three a rest) and the turns between them its matrix, which
+/// needs as many turns as the turn fit ([`MIN_GYRO_TURNS`]).
+pub const MOTION_MIN_RESTS: usize = MIN_GYRO_TURNS + 1;
