@@ -31,6 +31,22 @@ pub const LIVE_DETECTION_LINES: usize = 40;
 /// whatever the banner, and reading them is instant.
 pub const DETECTION_LINES: usize = 2000;
 
+/// Most lines one sample is printed over (ESPHome's log: a `Got accel=...` line and one line for
+/// each of its seven sensors).
+pub const MAX_RECORD_LINES: usize = 8;
+
+/// Share of the data lines that have the commonest shape for a stream to be one sample a line;
+/// fewer, and the lines are looked at as a cycle of shapes (a sample over several lines).
+///
+/// NOTE: a boot banner or a `Cal1:` record every 50 lines leaves well over 90 % of the lines in one
+/// shape; Adafruit's `basic_readings` (three lines a sample) leaves a third in each.
+pub const ONE_LINE_SHARE: f64 = 0.6;
+
+/// Cycles of shapes seen, at least, before lines are taken as one sample printed over several.
+///
+/// NOTE: three cycles of the same shapes in order do not happen by chance in a boot log.
+pub const RECORD_REPEATS: usize = 3;
+
 /// Shortest still period that counts as a position, in seconds.
 ///
 /// NOTE: a person holds a position for several seconds; a hand pausing mid-turn holds under one.

@@ -29,10 +29,12 @@ pub use conventions::Dialect;
 pub use dialect::Layout;
 pub use dropped::{DropReason, Dropped};
 pub use heard::read_heard;
-pub use log::{checked_text, text_of, LineReader, StreamLog, StreamOptions, StreamSample, ARRIVAL_RATE_TAG};
+pub use log::{
+    checked_text, split_lines, text_of, LineReader, StreamLog, StreamOptions, StreamSample, ARRIVAL_RATE_TAG,
+};
 pub use segment::{segment, Segment, Stillness};
 pub use still::{SegmentLines, StillPeriods};
-pub use units::{AccelUnit, GyroUnit};
+pub use units::{AccelUnit, GyroUnit, UnitWord};
 
 /// Why a stream cannot be read.
 #[derive(Debug, thiserror::Error)]
