@@ -6,6 +6,7 @@
 use super::columns::{name_columns, Columns};
 use super::conventions::Dialect;
 use super::line::{fields, Fields, Form, Words};
+use super::refusal::why_no_samples;
 use super::units::{AccelUnit, GyroUnit, UnitWord};
 use super::StreamError;
 use crate::limits::{DETECTION_LINES, MAX_RECORD_LINES, ONE_LINE_SHARE, RECORD_REPEATS};
@@ -68,7 +69,8 @@ impl Layout {
     pub fn detect<'a>(lines: impl IntoIterator<Item = &'a str>) -> Result<Layout, StreamError> {
         let lines: Vec<&str> = lines.into_iter().take(DETECTION_LINES).collect();
         let parsed: Vec<Result<Fields, Words>> = lines.iter().map(|l| fields(l)).collect();
-        let record = record_of(&parsed).ok_or(StreamError::NoData { lines: lines.len() })?;
+        let no_data = || StreamError::NoData { lines: lines.len(), why: why_no_samples(&lines) };
+        let record = record_of(&parsed).ok_or_else(no_data)?;
         let header = header_before(&parsed, &record[0]).filter(|_| record.len() == 1);
         let labels: Vec<String> = record.iter().flat_map(|shape| shape.labels.clone()).collect();
         let names = header.as_ref().map(|(_, names)| names.clone()).unwrap_or(labels);
