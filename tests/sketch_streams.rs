@@ -27,8 +27,8 @@ const SESSIONS: u64 = 10;
 const G_TOLERANCE: f64 = 0.002;
 
 /// The issue's bounds in mg: (mean, worst) of the sessions' rms error; `None` for the Serial Plotter,
-/// whitespace and Kalibr streams, on which the issue measured no good tool: they are held to 1.3x the
-/// good tool measured here on the same sessions.
+/// whitespace and Kalibr streams and issue 39's twelve, on which the issue measured no good tool: they
+/// are held to 1.3x the good tool measured here on the same sessions.
 fn bounds(sketch: Sketch) -> Option<(f64, f64)> {
     match sketch {
         Sketch::I2cdevlib => Some((0.83, 1.17)),
@@ -36,7 +36,7 @@ fn bounds(sketch: Sketch) -> Option<(f64, f64)> {
         Sketch::Plotter => Some((0.12, 0.16)),
         Sketch::Csv => Some((0.10, 0.15)),
         Sketch::Micropython => Some((0.57, 0.73)),
-        Sketch::SerialPlotter | Sketch::Whitespace | Sketch::Kalibr => None,
+        _ => None,
     }
 }
 
@@ -58,6 +58,14 @@ fn dialect(sketch: Sketch) -> Dialect {
         Sketch::SerialPlotter => Dialect::SerialPlotter,
         Sketch::Whitespace => Dialect::Whitespace,
         Sketch::Kalibr => Dialect::Kalibr,
+        Sketch::Playground => Dialect::Labelled,
+        Sketch::BasicReadings | Sketch::Esphome | Sketch::EspIdf | Sketch::Kriswiner => Dialect::MultiLine,
+        Sketch::Esp32Json | Sketch::MicropythonDict => Dialect::Json,
+        Sketch::CrOnly => Dialect::Csv,
+        Sketch::SemicolonCsv => Dialect::SemicolonCsv,
+        Sketch::Array => Dialect::Array,
+        Sketch::Grouped => Dialect::Labelled,
+        Sketch::Registers => Dialect::Whitespace,
     }
 }
 
@@ -89,7 +97,8 @@ fn true_error_mg(fit: &Fit, truth: &TrueErrors, per_g: f64) -> f64 {
 fn session_error(sketch: Sketch, seed: u64) -> (f64, f64) {
     let session = PersonSession::new(seed, sketch.reading());
     let minutes = session.samples.last().map_or(0.0, |s| s.at_s) / 60.0;
-    assert!((2.8..=3.2).contains(&minutes), "a session of {minutes:.2} minutes, not about three");
+    // NOTE: a sketch printing every 500 ms ends its last hold up to a sample later.
+    assert!((2.8..=3.3).contains(&minutes), "a session of {minutes:.2} minutes, not about three");
     let text: String = sketch.lines(&session).into_iter().map(|l| l.text).collect();
     let log = StreamLog::parse(&text, &StreamOptions::default()).expect("every sketch's log is read with no flag");
     assert_eq!(log.layout.dialect, dialect(sketch));
@@ -240,6 +249,12 @@ fn the_gyros_g_comes_from_the_turns_and_a_range_in_counts_is_checked_against_the
     assert!(range.contains("give --gyro-unit counts-500dps"), "{range}");
     let (_, _, slow) = session_log(Sketch::I2cdevlib, 1);
     let coarse = StreamReport::new(&slow, ModelChoice::Only(Model::Ortho9), &Default::default()).unwrap();
-    let why = coarse.gyro_turns.map(|g| g.fit.err().unwrap_or_default()).unwrap_or_default();
+    let turns = coarse.gyro_turns.unwrap();
+    let why = turns.fit.err().unwrap_or_default();
     assert!(why.contains("too coarsely sampled") || why.contains("rate is unknown"), "{why}");
+    // NOTE: tab-separated counts with no time (issue 39: at +-500 deg/s its bias came out half the
+    // truth, marked only "assumed"): the range is asked for, with the flag and the sketch's call.
+    let range = turns.range.unwrap_or_default();
+    assert!(range.starts_with("the gyro's range is not settled"), "{range}");
+    assert!(range.contains("the assumed counts-250dps: give --gyro-unit counts-250dps, counts-500dps"), "{range}");
 }

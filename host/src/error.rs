@@ -57,6 +57,12 @@ pub enum Error {
     OutputExists { path: PathBuf, other: &'static str },
     #[error("--g must be a positive number, got {g}")]
     BadGravity { g: f64 },
+    #[error(
+        "{}: the references have a size of {size:.4}, gravity's in m/s^2, where --g is {g}: give --g 9.81 (or your \
+         local g in m/s^2) so that the fit compares | |a| - g | in their unit",
+        .path.display()
+    )]
+    ReferencesInOtherUnit { path: PathBuf, size: f64, g: f64 },
     #[error("{source}; {} so far {} kept in {}: continue with `accelcal calibrate {device} --resume {}`", count(*.captures, "capture"), if *.captures == 1 { "is" } else { "are" }, .path.display(), .path.display())]
     Stopped { source: Box<ProcedureError>, captures: usize, path: PathBuf, device: String },
     #[error("{source}; the verification is not kept: {} holds the captures and the calibration uploaded to the board; check it again with `accelcal calibrate {device} --resume {}`", .path.display(), .path.display())]

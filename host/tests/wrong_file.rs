@@ -113,3 +113,69 @@ fn fit_reads_accelcal_s_own_stream_csv_as_it_reads_the_same_samples_in_a_sketch_
         assert!((own_o - counts_o / 16384.0).abs() < 1e-5, "o: {own_o} g against {} g", counts_o / 16384.0);
     }
 }
+
+/// Reference rows in m/s^2: the six faces and two tilts, each reading a little off its reference.
+fn reference_rows_in_ms2() -> String {
+    let faces =
+        [[1.0, 0.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, -1.0, 0.0], [0.0, 0.0, 1.0], [0.0, 0.0, -1.0]];
+    let (h, t) = (std::f64::consts::FRAC_1_SQRT_2, 1.0 / 3f64.sqrt());
+    let tilts = [[h, 0.0, h], [0.0, -h, h], [t, t, t]];
+    let mut text = String::from("x,y,z,ref_x,ref_y,ref_z\n");
+    for up in faces.iter().chain(&tilts) {
+        let reference = up.map(|v| v * 9.80665);
+        let reading = [reference[0] * 1.01 + 0.2, reference[1] * 0.99 - 0.1, reference[2] * 1.005 + 0.05];
+        let cells: Vec<String> = reading.iter().chain(&reference).map(|v| format!("{v:.5}")).collect();
+        text += &(cells.join(",") + "\n");
+    }
+    text
+}
+
+#[test]
+fn reference_rows_the_size_of_gravity_in_ms2_are_refused_naming_g_and_fitted_with_it() {
+    let dir = scratch("reference-ms2");
+    let file = dir.join("imucal.csv");
+    std::fs::write(&file, reference_rows_in_ms2()).unwrap();
+    let output = accelcal(&["fit", path(&file)]);
+    let said = text(&output.stderr);
+    assert!(!output.status.success(), "{said}");
+    assert!(said.contains("the references have a size of 9.8066, gravity's in m/s^2, where --g is 1"), "{said}");
+    assert!(said.contains("give --g 9.81") && !said.contains("richer model"), "{said}");
+    let fitted: Value = serde_json::from_str(&stdout_of(&["fit", path(&file), "--g", "9.80665", "--json"])).unwrap();
+    let offset = fitted["offset"].as_array().unwrap();
+    assert!((offset[0].as_f64().unwrap() - 0.2).abs() < 1e-3, "{fitted}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Each kind of file that is no sensor's stream, and what `fit`'s refusal must say of it: its cause
+/// and the fix, never a wrong baud rate for text nor a data file's missing columns.
+#[test]
+fn each_refused_kind_of_file_is_named_with_what_it_is_and_the_fix() {
+    let dir = scratch("refused-kinds");
+    let binary: Vec<u8> = (0..4000u32).map(|i| (i.wrapping_mul(2_654_435_761) >> 13) as u8).collect();
+    let web_log = "2026-11-28 10:00:01 GET /index.html 200 1234\n2026-11-28 10:00:02 GET /a.css 200 99\n".repeat(50);
+    let source = "fn main() {\n    println!(\"hello\");\n}\n".repeat(30);
+    let two = (0..100).map(|k| format!("{},{}\n", 12 + k % 3, 340 - k % 5)).collect::<String>();
+    let cases: [(&str, Vec<u8>, &[&str]); 4] = [
+        ("binary.bin", binary, &["over a quarter of it is bytes that are not text", "a binary file"]),
+        ("server.log", web_log.into_bytes(), &["line 1 `2026-11-28 10:00:01 GET", "a log or another program's text"]),
+        ("main.rs", source.into_bytes(), &["words and no number (line 1: `fn main() {`)", "another program's text"]),
+        (
+            "two.csv",
+            two.into_bytes(),
+            &["line 1 `12,340` holds 2 values and no line holds three", "Serial.println(az)"],
+        ),
+    ];
+    for (name, bytes, wanted) in cases {
+        let file = dir.join(name);
+        std::fs::write(&file, bytes).unwrap();
+        let output = accelcal(&["fit", path(&file)]);
+        let said = text(&output.stderr);
+        assert!(!output.status.success(), "{name}: {said}");
+        for words in wanted {
+            assert!(said.contains(words), "{name}: {said}");
+        }
+        assert!(!said.contains("no reading columns"), "{name}: {said}");
+        assert!(name == "binary.bin" || !said.contains("baud"), "{name}: {said}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

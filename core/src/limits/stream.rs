@@ -25,11 +25,42 @@ pub const NOT_TEXT_SHARE: f64 = 0.25;
 /// few lines many times over, and take a sketch printing at 10 Hz four seconds.
 pub const LIVE_DETECTION_LINES: usize = 40;
 
+/// Lines heard, none of them read as samples, before a live stream is refused with why.
+///
+/// NOTE: five times [`LIVE_DETECTION_LINES`]: a sample over eight lines (ESPHome's) shows its cycle
+/// three times over well within them; a sketch at 10 Hz takes 20 s, one every 500 ms over four
+/// lines 25 s, where before it was read nothing was said for minutes.
+pub const LIVE_REFUSAL_LINES: usize = 200;
+
+/// Seconds with no new still period, once every face and corner is rested, before a live session
+/// short of fresh orientations ends with what it has.
+///
+/// NOTE: a turn and a hold of 7.5-9.5 s take a person well under 30 s; twice that with nothing new
+/// is a board that cannot be turned further (mounted, or on a short cable), where before the
+/// session waited for ever.
+pub const FRESH_WAIT_S: f64 = 60.0;
+
 /// Lines of a file looked at to find the dialect.
 ///
 /// NOTE: a file's dialect is set by its first lines; 2000 lets the commonest shape stand out
 /// whatever the banner, and reading them is instant.
 pub const DETECTION_LINES: usize = 2000;
+
+/// Most lines one sample is printed over (ESPHome's log: a `Got accel=...` line and one line for
+/// each of its seven sensors).
+pub const MAX_RECORD_LINES: usize = 8;
+
+/// Share of the data lines that have the commonest shape for a stream to be one sample a line;
+/// fewer, and the lines are looked at as a cycle of shapes (a sample over several lines).
+///
+/// NOTE: a boot banner or a `Cal1:` record every 50 lines leaves well over 90 % of the lines in one
+/// shape; Adafruit's `basic_readings` (three lines a sample) leaves a third in each.
+pub const ONE_LINE_SHARE: f64 = 0.6;
+
+/// Cycles of shapes seen, at least, before lines are taken as one sample printed over several.
+///
+/// NOTE: three cycles of the same shapes in order do not happen by chance in a boot log.
+pub const RECORD_REPEATS: usize = 3;
 
 /// Shortest still period that counts as a position, in seconds.
 ///

@@ -1,4 +1,4 @@
-//! Eight sketches people run on an MPU-6050, each printing a [`PersonSession`] as it would: the
+//! Twenty sketches people run on an MPU-6050, each printing a [`PersonSession`] as it would: the
 //! lines it prints before its data, each sample's line (and the records it prints between), its
 //! pace, and its line ending. What `sim --sketch` replays on a pseudo-terminal and the stream tests
 //! read.
@@ -6,6 +6,8 @@
 use std::f64::consts::PI;
 
 use super::person::{ChipSample, PersonSession, Reading};
+
+mod more;
 
 /// A sketch as people run it.
 #[derive(
@@ -29,6 +31,30 @@ pub enum Sketch {
     Whitespace,
     /// A logger writing Kalibr's IMU CSV: a header, then ns, rad/s and m/s^2, 200 Hz, low-pass 94 Hz, LF.
     Kalibr,
+    /// The Arduino Playground's MPU-6050 example: `AcX = 1234 | AcY = ... | GyZ = ...` counts, about 3 Hz.
+    Playground,
+    /// Adafruit_MPU6050's `basic_readings`: a sample over three lines and an empty one, m/s^2 and rad/s, 2 Hz.
+    BasicReadings,
+    /// An ESP32 logger printing a JSON object a sample (ArduinoJson): millis, m/s^2, rad/s, 50 Hz.
+    Esp32Json,
+    /// MicroPython printing a dictionary of counts (`{'GyZ': -46, ..., 'AcX': 516}`), about 20 Hz.
+    MicropythonDict,
+    /// ESPHome's mpu6050 sensor logged at DEBUG: ANSI colours, `[D][sensor:093]:`, eight lines a sample, 10 Hz.
+    Esphome,
+    /// Six counts comma-separated, each line ended by a carriage return alone, 50 Hz.
+    CrOnly,
+    /// A European-locale CSV: seconds, g and deg/s with decimal commas, separated by semicolons, 50 Hz.
+    SemicolonCsv,
+    /// Espressif's mpu6050 component test: ESP-IDF log lines `I (ms) tag: acce_x:0.01, ...`, coloured, 10 Hz.
+    EspIdf,
+    /// kriswiner's MPU6050IMU: `X-acceleration: 12.30 mg ...`, gyro in degrees/s, over three lines, 2 Hz.
+    Kriswiner,
+    /// CircuitPython printing a list of m/s^2 and rad/s: `[0.119713, ...]`, 20 Hz.
+    Array,
+    /// MicroPython printing several arguments: `Accel: 0.01 -0.02 0.99 Gyro: 0.1 0.2 0.3`, 20 Hz.
+    Grouped,
+    /// The registers in their order with no label: accelerometer, temperature and gyro counts, tab-separated, 20 Hz.
+    Registers,
 }
 
 /// What the ESP32's ROM prints at power-on (the logger's lines come after it).
@@ -47,7 +73,7 @@ pub struct TimedLine {
 
 impl Sketch {
     /// Every sketch.
-    pub const ALL: [Sketch; 8] = [
+    pub const ALL: [Sketch; 20] = [
         Sketch::I2cdevlib,
         Sketch::Motioncal,
         Sketch::Plotter,
@@ -56,6 +82,18 @@ impl Sketch {
         Sketch::SerialPlotter,
         Sketch::Whitespace,
         Sketch::Kalibr,
+        Sketch::Playground,
+        Sketch::BasicReadings,
+        Sketch::Esp32Json,
+        Sketch::MicropythonDict,
+        Sketch::Esphome,
+        Sketch::CrOnly,
+        Sketch::SemicolonCsv,
+        Sketch::EspIdf,
+        Sketch::Kriswiner,
+        Sketch::Array,
+        Sketch::Grouped,
+        Sketch::Registers,
     ];
 
     /// How it reads the chip.
@@ -69,6 +107,11 @@ impl Sketch {
             Sketch::SerialPlotter => (50.0, true),
             Sketch::Whitespace => (100.0, true),
             Sketch::Kalibr => (200.0, true),
+            Sketch::Playground => (3.0, false),
+            Sketch::BasicReadings | Sketch::Kriswiner => (2.0, true),
+            Sketch::Esp32Json | Sketch::CrOnly | Sketch::SemicolonCsv => (50.0, true),
+            Sketch::MicropythonDict | Sketch::Array | Sketch::Grouped | Sketch::Registers => (20.0, false),
+            Sketch::Esphome | Sketch::EspIdf => (10.0, true),
         };
         Reading { rate_hz, filtered }
     }
@@ -77,9 +120,12 @@ impl Sketch {
     pub fn accel_per_g(self) -> f64 {
         match self {
             Sketch::I2cdevlib | Sketch::Csv | Sketch::SerialPlotter | Sketch::Whitespace => 16384.0,
+            Sketch::Playground | Sketch::MicropythonDict | Sketch::CrOnly | Sketch::Registers => 16384.0,
             Sketch::Motioncal => 9.80665 * 8192.0 / 9.8,
-            Sketch::Plotter | Sketch::Kalibr => 9.80665,
-            Sketch::Micropython => 1.0,
+            Sketch::Plotter | Sketch::Kalibr | Sketch::BasicReadings | Sketch::Esp32Json => 9.80665,
+            Sketch::Esphome | Sketch::Array => 9.80665,
+            Sketch::Micropython | Sketch::SemicolonCsv | Sketch::EspIdf | Sketch::Grouped => 1.0,
+            Sketch::Kriswiner => 1000.0,
         }
     }
 
@@ -105,6 +151,15 @@ impl Sketch {
             Sketch::SerialPlotter => "MPU6050 ready\r\n",
             Sketch::Whitespace => "",
             Sketch::Kalibr => "timestamp,omega_x,omega_y,omega_z,alpha_x,alpha_y,alpha_z\n",
+            Sketch::BasicReadings => "Adafruit MPU6050 test!\r\nMPU6050 Found!\r\nAccelerometer range set to: +-8G\r\n\
+                Gyro range set to: +- 500 deg/s\r\nFilter bandwidth set to: 21 Hz\r\n\r\n",
+            Sketch::Esphome => "\u{1b}[0;32m[I][app:029]: Running through setup()...\u{1b}[0m\r\n",
+            Sketch::SemicolonCsv => "Zeit;ax;ay;az;gx;gy;gz\r\n",
+            Sketch::EspIdf => "\u{1b}[0;32mI (312) mpu6050 test: mpu6050 device ID is: 0x68\n\u{1b}[0m\n",
+            Sketch::MicropythonDict | Sketch::Array | Sketch::Grouped => {
+                "MicroPython v1.22.2 on 2024-02-22; ESP32 module with ESP32\r\nType \"help()\" for more information.\r\n"
+            }
+            Sketch::Playground | Sketch::Esp32Json | Sketch::CrOnly | Sketch::Kriswiner | Sketch::Registers => "",
         }
     }
 
@@ -120,6 +175,18 @@ impl Sketch {
             Sketch::SerialPlotter => format!("ax:{ax},ay:{ay},az:{az},gx:{gx},gy:{gy},gz:{gz}\r\n"),
             Sketch::Whitespace => format!("{ax} {ay} {az} {gx} {gy} {gz}\n"),
             Sketch::Kalibr => kalibr(s),
+            Sketch::Playground => more::playground(s),
+            Sketch::BasicReadings => more::basic_readings(s),
+            Sketch::Esp32Json => more::esp32_json(s),
+            Sketch::MicropythonDict => more::micropython_dict(s),
+            Sketch::Esphome => more::esphome(s),
+            Sketch::CrOnly => more::cr_only(s),
+            Sketch::SemicolonCsv => more::semicolon_csv(s),
+            Sketch::EspIdf => more::esp_idf(s),
+            Sketch::Kriswiner => more::kriswiner(s),
+            Sketch::Array => more::array(s),
+            Sketch::Grouped => more::grouped(s),
+            Sketch::Registers => more::registers(s),
         }
     }
 }
@@ -144,8 +211,7 @@ fn motioncal(s: &ChipSample, k: usize) -> String {
 
 /// Adafruit_MPU6050 at +-8 g and +-500 deg/s, printed with Serial.print's two decimals.
 fn plotter(s: &ChipSample) -> String {
-    let ms2 = s.accel.map(|c| (f64::from(c) / 4.0).round() / 4096.0 * 9.80665);
-    let rads = s.gyro.map(|c| (f64::from(c) / 2.0).round() / 65.5 * PI / 180.0);
+    let (ms2, rads) = more::adafruit_si(s);
     format!(
         "AccelX:{:.2},AccelY:{:.2},AccelZ:{:.2}, GyroX:{:.2},GyroY:{:.2},GyroZ:{:.2}\r\n",
         ms2[0], ms2[1], ms2[2], rads[0], rads[1], rads[2]

@@ -15,13 +15,15 @@ pub struct Arrivals {
     last_bytes_s: f64,
     /// When the last line holding numbers came, in seconds since listening began.
     last_readable_s: f64,
+    /// The last byte ended a line with a carriage return: a newline after it ends no other line.
+    after_cr: bool,
 }
 
 impl Arrivals {
     /// Starts from the lines `before` (a resumed session's log) and the bytes `heard` while the port
     /// was listened to, all at arrival 0 (unknown: kept out of the rate).
     pub fn begun(before: &str, heard: &[u8]) -> Self {
-        let lines = before.lines().map(|line| (line.to_owned(), 0.0)).collect();
+        let lines = super::split_lines(before).map(|line| (line.to_owned(), 0.0)).collect();
         let mut arrivals = Arrivals { lines, ..Default::default() };
         arrivals.take(heard, 0.0);
         arrivals
@@ -34,18 +36,29 @@ impl Arrivals {
             self.last_bytes_s = now_s;
         }
         for &byte in bytes {
-            if byte == b'\n' {
-                let text = super::text_of(&self.pending).trim_end_matches('\r').to_owned();
-                if holds_numbers(&text) {
-                    self.last_readable_s = now_s;
-                }
-                self.lines.push((text, now_s));
-                self.pending.clear();
-            } else {
+            // NOTE: a line ends at CR, LF or CR LF, as `split_lines` splits a saved log.
+            let (ends, after_cr) = match byte {
+                b'\r' => (true, true),
+                b'\n' => (!self.after_cr, false),
+                _ => (false, false),
+            };
+            if ends {
+                self.end_line(now_s);
+            } else if !matches!(byte, b'\r' | b'\n') {
                 self.pending.push(byte);
             }
+            self.after_cr = after_cr;
         }
         self.lines.len() - before
+    }
+
+    fn end_line(&mut self, now_s: f64) {
+        let text = super::text_of(&self.pending);
+        if holds_numbers(&text) {
+            self.last_readable_s = now_s;
+        }
+        self.lines.push((text, now_s));
+        self.pending.clear();
     }
 
     /// What the stream's silence says at `now_s`.

@@ -18,13 +18,19 @@ pub struct Columns {
 }
 
 /// Names of a clock column (lower case, `_` and spaces removed); `times` is `accelcal stream`'s `time_s`.
-const TIME_NAMES: [&str; 10] = ["millis", "ms", "time", "timestamp", "t", "micros", "us", "timems", "timeus", "times"];
+/// (`zeit`: German, as a European-locale logger heads it.)
+const TIME_NAMES: [&str; 11] =
+    ["millis", "ms", "time", "timestamp", "t", "micros", "us", "timems", "timeus", "times", "zeit"];
 /// What accelerometer columns are called before their axis letter.
 /// NOTE: a bare `x,y,z` (and `mx`, `raw_x`) is how accelcal's own data files name a reading.
 const ACCEL_HEADS: [&str; 11] =
     ["a", "ac", "acc", "accel", "acceleration", "alpha", "accelerometer", "arss", "", "m", "raw"];
 /// What gyro columns are called before their axis letter.
 const GYRO_HEADS: [&str; 7] = ["g", "gy", "gyr", "gyro", "omega", "w", "wrss"];
+/// Words inside a longer name that say it is the accelerometer's.
+const ACCEL_WORDS: [&str; 1] = ["acc"];
+/// Words inside a longer name that say it is the gyro's.
+const GYRO_WORDS: [&str; 3] = ["gyr", "rot", "omega"];
 /// Unit words after the axis letter that say nothing about which quantity it is.
 const UNIT_TAILS: [&str; 7] = ["g", "mg", "dps", "ms2", "rads", "raw", "ns"];
 
@@ -43,6 +49,9 @@ pub(super) fn name_columns(
     match (dialect, count) {
         (Dialect::Motioncal, 9) | (_, 3) | (_, 6) => Ok(by_order(None, 0, count >= 6)),
         (_, 4) | (_, 7) if grows(data) => Ok(by_order(Some((0, "first column".into())), 1, count == 7)),
+        // NOTE: seven values and no clock are the registers from ACCEL_XOUT_H on, in their order
+        // (register map 4.17-4.19): accelerometer, temperature, gyro.
+        (_, 7) => Ok(Columns { time: None, accel: [0, 1, 2], gyro: Some([4, 5, 6]) }),
         _ => Err(StreamError::UnclearColumns { count, names: names.join(",") }),
     }
 }
@@ -65,11 +74,25 @@ fn key(name: &str) -> String {
     name.chars().filter(|c| c.is_ascii_alphanumeric()).collect::<String>().to_ascii_lowercase()
 }
 
-/// The x, y, z columns whose names are one of `heads` and the axis letter.
+/// The x, y, z columns whose names are one of `heads` and the axis letter, else those whose names
+/// hold the quantity's word (`wordy`) before or after the axis letter (ESPHome's `MPU6050 Accel X`,
+/// kriswiner's `X-acceleration`, ESP-IDF's `acce_x`); an angle (`ACC ANGLE X`) is no reading.
 fn axes(keys: &[String], heads: &[&str]) -> Option<[usize; 3]> {
-    let find =
+    let exact =
         |axis: char| keys.iter().position(|k| axis_of(k).is_some_and(|(head, a)| a == axis && heads.contains(&head)));
+    let gyro = heads.contains(&"gyro");
+    let wordy = |axis: char| keys.iter().position(|k| wordy_axis(k, gyro) == Some(axis));
+    let find = |axis: char| exact(axis).or_else(|| wordy(axis));
     Some([find('x')?, find('y')?, find('z')?])
+}
+
+/// The axis of a key that names the gyro (`gyro`) or the accelerometer in a longer word, the axis
+/// letter last or first.
+fn wordy_axis(key: &str, gyro: bool) -> Option<char> {
+    let words: &[&str] = if gyro { &GYRO_WORDS } else { &ACCEL_WORDS };
+    let names = |head: &str| words.iter().any(|w| head.contains(w)) && !head.contains("angle");
+    let last = key.chars().last().filter(|c| matches!(c, 'x' | 'y' | 'z') && names(&key[..key.len() - 1]));
+    last.or_else(|| key.chars().next().filter(|c| matches!(c, 'x' | 'y' | 'z') && names(&key[1..])))
 }
 
 /// A key split into its head and axis letter: `accelx` -> (`accel`, x), `axg` -> (`a`, x).

@@ -23,6 +23,16 @@ pub enum Dialect {
     Micropython,
     /// Kalibr's IMU CSV: `timestamp,omega_x,omega_y,omega_z,alpha_x,alpha_y,alpha_z` (ns, rad/s, m/s^2).
     Kalibr,
+    /// Semicolon-separated values with decimal commas (a European-locale CSV): `0,0123;-0,0456;...`.
+    SemicolonCsv,
+    /// JSON objects or Python dictionaries, one a line: `{"ax":0.12,...}`, `{'AcX': 1234, ...}`.
+    Json,
+    /// Bracketed arrays, one a line: `[0.12, -0.34, 9.81, ...]`.
+    Array,
+    /// Values among words, one sample a line: `AcX = 1234 | AcY = -56 | ...`.
+    Labelled,
+    /// One sample printed over several lines (Adafruit's `basic_readings`, ESPHome's log).
+    MultiLine,
 }
 
 impl Dialect {
@@ -37,6 +47,11 @@ impl Dialect {
             Dialect::Whitespace => "whitespace",
             Dialect::Micropython => "micropython",
             Dialect::Kalibr => "kalibr",
+            Dialect::SemicolonCsv => "semicolon-csv",
+            Dialect::Json => "json",
+            Dialect::Array => "array",
+            Dialect::Labelled => "labelled",
+            Dialect::MultiLine => "multi-line",
         }
     }
 }

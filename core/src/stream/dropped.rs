@@ -21,6 +21,8 @@ pub enum DropReason {
     NotText,
     /// A value beyond what the sensor can read (its widest range, or 16-bit counts): a garbled line.
     BeyondRange,
+    /// A line of a sample printed over several, before the line that ends it: no line is lost.
+    Continued,
 }
 
 impl DropReason {
@@ -34,6 +36,7 @@ impl DropReason {
             DropReason::OtherShape => "cut short, run together or otherwise not as the other lines",
             DropReason::NotText => "bytes that are not text (boot noise; all of them: the wrong --baud)",
             DropReason::BeyondRange => "a value beyond what the sensor can read (a garbled line)",
+            DropReason::Continued => "a part of a sample printed over several lines",
         }
     }
 }

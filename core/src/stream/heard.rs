@@ -5,7 +5,7 @@
 use super::arrival::arrival_hz;
 use super::log::{LineReader, StreamLog, StreamOptions};
 use super::timing::{settle, Rate, RateSource};
-use super::{Dropped, Layout, StreamError};
+use super::{DropReason, Dropped, Layout, StreamError};
 
 /// The stream of `lines` (each line's text and its arrival, seconds), read with `options`, or why
 /// not yet (its dialect or enough samples still to come) or not at all (a unit its values do not fit).
@@ -16,6 +16,7 @@ pub fn read_heard(lines: &[(String, f64)], options: &StreamOptions) -> Result<St
     for (index, (text, _)) in lines.iter().enumerate() {
         match reader.read(text) {
             Ok(sample) => samples.push(sample),
+            Err(DropReason::Continued) => {}
             Err(reason) => dropped.add(reason, index + 1),
         }
     }
@@ -31,7 +32,6 @@ pub fn read_heard(lines: &[(String, f64)], options: &StreamOptions) -> Result<St
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::stream::DropReason;
 
     #[test]
     fn the_arrival_rate_counts_only_accepted_samples_not_lines_beyond_the_sensors_reach() {

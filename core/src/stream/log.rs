@@ -3,7 +3,7 @@
 
 use super::dialect::{Layout, SIDE_RECORDS};
 use super::dropped::{DropReason, Dropped};
-use super::line::{fields, Words};
+use super::line::{fields, Fields, Words};
 use super::timing::{self, Rate, RateSource};
 use super::units::{AccelUnit, GyroUnit};
 use super::StreamError;
@@ -38,15 +38,17 @@ pub struct StreamSample {
 pub struct LineReader {
     layout: Layout,
     line: usize,
+    /// The lines of a sample printed over several, taken so far.
+    pending: Vec<Fields>,
 }
 
 impl LineReader {
     /// A reader for lines laid out as `layout`, the next being line 1.
     pub fn new(layout: Layout) -> Self {
-        LineReader { layout, line: 0 }
+        LineReader { layout, line: 0, pending: Vec::new() }
     }
 
-    /// The sample on the next line, or why it has none.
+    /// The sample on the next line (or ended by it), or why it has none.
     pub fn read(&mut self, text: &str) -> Result<StreamSample, DropReason> {
         self.line += 1;
         if Some(self.line) == self.layout.header_line {
@@ -63,17 +65,33 @@ impl LineReader {
         if parsed.prefix.as_deref().is_some_and(|p| SIDE_RECORDS.contains(&p)) {
             return Err(DropReason::SideRecord);
         }
-        if !self.layout.shape.fits(&parsed) {
-            return Err(DropReason::OtherShape);
-        }
+        let values = self.gathered(parsed)?;
         let columns = &self.layout.columns;
-        let pick = |axes: [usize; 3]| axes.map(|i| parsed.values[i]);
+        let pick = |axes: [usize; 3]| axes.map(|i| values[i]);
         Ok(StreamSample {
             line: self.line,
-            time: columns.time.as_ref().map(|(i, _)| parsed.values[*i]),
+            time: columns.time.as_ref().map(|(i, _)| values[*i]),
             accel: pick(columns.accel),
             gyro: columns.gyro.map(pick),
         })
+    }
+
+    /// The values of a whole sample once `parsed` ends one; a line that begins or carries on a
+    /// sample printed over several lines is [`DropReason::Continued`].
+    fn gathered(&mut self, parsed: Fields) -> Result<Vec<f64>, DropReason> {
+        let record = &self.layout.record;
+        if record[self.pending.len()].fits(&parsed) {
+            self.pending.push(parsed);
+        } else if record[0].fits(&parsed) {
+            self.pending = vec![parsed];
+        } else {
+            self.pending.clear();
+            return Err(DropReason::OtherShape);
+        }
+        if self.pending.len() < record.len() {
+            return Err(DropReason::Continued);
+        }
+        Ok(self.pending.drain(..).flat_map(|f| f.values).collect())
     }
 
     /// The layout being read.
@@ -101,6 +119,14 @@ fn is_binary_control(c: char) -> bool {
     c.is_control() && !matches!(c, '\t' | '\r' | '\n')
 }
 
+/// The lines of `text`, each ended by a newline, a carriage return and a newline, or a carriage
+/// return alone (a sketch that prints `\r` only): what a live stream's arrivals split it into too.
+pub fn split_lines(text: &str) -> impl Iterator<Item = &str> {
+    let text = text.strip_suffix('\n').unwrap_or(text);
+    let text = text.strip_suffix('\r').unwrap_or(text);
+    text.split('\n').flat_map(|line| line.strip_suffix('\r').unwrap_or(line).split('\r')).filter(|_| !text.is_empty())
+}
+
 /// Bytes from a port or a file as text, those that are not UTF-8 replaced by U+FFFD.
 pub fn text_of(bytes: &[u8]) -> String {
     String::from_utf8_lossy(bytes).into_owned()
@@ -112,7 +138,7 @@ pub const ARRIVAL_RATE_TAG: &str = "# accelcal: lines arrived at";
 
 /// The rate a live session's log recorded from the lines' arrival.
 pub fn arrival_rate(text: &str) -> Option<f64> {
-    let line = text.lines().rev().find(|l| l.starts_with(ARRIVAL_RATE_TAG))?;
+    let line = split_lines(text).filter(|l| l.starts_with(ARRIVAL_RATE_TAG)).last()?;
     line[ARRIVAL_RATE_TAG.len()..].trim().trim_end_matches("Hz").trim().parse().ok()
 }
 
@@ -136,13 +162,14 @@ pub struct StreamLog {
 impl StreamLog {
     /// Reads a saved log.
     pub fn parse(text: &str, options: &StreamOptions) -> Result<StreamLog, StreamError> {
-        let layout = Layout::detect(text.lines())?;
+        let layout = Layout::detect(split_lines(text))?;
         let mut reader = LineReader::new(layout.clone());
         let mut samples = Vec::new();
         let mut dropped = Dropped::default();
-        for line in text.lines() {
+        for line in split_lines(text) {
             match reader.read(line) {
                 Ok(sample) => samples.push(sample),
+                Err(DropReason::Continued) => {}
                 Err(reason) => dropped.add(reason, reader.line),
             }
         }
@@ -198,13 +225,17 @@ fn units(
     samples: &[StreamSample],
     options: &StreamOptions,
 ) -> Result<(AccelUnit, Option<(GyroUnit, bool)>), StreamError> {
-    let accel_unit = match options.accel_unit {
-        Some(unit) => unit.given(layout.dialect, median_norm(samples))?,
-        None => AccelUnit::infer(layout.dialect, median_norm(samples))?,
+    let norm = median_norm(samples);
+    let accel_unit = match (options.accel_unit, layout.said.0) {
+        (Some(unit), _) => unit.given(layout.dialect, norm)?,
+        // NOTE: the unit the line names, unless gravity's size says otherwise (a label's `g` misread).
+        (None, Some(said)) if said.fits(norm) => said,
+        (None, _) => AccelUnit::infer(layout.dialect, norm)?,
     };
-    let gyro_unit = layout.columns.gyro.map(|_| match options.gyro_unit {
-        Some(unit) => (unit, false),
-        None => GyroUnit::infer(layout.dialect, accel_unit),
+    let gyro_unit = layout.columns.gyro.map(|_| match (options.gyro_unit, layout.said.1) {
+        (Some(unit), _) => (unit, false),
+        (None, Some(said)) => (said, true),
+        (None, None) => GyroUnit::infer(layout.dialect, accel_unit),
     });
     Ok((accel_unit, gyro_unit.map(|(unit, fixed)| (unit, !fixed && options.gyro_unit.is_none()))))
 }

@@ -17,6 +17,7 @@ pub mod kept;
 mod line;
 mod log;
 pub mod plausible;
+mod refusal;
 pub mod segment;
 pub mod status;
 mod still;
@@ -29,18 +30,21 @@ pub use conventions::Dialect;
 pub use dialect::Layout;
 pub use dropped::{DropReason, Dropped};
 pub use heard::read_heard;
-pub use log::{checked_text, text_of, LineReader, StreamLog, StreamOptions, StreamSample, ARRIVAL_RATE_TAG};
+pub use log::{
+    checked_text, split_lines, text_of, LineReader, StreamLog, StreamOptions, StreamSample, ARRIVAL_RATE_TAG,
+};
+pub use refusal::text_without_samples;
 pub use segment::{segment, Segment, Stillness};
 pub use still::{SegmentLines, StillPeriods};
-pub use units::{AccelUnit, GyroUnit};
+pub use units::{AccelUnit, GyroUnit, UnitWord};
 
 /// Why a stream cannot be read.
 #[derive(Debug, thiserror::Error)]
 pub enum StreamError {
     #[error("cannot read {path}: {source}")]
     Io { path: String, source: std::io::Error },
-    #[error("none of the {lines} lines holds three or more numbers: this is not a sensor's stream")]
-    NoData { lines: usize },
+    #[error("none of the {lines} lines holds a sample: {why}")]
+    NoData { lines: usize, why: String },
     #[error(
         "the lines hold {count} values ({names}) and which are the accelerometer's is unclear: \
          give them a header such as millis,ax,ay,az,gx,gy,gz"
@@ -48,7 +52,8 @@ pub enum StreamError {
     UnclearColumns { count: usize, names: String },
     #[error(
         "the accelerometer's values have a median size of {median_norm:.4}, which is 1 g in none of g, mg, m/s2 \
-         or the counts of a range: give --input-unit (g, mg, m/s2, counts-2g, counts-4g, counts-8g, counts-16g)"
+         or the counts of a range: give --input-unit (g, mg, m/s2, counts-2g, counts-4g, counts-8g, counts-16g); \
+         a board at rest reads 1 g, so values the size of no unit's g may be no accelerometer's (a log with no sensor)"
     )]
     UnclearUnit { median_norm: f64 },
     #[error(

@@ -28,6 +28,10 @@ const WINDOW_S: f64 = 0.5;
 const TRIM_S: f64 = 0.1;
 
 impl Stillness {
+    /// The windows for a stream of unknown rate that is slow: 2-10 Hz (at 2 Hz, 10 samples are 5 s of
+    /// a hold of 7 s or more, and a window of 5 spans a turn).
+    pub const SLOW: Stillness = Stillness { window: 5, min_samples: 10, trim: 1 };
+
     /// The windows for a stream at `rate_hz`; without a rate, lengths that suit 10-100 Hz.
     pub fn for_rate(rate_hz: Option<f64>) -> Self {
         match rate_hz {

@@ -10,10 +10,11 @@ use super::guide::{all_rested, nearest_name, next_turn};
 use super::heard::read_heard;
 use super::log::{StreamLog, StreamOptions};
 use super::plausible::gyro_doubt;
+use super::refusal::text_without_samples;
 use super::segment::{mean_std, Segment, Stillness};
 use super::still::StillPeriods;
 use super::StreamError;
-use crate::limits::{MAX_CAPTURE_SECONDS, MOVING_SCATTER_G};
+use crate::limits::{FRESH_WAIT_S, LIVE_REFUSAL_LINES, MAX_CAPTURE_SECONDS, MOVING_SCATTER_G};
 
 /// Where a stream session stands between status lines.
 #[derive(Debug, Clone, PartialEq)]
@@ -24,6 +25,8 @@ pub struct Progress {
     verify: usize,
     /// The standard error each axis' mean should reach, in g.
     want_g: f64,
+    /// When the last new still period came, in seconds of arrival.
+    added_at_s: f64,
 }
 
 /// What one look at the lines so far says.
@@ -45,23 +48,23 @@ pub enum Ends {
     Done(String),
     /// Its values are not in the unit they are read in: nothing it holds may be certified.
     Refused(String),
+    /// Every face and corner rested, but the fresh orientations stopped coming short of those wanted:
+    /// fitted with what it has, not certified.
+    Stalled(String),
 }
 
 impl Progress {
     /// Nothing kept yet; each position held until its mean is known to `want_g` per axis (g), and
     /// `verify` fresh orientations wanted.
     pub fn new(want_g: f64, verify: usize) -> Self {
-        Progress { kept_periods: 0, verify, want_g }
+        Progress { kept_periods: 0, verify, want_g, added_at_s: 0.0 }
     }
 
     /// Looks at the lines so far (each with its arrival in seconds), read as `options` say.
     pub fn look(&mut self, lines: &[(String, f64)], options: &StreamOptions) -> Look {
         let log = match read_heard(lines, options) {
             Ok(log) => log,
-            Err(unit @ (StreamError::OtherAccelUnit { .. } | StreamError::BeyondReach { .. })) => {
-                return Look { ends: Some(Ends::Refused(unit.to_string())), ..Look::default() }
-            }
-            Err(_) => return Look::default(),
+            Err(error) => return Look { ends: refused(&error, lines), ..Look::default() },
         };
         let still = StillPeriods::of(&log);
         // NOTE: only while no period rests: a gyro read in the wrong unit rests nowhere.
@@ -71,12 +74,52 @@ impl Progress {
         let line = Some(status_line(&log, &still, self.want_g));
         let trained: Vec<[f64; 3]> = still.dataset.rows.iter().map(|r| r.reading).collect();
         let fresh = still.held_out.rows.len();
-        let ends = (all_rested(&trained) && fresh >= self.verify)
-            .then(|| Ends::Done(format!("every face and corner rested and {fresh} fresh orientations held")));
         let added = still.segments.len() != self.kept_periods;
-        self.kept_periods = still.segments.len();
+        let now_s = lines.last().map_or(0.0, |(_, at)| *at);
+        if added {
+            (self.kept_periods, self.added_at_s) = (still.segments.len(), now_s);
+        }
+        let ends = match (all_rested(&trained), fresh >= self.verify) {
+            (true, true) => {
+                Some(Ends::Done(format!("every face and corner rested and {fresh} fresh orientations held")))
+            }
+            (true, false) if now_s - self.added_at_s > FRESH_WAIT_S => Some(Ends::Stalled(stalled(fresh, self.verify))),
+            _ => None,
+        };
         Look { line, keep: added.then_some(log), ends }
     }
+}
+
+/// Why the run ends on a stream not read (yet), when it does: a unit its values do not fit, or
+/// [`LIVE_REFUSAL_LINES`] lines of text none of which is read (quoted, with the fix).
+fn refused(error: &StreamError, lines: &[(String, f64)]) -> Option<Ends> {
+    match error {
+        StreamError::OtherAccelUnit { .. } | StreamError::BeyondReach { .. } => Some(Ends::Refused(error.to_string())),
+        StreamError::NoData { .. } | StreamError::UnclearColumns { .. } | StreamError::UnclearUnit { .. }
+            if lines.len() >= LIVE_REFUSAL_LINES && is_text(lines) =>
+        {
+            Some(Ends::Refused(format!("{} lines came and none was read: {error}", lines.len())))
+        }
+        _ => None,
+    }
+}
+
+/// Whether the lines are text (bytes that are not are the wrong baud rate's, which the stream's
+/// silence names).
+fn is_text(lines: &[(String, f64)]) -> bool {
+    let texts: Vec<&str> = lines.iter().map(|(text, _)| text.as_str()).collect();
+    text_without_samples(&texts).is_some()
+}
+
+/// Why a session whose fresh orientations stopped coming ends, and what it means.
+fn stalled(fresh: usize, verify: usize) -> String {
+    format!(
+        "every face and corner rested but only {fresh} of the {verify} fresh orientations wanted were held, and no \
+         still period came in {FRESH_WAIT_S:.0} s: the calibration is fitted with what was held and not certified; \
+         to finish it, resume the session and hold the board still between two faces (an edge) {} more time{}",
+        verify - fresh,
+        if verify - fresh == 1 { "" } else { "s" }
+    )
 }
 
 /// One status line: the stream, the board's rest and tilt, the position being held, the next turn.

@@ -42,7 +42,7 @@ impl StillPeriods {
     /// Finds and averages the still periods of `log`.
     pub fn of(log: &StreamLog) -> Self {
         let gyro = log.gyro_dps();
-        let segments = segment(&log.accel_g(), gyro.as_deref(), &Stillness::for_rate(log.rate.map(|r| r.hz)));
+        let segments = segments_of(&log.accel_g(), gyro.as_deref(), log.rate.map(|r| r.hz));
         let per_g = log.accel_unit.per_g();
         let trains: Vec<bool> = segments.iter().map(|s| super::guide::trains(s.mean_g)).collect();
         let hold_out = trains.iter().filter(|&&t| t).count() >= MIN_TRAINING_PERIODS;
@@ -64,6 +64,22 @@ impl StillPeriods {
             sum.map(|sum| sum / total.max(1) as f64)
         };
         Some([weighted(0)?, weighted(1)?, weighted(2)?])
+    }
+}
+
+/// The still periods at the stream's rate; without one, those of windows that suit 10-100 Hz,
+/// unless the windows of a slow sketch (2-10 Hz: Adafruit's `basic_readings` prints every 500 ms)
+/// find more, which they do only when the stream is that slow.
+fn segments_of(accel_g: &[[f64; 3]], gyro_dps: Option<&[[f64; 3]]>, rate_hz: Option<f64>) -> Vec<Segment> {
+    let segments = segment(accel_g, gyro_dps, &Stillness::for_rate(rate_hz));
+    if rate_hz.is_some() || segments.len() >= MIN_TRAINING_PERIODS {
+        return segments;
+    }
+    let slow = segment(accel_g, gyro_dps, &Stillness::SLOW);
+    if slow.len() > segments.len() {
+        slow
+    } else {
+        segments
     }
 }
 

@@ -57,8 +57,22 @@ pub struct TurnsFit {
 pub fn fit(turns: Result<Vec<Turn>, String>, unit: GyroUnit, assumed: bool) -> TurnsFit {
     let turns = turns.and_then(|t| scale_doubt(&t, unit, assumed).map_or(Ok(t), Err));
     let fit = turns.and_then(|t| fit_gyro(&t).map_err(|e: GyroFitError| e.to_string()));
-    let range = fit.as_ref().ok().and_then(|g| range_check(g, unit, assumed));
+    let range = match &fit {
+        Ok(g) => range_check(g, unit, assumed),
+        Err(why) => (assumed && unit.is_counts()).then(|| unsettled(unit, why)),
+    };
     TurnsFit { fit, range }
+}
+
+/// A gyro range assumed that the turns could not settle, asked for: its deg/s (the bias among
+/// them) are the assumed range's, and another range scales them by 2, 4 or 8.
+fn unsettled(unit: GyroUnit, why: &str) -> String {
+    format!(
+        "the gyro's range is not settled: the stream does not say it and its turns cannot ({why}); its deg/s are \
+         those of the assumed {}: give --gyro-unit counts-250dps, counts-500dps, counts-1000dps or counts-2000dps \
+         (the sketch's setFullScaleGyroRange), or --rate so that the turns settle it",
+        unit.name()
+    )
 }
 
 /// Why the gyro's values are not in `unit`, when the turns say so: integrated as `unit`, the gyro

@@ -64,6 +64,31 @@ pub enum GyroUnit {
     MotionCal,
 }
 
+/// A unit a line names in words after its values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum UnitWord {
+    /// The accelerometer's: `m/s^2`, `g`, `mg`.
+    Accel(AccelUnit),
+    /// The gyro's: `rad/s`, `deg/s`, `°/s`, `degrees/s`.
+    Gyro(GyroUnit),
+}
+
+/// The unit `word` names, when it is one a sketch prints after a value (Adafruit's `m/s^2` and
+/// `rad/s`, ESPHome's `m/s²` and `°/s`, kriswiner's `mg` and `degrees/s`).
+pub(super) fn unit_word(word: &str) -> Option<UnitWord> {
+    let word = word.trim_end_matches(['.', ',']).to_lowercase();
+    Some(match word.as_str() {
+        "m/s^2" | "m/s2" | "m/s²" | "m/s/s" | "ms^-2" => UnitWord::Accel(AccelUnit::MetersPerSecond2),
+        "g" => UnitWord::Accel(AccelUnit::G),
+        "mg" => UnitWord::Accel(AccelUnit::MilliG),
+        "rad/s" | "rad/sec" | "rads/s" => UnitWord::Gyro(GyroUnit::RadPerS),
+        "deg/s" | "°/s" | "º/s" | "dps" | "degrees/s" | "degrees/sec" | "deg/sec" => {
+            UnitWord::Gyro(GyroUnit::DegPerS)
+        }
+        _ => return None,
+    })
+}
+
 const ACCEL_UNITS: [AccelUnit; 7] = [
     AccelUnit::G,
     AccelUnit::MilliG,
@@ -146,7 +171,7 @@ impl AccelUnit {
     }
 
     /// Whether gravity's size `median_norm` (the median |a|, in this unit) is 1 g in this unit.
-    fn fits(self, median_norm: f64) -> bool {
+    pub(super) fn fits(self, median_norm: f64) -> bool {
         (median_norm / self.per_g() - 1.0).abs() <= UNIT_TOLERANCE
     }
 

@@ -26,6 +26,9 @@ pub(super) fn fit(args: &FitArgs) -> Result<(), Error> {
 }
 
 fn fit_dataset(args: &FitArgs, dataset: &Dataset) -> Result<(), Error> {
+    if let Some(size) = dataset.references_in_ms2(args.g) {
+        return Err(Error::ReferencesInOtherUnit { path: args.file.clone(), size, g: args.g });
+    }
     let spinner = crate::terminal::working(format!("fitting {} rows (--model {})", dataset.rows.len(), args.model));
     let report = FitReport::new(dataset, args.model, &options(args));
     spinner.finish_and_clear();
@@ -56,12 +59,12 @@ fn fit_stream(args: &FitArgs, text: &str) -> Result<(), StreamRefusal> {
 }
 
 /// The error for a file that is not a data file and could not be fitted as a stream: the data
-/// file's own error when it has a data file's header (a bad row) or holds no stream either.
+/// file's own error when it has a data file's header (a bad row), else the stream's (which quotes a
+/// line and says what it lacks when none holds a sample).
 fn stream_refused(args: &FitArgs, refusal: StreamRefusal, data: Option<DataError>) -> Error {
     let headed = |data: &DataError| !matches!(data, DataError::MissingColumns { .. });
     match (refusal, data) {
         (StreamRefusal::Read(_), Some(data)) if headed(&data) => Error::data_file(&args.file, data),
-        (StreamRefusal::Read(StreamError::NoData { .. }), Some(data)) => Error::data_file(&args.file, data),
         (StreamRefusal::Read(source), _) => Error::Stream { path: args.file.clone(), source },
         (StreamRefusal::Fit(source), _) => Error::StreamFit { path: args.file.clone(), source },
     }

@@ -12,7 +12,7 @@ use crate::run::Feedback;
 use crate::session::SessionError;
 use crate::stream::arrival::{Arrivals, Silence};
 use crate::stream::status::{Ends, Progress};
-use crate::stream::{read_heard, ARRIVAL_RATE_TAG};
+use crate::stream::{read_heard, text_without_samples, ARRIVAL_RATE_TAG};
 
 /// How often the person is told where things stand, in seconds.
 const STATUS_EVERY_S: f64 = 1.0;
@@ -85,7 +85,7 @@ impl<'a> Listening<'a> {
             Silence::Stopped => return Some(Ended::short("the stream stopped")),
             Silence::Unreadable { seconds, ended } if ended || !self.warned => {
                 self.warned = true;
-                let words = unreadable(seconds, self.options.baud);
+                let words = unreadable(seconds, self.options.baud, &self.arrivals.lines);
                 match ended {
                     true => return Some(Ended::short(words)),
                     false => feedback.say(&words),
@@ -133,12 +133,21 @@ impl<'a> Listening<'a> {
 fn ended(ends: Ends) -> Ended {
     match ends {
         Ends::Done(why) => Ended::complete(why),
-        Ends::Refused(why) => Ended::short(why),
+        Ends::Refused(why) | Ends::Stalled(why) => Ended::short(why),
     }
 }
 
-/// A stream whose bytes hold no line of numbers, in words, with the likely cause and the way out.
-fn unreadable(seconds: f64, baud: u32) -> String {
+/// The last lines looked at to say why a stream is unreadable.
+const UNREADABLE_QUOTED_LINES: usize = 20;
+
+/// A stream whose bytes hold no line of numbers, in words, with the likely cause and the way out:
+/// lines of text that hold no sample are named as such (quoted, with the change to the sketch),
+/// bytes that are not text as the wrong baud rate.
+fn unreadable(seconds: f64, baud: u32, lines: &[(String, f64)]) -> String {
+    let last: Vec<&str> = lines.iter().rev().take(UNREADABLE_QUOTED_LINES).rev().map(|(l, _)| l.as_str()).collect();
+    if let Some(why) = text_without_samples(&last) {
+        return format!("nothing readable for {seconds:.0} s: lines of text come but none holds a sample: {why}");
+    }
     format!(
         "nothing readable for {seconds:.0} s: bytes come but no line of numbers, most likely the wrong baud rate \
          (read at {baud} Bd): give the sketch's Serial.begin rate as --baud (9600, 38400, 57600, 115200 ...)"

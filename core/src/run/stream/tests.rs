@@ -238,3 +238,33 @@ fn the_log_is_closed_with_its_unended_line_ended_and_the_rate_its_samples_arrive
     // NOTE: i2cdevlib's sketch prints at about 9 Hz; lines handed over in 0.25 s bursts.
     assert!((hz - 9.0).abs() < 0.3, "{hz} Hz");
 }
+
+#[test]
+fn a_session_short_of_fresh_orientations_ends_with_what_it_has_and_says_so() {
+    // NOTE: the person holds four edges; six are wanted. After the session the board rests where it
+    // was left and the sketch goes on printing: no new still period comes.
+    let mut chunks = person();
+    let (last_s, last_line) = chunks.last().cloned().unwrap();
+    chunks.extend((1..=1000).map(|k| (last_s + f64::from(k) * 0.11, last_line.clone())));
+    let ran = run(Replay::of(chunks), &CalibrateOptions { verify: 6, ..options() });
+    assert!(!ran.ended.complete, "{:?}", ran.ended);
+    assert!(ran.ended.why.starts_with("every face and corner rested but only 4 of the 6 fresh"), "{:?}", ran.ended);
+    assert!(ran.ended.why.contains("fitted with what was held and not certified"), "{:?}", ran.ended);
+    // NOTE: the last still period (the last hold, continued) began before the session's end.
+    assert!(ran.ended_at_s > last_s && ran.ended_at_s < last_s + 75.0, "ended at {} s", ran.ended_at_s);
+    assert!(!ran.finished.expect("fitted with what it has").certifies);
+}
+
+#[test]
+fn lines_of_text_with_no_sample_are_named_with_a_line_quoted_and_the_fix_never_the_baud_rate() {
+    let lines = |text: &str| (0..600).map(|k| (f64::from(k) * 0.1, text.as_bytes().to_vec())).collect::<Vec<_>>();
+    let ran = run(Replay::of(lines("temp=21.5\r\n")), &options());
+    assert!(ran.ended.why.contains(" lines came and none was read: none of the "), "{:?}", ran.ended);
+    assert!(ran.ended.why.contains("line 1 `temp=21.5` holds 1 value (temp)"), "{:?}", ran.ended);
+    assert!(ran.ended_at_s < 25.0, "ended at {} s", ran.ended_at_s);
+    let ran = run(Replay::of(lines("Connecting to WiFi...\r\n")), &options());
+    let warned = said(&ran.told, "nothing readable for 5 s: lines of text come but none holds a sample");
+    assert_eq!(warned.len(), 1, "{:?}", ran.told);
+    assert!(warned[0].contains("`Connecting to WiFi...`): another program's text or a log with no sensor"));
+    assert!(ran.told.iter().chain([&ran.ended.why]).all(|line| !line.contains("baud")), "{:?}", ran.told);
+}

@@ -64,3 +64,40 @@ fn a_value_is_a_reading_up_to_the_sensors_reach_with_its_margin() {
     assert_eq!(GyroUnit::Counts250.readable_max(), 40960.0);
     assert_eq!(GyroUnit::DegPerS.readable_max(), 2500.0);
 }
+
+/// What each of issue 39's sketches prints is read with no flag: every sample the session read is
+/// a sample of the log (none lost to a line's shape), in the unit and dialect its lines say.
+#[test]
+fn every_sketchs_log_is_read_with_no_flag_each_sample_once_in_its_own_unit() {
+    use super::super::Dialect;
+    let expected = |sketch: Sketch| match sketch {
+        Sketch::Playground => (Dialect::Labelled, "counts-2g", Some("counts-250dps")),
+        Sketch::BasicReadings => (Dialect::MultiLine, "m/s2", Some("rad/s")),
+        Sketch::Esp32Json => (Dialect::Json, "m/s2", Some("rad/s")),
+        Sketch::MicropythonDict => (Dialect::Json, "counts-2g", Some("counts-250dps")),
+        Sketch::Esphome => (Dialect::MultiLine, "m/s2", Some("deg/s")),
+        Sketch::CrOnly => (Dialect::Csv, "counts-2g", Some("counts-250dps")),
+        Sketch::SemicolonCsv => (Dialect::SemicolonCsv, "g", Some("deg/s")),
+        Sketch::EspIdf => (Dialect::MultiLine, "g", Some("deg/s")),
+        Sketch::Kriswiner => (Dialect::MultiLine, "mg", Some("deg/s")),
+        Sketch::Array => (Dialect::Array, "m/s2", Some("rad/s")),
+        Sketch::Grouped => (Dialect::Labelled, "g", Some("deg/s")),
+        Sketch::Registers => (Dialect::Whitespace, "counts-2g", Some("counts-250dps")),
+        _ => (Dialect::Csv, "", None),
+    };
+    let mut wrong = Vec::new();
+    for sketch in Sketch::ALL.into_iter().skip(8) {
+        let session = PersonSession::new(3, sketch.reading());
+        let text: String = sketch.lines(&session).into_iter().map(|l| l.text).collect();
+        let read = StreamLog::parse(&text, &StreamOptions::default()).map(|log| {
+            let gyro = log.gyro_unit.map(|(unit, _)| unit.name());
+            (log.layout.dialect, log.accel_unit.name(), gyro, log.samples.len())
+        });
+        let (dialect, accel, gyro) = expected(sketch);
+        // NOTE: a sample split over several lines is lost when the log begins in its middle: none here.
+        if read.as_ref().ok() != Some(&(dialect, accel, gyro, session.samples.len())) {
+            wrong.push(format!("{sketch:?}: {read:?}, {} samples", session.samples.len()));
+        }
+    }
+    assert!(wrong.is_empty(), "{wrong:#?}");
+}
