@@ -18,16 +18,14 @@ pub fn issue(session: &Session, path: &Path) -> Result<Certificate, Error> {
     let certificate =
         Certificate::issue(session).map_err(|source| Error::CannotReport { path: path.into(), source })?;
     let predicted_mg = certificate.predicted.norm_error_mg.expanded;
-    // NOTE: the verified figure carries its own noise: the error without it must exceed U by more
-    // than one noise floor to contradict it (as `Verification::against` judges a target).
-    match &certificate.verification {
-        Some(v) if v.after_rms_without_noise_mg > predicted_mg + v.noise_floor_mg => Err(Error::Contradicted {
+    match certificate.contradicting_verification() {
+        Some(v) => Err(Error::Contradicted {
             path: path.into(),
             verified_mg: v.after_rms_without_noise_mg,
             floor_mg: v.noise_floor_mg,
             predicted_mg,
         }),
-        _ => Ok(certificate),
+        None => Ok(certificate),
     }
 }
 

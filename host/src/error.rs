@@ -28,6 +28,8 @@ pub enum Error {
     Sim(#[from] SimError),
     #[error(transparent)]
     Emulator(#[from] crate::sim::EmulatorError),
+    #[error(transparent)]
+    Web(#[from] crate::web::WebError),
     #[error("{}: {source}", .path.display())]
     DataFile { path: PathBuf, source: DataError },
     #[error("{}: cannot fit {model}: {source}", .path.display())]

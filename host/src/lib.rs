@@ -64,6 +64,7 @@ pub mod sim;
 pub mod still;
 pub mod stream;
 pub mod terminal;
+pub mod web;
 
 pub use accelcal_core::{calibration, export, fit, limits, orientation, report, shown};
 pub use error::Error;

@@ -1,7 +1,9 @@
-//! accelcal in the browser. This crate will become the web page (issue 37); today it holds only the
-//! browser's entry points: [`simulated_session_json`] and its WebAssembly exports ([`exports`]), which
-//! the tests run under node to check that the core computes there, bit for bit, what it computes natively.
+//! accelcal in the browser (issue 37): the entry points of the web page (web/page) in [`browser`]
+//! (the board run over Web Serial, the simulated board a Web Worker serves), and
+//! [`simulated_session_json`] with its plain WebAssembly exports ([`exports`]), which the tests run
+//! under node to check that the core computes there, bit for bit, what it computes natively.
 
+pub mod browser;
 pub mod exports;
 
 use accelcal_core::calibration::CalibrationJson;
@@ -10,7 +12,7 @@ use accelcal_core::sim::SimulatedSession;
 use serde::Serialize;
 
 /// The hand's placement error, in degrees: `calibrate --sim`'s default (`--sim-placement-deg`).
-const PLACEMENT_DEG: f64 = 3.0;
+pub(crate) const PLACEMENT_DEG: f64 = 3.0;
 
 /// What a simulated session yields, as JSON: its calibration, or why there is none.
 #[derive(Serialize)]

@@ -1,12 +1,13 @@
 //! `cargo xtask dist`: builds every board once and writes `dist/` (the interface is in DESIGN.md):
 //! accelcal-blackpill-f411.bin, accelcal-blackpill-f401.bin, accelcal-pico.uf2, accelcal-pico2.uf2,
 //! accelcal-esp32c3.bin, with each ELF file beside its image; fails when a board outgrows its flash
-//! or RAM budget.
+//! or RAM budget. `cargo xtask web`: the web page into `target/web` (web.rs, docs/web.md).
 
 mod elf;
 mod esp;
 mod preflight;
 mod uf2;
+mod web;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
@@ -108,7 +109,11 @@ fn run() -> Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     match args.split_first() {
         Some((task, names)) if task == "dist" => dist(&chosen(names)?),
-        _ => bail!("usage: cargo xtask dist [BOARD...]   (builds every board, or the ones named, into dist/)"),
+        Some((task, [])) if task == "web" => web::build(&workspace_root()).map(|_| ()),
+        _ => bail!(
+            "usage: cargo xtask dist [BOARD...]   (builds every board, or the ones named, into dist/)\n       \
+             cargo xtask web              (builds the web page into target/web; docs/web.md)"
+        ),
     }
 }
 

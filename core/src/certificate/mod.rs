@@ -154,6 +154,15 @@ impl Certificate {
         Ok(certificate)
     }
 
+    /// The session's own verification when it contradicts the predicted | |a| - g |: the error it
+    /// found without its noise exceeds U by more than one noise floor (no certificate is issued then).
+    // NOTE: the verified figure carries its own noise: the error without it must exceed U by more than
+    // one noise floor to contradict it (as `Verification::against` judges a target).
+    pub fn contradicting_verification(&self) -> Option<&Verification> {
+        let predicted_mg = self.predicted.norm_error_mg.expanded;
+        self.verification.as_ref().filter(|v| v.after_rms_without_noise_mg > predicted_mg + v.noise_floor_mg)
+    }
+
     /// The same certificate sealed again after a test changed it.
     #[cfg(any(test, feature = "sim"))]
     pub fn resealed(mut self) -> Self {

@@ -280,6 +280,15 @@ pub enum Command {
     Export(ExportArgs),
     /// Allan deviation and noise terms (white noise, bias instability, random walk) of a still recording.
     Noise(NoiseArgs),
+    /// Serves the web page (built by `cargo xtask web`) on localhost, for a browser with Web Serial.
+    Web {
+        /// The page's folder.
+        #[arg(long, default_value = crate::web::BUILT_PAGE)]
+        dir: PathBuf,
+        /// The port on 127.0.0.1 (0: a free one).
+        #[arg(long, default_value_t = 8037)]
+        port: u16,
+    },
     /// Runs a simulated board on a pseudo-terminal; prints its path, then serves until killed.
     Sim {
         /// Serve on a pseudo-terminal (the only transport offered).

@@ -68,6 +68,7 @@ pub fn run(cli: Cli) -> Result<(), Error> {
         Command::Record(args) => record::record(&args),
         Command::Thermal(args) => thermal::thermal(&args),
         Command::Selftest(args) => selftest::selftest(&args),
+        Command::Web { dir, port } => serve_page(&dir, port),
         Command::Sim { pty: true, seed, sketch: Some(sketch), .. } => {
             Ok(crate::sim::replay::serve_replay(sketch, seed)?)
         }
@@ -85,6 +86,14 @@ pub fn run(cli: Cli) -> Result<(), Error> {
 
 /// `accelcal calibrate`: captures, fit, upload, save, verification; several boards on one fixture
 /// together.
+/// `accelcal web`: serves the page until killed, its address printed first.
+fn serve_page(dir: &std::path::Path, port: u16) -> Result<(), Error> {
+    let server = crate::web::PageServer::bind(dir, port)?;
+    println!("serving {} on {} (Ctrl-C ends it); open it in Chrome, Edge or Opera", dir.display(), server.url());
+    server.serve();
+    Ok(())
+}
+
 fn calibrate(args: &CalibrateArgs) -> Result<(), Error> {
     // NOTE: refused before anything happens: a run that could only end without the upload it was
     // asked for must not start (the simulated board, turned by the tool itself, needs no answer).
