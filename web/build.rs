@@ -5,6 +5,13 @@
 include!("../host/optional_tools.rs");
 
 fn main() {
+    // NOTE: the cfgs are for the tests, which build for the host. A wasm32 build (`cargo xtask web`,
+    // run by the page tests themselves) must not depend on PATH, which differs under `cargo test`:
+    // every page test would otherwise build and link the page's wasm again.
+    if std::env::var("TARGET").is_ok_and(|target| target.starts_with("wasm32")) {
+        println!("cargo::rerun-if-changed=build.rs");
+        return;
+    }
     let both = "node --version && rustup target list --installed | grep -qx wasm32-unknown-unknown";
     tool_cfg("has_wasm_node", "sh", &["-c", both]);
     let page = "node --version && rustup target list --installed | grep -qx wasm32-unknown-unknown \
