@@ -55,25 +55,6 @@ pub fn encode<T: Serialize>(request_id: u16, message: &T, out: &mut [u8; MAX_FRA
     Ok(encoded + 1)
 }
 
-/// Encodes a payload already serialized (a message, and what the host appends after it: postcard
-/// reads a message and leaves the bytes after it, so a board reads the message alone) into `out`,
-/// delimiter included; returns the frame length.
-// NOTE: not sharing `encode`'s lines through a helper: that cost the Pico's image 44 bytes of its
-// last 150 (measured), and only the host calls this.
-pub fn encode_payload(request_id: u16, payload: &[u8], out: &mut [u8; MAX_FRAME_LEN]) -> Result<usize, FrameError> {
-    let mut raw = [0u8; RAW_LEN];
-    raw[0] = PROTOCOL_VERSION;
-    raw[1..HEADER_LEN].copy_from_slice(&request_id.to_le_bytes());
-    let crc_at = HEADER_LEN + payload.len();
-    raw.get_mut(HEADER_LEN..crc_at).ok_or(FrameError::Oversized)?.copy_from_slice(payload);
-    let crc = CRC.checksum(&raw[..crc_at]);
-    raw[crc_at..crc_at + CRC_LEN].copy_from_slice(&crc.to_le_bytes());
-    let encoded =
-        cobs::try_encode(&raw[..crc_at + CRC_LEN], &mut out[..MAX_FRAME_LEN - 1]).map_err(|_| FrameError::Oversized)?;
-    out[encoded] = 0;
-    Ok(encoded + 1)
-}
-
 /// Decodes one frame (the bytes before its 0x00 delimiter) in place into its request id and message.
 pub fn decode<T: DeserializeOwned>(frame: &mut [u8]) -> Result<(u16, T), FrameError> {
     let raw_len = cobs::decode_in_place(frame).map_err(|_| FrameError::Cobs)?;

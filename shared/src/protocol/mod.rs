@@ -8,7 +8,7 @@ mod messages;
 pub mod probe;
 mod temperature;
 
-pub use frame::{decode, encode, encode_payload, Feed, FrameAccumulator, FrameError};
+pub use frame::{decode, encode, Feed, FrameAccumulator, FrameError};
 pub use messages::*;
 pub use temperature::{TempBin, TEMP_BINS_PER_MESSAGE};
 

@@ -7,7 +7,7 @@
 //! frame long enough that COBS's one code byte is printable, and its last letter is chosen so that
 //! the CRC's four bytes are safe too.
 
-use super::{encode_payload, FrameError, Request, MAX_FRAME_LEN, PROTOCOL_VERSION};
+use super::{encode, FrameError, Request, MAX_FRAME_LEN, PROTOCOL_VERSION};
 
 /// Bytes something on a serial port may act on, which the probe's hello never holds:
 /// - 0x01-0x05: MicroPython's and CircuitPython's REPL control characters (raw REPL, normal REPL,
@@ -36,10 +36,13 @@ pub fn is_inert(byte: u8) -> bool {
 /// wrapping round past the last id to 1; id 0 is reserved)
 /// and the frame's length in `out`, every byte before the delimiter inert.
 pub fn inert_hello(first_id: u16, out: &mut [u8; MAX_FRAME_LEN]) -> Result<(u16, usize), FrameError> {
+    let hello = Request::Hello { protocol_version: PROTOCOL_VERSION };
     let ids = (first_id.max(1)..=u16::MAX).chain(1..first_id).filter(|id| id.to_le_bytes().into_iter().all(is_inert));
     for id in ids {
         for last in LAST_LETTERS {
-            let len = encode_payload(id, payload(last, &mut [0; 40])?, out)?;
+            // NOTE: postcard writes a tuple's fields, and an array's bytes, one after another with no
+            // length: the hello's message, then the text and the letter as they are.
+            let len = encode(id, &(&hello, TEXT, last), out)?;
             if out[..len - 1].iter().all(|&b| is_inert(b)) {
                 return Ok((id, len));
             }
@@ -47,16 +50,6 @@ pub fn inert_hello(first_id: u16, out: &mut [u8; MAX_FRAME_LEN]) -> Result<(u16,
     }
     // NOTE: unreachable in practice (a test finds one within the first ids); an error, not a panic.
     Err(FrameError::Oversized)
-}
-
-/// The hello's message, the text, and `last`, in `buffer`; the bytes used.
-fn payload(last: u8, buffer: &mut [u8; 40]) -> Result<&[u8], FrameError> {
-    let hello = Request::Hello { protocol_version: PROTOCOL_VERSION };
-    let message = postcard::to_slice(&hello, buffer).map_err(|_| FrameError::Oversized)?.len();
-    let end = message + TEXT.len() + 1;
-    buffer[message..end - 1].copy_from_slice(TEXT);
-    buffer[end - 1] = last;
-    Ok(&buffer[..end])
 }
 
 #[cfg(test)]
